@@ -1,0 +1,4 @@
+//! The catalogue language (schema), checked arguments and the checker.
+
+pub mod args;
+pub mod schema;

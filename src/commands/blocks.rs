@@ -1,0 +1,1 @@
+//! Factor blocks shared by several commands (code_aster's `Cata/Commons`).

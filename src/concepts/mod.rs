@@ -1,0 +1,112 @@
+//! Concepts: the named, typed results that commands produce and consume.
+//!
+//! A command file binds names to concepts (`MAIL = LIRE_MAILLAGE(...)`).
+//! The checker only needs their types; the runner also keeps their data.
+//! Type names follow code_aster's (`maillage_sdaster`, `evol_noli`, ...)
+//! so that messages read as a code_aster user expects.
+
+use indexmap::IndexMap;
+
+use crate::diag::Span;
+
+/// The type of a concept, as code_aster names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ConceptType {
+    Maillage,
+    Modele,
+    Mater,
+    ChamMater,
+    CharMeca,
+    CharContact,
+    Listr8,
+    ListInst,
+    Fonction,
+    ChamNo,
+    EvolNoli,
+    Table,
+}
+
+impl ConceptType {
+    pub fn aster_name(self) -> &'static str {
+        match self {
+            ConceptType::Maillage => "maillage_sdaster",
+            ConceptType::Modele => "modele_sdaster",
+            ConceptType::Mater => "mater_sdaster",
+            ConceptType::ChamMater => "cham_mater",
+            ConceptType::CharMeca => "char_meca",
+            ConceptType::CharContact => "char_contact",
+            ConceptType::Listr8 => "listr8_sdaster",
+            ConceptType::ListInst => "list_inst",
+            ConceptType::Fonction => "fonction_sdaster",
+            ConceptType::ChamNo => "cham_no_sdaster",
+            ConceptType::EvolNoli => "evol_noli",
+            ConceptType::Table => "table_sdaster",
+        }
+    }
+}
+
+impl std::fmt::Display for ConceptType {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.aster_name())
+    }
+}
+
+/// The data of a concept once its command has run. Variants are added as
+/// engines are built; a concept produced by `aster check` has no data.
+#[derive(Debug, Clone, Default)]
+pub enum ConceptData {
+    /// Produced by the checker only (no execution).
+    #[default]
+    Unevaluated,
+    Mesh(Box<crate::mesh::Mesh>),
+    /// A list of reals (DEFI_LIST_REEL).
+    ListReal(Vec<f64>),
+    /// A constant function (DEFI_CONSTANTE).
+    Constant(f64),
+    Table(Box<crate::post::table::Table>),
+}
+
+#[derive(Debug, Clone)]
+pub struct Concept {
+    pub name: String,
+    pub ty: ConceptType,
+    /// Where the concept was (last) produced.
+    pub defined_at: Span,
+    /// The command that produced it.
+    pub command: String,
+    pub data: ConceptData,
+}
+
+/// The table of concepts of a study, in creation order.
+#[derive(Debug, Clone, Default)]
+pub struct Concepts {
+    table: IndexMap<String, Concept>,
+}
+
+impl Concepts {
+    pub fn new() -> Self {
+        Self::default()
+    }
+    pub fn get(&self, name: &str) -> Option<&Concept> {
+        self.table.get(name)
+    }
+    pub fn get_mut(&mut self, name: &str) -> Option<&mut Concept> {
+        self.table.get_mut(name)
+    }
+    /// Binds (or, with `reuse=`, rebinds) a name.
+    pub fn insert(&mut self, concept: Concept) {
+        self.table.insert(concept.name.clone(), concept);
+    }
+    pub fn remove(&mut self, name: &str) -> Option<Concept> {
+        self.table.shift_remove(name)
+    }
+    pub fn iter(&self) -> impl Iterator<Item = &Concept> {
+        self.table.values()
+    }
+    pub fn len(&self) -> usize {
+        self.table.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.table.is_empty()
+    }
+}

@@ -1,0 +1,3 @@
+//! The command language: grammar, syntax tree, parser.
+
+pub mod ast;

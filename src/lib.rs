@@ -1,0 +1,18 @@
+//! aster: a Rust reimplementation of the part of code_aster that runs
+//! nonlinear dynamic impact studies (the SDNV103 Taylor bar family).
+//!
+//! Layers, from the bottom: [`diag`] (positions, messages), [`lang`]
+//! (grammar and syntax tree), [`catalog`] (keyword schema and checker),
+//! [`concepts`] (typed results), [`mesh`] and [`medio`] (meshes, MED
+//! files), [`post`] (tables, test report), [`commands`] (one file per
+//! command: declaration and executor) and [`run`] (the study runner).
+
+pub mod catalog;
+pub mod commands;
+pub mod concepts;
+pub mod diag;
+pub mod lang;
+pub mod medio;
+pub mod mesh;
+pub mod post;
+pub mod run;

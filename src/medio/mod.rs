@@ -1,0 +1,1 @@
+//! MED files (HDF5) in and out.

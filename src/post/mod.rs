@@ -1,0 +1,3 @@
+//! Post-processing: tables, the TEST_RESU/TEST_TABLE report, printed results.
+
+pub mod table;
