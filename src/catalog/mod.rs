@@ -1,4 +1,6 @@
 //! The catalogue language (schema), checked arguments and the checker.
 
 pub mod args;
+pub mod checker;
+pub mod doc;
 pub mod schema;

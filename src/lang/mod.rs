@@ -1,3 +1,4 @@
 //! The command language: grammar, syntax tree, parser.
 
 pub mod ast;
+pub mod parser;

@@ -225,3 +225,6 @@ impl Mesh {
         (lo, hi)
     }
 }
+
+pub mod ops;
+pub mod taylor;

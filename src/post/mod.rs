@@ -1,3 +1,4 @@
 //! Post-processing: tables, the TEST_RESU/TEST_TABLE report, printed results.
 
 pub mod table;
+pub mod test_report;
