@@ -7,6 +7,10 @@
 //! files), [`post`] (tables, test report), [`commands`] (one file per
 //! command: declaration and executor) and [`run`] (the study runner).
 
+// Diagnostics are large by design (they carry spans, choices and notes)
+// and only travel on the error path.
+#![allow(clippy::result_large_err)]
+
 pub mod catalog;
 pub mod commands;
 pub mod concepts;

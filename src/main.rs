@@ -1,3 +1,109 @@
-fn main() {
-    println!("aster");
+//! The `aster` command line: check, run, inspect meshes, generate meshes.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use aster::run::driver::{self, RunOptions, EXIT_USAGE};
+
+#[derive(Parser)]
+#[command(
+    name = "aster",
+    version,
+    about = "Runs code_aster command files (.comm) for nonlinear dynamic impact studies",
+    long_about = "aster reads code_aster command files (.comm) and their MED meshes, checks every \
+command and keyword against its catalogue before running anything, and produces the same \
+message file (.mess), result file (.resu, with the OK/NOOK test report) and MED results \
+as code_aster.\n\nExit codes: 0 success, 1 study error (syntax, check, run, or a NOOK test), \
+2 usage error."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Parse and check a command file without running it.
+    ///
+    /// Every error of the file is reported, with file, line, column, command
+    /// and keyword path.
+    Check {
+        /// The command file (.comm).
+        file: PathBuf,
+    },
+    /// Check and run a command file.
+    ///
+    /// Logical units are mapped from `<study>.export` next to the study
+    /// (lines `F mmed path D 20`) and from `--unit`. Writes `<study>.mess`
+    /// and `<study>.resu` next to the study unless `--out` is given.
+    Run {
+        /// The command file (.comm).
+        file: PathBuf,
+        /// Map a logical unit to a file, e.g. `--unit 20=med/sdnv103b.mmed`.
+        #[arg(long = "unit", value_name = "N=PATH", value_parser = parse_unit)]
+        units: Vec<(i64, PathBuf)>,
+        /// A code_aster .export file (default: `<study>.export` next to the study).
+        #[arg(long)]
+        export: Option<PathBuf>,
+        /// Directory for .mess, .resu and result files.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Do not echo the message log on the terminal.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Print reference documentation generated from the catalogue.
+    Doc {
+        /// What to print: `commands` (every command and keyword, Markdown).
+        #[arg(value_parser = ["commands"])]
+        what: String,
+    },
+}
+
+fn parse_unit(s: &str) -> Result<(i64, PathBuf), String> {
+    let (u, p) = s
+        .split_once('=')
+        .ok_or_else(|| format!("expected N=PATH, found '{s}'"))?;
+    let u: i64 = u
+        .trim()
+        .parse()
+        .map_err(|_| format!("the logical unit must be an integer, found '{u}'"))?;
+    if p.is_empty() {
+        return Err("empty path".into());
+    }
+    Ok((u, PathBuf::from(p)))
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let mut stdout = std::io::stdout();
+    let code = match cli.command {
+        Command::Check { file } => driver::check_file(&file, &mut stdout),
+        Command::Run {
+            file,
+            units,
+            export,
+            out,
+            quiet,
+        } => driver::run_file(
+            &RunOptions {
+                comm: file,
+                units,
+                export,
+                out_dir: out,
+                verbose: !quiet,
+            },
+            &mut stdout,
+        ),
+        Command::Doc { what } => match what.as_str() {
+            "commands" => {
+                print!("{}", aster::catalog::doc::commands_markdown());
+                0
+            }
+            _ => EXIT_USAGE,
+        },
+    };
+    ExitCode::from(code as u8)
 }

@@ -1,1 +1,1007 @@
-//! (to be written)
+//! The generic checker: walks a whole command file against the catalogue
+//! and reports every error it finds before anything executes.
+//!
+//! It follows code_aster's supervisor (`SyntaxChecker.py`): per command,
+//! defaults are added, `None` values removed, then counts, types, `into`
+//! lists, bounds, mandatory keywords, unknown keywords, conditional blocks
+//! and rules are checked. Unlike code_aster, which checks a command just
+//! before running it, aster checks the whole file first, so that a typo
+//! near the end is reported before an hour of computation. Concept types
+//! flow from command to command, so a name bound to the wrong kind of
+//! result is caught too.
+
+use crate::catalog::args::{Args, Entry, EntryData, Value};
+use crate::catalog::eval::{Binding, Env, PyVal, SpVal};
+use crate::catalog::schema::{
+    Cond, Factor, Keyword, Lit, Produces, Reentrant, Rule, Simple, Status, Ty,
+};
+use crate::commands::CommandDef;
+use crate::concepts::ConceptType;
+use crate::diag::{closest, Diagnostic, Span};
+use crate::lang::ast::{ExprKind, Ident, Program, StmtKind};
+
+/// One command ready to run.
+#[derive(Debug, Clone)]
+pub struct CheckedCommand {
+    /// Index of the command in the registry given to [`check_program`].
+    pub def: usize,
+    pub name: String,
+    /// The name the result is bound to (`MAIL = LIRE_MAILLAGE(...)`).
+    pub result: Option<Ident>,
+    /// `reuse=NAME`: the concept modified in place.
+    pub reuse: Option<String>,
+    pub produces: Option<ConceptType>,
+    pub args: Args,
+    /// Span of the whole statement.
+    pub span: Span,
+}
+
+/// A checked file: the commands in order, and the warnings found.
+#[derive(Debug, Clone, Default)]
+pub struct CheckedProgram {
+    pub commands: Vec<CheckedCommand>,
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Checks a whole program. On failure, returns every error found (and the
+/// warnings, after them).
+pub fn check_program(
+    program: &Program,
+    registry: &[CommandDef],
+) -> Result<CheckedProgram, Vec<Diagnostic>> {
+    let mut ck = Checker {
+        registry,
+        env: Env::default(),
+        errors: Vec::new(),
+        warnings: Vec::new(),
+    };
+    let mut out = Vec::new();
+    let mut seen_debut = false;
+    let mut fin_at: Option<Span> = None;
+    let names: Vec<&str> = registry.iter().map(|d| d.spec.name).collect();
+
+    for stmt in &program.stmts {
+        let (target, expr) = match &stmt.kind {
+            StmtKind::Assign { target, value } => (Some(target), value),
+            StmtKind::Expr(e) => (None, e),
+        };
+        let call = match &expr.kind {
+            ExprKind::Call { func, args } if names.contains(&func.name.as_str()) => {
+                Some((func, args))
+            }
+            _ => None,
+        };
+        if let Some(fin) = fin_at {
+            ck.warnings.push(
+                Diagnostic::warning("statement after FIN() is ignored, as code_aster does")
+                    .at(stmt.span)
+                    .note(format!("FIN() is at byte {}", fin.start)),
+            );
+            continue;
+        }
+        let Some((func, args)) = call else {
+            // A plain Python statement: evaluate it now.
+            if !seen_debut {
+                if let ExprKind::Call { func, .. } = &expr.kind {
+                    ck.unknown_call(func, &names);
+                    continue;
+                }
+            }
+            match ck.env.eval(expr, &|n| names.contains(&n)) {
+                Ok(v) => match target {
+                    Some(t) => {
+                        if v.v == PyVal::None {
+                            ck.env.names.shift_remove(&t.name);
+                        }
+                        ck.env.names.insert(t.name.clone(), Binding::Var(v.v));
+                    }
+                    None => ck
+                        .warnings
+                        .push(Diagnostic::warning("this statement has no effect").at(stmt.span)),
+                },
+                Err(d) => ck.errors.push(d),
+            }
+            continue;
+        };
+        let name = func.name.as_str();
+        if !seen_debut && name != "DEBUT" {
+            ck.errors.push(
+                Diagnostic::error(format!(
+                    "the study must begin with DEBUT(); {name} comes before it"
+                ))
+                .at(func.span)
+                .in_command(name),
+            );
+            seen_debut = true; // report it once
+        } else if name == "DEBUT" {
+            if seen_debut {
+                ck.errors.push(
+                    Diagnostic::error("DEBUT() may appear only once, at the start")
+                        .at(func.span)
+                        .in_command(name),
+                );
+            }
+            seen_debut = true;
+        }
+        if name == "FIN" {
+            fin_at = Some(stmt.span);
+        }
+        if let Some(c) = ck.command(target, func, args, stmt.span) {
+            out.push(c);
+        }
+    }
+    if !seen_debut {
+        ck.errors.push(
+            Diagnostic::error("the study has no DEBUT(): a command file must begin with DEBUT()")
+                .at(Span::new(0, 0)),
+        );
+    }
+    if fin_at.is_none() && seen_debut {
+        ck.warnings.push(Diagnostic::warning(
+            "the study has no FIN(): it is closed at the end of the file",
+        ));
+    }
+    if ck.errors.is_empty() {
+        Ok(CheckedProgram {
+            commands: out,
+            warnings: ck.warnings,
+        })
+    } else {
+        let mut all = ck.errors;
+        all.extend(ck.warnings);
+        Err(all)
+    }
+}
+
+struct Checker<'a> {
+    registry: &'a [CommandDef],
+    env: Env,
+    errors: Vec<Diagnostic>,
+    warnings: Vec<Diagnostic>,
+}
+
+/// The values present at one level, for conditions and rules.
+type Present<'v> = Vec<(&'v str, Option<&'v PyVal>)>;
+
+impl Checker<'_> {
+    fn unknown_call(&mut self, func: &Ident, names: &[&str]) {
+        let mut d = Diagnostic::error(format!("unknown command {}", func.name)).at(func.span);
+        d.suggestion = closest(&func.name, names);
+        self.errors.push(d);
+    }
+
+    fn command(
+        &mut self,
+        target: Option<&Ident>,
+        func: &Ident,
+        args: &[crate::lang::ast::Arg],
+        span: Span,
+    ) -> Option<CheckedCommand> {
+        let def_idx = self
+            .registry
+            .iter()
+            .position(|d| d.spec.name == func.name)?;
+        let spec = &self.registry[def_idx].spec;
+        let cmd = spec.name;
+        let nerr = self.errors.len();
+
+        // Evaluate the arguments; positional ones are errors.
+        let mut given: Vec<(Ident, SpVal)> = Vec::new();
+        let mut reuse: Option<(String, Span)> = None;
+        for a in args {
+            let Some(k) = &a.name else {
+                self.errors.push(
+                    Diagnostic::error(format!("{cmd} takes keyword arguments only (KEY=value)"))
+                        .at(a.span)
+                        .in_command(cmd),
+                );
+                continue;
+            };
+            if given.iter().any(|(p, _)| p.name == k.name) || (k.name == "reuse" && reuse.is_some())
+            {
+                self.errors.push(
+                    Diagnostic::error(format!("keyword {} is given twice", k.name))
+                        .at(k.span)
+                        .in_command(cmd)
+                        .keyword(k.name.clone()),
+                );
+                continue;
+            }
+            if k.name == "reuse" {
+                match &a.value.kind {
+                    ExprKind::Name(n) => reuse = Some((n.clone(), a.value.span)),
+                    _ => self.errors.push(
+                        Diagnostic::error("reuse= takes the name of an existing concept")
+                            .at(a.value.span)
+                            .in_command(cmd),
+                    ),
+                }
+                continue;
+            }
+            let registry = self.registry;
+            match self
+                .env
+                .eval(&a.value, &|n| registry.iter().any(|d| d.spec.name == n))
+            {
+                Ok(v) => given.push((k.clone(), v)),
+                Err(d) => self.errors.push(with_ctx(d, cmd, &k.name)),
+            }
+        }
+
+        let mut top = Args::new(cmd, "", span);
+        self.level(cmd, "", &spec.keywords, &spec.rules, given, &mut top);
+
+        // Result binding and reuse.
+        let produces = match &spec.produces {
+            Produces::Nothing => None,
+            Produces::Concept(t) => Some(*t),
+        };
+        match (target, produces) {
+            (Some(t), None) => self.errors.push(
+                Diagnostic::error(format!("{cmd} produces no result; remove '{} ='", t.name))
+                    .at(t.span)
+                    .in_command(cmd),
+            ),
+            (None, Some(ty)) => self.warnings.push(
+                Diagnostic::warning(format!(
+                    "the result of {cmd} ({ty}) is not assigned to a name and will be lost"
+                ))
+                .at(func.span)
+                .in_command(cmd),
+            ),
+            _ => {}
+        }
+        let reuse_name = reuse.as_ref().map(|(n, _)| n.clone());
+        self.check_reuse(
+            cmd,
+            &spec.reentrant,
+            target,
+            reuse,
+            produces,
+            &top,
+            func.span,
+        );
+
+        if let (Some(t), Some(ty)) = (target, produces) {
+            self.env.names.insert(
+                t.name.clone(),
+                Binding::Concept {
+                    ty,
+                    defined_at: t.span,
+                },
+            );
+        }
+        if self.errors.len() > nerr {
+            return None;
+        }
+        Some(CheckedCommand {
+            def: def_idx,
+            name: cmd.to_string(),
+            result: target.cloned(),
+            reuse: reuse_name,
+            produces,
+            args: top,
+            span,
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn check_reuse(
+        &mut self,
+        cmd: &str,
+        reentrant: &Reentrant,
+        target: Option<&Ident>,
+        reuse: Option<(String, Span)>,
+        produces: Option<ConceptType>,
+        top: &Args,
+        cmd_span: Span,
+    ) {
+        let key = match reentrant {
+            Reentrant::No => {
+                if let Some((_, sp)) = reuse {
+                    self.errors.push(
+                        Diagnostic::error(format!(
+                            "reuse is not allowed: {cmd} always creates a new concept"
+                        ))
+                        .at(sp)
+                        .in_command(cmd)
+                        .keyword("reuse"),
+                    );
+                }
+                return;
+            }
+            Reentrant::Optional(k) | Reentrant::Required(k) => *k,
+        };
+        let Some((name, sp)) = reuse else {
+            if let (Reentrant::Required(_), Some(t)) = (reentrant, target) {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "{cmd} modifies the concept given in {key} in place: write {} = {cmd}(reuse={}, {key}={}, ...)",
+                        t.name, t.name, t.name
+                    ))
+                    .at(cmd_span)
+                    .in_command(cmd)
+                    .keyword("reuse"),
+                );
+            }
+            return;
+        };
+        match self.env.names.get(&name) {
+            None => {
+                let known: Vec<&str> = self.env.names.keys().map(String::as_str).collect();
+                let mut d = Diagnostic::error(format!("reuse={name}: '{name}' is not defined"))
+                    .at(sp)
+                    .in_command(cmd)
+                    .keyword("reuse");
+                d.suggestion = closest(&name, &known);
+                self.errors.push(d);
+                return;
+            }
+            Some(Binding::Var(v)) => {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "reuse={name}: '{name}' is {}, not a concept",
+                        v.describe()
+                    ))
+                    .at(sp)
+                    .in_command(cmd)
+                    .keyword("reuse"),
+                );
+                return;
+            }
+            Some(Binding::Concept { ty, .. }) => {
+                if Some(*ty) != produces {
+                    self.errors.push(
+                        Diagnostic::error(format!(
+                            "reuse={name}: '{name}' is a {ty} but {cmd} produces a {}",
+                            produces.map(|t| t.aster_name()).unwrap_or("nothing")
+                        ))
+                        .at(sp)
+                        .in_command(cmd)
+                        .keyword("reuse"),
+                    );
+                    return;
+                }
+            }
+        }
+        if let Some(t) = target {
+            if t.name != name {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "reuse={name} modifies '{name}' in place, so the result must be assigned to '{name}', not '{}'",
+                        t.name
+                    ))
+                    .at(t.span)
+                    .in_command(cmd)
+                    .keyword("reuse"),
+                );
+            }
+        }
+        // The reused concept must be the one passed in the reentrance keyword
+        // (e.g. MAILLAGE for DEFI_GROUP, ETAT_INIT/EVOL_NOLI for DYNA_NON_LINE).
+        let mut level = top;
+        let mut parts: Vec<&str> = key.split('/').collect();
+        let last = parts.pop().unwrap_or(key);
+        for p in parts {
+            match level.fact(p) {
+                Some(a) => level = a,
+                None => return,
+            }
+        }
+        if let Some(given) = level.concept(last) {
+            if given != name {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "reuse={name} but {key}={given}: the concept modified in place must be the one given in {key}"
+                    ))
+                    .at(level.span_of(last))
+                    .in_command(cmd)
+                    .keyword(key),
+                );
+            }
+        } else if matches!(reentrant, Reentrant::Required(_)) {
+            self.errors.push(
+                Diagnostic::error(format!("reuse={name} needs {key}={name}"))
+                    .at(sp)
+                    .in_command(cmd)
+                    .keyword(key),
+            );
+        }
+    }
+
+    /// Checks the keywords of one level (a command or one `_F` occurrence)
+    /// and fills `out`.
+    fn level(
+        &mut self,
+        cmd: &str,
+        path: &str,
+        keywords: &[Keyword],
+        rules: &[Rule],
+        given: Vec<(Ident, SpVal)>,
+        out: &mut Args,
+    ) {
+        // None means "absent", as in code_aster.
+        let given: Vec<(Ident, SpVal)> = given
+            .into_iter()
+            .filter(|(_, v)| v.v != PyVal::None)
+            .collect();
+
+        // Resolve blocks to a fixpoint: conditions see given values and the
+        // defaults of keywords visible so far.
+        let mut active: Vec<&Keyword> = Vec::new();
+        let mut block_rules: Vec<&Rule> = Vec::new();
+        for _ in 0..8 {
+            let mut defaults: Vec<(&str, PyVal)> = Vec::new();
+            for k in &active {
+                if let Keyword::Simple(s) = k {
+                    if s.status == Status::Defaulted && !given.iter().any(|(g, _)| g.name == s.name)
+                    {
+                        defaults.push((s.name, lit_default(s)));
+                    }
+                }
+            }
+            let mut present: Present = given
+                .iter()
+                .map(|(k, v)| (k.name.as_str(), Some(&v.v)))
+                .collect();
+            for (n, v) in &defaults {
+                present.push((n, Some(v)));
+            }
+            let mut next = Vec::new();
+            let mut next_rules = Vec::new();
+            flatten(keywords, &present, &mut next, &mut next_rules);
+            let same = next.len() == active.len()
+                && next.iter().zip(&active).all(|(a, b)| std::ptr::eq(*a, *b));
+            active = next;
+            block_rules = next_rules;
+            if same {
+                break;
+            }
+        }
+
+        // Unknown keywords.
+        for (k, _) in &given {
+            if active.iter().any(|a| a.name() == k.name) {
+                continue;
+            }
+            let kp = join(path, &k.name);
+            if let Some(cond) = find_in_blocks(keywords, &k.name) {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "keyword {} is not allowed here: it exists only when {}",
+                        k.name,
+                        describe_cond(cond)
+                    ))
+                    .at(k.span)
+                    .in_command(cmd)
+                    .keyword(kp),
+                );
+            } else {
+                let valid: Vec<&str> = active.iter().map(|a| a.name()).collect();
+                let mut d = Diagnostic::error(format!(
+                    "unknown keyword {}{}",
+                    k.name,
+                    if path.is_empty() {
+                        format!(" for {cmd}")
+                    } else {
+                        format!(" in {path}")
+                    }
+                ))
+                .at(k.span)
+                .in_command(cmd)
+                .keyword(kp);
+                d.suggestion = closest(&k.name, &valid);
+                d.choices = valid.iter().map(|s| s.to_string()).collect();
+                self.errors.push(d);
+            }
+        }
+
+        // Each visible keyword, in catalogue order.
+        for kw in &active {
+            let g = given.iter().find(|(k, _)| k.name == kw.name());
+            match kw {
+                Keyword::Simple(s) => self.simple(cmd, path, s, g, out),
+                Keyword::Factor(f) => self.factor(cmd, path, f, g, out),
+                Keyword::Block(_) => {}
+            }
+        }
+
+        // Rules, on the keywords present after defaults (as code_aster).
+        let present: Vec<&str> = out.entries.keys().map(String::as_str).collect();
+        for r in rules.iter().chain(block_rules.iter().copied()) {
+            if let Some(msg) = rule_violation(r, &present) {
+                let mut d = Diagnostic::error(msg).at(out.span).in_command(cmd);
+                if !path.is_empty() {
+                    d = d.keyword(path.to_string());
+                }
+                self.errors.push(d);
+            }
+        }
+    }
+
+    fn simple(
+        &mut self,
+        cmd: &str,
+        path: &str,
+        s: &Simple,
+        given: Option<&(Ident, SpVal)>,
+        out: &mut Args,
+    ) {
+        let kp = join(path, s.name);
+        let Some((k, v)) = given else {
+            match s.status {
+                Status::Required => self.errors.push(
+                    Diagnostic::error(format!(
+                        "missing compulsory keyword {} ({} expected)",
+                        s.name,
+                        s.ty.describe()
+                    ))
+                    .at(out.span)
+                    .in_command(cmd)
+                    .keyword(kp),
+                ),
+                Status::Defaulted => {
+                    let vals = s.default.iter().map(lit_value).collect();
+                    out.entries.insert(
+                        s.name.to_string(),
+                        Entry {
+                            span: out.span,
+                            defaulted: true,
+                            data: EntryData::Simple(vals),
+                        },
+                    );
+                }
+                _ => {}
+            }
+            return;
+        };
+        let span = k.span.to(v.span);
+        let err = |msg: String| {
+            Diagnostic::error(msg)
+                .at(v.span)
+                .in_command(cmd)
+                .keyword(kp.clone())
+        };
+        // Flatten tuples; a one-element tuple on a single-valued keyword is
+        // unwrapped, as code_aster does.
+        let items: Vec<&SpVal> = match &v.v {
+            PyVal::Tuple(items) => items.iter().collect(),
+            _ => vec![v],
+        };
+        if let Some(max) = s.max {
+            if items.len() > max {
+                self.errors.push(err(format!(
+                    "{} takes at most {max} value{}, {} given",
+                    s.name,
+                    if max > 1 { "s" } else { "" },
+                    items.len()
+                )));
+                return;
+            }
+        }
+        if items.len() < s.min {
+            self.errors.push(err(format!(
+                "{} needs at least {} values, {} given",
+                s.name,
+                s.min,
+                items.len()
+            )));
+            return;
+        }
+        let mut vals = Vec::new();
+        for it in items {
+            match self.convert(cmd, &kp, s, it) {
+                Ok(x) => vals.push(x),
+                Err(d) => self.errors.push(d),
+            }
+        }
+        out.entries.insert(
+            s.name.to_string(),
+            Entry {
+                span,
+                defaulted: false,
+                data: EntryData::Simple(vals),
+            },
+        );
+    }
+
+    /// Type, `into` and bounds of one value.
+    fn convert(&self, cmd: &str, kp: &str, s: &Simple, it: &SpVal) -> Result<Value, Diagnostic> {
+        let err = |msg: String| {
+            Diagnostic::error(msg)
+                .at(it.span)
+                .in_command(cmd)
+                .keyword(kp.to_string())
+        };
+        let wrong = || {
+            let mut d = err(format!(
+                "expected {}, found {}",
+                s.ty.describe(),
+                it.v.describe()
+            ));
+            if let (PyVal::Concept { name, .. }, Some(Binding::Concept { defined_at, .. })) = (
+                &it.v,
+                self.env.names.get(match &it.v {
+                    PyVal::Concept { name, .. } => name.as_str(),
+                    _ => "",
+                }),
+            ) {
+                d = d.note(format!("{name} is defined at byte {}", defined_at.start));
+            }
+            d
+        };
+        let value = match (&s.ty, &it.v) {
+            (Ty::Real, PyVal::Real(r)) => Value::Real(*r),
+            (Ty::Real, PyVal::Int(i)) => Value::Real(*i as f64),
+            (Ty::Int, PyVal::Int(i)) => Value::Int(*i),
+            (Ty::Int, PyVal::Real(r)) if r.fract() == 0.0 && r.abs() < 9.0e15 => {
+                Value::Int(*r as i64)
+            }
+            (Ty::Text, PyVal::Str(t)) => Value::Text(t.clone()),
+            (Ty::Concept(tys), PyVal::Concept { name, ty }) => {
+                if !tys.contains(ty) {
+                    let names: Vec<&str> = tys.iter().map(|t| t.aster_name()).collect();
+                    return Err(err(format!(
+                        "{name} is a {ty}, but a concept of type {} is expected",
+                        names.join(" or ")
+                    )));
+                }
+                Value::Concept {
+                    name: name.clone(),
+                    ty: *ty,
+                }
+            }
+            (Ty::Text, PyVal::Concept { name, .. }) => {
+                return Err(err(format!(
+                "expected a text, found the concept {name}; did you forget the quotes ('{name}')?"
+            )))
+            }
+            _ => return Err(wrong()),
+        };
+        if let Some(into) = &s.into {
+            let ok = into.iter().any(|l| lit_matches(l, &value));
+            if !ok {
+                let choices: Vec<String> = into.iter().map(lit_display).collect();
+                let given = match &value {
+                    Value::Text(t) => t.clone(),
+                    v => v.to_string(),
+                };
+                let mut d = err(format!("{value} is not an allowed value of {}", s.name));
+                d.choices = choices.clone();
+                d.suggestion = closest(&given, &choices);
+                return Err(d);
+            }
+        }
+        if let Some(x) = value.as_real() {
+            if let Some(lo) = s.val_min {
+                if x < lo {
+                    return Err(err(format!("{} = {x} is below its minimum {lo}", s.name)));
+                }
+            }
+            if let Some(hi) = s.val_max {
+                if x > hi {
+                    return Err(err(format!("{} = {x} is above its maximum {hi}", s.name)));
+                }
+            }
+        }
+        Ok(value)
+    }
+
+    fn factor(
+        &mut self,
+        cmd: &str,
+        path: &str,
+        f: &Factor,
+        given: Option<&(Ident, SpVal)>,
+        out: &mut Args,
+    ) {
+        let kp = join(path, f.name);
+        let Some((k, v)) = given else {
+            match f.status {
+                Status::Required => self.errors.push(
+                    Diagnostic::error(format!(
+                        "missing compulsory factor keyword {} (expected {}=_F(...))",
+                        f.name, f.name
+                    ))
+                    .at(out.span)
+                    .in_command(cmd)
+                    .keyword(kp),
+                ),
+                Status::Defaulted => {
+                    let mut occ = Args::new(cmd, kp.clone(), out.span);
+                    self.level(cmd, &kp, &f.keywords, &f.rules, Vec::new(), &mut occ);
+                    out.entries.insert(
+                        f.name.to_string(),
+                        Entry {
+                            span: out.span,
+                            defaulted: true,
+                            data: EntryData::Factor(vec![occ]),
+                        },
+                    );
+                }
+                _ => {}
+            }
+            return;
+        };
+        let occs: Vec<&SpVal> = match &v.v {
+            PyVal::Tuple(items) => items.iter().collect(),
+            _ => vec![v],
+        };
+        if let Some(max) = f.max {
+            if occs.len() > max {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "{} takes at most {max} occurrence{}, {} given",
+                        f.name,
+                        if max > 1 { "s" } else { "" },
+                        occs.len()
+                    ))
+                    .at(v.span)
+                    .in_command(cmd)
+                    .keyword(kp),
+                );
+                return;
+            }
+        }
+        let mut checked = Vec::new();
+        for o in occs {
+            let PyVal::Fact(items) = &o.v else {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "{} is a factor keyword: expected _F(...) or a tuple of _F(...), found {}",
+                        f.name,
+                        o.v.describe()
+                    ))
+                    .at(o.span)
+                    .in_command(cmd)
+                    .keyword(kp.clone()),
+                );
+                continue;
+            };
+            let mut occ = Args::new(cmd, kp.clone(), o.span);
+            self.level(cmd, &kp, &f.keywords, &f.rules, items.clone(), &mut occ);
+            checked.push(occ);
+        }
+        out.entries.insert(
+            f.name.to_string(),
+            Entry {
+                span: k.span.to(v.span),
+                defaulted: false,
+                data: EntryData::Factor(checked),
+            },
+        );
+    }
+}
+
+fn with_ctx(d: Diagnostic, cmd: &str, key: &str) -> Diagnostic {
+    let d = if d.command.is_none() {
+        d.in_command(cmd)
+    } else {
+        d
+    };
+    if d.keyword.is_none() {
+        d.keyword(key.to_string())
+    } else {
+        d
+    }
+}
+
+fn join(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_string()
+    } else {
+        format!("{path}/{key}")
+    }
+}
+
+/// The keywords visible at a level: plain ones and those of blocks whose
+/// condition holds (recursively).
+fn flatten<'k>(
+    keywords: &'k [Keyword],
+    present: &Present,
+    out: &mut Vec<&'k Keyword>,
+    rules: &mut Vec<&'k Rule>,
+) {
+    for k in keywords {
+        match k {
+            Keyword::Block(b) => {
+                if eval_cond(&b.condition, present) {
+                    rules.extend(b.rules.iter());
+                    flatten(&b.keywords, present, out, rules);
+                }
+            }
+            _ => out.push(k),
+        }
+    }
+}
+
+/// Finds the condition of the (first) block that declares `name`.
+fn find_in_blocks<'k>(keywords: &'k [Keyword], name: &str) -> Option<&'k Cond> {
+    for k in keywords {
+        if let Keyword::Block(b) = k {
+            if b.keywords.iter().any(|x| x.name() == name) {
+                return Some(&b.condition);
+            }
+            if let Some(c) = find_in_blocks(&b.keywords, name) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+fn first_scalar(v: &PyVal) -> Option<&PyVal> {
+    match v {
+        PyVal::Tuple(items) => items.first().map(|x| &x.v),
+        v => Some(v),
+    }
+}
+
+fn lit_eq_py(l: &Lit, v: &PyVal) -> bool {
+    match (l, v) {
+        (Lit::Text(a), PyVal::Str(b)) => a == b,
+        (Lit::Int(a), PyVal::Int(b)) => a == b,
+        (Lit::Int(a), PyVal::Real(b)) => *a as f64 == *b,
+        (Lit::Real(a), PyVal::Real(b)) => a == b,
+        (Lit::Real(a), PyVal::Int(b)) => *a == *b as f64,
+        _ => false,
+    }
+}
+
+fn eval_cond(c: &Cond, present: &Present) -> bool {
+    let get = |k: &str| present.iter().find(|(n, _)| *n == k).and_then(|(_, v)| *v);
+    match c {
+        Cond::Eq(k, l) => get(k)
+            .and_then(first_scalar)
+            .is_some_and(|v| lit_eq_py(l, v)),
+        Cond::In(k, ls) => get(k)
+            .and_then(first_scalar)
+            .is_some_and(|v| ls.iter().any(|l| lit_eq_py(l, v))),
+        Cond::Present(k) => get(k).is_some(),
+        Cond::Absent(k) => get(k).is_none(),
+        Cond::And(cs) => cs.iter().all(|c| eval_cond(c, present)),
+        Cond::Or(cs) => cs.iter().any(|c| eval_cond(c, present)),
+        Cond::Not(c) => !eval_cond(c, present),
+    }
+}
+
+/// A readable form of a block condition, for messages and docs.
+pub fn describe_cond(c: &Cond) -> String {
+    match c {
+        Cond::Eq(k, l) => format!("{k}={}", lit_display_q(l)),
+        Cond::In(k, ls) => format!(
+            "{k} is one of {}",
+            ls.iter().map(lit_display_q).collect::<Vec<_>>().join(", ")
+        ),
+        Cond::Present(k) => format!("{k} is given"),
+        Cond::Absent(k) => format!("{k} is absent"),
+        Cond::And(cs) => cs
+            .iter()
+            .map(describe_cond)
+            .collect::<Vec<_>>()
+            .join(" and "),
+        Cond::Or(cs) => format!(
+            "({})",
+            cs.iter()
+                .map(describe_cond)
+                .collect::<Vec<_>>()
+                .join(" or ")
+        ),
+        Cond::Not(c) => format!("not ({})", describe_cond(c)),
+    }
+}
+
+pub fn lit_display(l: &Lit) -> String {
+    match l {
+        Lit::Int(i) => i.to_string(),
+        Lit::Real(r) => format!("{r:?}"),
+        Lit::Text(t) => t.to_string(),
+    }
+}
+
+fn lit_display_q(l: &Lit) -> String {
+    match l {
+        Lit::Text(t) => format!("'{t}'"),
+        l => lit_display(l),
+    }
+}
+
+fn lit_value(l: &Lit) -> Value {
+    match l {
+        Lit::Int(i) => Value::Int(*i),
+        Lit::Real(r) => Value::Real(*r),
+        Lit::Text(t) => Value::Text(t.to_string()),
+    }
+}
+
+fn lit_default(s: &Simple) -> PyVal {
+    match s.default.as_slice() {
+        [one] => lit_py(one),
+        many => PyVal::Tuple(
+            many.iter()
+                .map(|l| SpVal {
+                    v: lit_py(l),
+                    span: Span::default(),
+                })
+                .collect(),
+        ),
+    }
+}
+
+fn lit_py(l: &Lit) -> PyVal {
+    match l {
+        Lit::Int(i) => PyVal::Int(*i),
+        Lit::Real(r) => PyVal::Real(*r),
+        Lit::Text(t) => PyVal::Str(t.to_string()),
+    }
+}
+
+fn lit_matches(l: &Lit, v: &Value) -> bool {
+    match (l, v) {
+        (Lit::Text(a), Value::Text(b)) => a == b,
+        (Lit::Int(a), Value::Int(b)) => a == b,
+        (Lit::Int(a), Value::Real(b)) => *a as f64 == *b,
+        (Lit::Real(a), Value::Real(b)) => a == b,
+        (Lit::Real(a), Value::Int(b)) => *a == *b as f64,
+        _ => false,
+    }
+}
+
+/// The message of a violated rule, or None.
+pub fn rule_violation(r: &Rule, present: &[&str]) -> Option<String> {
+    let has = |k: &&str| present.contains(k);
+    let count = |ks: &[&str]| ks.iter().filter(|k| present.contains(k)).count();
+    let list = |ks: &[&str]| ks.join(", ");
+    match r {
+        Rule::ExactlyOne(ks) => {
+            let n = count(ks);
+            (n != 1).then(|| {
+                if n == 0 {
+                    format!("exactly one of {} must be given, none is", list(ks))
+                } else {
+                    let g: Vec<&str> = ks.iter().copied().filter(|k| has(k)).collect();
+                    format!(
+                        "exactly one of {} must be given, but {} are",
+                        list(ks),
+                        g.join(" and ")
+                    )
+                }
+            })
+        }
+        Rule::AtLeastOne(ks) => {
+            (!ks.iter().any(has)).then(|| format!("at least one of {} must be given", list(ks)))
+        }
+        Rule::Exclusive(ks) => {
+            let g: Vec<&str> = ks.iter().copied().filter(|k| has(k)).collect();
+            (g.len() > 1).then(|| {
+                format!(
+                    "{} exclude each other (at most one of {} may be given)",
+                    g.join(" and "),
+                    list(ks)
+                )
+            })
+        }
+        Rule::Together(ks) => {
+            let n = count(ks);
+            (n != 0 && n != ks.len()).then(|| {
+                let missing: Vec<&str> = ks.iter().copied().filter(|k| !has(k)).collect();
+                format!("{} go together: missing {}", list(ks), missing.join(", "))
+            })
+        }
+        Rule::IfPresentAllPresent(first, others) => {
+            if !has(first) {
+                return None;
+            }
+            let missing: Vec<&str> = others.iter().copied().filter(|k| !has(k)).collect();
+            (!missing.is_empty())
+                .then(|| format!("{first} requires {} as well", missing.join(", ")))
+        }
+        Rule::IfPresentAllAbsent(first, others) => {
+            if !has(first) {
+                return None;
+            }
+            let bad: Vec<&str> = others.iter().copied().filter(|k| has(k)).collect();
+            (!bad.is_empty()).then(|| format!("{first} excludes {}", bad.join(", ")))
+        }
+    }
+}

@@ -1,1 +1,4 @@
-//! (to be written)
+//! (temporary stub until the catalogue documentation lands)
+pub fn commands_markdown() -> String {
+    String::new()
+}

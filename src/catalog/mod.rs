@@ -3,4 +3,5 @@
 pub mod args;
 pub mod checker;
 pub mod doc;
+pub mod eval;
 pub mod schema;

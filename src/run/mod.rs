@@ -7,7 +7,13 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use crate::concepts::Concepts;
+use crate::catalog::checker::CheckedProgram;
+use crate::commands::CommandDef;
+use crate::concepts::{Concept, ConceptData, Concepts};
+use crate::diag::Diagnostic;
+
+pub mod driver;
+pub mod export;
 
 /// Logical units: code_aster's numbered files (fort.N).
 #[derive(Debug, Clone, Default)]
@@ -67,5 +73,56 @@ impl Study {
         } else {
             self.unit_text.entry(unit).or_default().push_str(text);
         }
+    }
+}
+
+impl Study {
+    /// Runs the commands in order. Stops at the first error, which is
+    /// returned; everything produced before it stays in the study (and the
+    /// caller writes the .mess/.resu files in both cases).
+    pub fn execute(
+        &mut self,
+        program: &CheckedProgram,
+        registry: &[CommandDef],
+    ) -> Result<(), Diagnostic> {
+        for c in &program.commands {
+            let def = &registry[c.def];
+            let target = c.result.as_ref().map(|t| t.name.as_str());
+            self.log(format!(
+                "# ---- {}{} (byte {})",
+                target.map(|t| format!("{t} = ")).unwrap_or_default(),
+                c.name,
+                c.span.start
+            ));
+            let started = std::time::Instant::now();
+            let data = (def.exec)(self, &c.args, target)?;
+            self.log(format!(
+                "#      {} done in {:.3} s",
+                c.name,
+                started.elapsed().as_secs_f64()
+            ));
+            if let (Some(t), Some(ty)) = (&c.result, c.produces) {
+                self.concepts.insert(Concept {
+                    name: t.name.clone(),
+                    ty,
+                    defined_at: t.span,
+                    command: c.name.clone(),
+                    data: data.unwrap_or(ConceptData::Unevaluated),
+                });
+            }
+            if c.name == "FIN" {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// The path of a logical unit: mapped by the .export or `--unit`, else
+    /// `fort.N` in the output directory, as code_aster names them.
+    pub fn unit_path(&self, unit: i64) -> PathBuf {
+        self.units
+            .path(unit)
+            .cloned()
+            .unwrap_or_else(|| self.out_dir.join(format!("fort.{unit}")))
     }
 }

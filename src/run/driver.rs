@@ -1,0 +1,253 @@
+//! What `aster check` and `aster run` do, as library functions so that
+//! tests drive them without spawning the binary.
+//!
+//! Exit codes: 0 success, 1 a study error (syntax, check, execution, or
+//! any NOOK test), 2 a usage error (unreadable file, bad option).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use crate::catalog::checker::{check_program, CheckedProgram};
+use crate::commands::{self, CommandDef};
+use crate::diag::{Diagnostic, Severity, Source};
+use crate::lang::parser::parse;
+use crate::run::export::parse_export;
+use crate::run::Study;
+
+pub const EXIT_OK: i32 = 0;
+pub const EXIT_STUDY: i32 = 1;
+pub const EXIT_USAGE: i32 = 2;
+
+/// Parses and checks a source. Errors are rendered into `messages`.
+pub fn parse_and_check(
+    src: &Source,
+    registry: &[CommandDef],
+    messages: &mut String,
+) -> Option<CheckedProgram> {
+    let program = match parse(src) {
+        Ok(p) => p,
+        Err(d) => {
+            messages.push_str(&d.render(Some(src)));
+            return None;
+        }
+    };
+    match check_program(&program, registry) {
+        Ok(c) => {
+            for w in &c.warnings {
+                messages.push_str(&w.render(Some(src)));
+            }
+            Some(c)
+        }
+        Err(ds) => {
+            let nerr = ds.iter().filter(|d| d.severity == Severity::Error).count();
+            for d in &ds {
+                messages.push_str(&d.render(Some(src)));
+                messages.push('\n');
+            }
+            messages.push_str(&format!(
+                "{}: {nerr} error{} found, nothing was run\n",
+                src.name,
+                if nerr == 1 { "" } else { "s" }
+            ));
+            None
+        }
+    }
+}
+
+/// `aster check FILE`: parse and check without executing.
+pub fn check_file(path: &Path, out: &mut dyn Write) -> i32 {
+    let src = match read_source(path) {
+        Ok(s) => s,
+        Err((code, d)) => {
+            let _ = write!(out, "{}", d.render(None));
+            return code;
+        }
+    };
+    let registry = commands::all();
+    let mut messages = String::new();
+    let checked = parse_and_check(&src, &registry, &mut messages);
+    let _ = write!(out, "{messages}");
+    match checked {
+        Some(c) => {
+            let _ = writeln!(
+                out,
+                "{}: OK, {} commands checked",
+                src.name,
+                c.commands.len()
+            );
+            EXIT_OK
+        }
+        None => EXIT_STUDY,
+    }
+}
+
+/// Reads a command file; a missing or unreadable file is a usage error,
+/// a binary or non-UTF-8 one a study error.
+fn read_source(path: &Path) -> Result<Source, (i32, Diagnostic)> {
+    if !path.is_file() {
+        return Err((
+            EXIT_USAGE,
+            Diagnostic::error(format!(
+                "command file '{}' does not exist or is not a file",
+                path.display()
+            )),
+        ));
+    }
+    Source::read(path).map_err(|d| (EXIT_STUDY, d))
+}
+
+/// Options of `aster run`.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    pub comm: PathBuf,
+    /// `--unit N=PATH` mappings; they override the .export.
+    pub units: Vec<(i64, PathBuf)>,
+    /// An explicit .export file; by default `<study>.export` next to the study.
+    pub export: Option<PathBuf>,
+    /// Where .mess, .resu and unit files go; by default next to the study.
+    pub out_dir: Option<PathBuf>,
+    /// Echo the message log to the terminal.
+    pub verbose: bool,
+}
+
+/// `aster run FILE`: check then execute; writes FILE.mess and FILE.resu.
+pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
+    let src = match read_source(&opts.comm) {
+        Ok(s) => s,
+        Err((code, d)) => {
+            let _ = write!(out, "{}", d.render(None));
+            return code;
+        }
+    };
+    let stem = opts
+        .comm
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "study".into());
+    let study_dir = opts
+        .comm
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let out_dir = opts.out_dir.clone().unwrap_or_else(|| study_dir.clone());
+    if let Err(e) = std::fs::create_dir_all(&out_dir) {
+        let _ = writeln!(
+            out,
+            "error: cannot create output directory '{}': {e}",
+            out_dir.display()
+        );
+        return EXIT_USAGE;
+    }
+    let mut study = Study {
+        out_dir: out_dir.clone(),
+        stem: stem.clone(),
+        verbose: opts.verbose,
+        ..Study::default()
+    };
+
+    // Logical units: the .export first, then --unit.
+    let export = opts
+        .export
+        .clone()
+        .or_else(|| Some(study_dir.join(format!("{stem}.export"))).filter(|p| p.is_file()));
+    if let Some(e) = &export {
+        let text = match std::fs::read_to_string(e) {
+            Ok(t) => t,
+            Err(err) => {
+                let _ = writeln!(
+                    out,
+                    "error: cannot read export file '{}': {err}",
+                    e.display()
+                );
+                return EXIT_USAGE;
+            }
+        };
+        let base = e.parent().map(Path::to_path_buf).unwrap_or_default();
+        match parse_export(&text, &base, &e.display().to_string()) {
+            Ok(files) => {
+                for f in files {
+                    study.units.map.insert(f.unit, f.path);
+                }
+            }
+            Err(d) => {
+                let _ = write!(out, "{}", d.render(None));
+                return EXIT_USAGE;
+            }
+        }
+    }
+    for (u, p) in &opts.units {
+        study.units.map.insert(*u, p.clone());
+    }
+
+    let registry = commands::all();
+    let mut messages = String::new();
+    let checked = parse_and_check(&src, &registry, &mut messages);
+    let _ = write!(out, "{messages}");
+    study.mess.push_str(&messages);
+    let code = match checked {
+        None => EXIT_STUDY,
+        Some(program) => {
+            study.log(format!(
+                "aster {} — study {}",
+                env!("CARGO_PKG_VERSION"),
+                src.name
+            ));
+            for (u, p) in &study.units.map.clone() {
+                study.log(format!("unit {u:>3} -> {}", p.display()));
+            }
+            match study.execute(&program, &registry) {
+                Ok(()) => {
+                    if study.tests.nook > 0 {
+                        EXIT_STUDY
+                    } else {
+                        EXIT_OK
+                    }
+                }
+                Err(d) => {
+                    let r = d.render(Some(&src));
+                    let _ = write!(out, "{r}");
+                    study.mess.push_str(&r);
+                    study.mess.push_str(
+                        "the study stopped on this error; results computed so far are kept\n",
+                    );
+                    EXIT_STUDY
+                }
+            }
+        }
+    };
+    if let Err(e) = write_outputs(&study) {
+        let _ = writeln!(out, "error: {e}");
+        return EXIT_STUDY;
+    }
+    let t = study.tests;
+    if t.ok + t.nook + t.skip > 0 {
+        let _ = writeln!(out, "tests: {} OK, {} NOOK, {} SKIP", t.ok, t.nook, t.skip);
+    }
+    let _ = writeln!(
+        out,
+        "{}: {} (messages in {})",
+        src.name,
+        if code == EXIT_OK { "done" } else { "FAILED" },
+        out_dir.join(format!("{stem}.mess")).display()
+    );
+    code
+}
+
+/// Writes .mess, .resu and the text of other logical units.
+fn write_outputs(study: &Study) -> Result<(), String> {
+    let w = |p: PathBuf, text: &str| {
+        std::fs::write(&p, text).map_err(|e| format!("cannot write '{}': {e}", p.display()))
+    };
+    w(
+        study.out_dir.join(format!("{}.mess", study.stem)),
+        &study.mess,
+    )?;
+    w(
+        study.out_dir.join(format!("{}.resu", study.stem)),
+        &study.resu,
+    )?;
+    for (u, text) in &study.unit_text {
+        w(study.unit_path(*u), text)?;
+    }
+    Ok(())
+}
