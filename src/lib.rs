@@ -22,3 +22,4 @@ pub mod medio;
 pub mod mesh;
 pub mod post;
 pub mod run;
+pub mod solver;
