@@ -10,6 +10,9 @@
 // Diagnostics are large by design (they carry spans, choices and notes)
 // and only travel on the error path.
 #![allow(clippy::result_large_err)]
+// Numerical kernels index several arrays with one loop variable; iterator
+// chains would hide the mathematics.
+#![allow(clippy::needless_range_loop)]
 
 pub mod catalog;
 pub mod commands;
