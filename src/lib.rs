@@ -26,3 +26,4 @@ pub mod mesh;
 pub mod post;
 pub mod run;
 pub mod solver;
+pub mod time;
