@@ -15,6 +15,7 @@
 //! Conventions (Voigt order, engineering shears) are in [`voigt`].
 
 pub mod elas;
+pub mod simo_miehe;
 pub mod vmis_isot_line;
 pub mod voigt;
 
