@@ -5,5 +5,6 @@
 //! Gauss families of `elraga`) so that per-Gauss-point results can be
 //! compared with code_aster listings point by point.
 
+pub mod axis;
 pub mod quadrature;
 pub mod shape;
