@@ -1,0 +1,311 @@
+//! `VMIS_ISOT_LINE` under `DEFORMATION='SIMO_MIEHE'`: multiplicative
+//! finite-strain von Mises plasticity with linear isotropic hardening
+//! (code_aster's VMIS2ISOT_LINE path through `lcpivm`).
+//!
+//! Sources: J.C. Simo, "Algorithms for static and dynamic multiplicative
+//! plasticity that preserve the classical return mapping schemes of the
+//! infinitesimal theory", CMAME 99 (1992) 61-112; Simo & Miehe, CMAME 98
+//! (1992); Simo & Hughes, *Computational Inelasticity* (1998), Box 9.1.
+//!
+//! Model. F = Fᵉ Fᵖ with det Fᵖ = 1. The state is b̄ᵉ = J^{-2/3} Fᵉ Fᵉᵀ
+//! (det b̄ᵉ = 1) and p. Kirchhoff stress
+//!   τ = ½K (J² − 1) 1 + μ dev b̄ᵉ,
+//! yield ‖dev τ‖ ≤ √(2/3) (SY + H p).
+//!
+//! Step n → n+1 (Box 9.1):
+//! 1. f̄ = (det f)^{-1/3} f with f = F_{n+1} F_n⁻¹; b̄ᵉ_tr = f̄ b̄ᵉ_n f̄ᵀ.
+//! 2. s_tr = μ dev b̄ᵉ_tr; if ‖s_tr‖ ≤ √(2/3) R(p_n) the step is elastic.
+//! 3. Otherwise, with μ̄ = μ tr(b̄ᵉ_tr)/3, the radial return of the small
+//!    strain theory: Δγ = (‖s_tr‖ − √(2/3)R(p_n)) / (2μ̄ + 2H/3),
+//!    s = s_tr − 2μ̄Δγ n, p_{n+1} = p_n + √(2/3)Δγ.
+//! 4. b̄ᵉ_{n+1} = s/μ + x 1, where x is chosen so that det b̄ᵉ_{n+1} = 1
+//!    (the "trace correction" of Simo 1992 §4: it keeps the plastic flow
+//!    exactly isochoric; Box 9.1's x = tr(b̄ᵉ_tr)/3 does so only to first
+//!    order). x does not enter τ.
+//!
+//! The tangent returned is ∂τ/∂F_{n+1} (9×9), derived in closed form from
+//! the same chain (trial state, then the scalar return), because the
+//! element needs ∂(τ ∇ₓN)/∂u and the Lie-derivative spatial tangent would
+//! have to be converted back anyway. It is not symmetric in general.
+
+use nalgebra::{Matrix3, SMatrix};
+
+use super::voigt::{stress_to_tensor, tensor_to_stress};
+use super::{
+    EcroLineParams, ElasParams, IntegrationFailure, InternalVars, LawMetadata, Regime,
+    StrainMeasure, TangentKind,
+};
+
+/// ∂τ_ij/∂F_kl at row 3i+j, column 3k+l.
+pub type Mat9 = SMatrix<f64, 9, 9>;
+
+/// V1 = EPSPEQ (p), V2 = INDIPLAS, V3..V8 = b̄ᵉ − 1 (xx, yy, zz, xy, xz, yz).
+///
+/// Storing b̄ᵉ − 1 rather than b̄ᵉ makes all-zero variables the virgin
+/// state, as for every other law. code_aster's own extra variables for
+/// SIMO_MIEHE are not settled (semantics.md §14); only V1 and V2 are meant
+/// to compare with its VARI_ELGA.
+pub static METADATA: LawMetadata = LawMetadata {
+    name: "VMIS_ISOT_LINE",
+    internal_variables: &[
+        "EPSPEQ", "INDIPLAS", "BE_XX", "BE_YY", "BE_ZZ", "BE_XY", "BE_XZ", "BE_YZ",
+    ],
+    strain_measures: &[StrainMeasure::SimoMiehe],
+};
+
+/// Start-of-step state and the deformation gradients of the step.
+#[derive(Debug, Clone, Copy)]
+pub struct FiniteStrainInput<'a> {
+    pub f_n: Matrix3<f64>,
+    pub f_np1: Matrix3<f64>,
+    pub internal: &'a [f64],
+    pub dt: f64,
+    pub tangent: TangentKind,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FiniteStrainOutput {
+    /// Kirchhoff stress τ.
+    pub kirchhoff: Matrix3<f64>,
+    /// Cauchy stress σ = τ/J (what SIEF_ELGA holds).
+    pub cauchy: Matrix3<f64>,
+    pub internal: InternalVars,
+    /// ∂τ/∂F_{n+1}; `Elastic` gives the derivative of the trial state.
+    pub dtau_df: Option<Mat9>,
+    pub regime: Regime,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimoMiehe {
+    pub elas: ElasParams,
+    pub ecro: EcroLineParams,
+    mu: f64,
+    bulk: f64,
+    h: f64,
+}
+
+impl SimoMiehe {
+    pub fn new(elas: ElasParams, ecro: EcroLineParams) -> SimoMiehe {
+        SimoMiehe {
+            elas,
+            ecro,
+            mu: elas.mu(),
+            bulk: elas.bulk(),
+            h: ecro.hardening(&elas),
+        }
+    }
+
+    pub fn metadata(&self) -> &'static LawMetadata {
+        &METADATA
+    }
+
+    pub fn initial_internal(&self) -> InternalVars {
+        InternalVars::zeros(METADATA.internal_variables.len())
+    }
+
+    /// Plastic modulus H = E·E_T/(E − E_T).
+    pub fn hardening_modulus(&self) -> f64 {
+        self.h
+    }
+
+    /// Yield stress R(p) = SY + H p (a Kirchhoff equivalent stress).
+    pub fn yield_stress(&self, p: f64) -> f64 {
+        self.ecro.sy + self.h * p
+    }
+
+    /// b̄ᵉ stored in internal variables V3..V8.
+    pub fn elastic_left_cauchy_green(internal: &[f64]) -> Matrix3<f64> {
+        let v = super::Vec6::from_column_slice(&internal[2..8]);
+        stress_to_tensor(&v) + Matrix3::identity()
+    }
+
+    pub fn integrate(
+        &self,
+        input: &FiniteStrainInput,
+    ) -> Result<FiniteStrainOutput, IntegrationFailure> {
+        let name = METADATA.name;
+        self.check(input)?;
+        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let p_n = input.internal[0];
+        let be_n = Self::elastic_left_cauchy_green(input.internal);
+        let f = input.f_np1;
+        let j = f.determinant();
+        let j_n = input.f_n.determinant();
+        let fn_inv = input.f_n.try_inverse().ok_or_else(|| {
+            IntegrationFailure::invalid(
+                name,
+                "singular deformation gradient at the start of the step",
+            )
+        })?;
+        let f_inv = f.try_inverse().ok_or_else(|| {
+            IntegrationFailure::invalid(
+                name,
+                "singular deformation gradient at the end of the step",
+            )
+        })?;
+        // b̄ᵉ_tr = (J_n/J)^{2/3} F A Fᵀ with A = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ.
+        let a = fn_inv * be_n * fn_inv.transpose();
+        let b = f * a * f.transpose();
+        let c = (j_n / j).powf(2.0 / 3.0);
+        let be_tr = b * c;
+        let i_e = be_tr.trace() / 3.0;
+        let s_tr = (be_tr - Matrix3::identity() * i_e) * mu;
+        let q = s_tr.norm();
+        let c0 = (2.0f64 / 3.0).sqrt() * self.yield_stress(p_n);
+        let pressure_part = Matrix3::identity() * (0.5 * k * (j * j - 1.0));
+
+        let plastic = q > c0;
+        let (s, be_new, p_new, beta, m) = if plastic {
+            let mu_bar = mu * i_e;
+            let m = mu_bar / (mu_bar + h / 3.0);
+            let dgamma = (q - c0) / (2.0 * mu_bar + 2.0 * h / 3.0);
+            let beta = 1.0 - 2.0 * mu_bar * dgamma / q;
+            let s = s_tr * beta;
+            let dev_be = s / mu;
+            let x = unit_determinant_shift(&dev_be, i_e).ok_or_else(|| {
+                IntegrationFailure::not_converged(name, "trace correction of b̄ᵉ did not converge")
+            })?;
+            let p = p_n + (2.0f64 / 3.0).sqrt() * dgamma;
+            (s, dev_be + Matrix3::identity() * x, p, beta, m)
+        } else {
+            (s_tr, be_tr, p_n, 1.0, 0.0)
+        };
+        let tau = pressure_part + s;
+
+        let mut internal = self.initial_internal();
+        let v = internal.as_mut_slice();
+        v[0] = p_new;
+        v[1] = if plastic { 1.0 } else { 0.0 };
+        v[2..8].copy_from_slice(tensor_to_stress(&(be_new - Matrix3::identity())).as_slice());
+
+        let dtau_df = match input.tangent {
+            TangentKind::None => None,
+            kind => {
+                let with_return = plastic && kind == TangentKind::Consistent;
+                let mut d = Mat9::zeros();
+                for kk in 0..3 {
+                    for ll in 0..3 {
+                        let mut df = Matrix3::zeros();
+                        df[(kk, ll)] = 1.0;
+                        // F⁻ᵀ : dF, i.e. dJ/J.
+                        let tr_df = f_inv[(ll, kk)];
+                        let dbe = (df * a * f.transpose() + f * a * df.transpose()
+                            - b * (2.0 / 3.0 * tr_df))
+                            * c;
+                        let dtr = dbe.trace() / 3.0;
+                        let ds_tr = (dbe - Matrix3::identity() * dtr) * mu;
+                        let ds = if with_return {
+                            let mu_bar = mu * i_e;
+                            let dmu_bar = mu * dtr;
+                            let dm = dmu_bar * (h / 3.0) / (mu_bar + h / 3.0).powi(2);
+                            let dq = s_tr.component_mul(&ds_tr).sum() / q;
+                            let dbeta = dm * (c0 / q - 1.0) - m * c0 * dq / (q * q);
+                            ds_tr * beta + s_tr * dbeta
+                        } else {
+                            ds_tr
+                        };
+                        let dtau = Matrix3::identity() * (k * j * j * tr_df) + ds;
+                        for ii in 0..3 {
+                            for jj in 0..3 {
+                                d[(3 * ii + jj, 3 * kk + ll)] = dtau[(ii, jj)];
+                            }
+                        }
+                    }
+                }
+                Some(d)
+            }
+        };
+
+        Ok(FiniteStrainOutput {
+            kirchhoff: tau,
+            cauchy: tau / j,
+            internal,
+            dtau_df,
+            regime: if plastic {
+                Regime::Plastic
+            } else {
+                Regime::Elastic
+            },
+        })
+    }
+
+    fn check(&self, input: &FiniteStrainInput) -> Result<(), IntegrationFailure> {
+        let name = METADATA.name;
+        if input
+            .f_n
+            .iter()
+            .chain(input.f_np1.iter())
+            .any(|v| !v.is_finite())
+        {
+            return Err(IntegrationFailure::invalid(
+                name,
+                "non-finite deformation gradient",
+            ));
+        }
+        if input.internal.iter().any(|v| !v.is_finite()) {
+            return Err(IntegrationFailure::invalid(
+                name,
+                "non-finite internal variable",
+            ));
+        }
+        if !(input.dt.is_finite() && input.dt >= 0.0) {
+            return Err(IntegrationFailure::invalid(
+                name,
+                format!("invalid time step {}", input.dt),
+            ));
+        }
+        if input.internal.len() != METADATA.internal_variables.len() {
+            return Err(IntegrationFailure::invalid(
+                name,
+                format!(
+                    "{} internal variables given, {} expected",
+                    input.internal.len(),
+                    METADATA.internal_variables.len()
+                ),
+            ));
+        }
+        if input.internal[0] < 0.0 {
+            return Err(IntegrationFailure::invalid(
+                name,
+                "negative cumulative plastic strain V1",
+            ));
+        }
+        // An inverted element (J ≤ 0) is a step that went too far, not a
+        // material state: ask for a smaller step.
+        if input.f_n.determinant() <= 0.0 || input.f_np1.determinant() <= 0.0 {
+            return Err(IntegrationFailure::not_converged(
+                name,
+                "non-positive volume change J",
+            ));
+        }
+        let be = Self::elastic_left_cauchy_green(input.internal);
+        if be.determinant() <= 0.0 {
+            return Err(IntegrationFailure::invalid(
+                name,
+                "b̄ᵉ in V3..V8 is not positive definite",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The x with det(D + x 1) = 1 for a deviatoric D, by Newton from x0 (≈ 1
+/// for metals): det(D + x1) = x³ − ½ tr(D²) x + det D.
+fn unit_determinant_shift(d: &Matrix3<f64>, x0: f64) -> Option<f64> {
+    let i2 = -0.5 * (d * d).trace();
+    let i3 = d.determinant();
+    let mut x = x0;
+    for _ in 0..50 {
+        let g = x * x * x + i2 * x + i3 - 1.0;
+        let dg = 3.0 * x * x + i2;
+        if dg <= 0.0 {
+            return None;
+        }
+        let dx = g / dg;
+        x -= dx;
+        if dx.abs() <= 1e-15 * x.abs() {
+            return Some(x);
+        }
+    }
+    None
+}

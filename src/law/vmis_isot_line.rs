@@ -1,0 +1,125 @@
+//! `VMIS_ISOT_LINE`: von Mises plasticity with linear isotropic hardening,
+//! small strains, integrated by the radial return (code_aster `nmisot.F90`;
+//! Simo & Hughes, *Computational Inelasticity*, 1998, Box 3.2 for the
+//! return and eq. (3.3.11)-(3.3.13) for the consistent tangent).
+//!
+//! Hardening R(p) = SY + H p with H = E·E_T/(E − E_T) (E_T = D_SIGM_EPSI).
+//! For linear hardening the return is closed-form: no local iteration, so
+//! this law never fails on valid input.
+
+use super::voigt::{deviator, deviatoric_projector, double_dot, isotropic_elastic, one_one, trace};
+use super::{
+    check_small_strain_input, EcroLineParams, ElasParams, IntegrationFailure, InternalVars,
+    LawMetadata, Regime, SmallStrainBehaviour, SmallStrainInput, SmallStrainOutput, StrainMeasure,
+    TangentKind, Vec6,
+};
+
+/// V1 = EPSPEQ (cumulative plastic strain p), V2 = INDIPLAS (0/1).
+/// SIMO_MIEHE is accepted through the separate finite-strain law
+/// [`super::simo_miehe`] (code_aster's VMIS2ISOT_LINE switch).
+pub static METADATA: LawMetadata = LawMetadata {
+    name: "VMIS_ISOT_LINE",
+    internal_variables: &["EPSPEQ", "INDIPLAS"],
+    strain_measures: &[
+        StrainMeasure::Petit,
+        StrainMeasure::PetitReac,
+        StrainMeasure::GrotGdep,
+        StrainMeasure::SimoMiehe,
+        StrainMeasure::GdefLog,
+    ],
+};
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VmisIsotLine {
+    pub elas: ElasParams,
+    pub ecro: EcroLineParams,
+    mu: f64,
+    bulk: f64,
+    h: f64,
+}
+
+impl VmisIsotLine {
+    pub fn new(elas: ElasParams, ecro: EcroLineParams) -> VmisIsotLine {
+        VmisIsotLine {
+            elas,
+            ecro,
+            mu: elas.mu(),
+            bulk: elas.bulk(),
+            h: ecro.hardening(&elas),
+        }
+    }
+    /// Plastic modulus H.
+    pub fn hardening(&self) -> f64 {
+        self.h
+    }
+    /// Yield stress R(p).
+    pub fn yield_stress(&self, p: f64) -> f64 {
+        self.ecro.sy + self.h * p
+    }
+}
+
+impl SmallStrainBehaviour for VmisIsotLine {
+    fn metadata(&self) -> &'static LawMetadata {
+        &METADATA
+    }
+
+    fn integrate(&self, input: &SmallStrainInput) -> Result<SmallStrainOutput, IntegrationFailure> {
+        check_small_strain_input(&METADATA, input)?;
+        let p_n = input.internal[0];
+        if p_n < 0.0 {
+            return Err(IntegrationFailure::invalid(
+                METADATA.name,
+                format!("negative cumulative plastic strain V1 = {p_n}"),
+            ));
+        }
+        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let de = input.strain_increment;
+        // Elastic predictor: deviator s_n + 2μ Δe; pressure always elastic.
+        let s_tr = deviator(&input.stress) + deviatoric_projector() * de * (2.0 * mu);
+        let sigma_m = trace(&input.stress) / 3.0 + k * trace(&de);
+        let q_tr = (1.5 * double_dot(&s_tr, &s_tr)).sqrt();
+        let r_n = self.yield_stress(p_n);
+        let elastic_d = isotropic_elastic(k, mu);
+        let mut internal = InternalVars::zeros(2);
+        let hydro = Vec6::new(sigma_m, sigma_m, sigma_m, 0.0, 0.0, 0.0);
+        if q_tr <= r_n {
+            internal.as_mut_slice()[0] = p_n;
+            return Ok(SmallStrainOutput {
+                stress: s_tr + hydro,
+                internal,
+                tangent: match input.tangent {
+                    TangentKind::None => None,
+                    _ => Some(elastic_d),
+                },
+                regime: Regime::Elastic,
+            });
+        }
+        // Plastic corrector: q_tr − 3μΔp − R(p_n + Δp) = 0.
+        let dp = (q_tr - r_n) / (3.0 * mu + h);
+        let theta = 1.0 - 3.0 * mu * dp / q_tr;
+        let s = s_tr * theta;
+        internal.as_mut_slice()[0] = p_n + dp;
+        internal.as_mut_slice()[1] = 1.0;
+        let tangent = match input.tangent {
+            TangentKind::None => None,
+            TangentKind::Elastic => Some(elastic_d),
+            TangentKind::Consistent => {
+                // D = K 1⊗1 + 2μθ I_dev − 2μ θ̄ n⊗n, n = s_tr/|s_tr|,
+                // θ̄ = 3μ/(3μ+H) − (1 − θ).
+                let norm = double_dot(&s_tr, &s_tr).sqrt();
+                let n = s_tr / norm;
+                let theta_bar = 3.0 * mu / (3.0 * mu + h) - (1.0 - theta);
+                Some(
+                    one_one() * k + deviatoric_projector() * (2.0 * mu * theta)
+                        - n * n.transpose() * (2.0 * mu * theta_bar),
+                )
+            }
+        };
+        Ok(SmallStrainOutput {
+            stress: s + hydro,
+            internal,
+            tangent,
+            regime: Regime::Plastic,
+        })
+    }
+}
