@@ -1,6 +1,6 @@
 //! The mesh: nodes, cells and named groups, in one internal convention.
 //!
-//! Node order inside a cell follows MED (and so code_aster) everywhere in
+//! Node order inside a cell follows MED everywhere in
 //! the engine; readers and writers of other formats convert at the border.
 //! Indices are 0-based internally; MED files are 1-based.
 
