@@ -141,7 +141,13 @@ fn cell_fields_round_trip() {
         ],
     };
     let p = scratch("resu_cells.med");
-    write_result_fields(&p, &m, &[nodal_f.clone()], &[ef.clone()]).unwrap();
+    write_result_fields(
+        &p,
+        &m,
+        std::slice::from_ref(&nodal_f),
+        std::slice::from_ref(&ef),
+    )
+    .unwrap();
     assert_eq!(read_elem_fields(&p, None).unwrap(), vec![ef]);
     // the nodal reader sees only the nodal field
     assert_eq!(read_nodal_fields(&p, None).unwrap(), vec![nodal_f]);

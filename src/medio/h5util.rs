@@ -234,7 +234,7 @@ pub(crate) fn read_names80(ctx: Ctx, ds: &Dataset, what: &str) -> Result<Vec<Str
             )))
         }
     };
-    if raw.len() % LNAME != 0 {
+    if !raw.len().is_multiple_of(LNAME) {
         return Err(ctx.inconsistent(format!(
             "{what}: {} characters is not a whole number of {LNAME}-character names",
             raw.len()

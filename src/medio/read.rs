@@ -113,7 +113,7 @@ pub(crate) fn node_count(ctx: Ctx, file: &File, mesh: &str) -> Result<usize, Med
         .dataset("NOE/COO")
         .map_err(|_| ctx.inconsistent(format!("mesh '{mesh}': no NOE/COO dataset")))?;
     let size = coo.size();
-    if size % esp != 0 {
+    if !size.is_multiple_of(esp) {
         return Err(ctx.inconsistent(format!(
             "mesh '{mesh}': NOE/COO has {size} values, not a multiple of the space dimension {esp}"
         )));
@@ -154,7 +154,7 @@ pub(crate) fn read_mesh_from(ctx: Ctx, file: &File, name: Option<&str>) -> Resul
         .dataset("NOE/COO")
         .map_err(|_| ctx.inconsistent(format!("{what}: no NOE/COO dataset (node coordinates)")))?;
     let xyz = h5util::read_f64s(ctx, &coo, &format!("{what}: NOE/COO"))?;
-    if xyz.len() % esp != 0 {
+    if !xyz.len().is_multiple_of(esp) {
         return Err(ctx.inconsistent(format!(
             "{what}: NOE/COO has {} values, not a multiple of the space dimension {esp}",
             xyz.len()
@@ -211,7 +211,7 @@ pub(crate) fn read_mesh_from(ctx: Ctx, file: &File, name: Option<&str>) -> Resul
                 .map_err(|_| ctx.inconsistent(format!("{tw}: no NOD dataset (connectivity)")))?;
             let conn = h5util::read_ints(ctx, &nod, &format!("{tw}/NOD"))?;
             let npc = t.nnodes();
-            if conn.len() % npc != 0 {
+            if !conn.len().is_multiple_of(npc) {
                 return Err(ctx.inconsistent(format!(
                     "{tw}/NOD has {} node numbers, not a multiple of {npc} nodes per {tname}",
                     conn.len()
