@@ -179,3 +179,36 @@ fn writer_refuses_bad_input_without_creating_a_file() {
     assert!(e.contains("two fields"), "{e}");
     assert!(!p.exists());
 }
+
+#[test]
+fn meshes_without_groups_or_cells() {
+    let tri = Mesh {
+        name: "TRI".into(),
+        dim: 2,
+        coords: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+        cells: vec![Cell {
+            kind: CellType::Tria3,
+            nodes: vec![0, 1, 2],
+        }],
+        ..Default::default()
+    };
+    let points = Mesh {
+        name: "POINTS".into(),
+        dim: 3,
+        coords: vec![[0.5, -1.0, 2.0], [1.0, 1e-300, -3.5]],
+        ..Default::default()
+    };
+    for (m, file) in [(tri, "nogroups.med"), (points, "points.med")] {
+        let p = scratch(file);
+        write_mesh(&p, &m).unwrap();
+        assert_eq!(read_mesh(&p, None).unwrap(), m, "{file}");
+    }
+}
+
+#[test]
+fn unwritable_path_is_an_io_error() {
+    let p = scratch("no_such_dir").join("x.med");
+    let e = write_mesh(&p, &all_types_mesh()).unwrap_err();
+    assert!(matches!(e.kind, aster::medio::MedErrorKind::Io(_)), "{e}");
+    assert!(e.to_string().contains("cannot create"), "{e}");
+}
