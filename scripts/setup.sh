@@ -13,3 +13,10 @@ if [ ${#need[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need[@]}" pkg-config >/dev/null
 fi
+# In CI, also install the independent MED readers that tests/med_interop.py
+# compares our files with (the test is skipped, with a notice, without them).
+if [ "${CI:-}" = "true" ]; then
+  python3 -c "import medcoupling" 2>/dev/null || python3 -c "import meshio" 2>/dev/null || \
+    python3 -m pip install --quiet meshio h5py medcoupling >/dev/null 2>&1 || \
+    echo "setup: could not install medcoupling/meshio; the MED interop test will be skipped" >&2
+fi

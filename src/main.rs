@@ -54,6 +54,15 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Print what a MED mesh file holds: counts per cell type, groups with
+    /// their sizes, bounding box.
+    Info {
+        /// The MED file (.mmed, .med, .rmed).
+        file: PathBuf,
+        /// The mesh to describe (default: the first one in the file).
+        #[arg(long)]
+        mesh: Option<String>,
+    },
     /// Print reference documentation generated from the catalogue.
     Doc {
         /// What to print: `commands` (every command and keyword, Markdown).
@@ -97,6 +106,20 @@ fn main() -> ExitCode {
             },
             &mut stdout,
         ),
+        Command::Info { file, mesh } => match aster::medio::read_mesh(&file, mesh.as_deref()) {
+            Ok(m) => {
+                print!("{}", aster::medio::mesh_info(&m));
+                0
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                if file.is_file() {
+                    1
+                } else {
+                    EXIT_USAGE
+                }
+            }
+        },
         Command::Doc { what } => match what.as_str() {
             "commands" => {
                 print!("{}", aster::catalog::doc::commands_markdown());
