@@ -678,12 +678,10 @@ impl Table {
             });
         }
         let k_cell = |c: &Col, s: &str, val_len: usize| -> String {
-            let k_len = c.k_lead + c.k_width.max(s.chars().count()).max(1);
             let fmt_len = c.k_lead + c.k_width.max(1);
             let blanks = (c.width as isize - val_len as isize)
                 .min(c.width as isize - fmt_len as isize)
                 .max(0) as usize;
-            let _ = k_len;
             format!(
                 "{}{}{:<w$}",
                 " ".repeat(blanks),
