@@ -1,4 +1,5 @@
 //! Post-processing: tables, the TEST_RESU/TEST_TABLE report, printed results.
 
+pub mod function;
 pub mod table;
 pub mod test_report;
