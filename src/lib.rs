@@ -24,6 +24,7 @@ pub mod law;
 pub mod medio;
 pub mod mesh;
 pub mod post;
+pub mod result;
 pub mod run;
 pub mod solver;
 pub mod time;

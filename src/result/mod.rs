@@ -1,0 +1,236 @@
+//! Results: nodal fields (cham_no) and transient results (evol_noli).
+//!
+//! A transient result is a list of archived steps (NUME_ORDRE, INST), each
+//! holding named fields: nodal ones (DEPL, VITE, ACCE, CONT_NOEU, FORC_NODA,
+//! REAC_NODA) and Gauss-point ones (SIEF_ELGA, VARI_ELGA). Post-processing
+//! commands (POST_RELEVE_T, TEST_RESU, RECU_FONCTION, IMPR_RESU) read them
+//! through the accessors below and never see the solver.
+
+use indexmap::IndexMap;
+
+/// A nodal field: `ncmp` components per node, node-major. A (node,
+/// component) pair that was never assigned is absent, which is not the
+/// same as zero (code_aster's CREA_CHAMP semantics): it is stored as NaN
+/// and reported as absent by [`NodalField::get`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct NodalField {
+    pub components: Vec<String>,
+    pub values: Vec<f64>,
+}
+
+impl NodalField {
+    /// A field with every pair absent.
+    pub fn absent(components: Vec<String>, nnodes: usize) -> Self {
+        let n = components.len() * nnodes;
+        NodalField {
+            components,
+            values: vec![f64::NAN; n],
+        }
+    }
+
+    /// A field with every pair set to zero.
+    pub fn zeros(components: Vec<String>, nnodes: usize) -> Self {
+        let n = components.len() * nnodes;
+        NodalField {
+            components,
+            values: vec![0.0; n],
+        }
+    }
+
+    pub fn ncmp(&self) -> usize {
+        self.components.len()
+    }
+
+    pub fn nnodes(&self) -> usize {
+        if self.components.is_empty() {
+            0
+        } else {
+            self.values.len() / self.components.len()
+        }
+    }
+
+    pub fn component_index(&self, name: &str) -> Option<usize> {
+        self.components.iter().position(|c| c == name)
+    }
+
+    /// The value of a component at a node, None if absent.
+    pub fn get(&self, node: usize, cmp: &str) -> Option<f64> {
+        let c = self.component_index(cmp)?;
+        let v = *self.values.get(node * self.ncmp() + c)?;
+        (!v.is_nan()).then_some(v)
+    }
+
+    pub fn set(&mut self, node: usize, cmp: usize, v: f64) {
+        let n = self.ncmp();
+        self.values[node * n + cmp] = v;
+    }
+}
+
+/// A field at Gauss points: for each cell, `npg[cell]` points of `ncmp`
+/// components (cells outside the model have 0 points).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct GaussField {
+    pub components: Vec<String>,
+    /// Offset of each cell's first value in `values`; `offsets[ncells]` is
+    /// the total length.
+    pub offsets: Vec<usize>,
+    pub values: Vec<f64>,
+}
+
+impl GaussField {
+    pub fn ncmp(&self) -> usize {
+        self.components.len()
+    }
+    /// The values of one cell, point-major.
+    pub fn cell(&self, cell: usize) -> &[f64] {
+        &self.values[self.offsets[cell]..self.offsets[cell + 1]]
+    }
+    /// Number of Gauss points of a cell.
+    pub fn npg(&self, cell: usize) -> usize {
+        (self.offsets[cell + 1] - self.offsets[cell])
+            .checked_div(self.ncmp())
+            .unwrap_or(0)
+    }
+}
+
+/// One archived step of a transient result.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Step {
+    pub nume_ordre: usize,
+    pub inst: f64,
+    pub nodal: IndexMap<String, NodalField>,
+    pub gauss: IndexMap<String, GaussField>,
+}
+
+/// A transient nonlinear result (evol_noli).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct EvolNoli {
+    /// The mesh concept the fields live on.
+    pub mesh: String,
+    /// The model concept, if any.
+    pub model: String,
+    pub steps: Vec<Step>,
+}
+
+/// How a step is selected (TEST_RESU, POST_RELEVE_T, CALC_CHAMP...).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Access {
+    NumeOrdre(usize),
+    /// INST with its search tolerance: RELATIF (|t - t_k| <= prec |t|) or
+    /// ABSOLU (|t - t_k| <= prec).
+    Inst {
+        inst: f64,
+        precision: f64,
+        relative: bool,
+    },
+}
+
+impl EvolNoli {
+    /// Finds the step an access designates. Several matches or none are
+    /// errors, as in code_aster (the message lists the nearest instants).
+    pub fn find(&self, access: Access) -> Result<&Step, String> {
+        match access {
+            Access::NumeOrdre(n) => {
+                self.steps
+                    .iter()
+                    .find(|s| s.nume_ordre == n)
+                    .ok_or_else(|| {
+                        format!(
+                            "NUME_ORDRE {n} is not stored in the result (stored: {})",
+                            self.describe_orders()
+                        )
+                    })
+            }
+            Access::Inst {
+                inst,
+                precision,
+                relative,
+            } => {
+                let tol = if relative {
+                    precision * inst.abs()
+                } else {
+                    precision
+                };
+                let hits: Vec<&Step> = self
+                    .steps
+                    .iter()
+                    .filter(|s| (s.inst - inst).abs() <= tol)
+                    .collect();
+                match hits.as_slice() {
+                    [one] => Ok(one),
+                    [] => {
+                        let near = self
+                            .steps
+                            .iter()
+                            .min_by(|a, b| (a.inst - inst).abs().total_cmp(&(b.inst - inst).abs()));
+                        Err(format!(
+                            "no stored instant matches INST={inst:e} (tolerance {tol:e}){}",
+                            near.map(|s| format!(
+                                "; the nearest is {:e} (NUME_ORDRE {})",
+                                s.inst, s.nume_ordre
+                            ))
+                            .unwrap_or_default()
+                        ))
+                    }
+                    many => Err(format!(
+                        "{} stored instants match INST={inst:e} within {tol:e}: reduce PRECISION",
+                        many.len()
+                    )),
+                }
+            }
+        }
+    }
+
+    fn describe_orders(&self) -> String {
+        match (self.steps.first(), self.steps.last()) {
+            (Some(a), Some(b)) => format!(
+                "{} steps, NUME_ORDRE {} to {}",
+                self.steps.len(),
+                a.nume_ordre,
+                b.nume_ordre
+            ),
+            _ => "none".into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn result() -> EvolNoli {
+        let mut r = EvolNoli::default();
+        for (k, t) in [(0, -1e-5), (1, 0.0), (2, 2.5e-7)] {
+            r.steps.push(Step {
+                nume_ordre: k,
+                inst: t,
+                ..Step::default()
+            });
+        }
+        r
+    }
+
+    #[test]
+    fn instant_search_follows_the_criterion() {
+        let r = result();
+        let rel = |t| Access::Inst {
+            inst: t,
+            precision: 1e-6,
+            relative: true,
+        };
+        assert_eq!(r.find(rel(2.5e-7)).unwrap().nume_ordre, 2);
+        assert_eq!(r.find(rel(0.0)).unwrap().nume_ordre, 1);
+        assert!(r.find(rel(2.6e-7)).unwrap_err().contains("nearest"));
+        assert_eq!(r.find(Access::NumeOrdre(0)).unwrap().inst, -1e-5);
+        assert!(r.find(Access::NumeOrdre(9)).is_err());
+    }
+
+    #[test]
+    fn absent_components_are_not_zero() {
+        let mut f = NodalField::absent(vec!["DX".into(), "DY".into()], 3);
+        f.set(1, 1, -227000.0);
+        assert_eq!(f.get(1, "DY"), Some(-227000.0));
+        assert_eq!(f.get(1, "DX"), None);
+        assert_eq!(f.get(0, "DZ"), None);
+    }
+}
