@@ -338,8 +338,8 @@ pub fn crea_group_no_plan(
     precision: f64,
 ) -> Result<Report, MeshError> {
     check_new_name(mesh, name)?;
-    // NaN must fail too, hence the negated comparison.
-    if !(precision > 0.0) {
+    // NaN must fail too, hence the explicit test.
+    if precision.is_nan() || precision <= 0.0 {
         return Err(MeshError::new(
             "ASTER_RS_PRECISION",
             format!("PRECISION must be > 0 (got {precision})"),
@@ -389,7 +389,7 @@ pub fn crea_group_no_plan(
         }
     };
     let norm = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    if !(norm > 0.0) || !norm.is_finite() {
+    if norm.is_nan() || norm <= 0.0 || !norm.is_finite() {
         return Err(MeshError::new(
             "ASTER_RS_PLAN_NORMAL",
             "the normal vector is zero",
@@ -624,11 +624,7 @@ pub fn orie_peau<S: AsRef<str>>(
             let supports: Vec<usize> = cells_of_node[skin.nodes[0]]
                 .iter()
                 .copied()
-                .filter(|&s| {
-                    skin.nodes
-                        .iter()
-                        .all(|n| mesh.cells[s].nodes.contains(n))
-                })
+                .filter(|&s| skin.nodes.iter().all(|n| mesh.cells[s].nodes.contains(n)))
                 .collect();
             let support = match supports.as_slice() {
                 [] => {
@@ -664,16 +660,16 @@ pub fn orie_peau<S: AsRef<str>>(
             }
         }
         let total = mesh.cell_groups[&gname].len();
-        out.report
-            .infos
-            .push(format!("TRAITEMENT DU GROUP_MA: {gname} DE {total} MAILLES"));
+        out.report.infos.push(format!(
+            "TRAITEMENT DU GROUP_MA: {gname} DE {total} MAILLES"
+        ));
         out.report
             .infos
             .push(format!("{reoriented} MAILLE(S) ONT ETE ORIENTEE(S)"));
         if not_processed > 0 {
-            out.report
-                .infos
-                .push(format!("{not_processed} MAILLE(S) N'ONT PAS ETE TRAITEE(S)"));
+            out.report.infos.push(format!(
+                "{not_processed} MAILLE(S) N'ONT PAS ETE TRAITEE(S)"
+            ));
         }
         out.reoriented += reoriented;
         out.not_processed += not_processed;
@@ -876,9 +872,15 @@ fn reference_nodes(kind: CellType) -> Vec<[f64; 3]> {
             );
             if kind == CellType::Hexa20 {
                 v.extend(hexa(
-                    &[0.0, 1.0, 0.0, -1.0, -1.0, 1.0, 1.0, -1.0, 0.0, 1.0, 0.0, -1.0],
-                    &[-1.0, 0.0, 1.0, 0.0, -1.0, -1.0, 1.0, 1.0, -1.0, 0.0, 1.0, 0.0],
-                    &[-1.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+                    &[
+                        0.0, 1.0, 0.0, -1.0, -1.0, 1.0, 1.0, -1.0, 0.0, 1.0, 0.0, -1.0,
+                    ],
+                    &[
+                        -1.0, 0.0, 1.0, 0.0, -1.0, -1.0, 1.0, 1.0, -1.0, 0.0, 1.0, 0.0,
+                    ],
+                    &[
+                        -1.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0,
+                    ],
                 ));
             }
             v
@@ -935,11 +937,11 @@ fn shape(kind: CellType, xi: [f64; 3]) -> Vec<f64> {
         CellType::Penta15 => {
             let l = [y, z, 1.0 - y - z];
             let mut n = Vec::with_capacity(15);
-            for i in 0..3 {
-                n.push(0.5 * l[i] * (1.0 - x) * (2.0 * l[i] - 2.0 - x));
+            for li in l {
+                n.push(0.5 * li * (1.0 - x) * (2.0 * li - 2.0 - x));
             }
-            for i in 0..3 {
-                n.push(0.5 * l[i] * (1.0 + x) * (2.0 * l[i] - 2.0 + x));
+            for li in l {
+                n.push(0.5 * li * (1.0 + x) * (2.0 * li - 2.0 + x));
             }
             for (i, j) in [(0, 1), (1, 2), (2, 0)] {
                 n.push(2.0 * l[i] * l[j] * (1.0 - x));
@@ -1143,4 +1145,591 @@ pub fn cell_first_moment_x(mesh: &Mesh, cell: &Cell) -> Option<f64> {
         })
         .sum();
     Some(m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::taylor::{generate, TaylorParams, GAP};
+
+    fn gen(letter: char) -> Mesh {
+        generate(&TaylorParams::for_modelling(letter).unwrap()).unwrap()
+    }
+
+    fn find_node(m: &Mesh, x: [f64; 3]) -> usize {
+        (0..m.nnodes())
+            .find(|&n| (0..3).all(|k| (m.coords[n][k] - x[k]).abs() < 1e-9))
+            .unwrap()
+    }
+
+    // ---- geometry conventions -------------------------------------------
+
+    /// Builds a one-cell mesh whose nodes are code_aster's reference
+    /// element read into MED order: the map is the identity, det J = 1.
+    fn reference_cell_in_med_order(kind: CellType) -> Mesh {
+        let refs = reference_nodes(kind);
+        let perm = med_to_aster(kind);
+        let mut coords = vec![[0.0; 3]; kind.nnodes()];
+        for (aster, &med) in perm.iter().enumerate() {
+            coords[med] = refs[aster];
+        }
+        Mesh {
+            dim: if kind.dim() == 3 { 3 } else { 2 },
+            coords,
+            cells: vec![Cell {
+                kind,
+                nodes: (0..kind.nnodes()).collect(),
+            }],
+            ..Mesh::default()
+        }
+    }
+
+    #[test]
+    fn reference_cells_map_with_unit_jacobian() {
+        for kind in CellType::ALL {
+            if kind.dim() < 2 {
+                continue;
+            }
+            let m = reference_cell_in_med_order(kind);
+            let d = jacobian_dets(&m, &m.cells[0]).unwrap();
+            for v in d {
+                assert!((v - 1.0).abs() < 1e-9, "{kind:?}: det {v}");
+            }
+            // Partition of unity: the reference measures.
+            let want = match kind {
+                CellType::Tria3 | CellType::Tria6 => 0.5,
+                CellType::Quad4 | CellType::Quad8 => 4.0,
+                CellType::Tetra4 => 1.0 / 6.0,
+                CellType::Penta6 | CellType::Penta15 => 1.0,
+                _ => 8.0,
+            };
+            let got = cell_measure(&m, &m.cells[0]);
+            assert!((got - want).abs() < 1e-9, "{kind:?}: {got}");
+        }
+    }
+
+    /// The MED edge lists of the brief, checked against code_aster's
+    /// reference element read through `med_to_aster`.
+    #[test]
+    fn med_to_aster_matches_the_med_edge_lists() {
+        let hexa20: &[(usize, usize)] = &[
+            (0, 1),
+            (1, 2),
+            (2, 3),
+            (3, 0),
+            (4, 5),
+            (5, 6),
+            (6, 7),
+            (7, 4),
+            (0, 4),
+            (1, 5),
+            (2, 6),
+            (3, 7),
+        ];
+        let penta15: &[(usize, usize)] = &[
+            (0, 1),
+            (1, 2),
+            (2, 0),
+            (3, 4),
+            (4, 5),
+            (5, 3),
+            (0, 3),
+            (1, 4),
+            (2, 5),
+        ];
+        for (kind, edges) in [(CellType::Hexa20, hexa20), (CellType::Penta15, penta15)] {
+            let m = reference_cell_in_med_order(kind);
+            let nv = kind.nvertices();
+            for (e, &(a, b)) in edges.iter().enumerate() {
+                for k in 0..3 {
+                    let mid = 0.5 * (m.coords[a][k] + m.coords[b][k]);
+                    assert!((m.coords[nv + e][k] - mid).abs() < 1e-15, "{kind:?} {e}");
+                }
+            }
+        }
+    }
+
+    /// The convention, stated on a unit cube: in MED order the bottom face
+    /// 1-2-3-4 turns clockwise seen from the top face 5-8.
+    #[test]
+    fn med_hexa_bottom_face_turns_clockwise_from_the_top() {
+        let cube = |bottom: [[f64; 2]; 4]| {
+            let mut coords = Vec::new();
+            for z in [0.0, 1.0] {
+                coords.extend(bottom.iter().map(|p| [p[0], p[1], z]));
+            }
+            Mesh {
+                dim: 3,
+                coords,
+                cells: vec![Cell {
+                    kind: CellType::Hexa8,
+                    nodes: (0..8).collect(),
+                }],
+                ..Mesh::default()
+            }
+        };
+        let med = cube([[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]]);
+        let ccw = cube([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+        let d_med = jacobian_dets(&med, &med.cells[0]).unwrap();
+        let d_ccw = jacobian_dets(&ccw, &ccw.cells[0]).unwrap();
+        // det J of the cube [0,1]^3 on [-1,1]^3 is 1/8.
+        assert!(d_med.iter().all(|&d| (d - 0.125).abs() < 1e-9));
+        assert!(d_ccw.iter().all(|&d| (d + 0.125).abs() < 1e-9));
+        assert!((cell_measure(&med, &med.cells[0]) - 1.0).abs() < 1e-9);
+    }
+
+    // ---- DEFI_GROUP -----------------------------------------------------
+
+    #[test]
+    fn tout_group_ma_creates_one_node_group_per_cell_group() {
+        let mut m = gen('B');
+        let r = crea_group_no_tout_group_ma(&mut m);
+        assert!(r.alarms.is_empty());
+        assert_eq!(r.created, ["VOL", "VOL_RIG", "SZZ", "AXE", "RIGID"]);
+        // Serendipity grid 11 x 41 minus 100 centres; foundation 8; SZZ 11
+        // nodes on y = 2.27; AXE 41 on x = 0; RIGID 3.
+        for (g, n) in [
+            ("VOL", 351),
+            ("VOL_RIG", 8),
+            ("SZZ", 11),
+            ("AXE", 41),
+            ("RIGID", 3),
+        ] {
+            let nodes = &m.node_groups[g];
+            assert_eq!(nodes.len(), n, "{g}");
+            assert!(nodes.windows(2).all(|w| w[0] < w[1]), "{g} ascending");
+        }
+        // A second time: every name exists, alarm and no change.
+        let before = m.clone();
+        let r = crea_group_no_tout_group_ma(&mut m);
+        assert_eq!(r.alarms.len(), 5);
+        assert!(r.alarms.iter().all(|a| a.id == "MODELISA7_9"));
+        assert!(r.created.is_empty());
+        assert_eq!(m, before);
+    }
+
+    #[test]
+    fn crit_noeud_selects_vertices_or_mid_nodes() {
+        let mut m = gen('A');
+        // SZZ of the 5/20/6 quarter: radial mids 5 x 7, arc mids 5 x 6;
+        // vertices 5 x 7 plus the axis node.
+        crea_group_no_from_group_ma(&mut m, &["SZZ"], Some(&["MILIEU"]), CritNoeud::Milieu)
+            .unwrap();
+        crea_group_no_from_group_ma(&mut m, &["SZZ"], Some(&["SOMMET"]), CritNoeud::Sommet)
+            .unwrap();
+        crea_group_no_from_group_ma(&mut m, &["SZZ"], None, CritNoeud::Tous).unwrap();
+        let r = crea_group_no_from_group_ma(&mut m, &["SZZ"], Some(&["CENTRE"]), CritNoeud::Centre)
+            .unwrap();
+        assert_eq!(m.node_groups["MILIEU"].len(), 35 + 30);
+        assert_eq!(m.node_groups["SOMMET"].len(), 35 + 1);
+        assert_eq!(m.node_groups["SZZ"].len(), 101);
+        // No centre nodes in these cell types: created, but empty.
+        assert_eq!(r.created, ["CENTRE"]);
+        assert!(m.node_groups["CENTRE"].is_empty());
+        // MILIEU and SOMMET partition SZZ.
+        let mut both = m.node_groups["MILIEU"].clone();
+        both.extend(&m.node_groups["SOMMET"]);
+        both.sort_unstable();
+        assert_eq!(both, m.node_groups["SZZ"]);
+    }
+
+    #[test]
+    fn milieu_on_linear_cells_creates_an_empty_group() {
+        let mut m = gen('J');
+        let r = crea_group_no_from_group_ma(&mut m, &["SZZ"], Some(&["MILIEU"]), CritNoeud::Milieu)
+            .unwrap();
+        assert!(r.alarms.is_empty());
+        assert_eq!(m.node_groups.get("MILIEU"), Some(&Vec::new()));
+        // ... so SXX minus MILIEU is all of SXX.
+        crea_group_no_from_group_ma(&mut m, &["SXX"], None, CritNoeud::Tous).unwrap();
+        crea_group_no_diffe(&mut m, &["SXX", "MILIEU"], "SXX1").unwrap();
+        assert_eq!(m.node_groups["SXX1"], m.node_groups["SXX"]);
+    }
+
+    #[test]
+    fn group_ma_errors_and_existing_names() {
+        let mut m = gen('B');
+        let e = crea_group_no_from_group_ma(&mut m, &["SZZ", "AXE"], Some(&["X"]), CritNoeud::Tous)
+            .unwrap_err();
+        assert_eq!(e.id, "MODELISA7_8");
+        let e = crea_group_no_from_group_ma(&mut m, &["SZZ", "NOPE"], None, CritNoeud::Tous)
+            .unwrap_err();
+        assert_eq!(e.id, "ELEMENTS_62");
+        assert!(e.text.contains("NOPE"));
+        assert!(
+            !m.node_groups.contains_key("SZZ"),
+            "nothing created on error"
+        );
+        // A1 exists: alarm, the old one-node group stays.
+        let a1 = m.node_groups["A1"].clone();
+        let r =
+            crea_group_no_from_group_ma(&mut m, &["SZZ"], Some(&["A1"]), CritNoeud::Tous).unwrap();
+        assert_eq!(r.alarms[0].id, "MODELISA7_9");
+        assert_eq!(m.node_groups["A1"], a1);
+    }
+
+    #[test]
+    fn diffe_keeps_the_first_group_order_and_never_creates_empty_groups() {
+        let mut m = gen('A');
+        crea_group_no_tout_group_ma(&mut m);
+        crea_group_no_from_group_ma(&mut m, &["SZZ"], Some(&["MILIEU"]), CritNoeud::Milieu)
+            .unwrap();
+        crea_group_no_diffe(&mut m, &["SXX", "MILIEU"], "SXX1").unwrap();
+        crea_group_no_diffe(&mut m, &["SYY", "MILIEU"], "SYY1").unwrap();
+        // SXX holds the 2D grid's 351 nodes; 5 radial mids of its bottom
+        // edge are MILIEU nodes.
+        assert_eq!(m.node_groups["SXX"].len(), 351);
+        assert_eq!(m.node_groups["SXX1"].len(), 346);
+        assert_eq!(m.node_groups["SYY1"].len(), 346);
+        let sxx = &m.node_groups["SXX"];
+        let expected: Vec<usize> = sxx
+            .iter()
+            .copied()
+            .filter(|n| !m.node_groups["MILIEU"].contains(n))
+            .collect();
+        assert_eq!(m.node_groups["SXX1"], expected);
+        // Empty difference: alarm, no group, and later use fails.
+        let before = m.node_groups.len();
+        let r = crea_group_no_diffe(&mut m, &["A1", "SZZ"], "EMPTY").unwrap();
+        assert_eq!(r.alarms[0].id, "SOUSTRUC_38");
+        assert_eq!(m.node_groups.len(), before);
+        let e = crea_group_no_diffe(&mut m, &["EMPTY", "A1"], "X").unwrap_err();
+        assert_eq!(e.id, "ASTER_RS_GROUP_NO_UNKNOWN");
+        // Existing NOM is fatal.
+        let e = crea_group_no_diffe(&mut m, &["SXX", "MILIEU"], "SXX1").unwrap_err();
+        assert_eq!(e.id, "SOUSTRUC_37");
+    }
+
+    #[test]
+    fn union_and_intersection_orders() {
+        let mut m = gen('D');
+        crea_group_no_tout_group_ma(&mut m);
+        crea_group_no_set(&mut m, GroupSetOp::Union, &["B1", "A1", "B1"], "U").unwrap();
+        let (a1, b1) = (m.node_groups["A1"][0], m.node_groups["B1"][0]);
+        assert_eq!(m.node_groups["U"], [b1, a1]);
+        crea_group_no_set(&mut m, GroupSetOp::Intersec, &["SZZ", "AXE"], "I").unwrap();
+        assert_eq!(m.node_groups["I"], [a1]);
+        let r = crea_group_no_set(&mut m, GroupSetOp::Intersec, &["RIGID", "VOL"], "J").unwrap();
+        assert_eq!(r.alarms[0].id, "SOUSTRUC_38");
+        assert!(!m.node_groups.contains_key("J"));
+    }
+
+    #[test]
+    fn plan_uses_an_absolute_distance_over_all_nodes() {
+        // CYLBAS of modellings E and K.
+        let mut e = gen('E');
+        crea_group_no_plan(
+            &mut e,
+            "CYLBAS",
+            &[0.0, 0.0, GAP],
+            PlaneNormal::Vect(&[0.0, 0.0, 1.0]),
+            1e-3,
+        )
+        .unwrap();
+        let cylbas = &e.node_groups["CYLBAS"];
+        assert_eq!(cylbas.len(), 37);
+        assert!(cylbas.iter().all(|&n| (e.coords[n][2] - GAP).abs() < 1e-12));
+        assert!(cylbas.windows(2).all(|w| w[0] < w[1]));
+        // The same plane by nautical angles (a = 0, b = -90 deg gives +z).
+        crea_group_no_plan(
+            &mut e,
+            "CYLBAS2",
+            &[0.0, 0.0, GAP],
+            PlaneNormal::AnglNaut(&[0.0, -90.0]),
+            1e-3,
+        )
+        .unwrap();
+        assert_eq!(e.node_groups["CYLBAS2"], e.node_groups["CYLBAS"]);
+
+        // 2D: the line x = 0.3 with PRECISION 0.35 catches the columns at
+        // x = 0, 0.32, 0.64 of the bar (41 + 21 + 41) and the three
+        // foundation nodes at x = 0: a distance, not a cell criterion.
+        let mut b = gen('B');
+        crea_group_no_plan(
+            &mut b,
+            "COL",
+            &[0.3, 0.0],
+            PlaneNormal::Vect(&[2.0, 0.0]),
+            0.35,
+        )
+        .unwrap();
+        assert_eq!(b.node_groups["COL"].len(), 41 + 21 + 41 + 3);
+        // 2D with ANGL_NAUT: a = 90 deg gives the normal +y: line y = 0.
+        crea_group_no_plan(
+            &mut b,
+            "Y0",
+            &[5.0, 0.0],
+            PlaneNormal::AnglNaut(&[90.0]),
+            1e-6,
+        )
+        .unwrap();
+        assert_eq!(b.node_groups["Y0"].len(), 3);
+    }
+
+    #[test]
+    fn plan_errors_and_empty_result() {
+        let mut b = gen('B');
+        let cases: [(&[f64], PlaneNormal, f64); 5] = [
+            (&[0.0, 0.0, 0.0], PlaneNormal::Vect(&[0.0, 1.0]), 1e-3),
+            (&[0.0, 0.0], PlaneNormal::Vect(&[0.0, 1.0, 0.0]), 1e-3),
+            (&[0.0, 0.0], PlaneNormal::Vect(&[0.0, 0.0]), 1e-3),
+            (&[0.0, 0.0], PlaneNormal::Vect(&[0.0, 1.0]), 0.0),
+            (&[0.0, 0.0], PlaneNormal::AnglNaut(&[]), 1e-3),
+        ];
+        for (pt, n, prec) in cases {
+            assert!(crea_group_no_plan(&mut b, "P", pt, n, prec).is_err());
+        }
+        let r = crea_group_no_plan(
+            &mut b,
+            "P",
+            &[0.0, 100.0],
+            PlaneNormal::Vect(&[0.0, 1.0]),
+            1.0,
+        )
+        .unwrap();
+        assert_eq!(r.alarms[0].id, "SOUSTRUC_38");
+        assert!(!b.node_groups.contains_key("P"));
+        let e = crea_group_no_plan(
+            &mut b,
+            "A1",
+            &[0.0, 0.0],
+            PlaneNormal::Vect(&[0.0, 1.0]),
+            1.0,
+        )
+        .unwrap_err();
+        assert_eq!(e.id, "SOUSTRUC_37");
+    }
+
+    #[test]
+    fn group_ma_union() {
+        let mut m = gen('B');
+        crea_group_ma_union(&mut m, &["RIGID", "SZZ"], "CONTACT").unwrap();
+        let mut want = m.cell_groups["SZZ"].clone();
+        want.extend(&m.cell_groups["RIGID"]);
+        assert_eq!(m.cell_groups["CONTACT"], want);
+        assert_eq!(
+            crea_group_ma_union(&mut m, &["SZZ"], "VOL").unwrap_err().id,
+            "SOUSTRUC_37"
+        );
+    }
+
+    // ---- ORIE_PEAU ------------------------------------------------------
+
+    /// Outward normal of every cell of a group, as unit vectors.
+    fn normals(m: &Mesh, g: &str, dim: OrieDim) -> Vec<[f64; 3]> {
+        m.cell_groups[g]
+            .iter()
+            .map(|&c| {
+                let n = skin_normal(m, &m.cells[c], dim);
+                let l = dot(n, n).sqrt();
+                n.map(|v| v / l)
+            })
+            .collect()
+    }
+
+    fn all_along(ns: &[[f64; 3]], want: [f64; 3]) -> bool {
+        ns.iter().all(|n| (dot(*n, want) - 1.0).abs() < 1e-12)
+    }
+
+    #[test]
+    fn orie_peau_2d_turns_normals_out_of_the_bar_and_the_block() {
+        for l in ['B', 'D'] {
+            let mut m = gen(l);
+            let r = orie_peau(&mut m, OrieDim::D2, &["SZZ", "AXE", "RIGID"], None).unwrap();
+            // As generated, SZZ already points out (-y), AXE (+x) and
+            // RIGID (-y) point in.
+            let n2 = if l == 'B' { 20 } else { 2 };
+            assert_eq!(r.reoriented, n2 + 1, "{l}");
+            assert_eq!(r.not_processed, 0);
+            assert!(all_along(
+                &normals(&m, "SZZ", OrieDim::D2),
+                [0.0, -1.0, 0.0]
+            ));
+            assert!(all_along(
+                &normals(&m, "AXE", OrieDim::D2),
+                [-1.0, 0.0, 0.0]
+            ));
+            assert!(all_along(
+                &normals(&m, "RIGID", OrieDim::D2),
+                [0.0, 1.0, 0.0]
+            ));
+            // Mid-node kept last, still between the two ends.
+            for &c in &m.cell_groups["AXE"] {
+                let nd = &m.cells[c].nodes;
+                let y = |k: usize| m.coords[nd[k]][1];
+                assert!(y(0) > y(1) && (y(2) - 0.5 * (y(0) + y(1))).abs() < 1e-12);
+            }
+            let again = orie_peau(&mut m, OrieDim::D2, &["SZZ", "AXE", "RIGID"], None).unwrap();
+            assert_eq!(again.reoriented, 0);
+        }
+    }
+
+    #[test]
+    fn orie_peau_3d_on_the_quarter_and_tetra_meshes() {
+        let mut a = gen('A');
+        let r = orie_peau(&mut a, OrieDim::D3, &["SZZ", "RIGID", "SXX", "SYY"], None).unwrap();
+        // SZZ generated with +z (in), SXX with +x (in); RIGID and SYY out.
+        assert_eq!(r.reoriented, 30 + 100);
+        assert_eq!(r.not_processed, 0);
+        assert!(all_along(
+            &normals(&a, "SZZ", OrieDim::D3),
+            [0.0, 0.0, -1.0]
+        ));
+        assert!(all_along(
+            &normals(&a, "RIGID", OrieDim::D3),
+            [0.0, 0.0, 1.0]
+        ));
+        assert!(all_along(
+            &normals(&a, "SXX", OrieDim::D3),
+            [-1.0, 0.0, 0.0]
+        ));
+        assert!(all_along(
+            &normals(&a, "SYY", OrieDim::D3),
+            [0.0, -1.0, 0.0]
+        ));
+        assert_eq!(
+            r.report.infos[0],
+            "TRAITEMENT DU GROUP_MA: SZZ DE 30 MAILLES"
+        );
+        assert_eq!(r.report.infos[1], "30 MAILLE(S) ONT ETE ORIENTEE(S)");
+        // Reversed QUAD8/TRIA6 keep each mid-node between its two vertices.
+        for &c in &a.cell_groups["SZZ"] {
+            let cell = &a.cells[c];
+            let nv = cell.kind.nvertices();
+            for e in 0..nv {
+                let (p, q) = (cell.nodes[e], cell.nodes[(e + 1) % nv]);
+                let mnode = cell.nodes[nv + e];
+                let d = |u: usize, v: usize| {
+                    let w = sub(a.coords[u], a.coords[v]);
+                    dot(w, w).sqrt()
+                };
+                assert!((d(mnode, p) - d(mnode, q)).abs() < 1e-9);
+            }
+        }
+        let mut e = gen('E');
+        let r = orie_peau(&mut e, OrieDim::D3, &["SZZ", "RIGID"], None).unwrap();
+        assert_eq!(r.reoriented, 54);
+        assert!(all_along(
+            &normals(&e, "SZZ", OrieDim::D3),
+            [0.0, 0.0, -1.0]
+        ));
+        assert!(all_along(
+            &normals(&e, "RIGID", OrieDim::D3),
+            [0.0, 0.0, 1.0]
+        ));
+    }
+
+    #[test]
+    fn orie_peau_support_restriction_and_unsupported_cells() {
+        let mut a = gen('H');
+        // Supports restricted to the block: no SZZ cell has one.
+        let r = orie_peau(&mut a, OrieDim::D3, &["SZZ"], Some(&["VOL_RIG"])).unwrap();
+        assert_eq!((r.reoriented, r.not_processed), (0, 4));
+        assert_eq!(r.report.infos[2], "4 MAILLE(S) N'ONT PAS ETE TRAITEE(S)");
+        let r = orie_peau(&mut a, OrieDim::D3, &["SZZ"], Some(&["VOL"])).unwrap();
+        assert_eq!((r.reoriented, r.not_processed), (4, 0));
+    }
+
+    #[test]
+    fn orie_peau_errors() {
+        let mut b = gen('D');
+        let mut a = gen('H');
+        assert_eq!(
+            orie_peau(&mut a, OrieDim::D2, &["SZZ"], None)
+                .unwrap_err()
+                .id,
+            "MODELISA5_95"
+        );
+        assert!(orie_peau(&mut b, OrieDim::D3, &["SZZ"], None).is_err());
+        // A volume group is not a skin; mixing types is refused too.
+        assert!(orie_peau(&mut a, OrieDim::D3, &["VOL"], None).is_err());
+        assert!(orie_peau(&mut b, OrieDim::D2, &["VOL"], None).is_err());
+        assert!(orie_peau(&mut b, OrieDim::D2, &["NOPE"], None).is_err());
+        // An internal edge (between the first two cells) has no outside.
+        let p = [
+            find_node(&b, [1.6, GAP, 0.0]),
+            find_node(&b, [1.6, GAP + 16.2, 0.0]),
+            find_node(&b, [1.6, GAP + 8.1, 0.0]),
+        ];
+        b.cells.push(Cell {
+            kind: CellType::Seg3,
+            nodes: p.to_vec(),
+        });
+        b.cell_groups.insert("INNER".into(), vec![b.ncells() - 1]);
+        let before = b.clone();
+        let e = orie_peau(&mut b, OrieDim::D2, &["INNER"], None).unwrap_err();
+        assert!(e.text.contains("lies between"));
+        assert_eq!(b, before);
+    }
+
+    // ---- QUAD_LINE ------------------------------------------------------
+
+    #[test]
+    fn quad_line_of_the_a_mesh() {
+        let mut a = gen('A');
+        crea_group_no_tout_group_ma(&mut a);
+        crea_group_no_from_group_ma(&mut a, &["SZZ"], Some(&["MILIEU"]), CritNoeud::Milieu)
+            .unwrap();
+        let j = quad_line(&a, None).unwrap();
+        let counts = j.count_by_type();
+        assert_eq!(
+            counts,
+            [
+                (CellType::Tria3, 6),
+                (CellType::Quad4, 225),
+                (CellType::Penta6, 120),
+                (CellType::Hexa8, 481)
+            ]
+        );
+        // Vertices only: 5 x 21 x 7 off the axis, 21 on it, 8 below.
+        assert_eq!(j.nnodes(), 764);
+        // Same cells in the same places, vertices in the same order.
+        assert_eq!(j.cell_groups, a.cell_groups);
+        for (old, new) in a.cells.iter().zip(&j.cells) {
+            for k in 0..old.kind.nvertices() {
+                assert_eq!(a.coords[old.nodes[k]], j.coords[new.nodes[k]]);
+            }
+        }
+        // Surviving nodes keep their relative order.
+        let mut last = None;
+        for p in &j.coords {
+            let i = find_node(&a, *p);
+            assert!(last < Some(i));
+            last = Some(i);
+        }
+        // Node groups: MILIEU is left empty, so it is gone; SZZ keeps its
+        // 36 vertices; points survive.
+        assert!(!j.node_groups.contains_key("MILIEU"));
+        assert_eq!(j.node_groups["SZZ"].len(), 36);
+        for g in ["A1", "B1", "A2", "B2"] {
+            let (o, n) = (a.node_groups[g][0], j.node_groups[g][0]);
+            assert_eq!(a.coords[o], j.coords[n]);
+        }
+        // And it is what the generator's linear flag gives.
+        assert_eq!(j.cells, gen('J').cells);
+        assert_eq!(j.coords, gen('J').coords);
+    }
+
+    #[test]
+    fn quad_line_keeps_mid_nodes_still_used_by_quadratic_cells() {
+        let b = gen('B');
+        // The block alone: its 4 mid-nodes go, except (10, 0) which the
+        // RIGID SEG3, left quadratic, still uses.
+        let lin = quad_line(&b, Some(&b.cell_groups["VOL_RIG"])).unwrap();
+        assert_eq!(lin.nnodes(), 359 - 3);
+        assert_eq!(lin.cells[b.cell_groups["VOL_RIG"][0]].kind, CellType::Quad4);
+        assert_eq!(lin.cells[b.cell_groups["RIGID"][0]].kind, CellType::Seg3);
+        // SZZ alone: its mid-nodes belong to QUAD8 cells left quadratic.
+        let e = quad_line(&b, Some(&b.cell_groups["SZZ"])).unwrap_err();
+        assert_eq!(e.id, "MODELISA4_3");
+        // Nothing quadratic.
+        assert_eq!(quad_line(&gen('E'), None).unwrap_err().id, "MODELISA3_8");
+        assert_eq!(
+            quad_line(&b, Some(&b.cell_groups["VOL_RIG"][..0]))
+                .unwrap_err()
+                .id,
+            "MODELISA3_8"
+        );
+        assert!(quad_line(&b, Some(&[100_000])).is_err());
+    }
 }

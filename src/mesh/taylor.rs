@@ -93,11 +93,11 @@ pub fn generate(p: &TaylorParams) -> Result<Mesh, String> {
             need(p.n3, "n3")?;
             p.n1.checked_mul(p.n2).and_then(|v| v.checked_mul(p.n3))
         }
-        TaylorKind::Tetra => p
-            .n1
-            .checked_mul(p.n1)
-            .and_then(|v| v.checked_mul(18))
-            .and_then(|v| v.checked_mul(p.n2)),
+        TaylorKind::Tetra => {
+            p.n1.checked_mul(p.n1)
+                .and_then(|v| v.checked_mul(18))
+                .and_then(|v| v.checked_mul(p.n2))
+        }
     };
     match ncells {
         Some(n) if n <= MAX_CELLS => {}
@@ -176,7 +176,11 @@ fn axis(n1: usize, n2: usize) -> Mesh {
                 continue;
             }
             id[jj * ni + ii] = coords.len();
-            coords.push([frac(RADIUS, ii, 2 * n1), GAP + frac(LENGTH, jj, 2 * n2), 0.0]);
+            coords.push([
+                frac(RADIUS, ii, 2 * n1),
+                GAP + frac(LENGTH, jj, 2 * n2),
+                0.0,
+            ]);
         }
     }
     let node = |(ii, jj): (usize, usize)| id[jj * ni + ii];
@@ -282,7 +286,8 @@ fn quarter(n1: usize, n2: usize, n3: usize) -> Mesh {
     for j in 0..n2 {
         for i in 0..n1 {
             for k in 0..n3 {
-                let c = |(di, dk): (usize, usize), dj: usize| node(2 * i + di, 2 * j + dj, 2 * k + dk);
+                let c =
+                    |(di, dk): (usize, usize), dj: usize| node(2 * i + di, 2 * j + dj, 2 * k + dk);
                 let mut h = Vec::with_capacity(20);
                 h.extend(q.iter().map(|&p| c(p, 0)));
                 h.extend(q.iter().map(|&p| c(p, 2)));
@@ -293,7 +298,8 @@ fn quarter(n1: usize, n2: usize, n3: usize) -> Mesh {
                 if i == 0 {
                     // Corners 1 and 2 of the hexahedron are both on the axis:
                     // keep the wedge's nodes, in PENTA15 order.
-                    const WEDGE: [usize; 15] = [0, 2, 3, 4, 6, 7, 9, 10, 11, 13, 14, 15, 16, 18, 19];
+                    const WEDGE: [usize; 15] =
+                        [0, 2, 3, 4, 6, 7, 9, 10, 11, 13, 14, 15, 16, 18, 19];
                     cells.push(Cell {
                         kind: CellType::Penta15,
                         nodes: WEDGE.iter().map(|&m| h[m]).collect(),
@@ -398,7 +404,11 @@ fn disc(nr: usize) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
         let r = frac(1.0, j, nr);
         for t in 0..6 * j {
             let a = std::f64::consts::TAU * (t as f64 / (6 * j) as f64);
-            let (c, s) = if t == 0 { (1.0, 0.0) } else { (a.cos(), a.sin()) };
+            let (c, s) = if t == 0 {
+                (1.0, 0.0)
+            } else {
+                (a.cos(), a.sin())
+            };
             pts.push([r * c, r * s]);
         }
     }
@@ -768,7 +778,10 @@ mod tests {
                 }
             }
             let vols = m.cell_groups["VOL"].len() + m.cell_groups["VOL_RIG"].len();
-            assert_eq!(checked, vols, "{l}: every volume (2D: surface) cell checked");
+            assert_eq!(
+                checked, vols,
+                "{l}: every volume (2D: surface) cell checked"
+            );
         }
     }
 
@@ -861,7 +874,10 @@ mod tests {
         // Measured: 34.7 and 119.9 degrees, volumes 0.156 to 0.205.
         assert!(q.min_dihedral_deg > 30.0, "{q:?}");
         assert!(q.max_dihedral_deg < 125.0, "{q:?}");
-        assert!(q.min_volume > 0.0 && q.max_volume / q.min_volume < 1.5, "{q:?}");
+        assert!(
+            q.min_volume > 0.0 && q.max_volume / q.min_volume < 1.5,
+            "{q:?}"
+        );
     }
 
     /// Faces of the volume cells as sorted vertex sets, with how many
