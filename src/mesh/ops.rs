@@ -615,6 +615,9 @@ pub fn orie_peau<S: AsRef<str>>(
             }
         }
     }
+    // Cells are turned as they are met (a cell listed in two groups must
+    // not be turned twice); an error later puts them all back.
+    let original = mesh.cells.clone();
     let mut out = OrieReport::default();
     for (gname, cells) in skin_cells {
         let mut reoriented = 0;
@@ -633,6 +636,7 @@ pub fn orie_peau<S: AsRef<str>>(
                 }
                 [s] => *s,
                 [s1, s2, ..] => {
+                    mesh.cells = original;
                     return Err(MeshError::new(
                         "ASTER_RS_ORIE_PEAU_INTERNAL",
                         format!(
@@ -647,7 +651,7 @@ pub fn orie_peau<S: AsRef<str>>(
                                 "GROUP_MA_VOLU"
                             }
                         ),
-                    ))
+                    ));
                 }
             };
             let n = skin_normal(mesh, &skin, dim);
@@ -1657,9 +1661,17 @@ mod tests {
         });
         b.cell_groups.insert("INNER".into(), vec![b.ncells() - 1]);
         let before = b.clone();
-        let e = orie_peau(&mut b, OrieDim::D2, &["INNER"], None).unwrap_err();
+        // AXE would be turned, but INNER fails: nothing changes.
+        let e = orie_peau(&mut b, OrieDim::D2, &["AXE", "INNER"], None).unwrap_err();
         assert!(e.text.contains("lies between"));
         assert_eq!(b, before);
+        // A cell listed twice is turned once.
+        let r = orie_peau(&mut b, OrieDim::D2, &["AXE", "AXE"], None).unwrap();
+        assert_eq!(r.reoriented, 2);
+        assert!(all_along(
+            &normals(&b, "AXE", OrieDim::D2),
+            [-1.0, 0.0, 0.0]
+        ));
     }
 
     // ---- QUAD_LINE ------------------------------------------------------

@@ -74,7 +74,7 @@ impl TaylorParams {
 
 /// Above this many cells the request is surely a typo; refusing it avoids
 /// an allocation failure (which would abort rather than report).
-const MAX_CELLS: usize = 5_000_000;
+const MAX_CELLS: usize = 1_000_000;
 
 /// Builds the mesh. Errors name the bad parameter.
 pub fn generate(p: &TaylorParams) -> Result<Mesh, String> {
