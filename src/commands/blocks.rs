@@ -93,7 +93,10 @@ pub fn info() -> Keyword {
         .kw()
 }
 pub fn titre() -> Keyword {
-    text("TITRE").many().doc("title lines of the produced concept").kw()
+    text("TITRE")
+        .many()
+        .doc("title lines of the produced concept")
+        .kw()
 }
 /// The time/parameter search tolerance of access keywords: `CRITERE`
 /// then `PRECISION`, defaulted when relative, compulsory when absolute.
@@ -158,7 +161,14 @@ pub const RELATIONS: &[&str] = &["ELAS", "VMIS_ISOT_LINE", "VMIS_JOHN_COOK"];
 /// Solid modelisations of `AFFE_MODELE` (code_aster's list restricted to
 /// continuum mechanics; shells, beams and THM are outside aster's scope).
 pub const MODELISATIONS: &[&str] = &[
-    "3D", "3D_SI", "AXIS", "AXIS_SI", "D_PLAN", "D_PLAN_SI", "C_PLAN", "C_PLAN_SI",
+    "3D",
+    "3D_SI",
+    "AXIS",
+    "AXIS_SI",
+    "D_PLAN",
+    "D_PLAN_SI",
+    "C_PLAN",
+    "C_PLAN_SI",
 ];
 
 /// Components of the displacement quantity (DEPL_R) a user can name.
@@ -517,10 +527,7 @@ pub fn c_rech_lineaire() -> Keyword {
                 .default(t("CORDE"))
                 .kw(),
             real("RESI_LINE_RELA").default(r(1e-1)).kw(),
-            int("ITER_LINE_MAXI")
-                .default(i(3))
-                .max_val(1000.0)
-                .kw(),
+            int("ITER_LINE_MAXI").default(i(3)).max_val(1000.0).kw(),
             real("RHO_MIN").default(r(1e-2)).kw(),
             real("RHO_MAX").default(r(1e1)).kw(),
             real("RHO_EXCL").default(r(9e-3)).min_val(0.0).kw(),
@@ -536,15 +543,23 @@ pub fn c_etat_init() -> Keyword {
         concept("DEPL", &[C::ChamNo])
             .doc("initial displacement field")
             .kw(),
-        concept("VITE", &[C::ChamNo]).doc("initial velocity field").kw(),
+        concept("VITE", &[C::ChamNo])
+            .doc("initial velocity field")
+            .kw(),
         concept("ACCE", &[C::ChamNo])
             .doc("initial acceleration; absent: solved from M a0 = F_ext - F_int")
             .kw(),
         concept("EVOL_NOLI", &[C::EvolNoli])
-            .doc("continue from a stored state of this result (the last one unless INST/NUME_ORDRE)")
+            .doc(
+                "continue from a stored state of this result (the last one unless INST/NUME_ORDRE)",
+            )
             .kw(),
-        int("NUME_ORDRE").doc("index of the stored state to start from").kw(),
-        real("INST").doc("instant of the stored state to start from").kw(),
+        int("NUME_ORDRE")
+            .doc("index of the stored state to start from")
+            .kw(),
+        real("INST")
+            .doc("instant of the stored state to start from")
+            .kw(),
         int("NUME_DIDI").kw(),
         real("INST_ETAT_INIT")
             .doc("overrides the initial instant taken from EVOL_NOLI")
@@ -598,16 +613,14 @@ pub fn c_archivage() -> Keyword {
         concept("LIST_INST", &[C::Listr8])
             .doc("archive the steps at these instants")
             .kw(),
-        real("INST").many().doc("archive the steps at these instants").kw(),
+        real("INST")
+            .many()
+            .doc("archive the steps at these instants")
+            .kw(),
         int("PAS_ARCH").doc("archive every PAS_ARCH steps").kw(),
     ];
     kws.extend(critere_precision(1e-6));
-    kws.push(
-        text("CHAM_EXCLU")
-            .many()
-            .doc("fields not to store")
-            .kw(),
-    );
+    kws.push(text("CHAM_EXCLU").many().doc("fields not to store").kw());
     fact("ARCHIVAGE", kws)
         .defaulted()
         .rules(vec![exclus(&["PAS_ARCH", "LIST_INST", "INST"])])
@@ -658,7 +671,9 @@ pub fn c_suivi_ddl() -> Keyword {
                 is_in("NOM_CHAM", &nodal),
                 vec![tout(), noeud(), group_no(), maille(), group_ma()],
             )
-            .rules(vec![exclus(&["NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "TOUT"])])
+            .rules(vec![exclus(&[
+                "NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "TOUT",
+            ])])
             .kw(),
             block(
                 "b_cham_elga",

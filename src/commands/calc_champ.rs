@@ -11,7 +11,9 @@ pub fn def() -> CommandDef {
             .required()
             .doc("result to enrich (also the reused concept)")
             .kw(),
-        concept("MODELE", &[C::Modele]).doc("absent: the result's").kw(),
+        concept("MODELE", &[C::Modele])
+            .doc("absent: the result's")
+            .kw(),
         concept("CHAM_MATER", &[C::ChamMater]).kw(),
         fact(
             "EXCIT",

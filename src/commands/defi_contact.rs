@@ -269,13 +269,21 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
                 .default(t("AUTO"))
                 .kw(),
             block(
-                if name == "VECT_MAIT" { "b_nmait_fixe" } else { "b_nescl_fixe" },
+                if name == "VECT_MAIT" {
+                    "b_nmait_fixe"
+                } else {
+                    "b_nescl_fixe"
+                },
                 eq(name, "FIXE"),
                 vec![real(fixe).required().count(3, 3).kw()],
             )
             .kw(),
             block(
-                if name == "VECT_MAIT" { "b_nmait_vecty" } else { "b_nescl_vecty" },
+                if name == "VECT_MAIT" {
+                    "b_nmait_vecty"
+                } else {
+                    "b_nescl_vecty"
+                },
                 eq(name, "VECT_Y"),
                 vec![real(vecty).required().count(3, 3).kw()],
             )
@@ -289,9 +297,7 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
                 .default(t("MAIT_ESCL"))
                 .doc("slave nodes projected on master cells")
                 .kw(),
-            text("GROUP_MA_MAIT")
-                .doc("master surface (one group)")
-                .kw(),
+            text("GROUP_MA_MAIT").doc("master surface (one group)").kw(),
             text("MAILLE_MAIT").many().hidden().kw(),
             text("GROUP_MA_ESCL").doc("slave surface (one group)").kw(),
             text("MAILLE_ESCL").many().hidden().kw(),
@@ -443,7 +449,10 @@ fn zone_discrete(friction: bool) -> Keyword {
     ]);
     if friction {
         kws.extend([
-            real("COULOMB").required().doc("Coulomb friction coefficient").kw(),
+            real("COULOMB")
+                .required()
+                .doc("Coulomb friction coefficient")
+                .kw(),
             real("COEF_MATR_FROT")
                 .default(r(0.0))
                 .doc("weight of the slip part of the friction tangent while RESI_GLOB_RELA >= 1e-3")
@@ -525,19 +534,31 @@ fn zone_continue(friction: bool) -> Keyword {
         block(
             "b_gauss",
             eq("INTEGRATION", "GAUSS"),
-            vec![int("ORDRE_INT").default(i(3)).min_val(1.0).max_val(6.0).kw()],
+            vec![int("ORDRE_INT")
+                .default(i(3))
+                .min_val(1.0)
+                .max_val(6.0)
+                .kw()],
         )
         .kw(),
         block(
             "b_simpson",
             eq("INTEGRATION", "SIMPSON"),
-            vec![int("ORDRE_INT").default(i(1)).min_val(1.0).max_val(4.0).kw()],
+            vec![int("ORDRE_INT")
+                .default(i(1))
+                .min_val(1.0)
+                .max_val(4.0)
+                .kw()],
         )
         .kw(),
         block(
             "b_ncotes",
             eq("INTEGRATION", "NCOTES"),
-            vec![int("ORDRE_INT").default(i(3)).min_val(3.0).max_val(8.0).kw()],
+            vec![int("ORDRE_INT")
+                .default(i(3))
+                .min_val(3.0)
+                .max_val(8.0)
+                .kw()],
         )
         .kw(),
         text("CONTACT_INIT")
@@ -550,7 +571,10 @@ fn zone_continue(friction: bool) -> Keyword {
     let mut rules = pairing_rules();
     if friction {
         kws.extend([
-            real("COULOMB").required().doc("Coulomb friction coefficient").kw(),
+            real("COULOMB")
+                .required()
+                .doc("Coulomb friction coefficient")
+                .kw(),
             real("SEUIL_INIT")
                 .doc("initial friction threshold; absent: automatic")
                 .kw(),

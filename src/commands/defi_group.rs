@@ -48,11 +48,17 @@ fn crea_group_ma() -> Keyword {
     fact(
         "CREA_GROUP_MA",
         vec![
-            text("NOM").required().doc("name of the new cell group").kw(),
+            text("NOM")
+                .required()
+                .doc("name of the new cell group")
+                .kw(),
             tout(),
             text("GROUP_MA").doc("copy of this cell group").kw(),
             maille(),
-            text("INTERSEC").many().doc("intersection of cell groups").kw(),
+            text("INTERSEC")
+                .many()
+                .doc("intersection of cell groups")
+                .kw(),
             text("UNION").many().doc("union of cell groups").kw(),
             text("DIFFE")
                 .many()
@@ -78,18 +84,32 @@ fn crea_group_ma() -> Keyword {
 }
 
 fn crea_group_no() -> Keyword {
-    let nom = || text("NOM").required().doc("name of the new node group").kw();
+    let nom = || {
+        text("NOM")
+            .required()
+            .doc("name of the new node group")
+            .kw()
+    };
     let centre = || {
         vec![
-            real("POINT").count(2, 3).doc("coordinates of the centre").kw(),
+            real("POINT")
+                .count(2, 3)
+                .doc("coordinates of the centre")
+                .kw(),
             text("NOEUD_CENTRE").hidden().kw(),
             text("GROUP_NO_CENTRE").kw(),
         ]
     };
     let orient = || {
         vec![
-            real("ANGL_NAUT").count(1, 3).doc("nautical angles of the axis, in degrees").kw(),
-            real("VECT_NORMALE").count(2, 3).doc("axis or normal vector").kw(),
+            real("ANGL_NAUT")
+                .count(1, 3)
+                .doc("nautical angles of the axis, in degrees")
+                .kw(),
+            real("VECT_NORMALE")
+                .count(2, 3)
+                .doc("axis or normal vector")
+                .kw(),
         ]
     };
     let prec = || {

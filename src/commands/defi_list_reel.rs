@@ -252,7 +252,11 @@ mod tests {
     fn pas_longer_than_interval_is_fatal() {
         let mut alarms = Vec::new();
         let e = by_intervals(0.0, &[pas(1.0, 2.0)], &mut alarms).unwrap_err();
-        assert!(e.message.contains("longer than the interval"), "{}", e.message);
+        assert!(
+            e.message.contains("longer than the interval"),
+            "{}",
+            e.message
+        );
         assert_eq!(e.keyword.as_deref(), Some("INTERVALLE/PAS"));
     }
 

@@ -6,12 +6,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptType as C;
 
 pub fn def() -> CommandDef {
-    let echelle = |n: &'static str| {
-        text(n)
-            .into(&["LIN", "LOG"])
-            .default(t("LIN"))
-            .kw()
-    };
+    let echelle = |n: &'static str| text(n).into(&["LIN", "LOG"]).default(t("LIN")).kw();
     let spec = command(
         "IMPR_FONCTION",
         Produces::Nothing,
@@ -24,10 +19,24 @@ pub fn def() -> CommandDef {
                 "b_xmgrace",
                 eq("FORMAT", "XMGRACE"),
                 vec![
-                    int("UNITE").default(i(29)).doc("logical unit of the .agr file").kw(),
+                    int("UNITE")
+                        .default(i(29))
+                        .doc("logical unit of the .agr file")
+                        .kw(),
                     text("PILOTE")
                         .default(t(""))
-                        .into(&["", "POSTSCRIPT", "EPS", "MIF", "SVG", "PNM", "PNG", "JPEG", "PDF", "INTERACTIF"])
+                        .into(&[
+                            "",
+                            "POSTSCRIPT",
+                            "EPS",
+                            "MIF",
+                            "SVG",
+                            "PNM",
+                            "PNG",
+                            "JPEG",
+                            "PDF",
+                            "INTERACTIF",
+                        ])
                         .doc("'' writes the Grace project text; the others need xmgrace")
                         .kw(),
                 ],

@@ -8,7 +8,11 @@ use crate::concepts::ConceptType as C;
 pub fn def() -> CommandDef {
     let mut acces = vec![
         text("TOUT_CHAM").into(&["OUI", "NON"]).kw(),
-        text("NOM_CHAM").many().into(NOM_CHAM_RESU).doc("fields written").kw(),
+        text("NOM_CHAM")
+            .many()
+            .into(NOM_CHAM_RESU)
+            .doc("fields written")
+            .kw(),
         text("TOUT_ORDRE").into(&["OUI"]).kw(),
         int("NUME_ORDRE").many().kw(),
         real("INST").many().kw(),
@@ -25,7 +29,10 @@ pub fn def() -> CommandDef {
                 _ => "b_format_gmsh",
             },
             eq("FORMAT", format),
-            vec![int("UNITE").default(i(unite)).doc("logical unit written").kw()],
+            vec![int("UNITE")
+                .default(i(unite))
+                .doc("logical unit written")
+                .kw()],
         )
         .kw()
     };

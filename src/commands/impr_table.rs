@@ -13,7 +13,14 @@ pub fn def() -> CommandDef {
         vec![
             concept("TABLE", &[C::Table]).required().kw(),
             text("FORMAT")
-                .into(&["TABLEAU", "ASTER", "TABLEAU_CROISE", "AGRAF", "XMGRACE", "NUMPY"])
+                .into(&[
+                    "TABLEAU",
+                    "ASTER",
+                    "TABLEAU_CROISE",
+                    "AGRAF",
+                    "XMGRACE",
+                    "NUMPY",
+                ])
                 .default(t("TABLEAU"))
                 .kw(),
             block(
@@ -23,7 +30,18 @@ pub fn def() -> CommandDef {
                     int("UNITE").default(i(29)).doc("logical unit written").kw(),
                     text("PILOTE")
                         .default(t(""))
-                        .into(&["", "POSTSCRIPT", "EPS", "MIF", "SVG", "PNM", "PNG", "JPEG", "PDF", "INTERACTIF"])
+                        .into(&[
+                            "",
+                            "POSTSCRIPT",
+                            "EPS",
+                            "MIF",
+                            "SVG",
+                            "PNM",
+                            "PNG",
+                            "JPEG",
+                            "PDF",
+                            "INTERACTIF",
+                        ])
                         .doc("'' writes the .agr project text")
                         .kw(),
                 ],
@@ -59,8 +77,7 @@ pub fn def() -> CommandDef {
                 .default(t("E12.5"))
                 .doc("Fortran-like format of reals")
                 .kw(),
-            fact("PAGINATION", vec![text("NOM_PARA").required().many().kw()])
-                .kw(),
+            fact("PAGINATION", vec![text("NOM_PARA").required().many().kw()]).kw(),
             block(
                 "b_tableau",
                 is_in("FORMAT", &tableau),

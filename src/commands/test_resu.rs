@@ -13,7 +13,9 @@ pub fn def() -> CommandDef {
         real("INST")
             .doc("instant tested, found with TOLE_MACHINE(2) and CRITERE(2)")
             .kw(),
-        text("PARA").doc("test a result parameter instead of a field").kw(),
+        text("PARA")
+            .doc("test a result parameter instead of a field")
+            .kw(),
         text("NOM_CHAM").into(NOM_CHAM_RESU).kw(),
         text("NOM_CMP").kw(),
         text("NOM_VARI").doc("internal variable by name").kw(),
@@ -33,7 +35,9 @@ pub fn def() -> CommandDef {
         un_parmi(&["NOM_CHAM", "PARA"]),
         present_absent(
             "PARA",
-            &["MAILLE", "GROUP_MA", "NOEUD", "GROUP_NO", "POINT", "NOM_CMP", "NOM_VARI"],
+            &[
+                "MAILLE", "GROUP_MA", "NOEUD", "GROUP_NO", "POINT", "NOM_CMP", "NOM_VARI",
+            ],
         ),
         exclus(&["NOEUD", "GROUP_NO", "POINT"]),
         exclus(&["MAILLE", "GROUP_MA"]),
