@@ -3,13 +3,42 @@
 //!
 //! Adding a command means adding one file here and one line in [`all`].
 
+// Executors return `Result<_, Diagnostic>`; a diagnostic is large (notes,
+// choices, spans) but built only on the error path, so boxing it would cost
+// every caller for nothing.
+#![allow(clippy::result_large_err)]
+
 use crate::catalog::args::Args;
 use crate::catalog::schema::CommandSpec;
 use crate::concepts::ConceptData;
 use crate::diag::Diagnostic;
 use crate::run::Study;
 
+pub mod affe_char_meca;
+pub mod affe_materiau;
+pub mod affe_modele;
 pub mod blocks;
+pub mod calc_champ;
+pub mod crea_champ;
+pub mod crea_maillage;
+pub mod debut;
+pub mod defi_constante;
+pub mod defi_contact;
+pub mod defi_group;
+pub mod defi_list_inst;
+pub mod defi_list_reel;
+pub mod defi_materiau;
+pub mod dyna_non_line;
+pub mod fin;
+pub mod impr_fonction;
+pub mod impr_resu;
+pub mod impr_table;
+pub mod lire_maillage;
+pub mod modi_maillage;
+pub mod post_releve_t;
+pub mod recu_fonction;
+pub mod test_resu;
+pub mod test_table;
 
 /// What an executor returns: the data of the produced concept (None for a
 /// procedure such as TEST_RESU).
@@ -31,7 +60,32 @@ pub fn not_implemented(_study: &mut Study, args: &Args, _result: Option<&str>) -
 
 /// Every command of the catalogue, in alphabetical order.
 pub fn all() -> Vec<CommandDef> {
-    vec![]
+    vec![
+        affe_char_meca::def(),
+        affe_materiau::def(),
+        affe_modele::def(),
+        calc_champ::def(),
+        crea_champ::def(),
+        crea_maillage::def(),
+        debut::def(),
+        defi_constante::def(),
+        defi_contact::def(),
+        defi_group::def(),
+        defi_list_inst::def(),
+        defi_list_reel::def(),
+        defi_materiau::def(),
+        dyna_non_line::def(),
+        fin::def(),
+        impr_fonction::def(),
+        impr_resu::def(),
+        impr_table::def(),
+        lire_maillage::def(),
+        modi_maillage::def(),
+        post_releve_t::def(),
+        recu_fonction::def(),
+        test_resu::def(),
+        test_table::def(),
+    ]
 }
 
 /// Looks a command up by name.

@@ -1,0 +1,617 @@
+//! DEFI_CONTACT: contact zones, formulation and algorithms.
+//!
+//! As in code_aster, the global keywords and the keywords of `ZONE` depend
+//! on FORMULATION and FROTTEMENT, so `ZONE` is declared once per case in
+//! mutually exclusive blocks. XFEM and the mortar LAC method of code_aster
+//! are not offered (they need concepts aster does not have).
+
+use super::blocks::*;
+use super::{not_implemented, CommandDef};
+use crate::catalog::schema::*;
+use crate::concepts::ConceptType as C;
+
+pub fn def() -> CommandDef {
+    let spec = command(
+        "DEFI_CONTACT",
+        Produces::Concept(C::CharContact),
+        vec![
+            concept("MODELE", &[C::Modele]).required().kw(),
+            int("INFO").into_ints(&[1, 2]).kw(),
+            text("FORMULATION")
+                .into(&["DISCRETE", "CONTINUE", "LIAISON_UNIL"])
+                .default(t("DISCRETE"))
+                .doc("discrete (node-to-segment, active set or penalty), continuous (augmented Lagrangian) or unilateral linear constraints")
+                .kw(),
+            text("FROTTEMENT")
+                .into(&["COULOMB", "SANS"])
+                .default(t("SANS"))
+                .doc("friction model (contact formulations only)")
+                .kw(),
+            block(
+                "b_contact_mail",
+                is_in("FORMULATION", &["CONTINUE", "DISCRETE"]),
+                vec![
+                    oui_non("STOP_INTERP", "NON")
+                        .doc("with RESOLUTION='NON', stop at the first interpenetration")
+                        .kw(),
+                    oui_non("LISSAGE", "NON")
+                        .doc("smooth normals by nodal averaging")
+                        .kw(),
+                    oui_non("VERI_NORM", "OUI")
+                        .doc("check that the skins' normals point outwards")
+                        .kw(),
+                ],
+            )
+            .kw(),
+            block(
+                "b_bouc_geom_maild",
+                eq("FORMULATION", "DISCRETE"),
+                [
+                    vec![text("ALGO_RESO_GEOM")
+                        .into(&["POINT_FIXE"])
+                        .default(t("POINT_FIXE"))
+                        .kw()],
+                    reac_geom(),
+                ]
+                .concat(),
+            )
+            .kw(),
+            block(
+                "b_bouc_geom_mailc",
+                eq("FORMULATION", "CONTINUE"),
+                vec![
+                    text("ALGO_RESO_GEOM")
+                        .into(&["POINT_FIXE", "NEWTON"])
+                        .default(t("POINT_FIXE"))
+                        .doc("geometric non-linearity by fixed point (pairing loop) or inside Newton")
+                        .kw(),
+                    block(
+                        "b_algo_reso_geomNE",
+                        eq("ALGO_RESO_GEOM", "NEWTON"),
+                        vec![real("RESI_GEOM").default(r(1e-6)).kw()],
+                    )
+                    .kw(),
+                    block(
+                        "b_algo_reso_geomPF",
+                        eq("ALGO_RESO_GEOM", "POINT_FIXE"),
+                        reac_geom(),
+                    )
+                    .kw(),
+                ],
+            )
+            .kw(),
+            block(
+                "b_bouc_cont_disc",
+                eq("FORMULATION", "DISCRETE"),
+                vec![int("ITER_CONT_MULT")
+                    .default(i(4))
+                    .doc("multiplier of the maximum number of active-set iterations")
+                    .kw()],
+            )
+            .kw(),
+            block(
+                "b_bouc_cont_cont",
+                eq("FORMULATION", "CONTINUE"),
+                vec![
+                    text("ALGO_RESO_CONT")
+                        .into(&["POINT_FIXE", "NEWTON"])
+                        .default(t("NEWTON"))
+                        .doc("contact status inside Newton (generalised Newton) or by fixed point")
+                        .kw(),
+                    real("RESI_CONT").default(r(-1.0)).kw(),
+                    block(
+                        "b_algo_reso_contPF",
+                        eq("ALGO_RESO_CONT", "POINT_FIXE"),
+                        vec![
+                            text("ITER_CONT_TYPE")
+                                .into(&["MULT", "MAXI"])
+                                .default(t("MAXI"))
+                                .kw(),
+                            block(
+                                "b_bouc_cont_mult",
+                                eq("ITER_CONT_TYPE", "MULT"),
+                                vec![int("ITER_CONT_MULT").default(i(4)).kw()],
+                            )
+                            .kw(),
+                            block(
+                                "b_bouc_cont_maxi",
+                                eq("ITER_CONT_TYPE", "MAXI"),
+                                vec![int("ITER_CONT_MAXI").default(i(30)).kw()],
+                            )
+                            .kw(),
+                        ],
+                    )
+                    .kw(),
+                ],
+            )
+            .kw(),
+            block(
+                "b_bouc_frot_cont",
+                and(vec![eq("FROTTEMENT", "COULOMB"), eq("FORMULATION", "CONTINUE")]),
+                vec![
+                    text("ALGO_RESO_FROT")
+                        .into(&["POINT_FIXE", "NEWTON"])
+                        .default(t("NEWTON"))
+                        .doc("friction threshold inside Newton or by fixed point")
+                        .kw(),
+                    block(
+                        "b_algo_reso_frotPF",
+                        eq("ALGO_RESO_FROT", "POINT_FIXE"),
+                        vec![
+                            int("ITER_FROT_MAXI").default(i(10)).kw(),
+                            real("RESI_FROT").default(r(1e-4)).kw(),
+                        ],
+                    )
+                    .kw(),
+                    block(
+                        "b_algo_reso_frotNE",
+                        eq("ALGO_RESO_FROT", "NEWTON"),
+                        vec![real("RESI_FROT").default(r(1e-4)).kw()],
+                    )
+                    .kw(),
+                ],
+            )
+            .kw(),
+            block(
+                "b_para_discret",
+                eq("FORMULATION", "DISCRETE"),
+                vec![
+                    oui_non("STOP_SINGULIER", "OUI").kw(),
+                    int("NB_RESOL")
+                        .default(i(10))
+                        .doc("simultaneous solves when building the Schur complement")
+                        .kw(),
+                    real("RESI_ABSO").doc("GCP: allowed interpenetration").kw(),
+                    int("ITER_GCP_MAXI").default(i(0)).kw(),
+                    text("RECH_LINEAIRE")
+                        .into(&["ADMISSIBLE", "NON_ADMISSIBLE"])
+                        .default(t("ADMISSIBLE"))
+                        .kw(),
+                    text("PRE_COND")
+                        .into(&["DIRICHLET", "SANS"])
+                        .default(t("SANS"))
+                        .kw(),
+                    block(
+                        "b_dirichlet",
+                        eq("PRE_COND", "DIRICHLET"),
+                        vec![
+                            real("COEF_RESI").default(r(-1.0)).kw(),
+                            int("ITER_PRE_MAXI").default(i(0)).kw(),
+                        ],
+                    )
+                    .kw(),
+                ],
+            )
+            .kw(),
+            block(
+                "b_affe_unil",
+                eq("FORMULATION", "LIAISON_UNIL"),
+                vec![zone_unil()],
+            )
+            .kw(),
+            block(
+                "b_affe_discret",
+                and(vec![eq("FORMULATION", "DISCRETE"), eq("FROTTEMENT", "COULOMB")]),
+                vec![zone_discrete(true)],
+            )
+            .kw(),
+            block(
+                "b_affe_discret_frot",
+                and(vec![
+                    eq("FORMULATION", "DISCRETE"),
+                    not(eq("FROTTEMENT", "COULOMB")),
+                ]),
+                vec![zone_discrete(false)],
+            )
+            .kw(),
+            block(
+                "b_affe_continue_frot",
+                and(vec![eq("FORMULATION", "CONTINUE"), eq("FROTTEMENT", "COULOMB")]),
+                vec![zone_continue(true)],
+            )
+            .kw(),
+            block(
+                "b_affe_continue",
+                and(vec![
+                    eq("FORMULATION", "CONTINUE"),
+                    not(eq("FROTTEMENT", "COULOMB")),
+                ]),
+                vec![zone_continue(false)],
+            )
+            .kw(),
+        ],
+    )
+    .doc("Defines contact (or unilateral) conditions, given to DYNA_NON_LINE by CONTACT.");
+    CommandDef {
+        spec,
+        exec: not_implemented,
+    }
+}
+
+/// The pairing loop of the fixed-point geometric method.
+fn reac_geom() -> Vec<Keyword> {
+    vec![
+        text("REAC_GEOM")
+            .into(&["AUTOMATIQUE", "CONTROLE", "SANS"])
+            .default(t("AUTOMATIQUE"))
+            .doc("geometric update: until RESI_GEOM, exactly NB_ITER_GEOM pairings per step, or none")
+            .kw(),
+        block(
+            "b_automatique",
+            eq("REAC_GEOM", "AUTOMATIQUE"),
+            vec![
+                int("ITER_GEOM_MAXI").default(i(10)).kw(),
+                real("RESI_GEOM")
+                    .default(r(0.01))
+                    .doc("displacement since the last pairing, relative to the total")
+                    .kw(),
+            ],
+        )
+        .kw(),
+        block(
+            "b_controle",
+            eq("REAC_GEOM", "CONTROLE"),
+            vec![int("NB_ITER_GEOM")
+                .default(i(2))
+                .doc("pairings per time step (1: frozen during the step)")
+                .kw()],
+        )
+        .kw(),
+    ]
+}
+
+/// Master/slave pairing keywords common to DISCRETE and CONTINUE zones.
+fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
+    let vect = |name: &'static str, fixe: &'static str, vecty: &'static str| {
+        vec![
+            text(name)
+                .into(&["AUTO", "FIXE", "VECT_Y"])
+                .default(t("AUTO"))
+                .kw(),
+            block(
+                if name == "VECT_MAIT" {
+                    "b_nmait_fixe"
+                } else {
+                    "b_nescl_fixe"
+                },
+                eq(name, "FIXE"),
+                vec![real(fixe).required().count(3, 3).kw()],
+            )
+            .kw(),
+            block(
+                if name == "VECT_MAIT" {
+                    "b_nmait_vecty"
+                } else {
+                    "b_nescl_vecty"
+                },
+                eq(name, "VECT_Y"),
+                vec![real(vecty).required().count(3, 3).kw()],
+            )
+            .kw(),
+        ]
+    };
+    [
+        vec![
+            text("APPARIEMENT")
+                .into(appariement)
+                .default(t("MAIT_ESCL"))
+                .doc("slave nodes projected on master cells")
+                .kw(),
+            text("GROUP_MA_MAIT").doc("master surface (one group)").kw(),
+            text("MAILLE_MAIT").many().hidden().kw(),
+            text("GROUP_MA_ESCL").doc("slave surface (one group)").kw(),
+            text("MAILLE_ESCL").many().hidden().kw(),
+            text("NORMALE")
+                .into(&["MAIT", "MAIT_ESCL", "ESCL"])
+                .default(t("MAIT"))
+                .doc("surface giving the normal")
+                .kw(),
+        ],
+        vect("VECT_MAIT", "MAIT_FIXE", "MAIT_VECT_Y"),
+        vect("VECT_ESCL", "ESCL_FIXE", "ESCL_VECT_Y"),
+        vec![
+            text("TYPE_PROJECTION")
+                .into(&["ORTHOGONALE", "FIXE"])
+                .default(t("ORTHOGONALE"))
+                .kw(),
+            block(
+                "b_appa_fixe",
+                eq("TYPE_PROJECTION", "FIXE"),
+                vec![real("DIRE_APPA").count(3, 3).kw()],
+            )
+            .kw(),
+            concept("DIST_MAIT", &[C::Fonction])
+                .doc("extra gap added on the master side")
+                .kw(),
+            concept("DIST_ESCL", &[C::Fonction])
+                .doc("extra gap added on the slave side")
+                .kw(),
+            real("DIST_APPA")
+                .default(r(-1.0))
+                .doc("maximum pairing distance (negative: none)")
+                .kw(),
+            real("TOLE_PROJ_EXT")
+                .default(r(0.5))
+                .doc("allowed projection outside a master cell, in parametric units")
+                .kw(),
+            text("SANS_NOEUD").many().hidden().kw(),
+            text("SANS_GROUP_NO")
+                .many()
+                .doc("slave nodes excluded (e.g. those with imposed dofs)")
+                .kw(),
+            text("SANS_MAILLE").many().hidden().kw(),
+            text("SANS_GROUP_MA").many().kw(),
+            oui_non("RESOLUTION", "OUI")
+                .doc("'NON': pairing and interpenetration check only")
+                .kw(),
+            block(
+                "b_verif",
+                eq("RESOLUTION", "NON"),
+                vec![real("TOLE_INTERP").default(r(0.0)).min_val(0.0).kw()],
+            )
+            .kw(),
+        ],
+    ]
+    .concat()
+}
+
+fn pairing_rules() -> Vec<Rule> {
+    vec![
+        un_parmi(&["GROUP_MA_ESCL", "MAILLE_ESCL"]),
+        un_parmi(&["GROUP_MA_MAIT", "MAILLE_MAIT"]),
+    ]
+}
+
+fn zone_unil() -> Keyword {
+    fact(
+        "ZONE",
+        vec![
+            group_ma(),
+            maille(),
+            group_no(),
+            noeud(),
+            text("NOM_CMP")
+                .required()
+                .many()
+                .doc("components c_i of sum COEF_MULT_i(t).u_ci <= COEF_IMPO")
+                .kw(),
+            concept("COEF_IMPO", &[C::Fonction])
+                .required()
+                .doc("right-hand side, function of INST and the initial X, Y, Z")
+                .kw(),
+            concept("COEF_MULT", &[C::Fonction])
+                .required()
+                .many()
+                .doc("coefficients, one per NOM_CMP, functions of INST")
+                .kw(),
+            text("SANS_NOEUD").many().hidden().kw(),
+            text("SANS_GROUP_NO").many().kw(),
+            text("ALGO_CONT")
+                .into(&["CONTRAINTE", "PENALISATION"])
+                .default(t("CONTRAINTE"))
+                .doc("active set on the Schur complement, or penalty")
+                .kw(),
+            block(
+                "b_penalisation",
+                eq("ALGO_CONT", "PENALISATION"),
+                vec![real("COEF_PENA")
+                    .required()
+                    .doc("penalty coefficient on the violation")
+                    .kw()],
+            )
+            .kw(),
+        ],
+    )
+    .required()
+    .many()
+    .rules(vec![un_parmi(&["GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"])])
+    .doc("unilateral linear conditions at each node of the zone (no pairing)")
+    .kw()
+}
+
+fn zone_discrete(friction: bool) -> Keyword {
+    let mut kws = pairing(&["NODAL", "MAIT_ESCL"]);
+    kws.extend([
+        text("ALGO_CONT")
+            .into(&["CONTRAINTE", "PENALISATION", "GCP"])
+            .default(t("CONTRAINTE"))
+            .doc(if friction {
+                "contact algorithm; with COULOMB friction it must be PENALISATION (checked when run)"
+            } else {
+                "active set (Lagrange), penalty or conjugate gradient"
+            })
+            .kw(),
+        block(
+            "b_active",
+            eq("ALGO_CONT", "CONTRAINTE"),
+            vec![
+                oui_non("GLISSIERE", "NON")
+                    .doc("bilateral sliding: once in contact, always")
+                    .kw(),
+                block(
+                    "b_glissiere",
+                    eq("GLISSIERE", "OUI"),
+                    vec![real("ALARME_JEU").default(r(0.0)).kw()],
+                )
+                .kw(),
+            ],
+        )
+        .kw(),
+        block(
+            "b_penal_contact",
+            eq("ALGO_CONT", "PENALISATION"),
+            vec![real("E_N")
+                .required()
+                .doc("normal penalty stiffness: force E_N times the penetration")
+                .kw()],
+        )
+        .kw(),
+    ]);
+    if friction {
+        kws.extend([
+            real("COULOMB")
+                .required()
+                .doc("Coulomb friction coefficient")
+                .kw(),
+            real("COEF_MATR_FROT")
+                .default(r(0.0))
+                .doc("weight of the slip part of the friction tangent while RESI_GLOB_RELA >= 1e-3")
+                .kw(),
+            text("ALGO_FROT")
+                .into(&["PENALISATION"])
+                .default(t("PENALISATION"))
+                .kw(),
+            real("E_T")
+                .required()
+                .doc("tangential penalty stiffness (stick)")
+                .kw(),
+        ]);
+    }
+    fact("ZONE", kws)
+        .required()
+        .many()
+        .rules(pairing_rules())
+        .doc("contact zones; the algorithm must be the same in all zones")
+        .kw()
+}
+
+fn zone_continue(friction: bool) -> Keyword {
+    let mut kws = vec![
+        text("ALGO_CONT")
+            .into(&["STANDARD", "PENALISATION"])
+            .default(t("STANDARD"))
+            .doc("augmented Lagrangian or penalty")
+            .kw(),
+        text("ADAPTATION")
+            .into(&["ADAPT_COEF", "CYCLAGE", "TOUT", "NON"])
+            .default(t("CYCLAGE"))
+            .doc("automatic penalty adaptation and/or anti-cycling treatment")
+            .kw(),
+        block(
+            "b_cont_std",
+            eq("ALGO_CONT", "STANDARD"),
+            vec![real("COEF_CONT")
+                .default(r(100.0))
+                .doc("augmentation coefficient rho_n")
+                .kw()],
+        )
+        .kw(),
+        block(
+            "b_cont_pena_noadapt",
+            and(vec![
+                eq("ALGO_CONT", "PENALISATION"),
+                is_in("ADAPTATION", &["NON", "CYCLAGE"]),
+            ]),
+            vec![
+                real("COEF_PENA_CONT").required().kw(),
+                real("PENE_MAXI").min_val(0.0).kw(),
+            ],
+        )
+        .kw(),
+        block(
+            "b_cont_pena_adapt",
+            and(vec![
+                eq("ALGO_CONT", "PENALISATION"),
+                is_in("ADAPTATION", &["ADAPT_COEF", "TOUT"]),
+            ]),
+            vec![
+                real("COEF_PENA_CONT").kw(),
+                real("PENE_MAXI")
+                    .min_val(0.0)
+                    .doc("largest penetration allowed by the adaptation")
+                    .kw(),
+            ],
+        )
+        .kw(),
+    ];
+    kws.extend(pairing(&["MAIT_ESCL"]));
+    kws.extend([
+        text("INTEGRATION")
+            .into(&["AUTO", "GAUSS", "SIMPSON", "NCOTES"])
+            .default(t("AUTO"))
+            .doc("contact points: AUTO puts them at the slave nodes")
+            .kw(),
+        block(
+            "b_gauss",
+            eq("INTEGRATION", "GAUSS"),
+            vec![int("ORDRE_INT")
+                .default(i(3))
+                .min_val(1.0)
+                .max_val(6.0)
+                .kw()],
+        )
+        .kw(),
+        block(
+            "b_simpson",
+            eq("INTEGRATION", "SIMPSON"),
+            vec![int("ORDRE_INT")
+                .default(i(1))
+                .min_val(1.0)
+                .max_val(4.0)
+                .kw()],
+        )
+        .kw(),
+        block(
+            "b_ncotes",
+            eq("INTEGRATION", "NCOTES"),
+            vec![int("ORDRE_INT")
+                .default(i(3))
+                .min_val(3.0)
+                .max_val(8.0)
+                .kw()],
+        )
+        .kw(),
+        text("CONTACT_INIT")
+            .into(&["OUI", "INTERPENETRE", "NON"])
+            .default(t("INTERPENETRE"))
+            .doc("initial status: all in contact, only interpenetrating points, or none")
+            .kw(),
+        oui_non("GLISSIERE", "NON").kw(),
+    ]);
+    let mut rules = pairing_rules();
+    if friction {
+        kws.extend([
+            real("COULOMB")
+                .required()
+                .doc("Coulomb friction coefficient")
+                .kw(),
+            real("SEUIL_INIT")
+                .doc("initial friction threshold; absent: automatic")
+                .kw(),
+            text("SANS_NOEUD_FR").many().hidden().kw(),
+            text("SANS_GROUP_NO_FR").many().kw(),
+            block(
+                "b_sans_group_no_frot",
+                or(vec![present("SANS_GROUP_NO_FR"), present("SANS_NOEUD_FR")]),
+                vec![real("DIRE_EXCL_FROT").count(3, 3).kw()],
+            )
+            .kw(),
+            text("ALGO_FROT")
+                .into(&["STANDARD", "PENALISATION"])
+                .default(t("STANDARD"))
+                .kw(),
+            block(
+                "b_frot_std",
+                eq("ALGO_FROT", "STANDARD"),
+                vec![real("COEF_FROT")
+                    .default(r(100.0))
+                    .doc("friction augmentation coefficient")
+                    .kw()],
+            )
+            .kw(),
+            block(
+                "b_frot_pena",
+                eq("ALGO_FROT", "PENALISATION"),
+                vec![real("COEF_PENA_FROT").required().kw()],
+            )
+            .kw(),
+        ]);
+        rules.push(exclus(&["SANS_NOEUD_FR", "SANS_GROUP_NO_FR"]));
+    }
+    fact("ZONE", kws)
+        .required()
+        .many()
+        .rules(rules)
+        .doc("contact zones")
+        .kw()
+}

@@ -1,0 +1,31 @@
+//! FIN: closes a study.
+
+use super::blocks::*;
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
+use crate::catalog::schema::*;
+use crate::run::Study;
+
+pub fn def() -> CommandDef {
+    let spec = command(
+        "FIN",
+        Produces::Nothing,
+        vec![
+            oui_non("FORMAT_HDF", "NON")
+                .doc("save the database in HDF format")
+                .kw(),
+            oui_non("RETASSAGE", "NON").kw(),
+            oui_non("INFO_RESU", "OUI")
+                .doc("print the contents of the results at the end")
+                .kw(),
+            oui_non("PROC0", "OUI").kw(),
+        ],
+    )
+    .doc("Closes the study; the runner then flushes the message and result files.");
+    CommandDef { spec, exec }
+}
+
+/// Nothing to do: the runner flushes the files after the last command.
+fn exec(_study: &mut Study, _args: &Args, _result: Option<&str>) -> ExecResult {
+    Ok(None)
+}
