@@ -185,14 +185,14 @@ fn complete_quadratic_fields_are_reproduced_by_quadratic_cells() {
 }
 
 #[test]
-fn med_to_aster_is_a_permutation_moving_only_hexa20_and_penta15() {
+fn med_order_is_the_mirror_of_code_aster_order_for_3d_cells() {
     for cell in CELLS {
         let p = med_to_aster(cell);
         let mut sorted = p.clone();
         sorted.sort();
         assert_eq!(sorted, (0..cell.nnodes()).collect::<Vec<_>>());
         let moved = p.iter().enumerate().any(|(i, &j)| i != j);
-        assert_eq!(moved, matches!(cell, CellType::Hexa20 | CellType::Penta15));
+        assert_eq!(moved, cell.dim() == 3, "{cell:?}");
     }
     // code_aster's HEXA20 node 13 (elrfno) is the vertical edge 1-5 at (-1,-1,0).
     let p = med_to_aster(CellType::Hexa20);
@@ -200,6 +200,8 @@ fn med_to_aster_is_a_permutation_moving_only_hexa20_and_penta15() {
     // code_aster's PENTA15 node 10 is the vertical edge 1-4 at (0,1,0).
     let p = med_to_aster(CellType::Penta15);
     assert_eq!(reference_nodes(CellType::Penta15)[p[9]], [0.0, 1.0, 0.0]);
+    // code_aster's TETRA4 node 2 is at (0,0,1); in MED order it is node 3.
+    assert_eq!(reference_nodes(CellType::Tetra4)[2], [0.0, 0.0, 1.0]);
 }
 
 fn factorial(n: u32) -> f64 {

@@ -3,15 +3,15 @@
 //!
 //! Reference coordinates are code_aster's (`bibfor/elements/elrfno.F90`), so
 //! that Gauss points, and later fields on Gauss points, sit where code_aster
-//! puts them. Node order is the mesh's, i.e. MED order. The two differ for
-//! the quadratic 3D cells only:
-//!
-//! - HEXA20: MED (and this module) numbers the mid-edge nodes bottom face
-//!   9-12, top face 13-16, vertical edges 17-20; code_aster's internal order
-//!   (elrfno) is bottom 9-12, vertical 13-16, top 17-20. The MED reader of
-//!   code_aster permutes; we keep MED order and use the same coordinates.
-//! - PENTA15: MED numbers bottom 7-9, top 10-12, vertical 13-15; code_aster's
-//!   internal order is bottom 7-9, vertical 10-12, top 13-15.
+//! puts them. Node order is the mesh's, i.e. MED order, which differs from
+//! code_aster's internal order for every 3D cell: MED's 3D cells are the
+//! mirror image of code_aster's reference elements (code_aster's MED reader
+//! permutes them, `lrmtyp.F90`), and the quadratic ones also list the
+//! mid-edge nodes in another order. The formulas below are written in the
+//! internal order `L` (code_aster's vertex order, MED's mid-node order for
+//! HEXA20/PENTA15); [`eval`] and [`reference_nodes`] map them to MED order
+//! through [`crate::mesh::ops::med_to_aster`], the same permutation the mesh
+//! generator uses, so a cell valid in MED has a positive Jacobian here.
 //!
 //! Two code_aster choices worth knowing because they look odd:
 //! - TETRA4 has node 1 at (0,1,0), node 2 at (0,0,1), node 3 at the origin
@@ -50,14 +50,56 @@ impl ShapeEval {
     }
 }
 
-/// Evaluates all shape functions of `cell` and their derivatives at `xi`.
+/// Evaluates all shape functions of `cell` and their derivatives at `xi`,
+/// in MED node order.
 pub fn eval(cell: CellType, xi: [f64; 3]) -> ShapeEval {
+    let raw = eval_internal(cell, xi);
+    if cell.dim() < 3 {
+        return raw;
+    }
+    let mut out = raw;
+    for (&l, &m) in internal_to_aster(cell).iter().zip(aster_to_med(cell)) {
+        out.n[m] = raw.n[l];
+        out.dn[m] = raw.dn[l];
+    }
+    out
+}
+
+/// code_aster's index k -> index in the internal order `L` of this module
+/// (identity except the mid-node blocks of HEXA20 and PENTA15).
+fn internal_to_aster(cell: CellType) -> Vec<usize> {
+    let mut p: Vec<usize> = (0..cell.nnodes()).collect();
+    match cell {
+        CellType::Hexa20 => {
+            // aster 13-16 (verticals) are L 17-20; aster 17-20 (top) are L 13-16.
+            for k in 0..4 {
+                p[12 + k] = 16 + k;
+                p[16 + k] = 12 + k;
+            }
+        }
+        CellType::Penta15 => {
+            for k in 0..3 {
+                p[9 + k] = 12 + k;
+                p[12 + k] = 9 + k;
+            }
+        }
+        _ => {}
+    }
+    p
+}
+
+/// code_aster's index k -> MED index.
+fn aster_to_med(cell: CellType) -> &'static [usize] {
+    crate::mesh::ops::med_to_aster(cell)
+}
+
+fn eval_internal(cell: CellType, xi: [f64; 3]) -> ShapeEval {
     let mut out = ShapeEval {
         nnodes: cell.nnodes(),
         n: [0.0; MAX_NODES],
         dn: [[0.0; 3]; MAX_NODES],
     };
-    let nodes = reference_nodes(cell);
+    let nodes = internal_nodes(cell);
     match cell {
         CellType::Poi1 => out.n[0] = 1.0,
         CellType::Seg2 | CellType::Quad4 | CellType::Hexa8 => {
@@ -84,6 +126,35 @@ pub fn eval(cell: CellType, xi: [f64; 3]) -> ShapeEval {
 
 /// Reference coordinates of the nodes, in MED node order (see module doc).
 pub fn reference_nodes(cell: CellType) -> &'static [[f64; 3]] {
+    use std::sync::OnceLock;
+    static MED: OnceLock<Vec<Vec<[f64; 3]>>> = OnceLock::new();
+    if cell.dim() < 3 {
+        return internal_nodes(cell);
+    }
+    let all = MED.get_or_init(|| {
+        CellType::ALL
+            .iter()
+            .map(|&c| {
+                let int = internal_nodes(c);
+                let mut med = int.to_vec();
+                if c.dim() == 3 {
+                    for (&l, &m) in internal_to_aster(c).iter().zip(aster_to_med(c)) {
+                        med[m] = int[l];
+                    }
+                }
+                med
+            })
+            .collect()
+    });
+    let i = CellType::ALL
+        .iter()
+        .position(|&c| c == cell)
+        .expect("every cell type is in ALL");
+    &all[i]
+}
+
+/// Reference coordinates in the internal order `L` of the formulas.
+fn internal_nodes(cell: CellType) -> &'static [[f64; 3]] {
     match cell {
         CellType::Poi1 => &[[0.0; 3]],
         CellType::Seg2 => &SEG3_NODES[..2],
@@ -114,27 +185,10 @@ pub fn reference_measure(cell: CellType) -> f64 {
 }
 
 /// Permutation from MED node order to code_aster's internal order:
-/// `aster[k] = med[MED_TO_ASTER[k]]` (identity except HEXA20 and PENTA15).
-/// Needed only to compare per-node values with code_aster listings.
+/// `aster[k] = med[med_to_aster(cell)[k]]`. Needed to compare per-node
+/// values with code_aster listings.
 pub fn med_to_aster(cell: CellType) -> Vec<usize> {
-    let mut p: Vec<usize> = (0..cell.nnodes()).collect();
-    match cell {
-        CellType::Hexa20 => {
-            // aster 13-16 (verticals) are MED 17-20; aster 17-20 (top) are MED 13-16.
-            for k in 0..4 {
-                p[12 + k] = 16 + k;
-                p[16 + k] = 12 + k;
-            }
-        }
-        CellType::Penta15 => {
-            for k in 0..3 {
-                p[9 + k] = 12 + k;
-                p[12 + k] = 9 + k;
-            }
-        }
-        _ => {}
-    }
-    p
+    aster_to_med(cell).to_vec()
 }
 
 // ---------------------------------------------------------------- segments
