@@ -5,6 +5,8 @@
 //! node-order conventions (MED's 3D cells are the mirror of code_aster's
 //! reference elements) would show up here as negative volumes.
 
+#![allow(clippy::needless_range_loop)]
+
 use aster::element::{quadrature, shape};
 use aster::mesh::taylor::{generate, TaylorParams};
 use aster::mesh::{CellType, Mesh};
