@@ -63,12 +63,93 @@ enum Command {
         #[arg(long)]
         mesh: Option<String>,
     },
+    /// Generate meshes.
+    Mesh {
+        #[command(subcommand)]
+        what: MeshCommand,
+    },
     /// Print reference documentation generated from the catalogue.
     Doc {
         /// What to print: `commands` (every command and keyword, Markdown).
         #[arg(value_parser = ["commands"])]
         what: String,
     },
+}
+
+#[derive(Subcommand)]
+enum MeshCommand {
+    /// The SDNV103 Taylor bar meshes (docs/mesh-generator.md).
+    ///
+    /// `--modelling B` gives the mesh of a modelling; otherwise give the kind
+    /// and the cell counts: axis (n1 across, n2 along), quarter (n1, n2, n3
+    /// angular cells over 90 degrees), tetra (n1 rings, n2 layers).
+    Taylor {
+        /// axis, quarter or tetra.
+        #[arg(long, value_parser = ["axis", "quarter", "tetra"], required_unless_present = "modelling")]
+        kind: Option<String>,
+        /// The mesh of an SDNV103 modelling (A, B, D, E, F, G, H, I, J, K).
+        #[arg(long, conflicts_with_all = ["kind", "n1", "n2", "n3", "linear"])]
+        modelling: Option<char>,
+        #[arg(long)]
+        n1: Option<usize>,
+        #[arg(long)]
+        n2: Option<usize>,
+        #[arg(long)]
+        n3: Option<usize>,
+        /// Linear cells (as CREA_MAILLAGE QUAD_LINE would give).
+        #[arg(long)]
+        linear: bool,
+        /// The MED file to write.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+fn taylor(
+    kind: Option<String>,
+    modelling: Option<char>,
+    n: [Option<usize>; 3],
+    linear: bool,
+    output: &std::path::Path,
+) -> i32 {
+    use aster::mesh::taylor::{generate, TaylorKind, TaylorParams};
+    let params = match (modelling, kind.as_deref()) {
+        (Some(m), _) => match TaylorParams::for_modelling(m) {
+            Some(p) => p,
+            None => {
+                eprintln!("error: unknown modelling '{m}' (A, B, D, E, F, G, H, I, J or K)");
+                return EXIT_USAGE;
+            }
+        },
+        (None, Some(k)) => {
+            let (kind, defaults) = match k {
+                "axis" => (TaylorKind::Axis, [5, 20, 0]),
+                "quarter" => (TaylorKind::Quarter, [5, 20, 6]),
+                _ => (TaylorKind::Tetra, [3, 34, 0]),
+            };
+            TaylorParams {
+                kind,
+                n1: n[0].unwrap_or(defaults[0]),
+                n2: n[1].unwrap_or(defaults[1]),
+                n3: n[2].unwrap_or(defaults[2]),
+                linear,
+            }
+        }
+        (None, None) => return EXIT_USAGE,
+    };
+    let mesh = match generate(&params) {
+        Ok(m) => m,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    if let Err(e) = aster::medio::write_mesh(output, &mesh) {
+        eprintln!("error: {e}");
+        return 1;
+    }
+    print!("{}", aster::medio::mesh_info(&mesh));
+    0
 }
 
 fn parse_unit(s: &str) -> Result<(i64, PathBuf), String> {
@@ -120,6 +201,18 @@ fn main() -> ExitCode {
                 }
             }
         },
+        Command::Mesh {
+            what:
+                MeshCommand::Taylor {
+                    kind,
+                    modelling,
+                    n1,
+                    n2,
+                    n3,
+                    linear,
+                    output,
+                },
+        } => taylor(kind, modelling, [n1, n2, n3], linear, &output),
         Command::Doc { what } => match what.as_str() {
             "commands" => {
                 print!("{}", aster::catalog::doc::commands_markdown());

@@ -1,7 +1,12 @@
 //! CREA_MAILLAGE: builds a new mesh from an existing one.
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::mesh_args::{check_groups, mesh_error, mesh_of, GroupKind};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
+use crate::concepts::ConceptData;
+use crate::mesh::ops;
+use crate::run::Study;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptType as C;
 
@@ -53,8 +58,37 @@ pub fn def() -> CommandDef {
     )
     .rules(vec![un_parmi(&["QUAD_LINE", "LINE_QUAD", "RESTREINT"])])
     .doc("Creates a new mesh from MAILLAGE (never in place).");
-    CommandDef {
-        spec,
-        exec: not_implemented,
-    }
+    CommandDef { spec, exec }
+}
+
+/// QUAD_LINE only: a new linear mesh, the source left unchanged.
+fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+    let Some(occ) = args.fact("QUAD_LINE") else {
+        let key = if args.has("LINE_QUAD") { "LINE_QUAD" } else { "RESTREINT" };
+        return Err(args.not_implemented(key, "only QUAD_LINE"));
+    };
+    let src = mesh_of(study, args, "MAILLAGE")?;
+    let cells: Option<Vec<usize>> = if occ.has("TOUT") {
+        None
+    } else if occ.has("GROUP_MA") {
+        check_groups(src, occ, "GROUP_MA", GroupKind::Cells)?;
+        let mut c: Vec<usize> = occ
+            .texts("GROUP_MA")
+            .iter()
+            .flat_map(|g| src.cell_groups[*g].iter().copied())
+            .collect();
+        c.sort_unstable();
+        c.dedup();
+        Some(c)
+    } else {
+        return Err(occ.not_implemented("MAILLE", "cells by name"));
+    };
+    let key = if occ.has("TOUT") { "TOUT" } else { "GROUP_MA" };
+    let mesh = ops::quad_line(src, cells.as_deref()).map_err(|e| mesh_error(occ, key, e))?;
+    study.log(format!(
+        "    QUAD_LINE: {} nodes, {} cells",
+        mesh.nnodes(),
+        mesh.ncells()
+    ));
+    Ok(Some(ConceptData::Mesh(Box::new(mesh))))
 }

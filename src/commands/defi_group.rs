@@ -1,7 +1,14 @@
 //! DEFI_GROUP: creates or deletes groups of cells and nodes in a mesh.
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::mesh_args::{check_groups, log_report, mesh_error, mesh_of, GroupKind};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
+use crate::concepts::ConceptData;
+use crate::diag::Diagnostic;
+use crate::mesh::ops::{self, CritNoeud, GroupSetOp, PlaneNormal};
+use crate::mesh::Mesh;
+use crate::run::Study;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptType as C;
 
@@ -38,10 +45,141 @@ pub fn def() -> CommandDef {
         "DETR_GROUP_MA",
     ])])
     .doc("Adds or deletes groups in a mesh, in place (reuse compulsory); occurrences are processed in order.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// Runs the occurrences as code_aster does: deletions first, then cell
+/// groups, then node groups, each in the order written (a group created by
+/// one occurrence can be used by the next).
+fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+    let mut mesh = mesh_of(study, args, "MAILLAGE")?.clone();
+    for occ in args.facts("DETR_GROUP_MA") {
+        for name in occ.texts("NOM") {
+            if mesh.cell_groups.shift_remove(name).is_none() {
+                study.log(format!("<A> <DEFI_GROUP> the cell group {name} to delete does not exist"));
+            }
+        }
     }
+    for occ in args.facts("DETR_GROUP_NO") {
+        for name in occ.texts("NOM") {
+            if mesh.node_groups.shift_remove(name).is_none() {
+                study.log(format!("<A> <DEFI_GROUP> the node group {name} to delete does not exist"));
+            }
+        }
+    }
+    for occ in args.facts("CREA_GROUP_MA") {
+        run_crea_group_ma(study, &mut mesh, occ)?;
+    }
+    for occ in args.facts("CREA_GROUP_NO") {
+        run_crea_group_no(study, &mut mesh, occ)?;
+    }
+    Ok(Some(ConceptData::Mesh(Box::new(mesh))))
+}
+
+fn run_crea_group_ma(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(), Diagnostic> {
+    let name = occ.text("NOM").unwrap_or_default().to_string();
+    if occ.text("TYPE_MAILLE").is_some_and(|t| t != "TOUT") {
+        return Err(occ.not_implemented("TYPE_MAILLE", "only TYPE_MAILLE='TOUT'"));
+    }
+    if occ.has("UNION") {
+        check_groups(mesh, occ, "UNION", GroupKind::Cells)?;
+        let r = ops::crea_group_ma_union(mesh, &occ.texts("UNION"), &name)
+            .map_err(|e| mesh_error(occ, "UNION", e))?;
+        log_report(study, "DEFI_GROUP", &r);
+        return Ok(());
+    }
+    let cells: Vec<usize> = if occ.has("TOUT") {
+        (0..mesh.ncells()).collect()
+    } else if occ.has("GROUP_MA") {
+        check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
+        let g = occ.text("GROUP_MA").unwrap_or_default();
+        mesh.cell_groups[g].clone()
+    } else {
+        let key = ["MAILLE", "INTERSEC", "DIFFE"]
+            .into_iter()
+            .find(|k| occ.has(k))
+            .unwrap_or("");
+        return Err(occ.not_implemented(key, "CREA_GROUP_MA supports TOUT, GROUP_MA and UNION"));
+    };
+    if mesh.cell_groups.contains_key(&name) {
+        return Err(occ.error("NOM", format!("the cell group {name} already exists (SOUSTRUC_37)")));
+    }
+    mesh.cell_groups.insert(name, cells);
+    Ok(())
+}
+
+fn run_crea_group_no(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(), Diagnostic> {
+    let nom = occ.text("NOM").unwrap_or_default().to_string();
+    match occ.text("OPTION") {
+        None => {}
+        Some("PLAN") => return plan(study, mesh, occ, &nom),
+        Some(_) => return Err(occ.not_implemented("OPTION", "only OPTION='PLAN'")),
+    }
+    let report = if occ.has("TOUT_GROUP_MA") {
+        ops::crea_group_no_tout_group_ma(mesh)
+    } else if occ.has("GROUP_MA") {
+        check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
+        let crit = match occ.text("CRIT_NOEUD").unwrap_or("TOUS") {
+            "SOMMET" => CritNoeud::Sommet,
+            "MILIEU" => CritNoeud::Milieu,
+            "CENTRE" => CritNoeud::Centre,
+            _ => CritNoeud::Tous,
+        };
+        let names = occ.texts("NOM");
+        let names = (!names.is_empty()).then_some(names.as_slice());
+        ops::crea_group_no_from_group_ma(mesh, &occ.texts("GROUP_MA"), names, crit)
+            .map_err(|e| mesh_error(occ, "GROUP_MA", e))?
+    } else if let Some((key, op)) = [
+        ("UNION", GroupSetOp::Union),
+        ("INTERSEC", GroupSetOp::Intersec),
+        ("DIFFE", GroupSetOp::Diffe),
+    ]
+    .into_iter()
+    .find(|(k, _)| occ.has(k))
+    {
+        check_groups(mesh, occ, key, GroupKind::Nodes)?;
+        ops::crea_group_no_set(mesh, op, &occ.texts(key), &nom).map_err(|e| mesh_error(occ, key, e))?
+    } else if occ.has("GROUP_NO") {
+        if occ.has("NUME_INIT") || occ.has("POSITION") {
+            return Err(occ.not_implemented("NUME_INIT", "sub-ranges of a node group"));
+        }
+        check_groups(mesh, occ, "GROUP_NO", GroupKind::Nodes)?;
+        ops::crea_group_no_set(mesh, GroupSetOp::Union, &occ.texts("GROUP_NO")[..1], &nom)
+            .map_err(|e| mesh_error(occ, "NOM", e))?
+    } else {
+        return Err(occ.not_implemented("NOEUD", "nodes by name"));
+    };
+    log_report(study, "DEFI_GROUP", &report);
+    Ok(())
+}
+
+/// OPTION='PLAN': nodes within PRECISION of a plane (a line in 2D).
+fn plan(study: &mut Study, mesh: &mut Mesh, occ: &Args, nom: &str) -> Result<(), Diagnostic> {
+    let point = if occ.has("POINT") {
+        occ.reals("POINT")
+    } else if occ.has("GROUP_NO_CENTRE") {
+        check_groups(mesh, occ, "GROUP_NO_CENTRE", GroupKind::Nodes)?;
+        let g = &mesh.node_groups[occ.text("GROUP_NO_CENTRE").unwrap_or_default()];
+        let Some(&n) = g.first() else {
+            return Err(occ.error("GROUP_NO_CENTRE", "the node group is empty"));
+        };
+        let d = if ops::is_z_constant(mesh) { 2 } else { 3 };
+        mesh.coords[n][..d].to_vec()
+    } else {
+        return Err(occ.not_implemented("NOEUD_CENTRE", "use POINT or GROUP_NO_CENTRE"));
+    };
+    let vect = occ.reals("VECT_NORMALE");
+    let angl = occ.reals("ANGL_NAUT");
+    let normal = if occ.has("VECT_NORMALE") {
+        PlaneNormal::Vect(&vect)
+    } else {
+        PlaneNormal::AnglNaut(&angl)
+    };
+    let prec = occ.real("PRECISION").unwrap_or(0.0);
+    let r = ops::crea_group_no_plan(mesh, nom, &point, normal, prec)
+        .map_err(|e| mesh_error(occ, "NOM", e))?;
+    log_report(study, "DEFI_GROUP", &r);
+    Ok(())
 }
 
 fn crea_group_ma() -> Keyword {
