@@ -1,7 +1,1189 @@
-//! (temporary stub until the parser lands)
-use crate::diag::{Diagnostic, Source};
-use crate::lang::ast::Program;
+//! The parser of command files: the pest grammar `grammar/comm.pest`, lowered
+//! into the spanned syntax tree of [`crate::lang::ast`].
+//!
+//! Syntax errors are written for someone who writes code_aster files, not for
+//! someone who knows the grammar. pest reports the furthest position it
+//! reached and the named rules it tried there; those names are turned into
+//! words ("expected ',' or ')'"). The mistakes that pest describes badly
+//! (unterminated strings, malformed numbers, unclosed brackets, stray
+//! characters, Python statements that are not supported) are recognised from
+//! the text around the failure instead, by a small scanner that knows only
+//! strings, comments and brackets.
+//!
+//! Inputs that would recurse deeply (thousands of nested brackets or chained
+//! operators) are refused with a message rather than allowed to exhaust the
+//! stack: bracket depth is bounded before pest runs, and expression depth
+//! while lowering.
 
-pub fn parse(_src: &Source) -> Result<Program, Diagnostic> {
-    Err(Diagnostic::error("parser not available"))
+use crate::diag::{Diagnostic, Source, Span};
+use crate::lang::ast::{Arg, BinOp, Expr, ExprKind, Ident, Program, Stmt, StmtKind, UnOp};
+use pest::error::{ErrorVariant, InputLocation};
+use pest::iterators::Pair;
+use pest::Parser as _;
+
+mod grammar {
+    // A private module keeps the generated `Rule` enum out of the public API.
+    #[derive(pest_derive::Parser)]
+    #[grammar = "../grammar/comm.pest"]
+    pub(super) struct CommParser;
+}
+use grammar::{CommParser, Rule};
+
+/// Deepest bracket nesting accepted. Real files nest four or five levels
+/// (command, tuple, `_F`, tuple); pest recurses about ten frames per level,
+/// so this bound keeps parsing well inside a 2 MiB thread stack.
+pub const MAX_BRACKET_DEPTH: usize = 64;
+
+/// Deepest expression tree accepted (operators, calls, tuples). It protects
+/// every later recursive pass over the tree (checker, evaluator, `Drop`)
+/// from a file such as `A = 1+1+1+...` with a hundred thousand terms.
+pub const MAX_EXPR_DEPTH: usize = 200;
+
+/// Words that Python reserves. None of them can be a name in a command file:
+/// `None` is a literal, the others belong to Python syntax that the command
+/// language does not have, and saying so is clearer than "expected ','".
+const PYTHON_KEYWORDS: &[&str] = &[
+    "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class", "continue",
+    "def", "del", "elif", "else", "except", "finally", "for", "from", "global", "if", "import",
+    "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise", "return", "try", "while",
+    "with", "yield",
+];
+
+/// Parses a whole command file.
+///
+/// The first error stops the parse: after a syntax error the rest of the file
+/// cannot be read reliably, and later checking needs a complete tree anyway.
+pub fn parse(src: &Source) -> Result<Program, Diagnostic> {
+    let text = src.text.as_str();
+    let scan = Scan::run(text, text.len());
+    if let Some(at) = scan.too_deep {
+        return Err(syntax_error(
+            format!("brackets nested more than {MAX_BRACKET_DEPTH} levels deep"),
+            Span::new(at, at + 1),
+        ));
+    }
+    let mut pairs = match CommParser::parse(Rule::program, text) {
+        Ok(pairs) => pairs,
+        Err(err) => return Err(explain(text, &scan, &err)),
+    };
+    let program = pairs
+        .next()
+        .expect("a successful parse yields the program rule");
+    lower_program(program)
+}
+
+fn syntax_error(message: impl AsRef<str>, span: Span) -> Diagnostic {
+    Diagnostic::error(format!("syntax error: {}", message.as_ref())).at(span)
+}
+
+fn span_of(pair: &Pair<'_, Rule>) -> Span {
+    let s = pair.as_span();
+    Span::new(s.start(), s.end())
+}
+
+// ---------------------------------------------------------------------------
+// Lowering: one function per grammar rule.
+// ---------------------------------------------------------------------------
+
+/// An expression with the depth of its tree, so that the depth bound can be
+/// enforced while building without a second recursive pass.
+struct Node {
+    expr: Expr,
+    depth: usize,
+}
+
+fn lower_program(pair: Pair<'_, Rule>) -> Result<Program, Diagnostic> {
+    let mut stmts = Vec::new();
+    for p in pair.into_inner() {
+        if p.as_rule() == Rule::stmt {
+            stmts.push(lower_stmt(p)?);
+        }
+    }
+    Ok(Program { stmts })
+}
+
+fn lower_stmt(pair: Pair<'_, Rule>) -> Result<Stmt, Diagnostic> {
+    let span = span_of(&pair);
+    let inner = pair.into_inner().next().expect("stmt has one child");
+    let kind = match inner.as_rule() {
+        Rule::assign => {
+            let mut it = inner.into_inner();
+            let target = lower_ident(it.next().expect("assign target"))?;
+            let _eq = it.next();
+            let value = lower_expr(it.next().expect("assign value"))?.expr;
+            StmtKind::Assign { target, value }
+        }
+        _ => StmtKind::Expr(lower_expr(inner)?.expr),
+    };
+    Ok(Stmt { kind, span })
+}
+
+fn lower_ident(pair: Pair<'_, Rule>) -> Result<Ident, Diagnostic> {
+    let span = span_of(&pair);
+    let name = pair.as_str();
+    if PYTHON_KEYWORDS.contains(&name) {
+        return Err(unsupported_keyword(name, span));
+    }
+    Ok(Ident {
+        name: name.to_string(),
+        span,
+    })
+}
+
+/// `expr` and `term` share their shape: operands separated by
+/// left-associative operators.
+fn lower_expr(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let mut it = pair.into_inner();
+    let first = it.next().expect("expr has a first operand");
+    let mut acc = lower_operand(first)?;
+    while let Some(op) = it.next() {
+        let op = match op.as_str() {
+            "+" => BinOp::Add,
+            "-" => BinOp::Sub,
+            "*" => BinOp::Mul,
+            _ => BinOp::Div,
+        };
+        let rhs = lower_operand(it.next().expect("operator has a right operand"))?;
+        acc = binary(op, acc, rhs)?;
+    }
+    Ok(acc)
+}
+
+fn lower_operand(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    match pair.as_rule() {
+        Rule::term | Rule::expr => lower_expr(pair),
+        Rule::factor => lower_factor(pair),
+        r => unreachable!("unexpected operand rule {r:?}"),
+    }
+}
+
+fn unary_op(pair: &Pair<'_, Rule>) -> UnOp {
+    if pair.as_str() == "-" {
+        UnOp::Neg
+    } else {
+        UnOp::Pos
+    }
+}
+
+fn lower_factor(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let mut ops = Vec::new();
+    let mut power = None;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::unary_op => ops.push((unary_op(&p), p.as_span().start())),
+            _ => power = Some(lower_power(p)?),
+        }
+    }
+    let node = power.expect("factor has a power");
+    apply_unary(ops, node)
+}
+
+/// Applies prefix signs, innermost (rightmost) first.
+fn apply_unary(ops: Vec<(UnOp, usize)>, mut node: Node) -> Result<Node, Diagnostic> {
+    for (op, start) in ops.into_iter().rev() {
+        let span = Span::new(start, node.expr.span.end);
+        node = deeper(
+            ExprKind::Unary {
+                op,
+                operand: Box::new(node.expr),
+            },
+            span,
+            node.depth,
+        )?;
+    }
+    Ok(node)
+}
+
+/// `a ** -b ** c` is `a ** (-(b ** c))`: the chain is folded from the right,
+/// and the signs in front of an operand apply to the power that starts there.
+fn lower_power(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let mut segments: Vec<(Vec<(UnOp, usize)>, Node)> = Vec::new();
+    let mut signs = Vec::new();
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::pow_op => {}
+            Rule::unary_op => signs.push((unary_op(&p), p.as_span().start())),
+            _ => segments.push((std::mem::take(&mut signs), lower_primary(p)?)),
+        }
+    }
+    let (last_signs, last) = segments.pop().expect("power has an operand");
+    let mut acc = apply_unary(last_signs, last)?;
+    while let Some((signs, base)) = segments.pop() {
+        acc = binary(BinOp::Pow, base, acc)?;
+        acc = apply_unary(signs, acc)?;
+    }
+    Ok(acc)
+}
+
+fn binary(op: BinOp, lhs: Node, rhs: Node) -> Result<Node, Diagnostic> {
+    let span = lhs.expr.span.to(rhs.expr.span);
+    deeper(
+        ExprKind::Binary {
+            op,
+            lhs: Box::new(lhs.expr),
+            rhs: Box::new(rhs.expr),
+        },
+        span,
+        lhs.depth.max(rhs.depth),
+    )
+}
+
+/// Builds a node one level above its deepest child, refusing trees deeper
+/// than [`MAX_EXPR_DEPTH`].
+fn deeper(kind: ExprKind, span: Span, child_depth: usize) -> Result<Node, Diagnostic> {
+    let depth = child_depth + 1;
+    if depth > MAX_EXPR_DEPTH {
+        return Err(syntax_error(
+            format!("expression too deeply nested (more than {MAX_EXPR_DEPTH} levels of operators, calls and tuples)"),
+            span,
+        ));
+    }
+    Ok(Node {
+        expr: Expr { kind, span },
+        depth,
+    })
+}
+
+fn leaf(kind: ExprKind, span: Span) -> Node {
+    Node {
+        expr: Expr { kind, span },
+        depth: 1,
+    }
+}
+
+fn lower_primary(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let span = span_of(&pair);
+    match pair.as_rule() {
+        Rule::number => lower_number(pair.as_str(), span),
+        Rule::strings => lower_strings(pair),
+        Rule::none => Ok(leaf(ExprKind::NoneLit, span)),
+        Rule::name => {
+            let id = lower_ident(pair.into_inner().next().expect("name has an ident"))?;
+            Ok(leaf(ExprKind::Name(id.name), span))
+        }
+        Rule::call => lower_call(pair),
+        Rule::paren => lower_sequence(pair, true),
+        Rule::list => lower_sequence(pair, false),
+        r => unreachable!("unexpected primary rule {r:?}"),
+    }
+}
+
+fn lower_number(text: &str, span: Span) -> Result<Node, Diagnostic> {
+    if text.contains(['.', 'e', 'E']) {
+        let value: f64 = text
+            .parse()
+            .map_err(|_| syntax_error(format!("malformed number '{text}'"), span))?;
+        if !value.is_finite() {
+            return Err(syntax_error(
+                format!("number '{text}' is too large for a 64-bit float"),
+                span,
+            ));
+        }
+        Ok(leaf(ExprKind::Real(value), span))
+    } else {
+        let value: i64 = text.parse().map_err(|_| {
+            syntax_error(
+                format!(
+                    "integer '{text}' is too large (the largest is {})",
+                    i64::MAX
+                ),
+                span,
+            )
+            .note("write it as a real number, e.g. with a trailing '.'")
+        })?;
+        Ok(leaf(ExprKind::Int(value), span))
+    }
+}
+
+fn lower_strings(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let span = span_of(&pair);
+    let mut value = String::new();
+    for s in pair.into_inner() {
+        unescape(s.as_str(), s.as_span().start(), &mut value)?;
+    }
+    Ok(leaf(ExprKind::Str(value), span))
+}
+
+/// Decodes one quoted literal (quotes included in `raw`) into `out`.
+/// Only the escapes a command file needs are accepted; Python would keep an
+/// unknown escape such as `\d` as two characters, which is almost always a
+/// mistake in a file path or title, so it is refused here.
+fn unescape(raw: &str, start: usize, out: &mut String) -> Result<(), Diagnostic> {
+    let body = &raw[1..raw.len() - 1];
+    let mut chars = body.char_indices();
+    while let Some((i, c)) = chars.next() {
+        if c != '\\' {
+            out.push(c);
+            continue;
+        }
+        let (_, e) = chars.next().expect("the grammar pairs every backslash");
+        out.push(match e {
+            '\\' => '\\',
+            '\'' => '\'',
+            '"' => '"',
+            'n' => '\n',
+            't' => '\t',
+            'r' => '\r',
+            _ => {
+                let at = start + 1 + i;
+                return Err(syntax_error(
+                    format!("unknown escape '\\{e}' in string"),
+                    Span::new(at, at + 1 + e.len_utf8()),
+                )
+                .note("the escapes are \\\\ \\' \\\" \\n \\t \\r; write \\\\ for a backslash"));
+            }
+        });
+    }
+    Ok(())
+}
+
+fn lower_call(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let span = span_of(&pair);
+    let mut it = pair.into_inner();
+    let func = lower_ident(it.next().expect("call has a name"))?;
+    let mut args: Vec<Arg> = Vec::new();
+    let mut depth = 0;
+    for p in it {
+        if p.as_rule() != Rule::arg {
+            continue;
+        }
+        let arg_span = span_of(&p);
+        let inner = p.into_inner().next().expect("arg has one child");
+        let arg = if inner.as_rule() == Rule::kwarg {
+            let mut kw = inner.into_inner();
+            let name = lower_ident(kw.next().expect("kwarg name"))?;
+            let _eq = kw.next();
+            let value = lower_expr(kw.next().expect("kwarg value"))?;
+            depth = depth.max(value.depth);
+            Arg {
+                name: Some(name),
+                value: value.expr,
+                span: arg_span,
+            }
+        } else {
+            if args.iter().any(|a| a.name.is_some()) {
+                return Err(
+                    syntax_error("positional argument after keyword arguments", arg_span)
+                        .note("give values without a keyword before the first KEYWORD=value"),
+                );
+            }
+            let value = lower_expr(inner)?;
+            depth = depth.max(value.depth);
+            Arg {
+                name: None,
+                value: value.expr,
+                span: arg_span,
+            }
+        };
+        args.push(arg);
+    }
+    deeper(ExprKind::Call { func, args }, span, depth)
+}
+
+/// `( ... )` and `[ ... ]`. A parenthesised single expression without a
+/// comma is that expression (Python's rule, which makes `('CYLBAS')` a
+/// string); its span is widened to the parentheses so that the spans of
+/// enclosing nodes cover the text that produced them.
+fn lower_sequence(pair: Pair<'_, Rule>, is_paren: bool) -> Result<Node, Diagnostic> {
+    let span = span_of(&pair);
+    let mut items = Vec::new();
+    let mut comma = false;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::comma => comma = true,
+            Rule::expr => items.push(lower_expr(p)?),
+            _ => {}
+        }
+    }
+    if is_paren && items.len() == 1 && !comma {
+        let mut node = items.pop().expect("one item");
+        node.expr.span = span;
+        return Ok(node);
+    }
+    let depth = items.iter().map(|n| n.depth).max().unwrap_or(0);
+    let items = items.into_iter().map(|n| n.expr).collect();
+    deeper(ExprKind::Tuple(items), span, depth)
+}
+
+fn unsupported_keyword(word: &str, span: Span) -> Diagnostic {
+    match word {
+        "True" | "False" => syntax_error(
+            format!("'{word}' is not supported: command files have no booleans"),
+            span,
+        )
+        .note("code_aster keywords take 'OUI' or 'NON'"),
+        "None" => syntax_error("'None' cannot be used as a name", span),
+        "and" | "or" | "not" | "in" | "is" => syntax_error(
+            format!("'{word}' is not supported: command files have no logical operators"),
+            span,
+        ),
+        _ => syntax_error(format!("'{word}' is Python syntax that command files do not support"), span)
+            .note("a command file is a sequence of NAME = value assignments and command calls (no import, def, if, for, while, ...)"),
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Scanner: strings, comments and brackets only, for the checks pest cannot
+// phrase well.
+// ---------------------------------------------------------------------------
+
+struct Scan {
+    /// Opening brackets still open at the stop position: (offset, char).
+    open: Vec<(usize, char)>,
+    /// First string without its closing quote on the same line: (start, end).
+    unterminated: Option<(usize, usize)>,
+    /// First bracket beyond [`MAX_BRACKET_DEPTH`].
+    too_deep: Option<usize>,
+}
+
+impl Scan {
+    /// Scans the tokens that start before `stop`.
+    fn run(text: &str, stop: usize) -> Scan {
+        let b = text.as_bytes();
+        let mut scan = Scan {
+            open: Vec::new(),
+            unterminated: None,
+            too_deep: None,
+        };
+        let mut i = 0;
+        while i < b.len() && i < stop {
+            match b[i] {
+                b'#' => {
+                    while i < b.len() && b[i] != b'\n' && b[i] != b'\r' {
+                        i += 1;
+                    }
+                }
+                q @ (b'\'' | b'"') => {
+                    let start = i;
+                    i += 1;
+                    loop {
+                        if i >= b.len() || b[i] == b'\n' || b[i] == b'\r' {
+                            if scan.unterminated.is_none() {
+                                scan.unterminated = Some((start, i));
+                            }
+                            break;
+                        }
+                        if b[i] == b'\\'
+                            && i + 1 < b.len()
+                            && b[i + 1] != b'\n'
+                            && b[i + 1] != b'\r'
+                        {
+                            i += 2;
+                            continue;
+                        }
+                        i += 1;
+                        if b[i - 1] == q {
+                            break;
+                        }
+                    }
+                    continue;
+                }
+                c @ (b'(' | b'[') => {
+                    scan.open.push((i, c as char));
+                    if scan.open.len() > MAX_BRACKET_DEPTH && scan.too_deep.is_none() {
+                        scan.too_deep = Some(i);
+                    }
+                }
+                b')' | b']' => {
+                    scan.open.pop();
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+        scan
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Turning a pest failure into a message.
+// ---------------------------------------------------------------------------
+
+fn explain(text: &str, scan: &Scan, err: &pest::error::Error<Rule>) -> Diagnostic {
+    let pos = match err.location {
+        InputLocation::Pos(p) => p,
+        InputLocation::Span((s, _)) => s,
+    };
+    let positives: Vec<Rule> = match &err.variant {
+        ErrorVariant::ParsingError { positives, .. } => positives.clone(),
+        ErrorVariant::CustomError { .. } => Vec::new(),
+    };
+
+    if let Some((start, end)) = scan.unterminated.filter(|&(s, _)| s <= pos) {
+        let quote = &text[start..start + 1];
+        let mut d = syntax_error("unterminated string", Span::new(start, end.max(start + 1))).note(
+            format!("add the closing {quote} before the end of the line"),
+        );
+        if text[..start].ends_with(&quote.repeat(2)) {
+            d = d.note("triple-quoted strings are not supported");
+        }
+        return d;
+    }
+    if let Some(span) = malformed_number(text, pos) {
+        return syntax_error(
+            format!("malformed number '{}'", &text[span.start..span.end]),
+            span,
+        )
+        .note("numbers are written like 12, 0.35, .35, 227000., 1.E-5 or 2e3");
+    }
+    if let Some((word, span)) = keyword_near(text, pos) {
+        return unsupported_keyword(word, span);
+    }
+    if let Some(d) = stray_character(text, pos) {
+        return d;
+    }
+    let found = found_token(text, pos);
+    let open = Scan::run(text, pos).open;
+    let at_line_start = text[..pos].ends_with('\n') || pos == 0;
+    // A bracket left open swallows the newlines that follow it, so the
+    // parse only fails at the end of the file or at the next statement,
+    // which starts in the first column: the open bracket is the news.
+    if found.len == 0 && text[pos..].trim().is_empty() || at_line_start && found.starts_value {
+        if let Some(&(at, c)) = open.last() {
+            let mut d = syntax_error(format!("'{c}' was never closed"), Span::new(at, at + 1));
+            if !text[pos..].trim().is_empty() {
+                d = d.note(format!(
+                    "the statement at line {} starts while it is still open",
+                    line_of(text, pos)
+                ));
+            }
+            if open.len() > 1 {
+                d = d.note(format!(
+                    "{} more bracket(s) opened before it are not closed either",
+                    open.len() - 1
+                ));
+            }
+            return d;
+        }
+    }
+    let span = Span::new(pos, pos + found.len);
+    if let Some(closer) = text[pos..]
+        .chars()
+        .next()
+        .filter(|c| matches!(c, ')' | ']'))
+    {
+        match open.last() {
+            None => return syntax_error(format!("unmatched '{closer}'"), span),
+            Some(&(at, c)) if (c == '(') != (closer == ')') => {
+                let (line, col) = line_col(text, at);
+                return syntax_error(
+                    format!(
+                        "'{closer}' does not match the '{c}' opened at line {line}, column {col}"
+                    ),
+                    span,
+                );
+            }
+            Some(_) => {}
+        }
+    }
+
+    let expected = expectations(&positives);
+    let mut d = if expected.is_empty() {
+        syntax_error(format!("unexpected {}", found.description), span)
+    } else {
+        syntax_error(
+            format!(
+                "expected {}, found {}",
+                join_or(&expected),
+                found.description
+            ),
+            span,
+        )
+    };
+    let wants = |rules: &[Rule]| positives.iter().any(|r| rules.contains(r));
+    let wants_end = wants(&[Rule::semi, Rule::eol, Rule::EOI]);
+    let follows_quote = text[..pos].ends_with(['\'', '"']);
+    if text[pos..].starts_with("==") {
+        d = d.note("a keyword argument takes a single '='; comparisons are not supported");
+    } else if wants_end && text[pos..].starts_with('=') {
+        d = d.note("assign one name per statement (A = B = value is not supported)");
+    } else if wants_end && found.starts_value {
+        d = d.note("put each statement on its own line, or separate them with ';'");
+    } else if found.starts_value && follows_quote {
+        d = d.note("is a quote misplaced? the string before it ends just here");
+    } else if wants(&[Rule::eq]) && found.starts_value {
+        d = d.note("write KEYWORD=value, and separate arguments with ','");
+    } else if wants(&[Rule::comma]) && found.starts_value {
+        d = d.note("is a ',' missing before it?");
+    } else if found.len == 0 && found.description == "end of line" && open.is_empty() {
+        d = d.note("a statement continues on the next line only inside brackets or after a '\\'");
+    }
+    d
+}
+
+/// 1-based line and column (in characters) of a byte offset.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let line_start = text[..at].rfind('\n').map(|p| p + 1).unwrap_or(0);
+    (line_of(text, at), text[line_start..at].chars().count() + 1)
+}
+
+fn line_of(text: &str, pos: usize) -> usize {
+    text.as_bytes()[..pos]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// The words for what the parser would have accepted, in a stable order.
+/// Operators are left out when anything else is possible: after any value an
+/// operator could follow, and listing them only hides the useful part.
+fn expectations(positives: &[Rule]) -> Vec<&'static str> {
+    const VALUE: &str = "a value (number, string, name, tuple or call)";
+    let mut out: Vec<&'static str> = Vec::new();
+    let mut operator = false;
+    for r in positives {
+        let word = match r {
+            Rule::comma => "','",
+            Rule::rparen => "')'",
+            Rule::rbrack => "']'",
+            Rule::eq => "'='",
+            Rule::semi | Rule::eol | Rule::EOI => "end of statement (new line or ';')",
+            // Tried after every name (it could be a call) and after every
+            // string (adjacent strings concatenate): never the useful word.
+            Rule::lparen | Rule::string => continue,
+            Rule::add_op | Rule::mul_op | Rule::pow_op => {
+                operator = true;
+                continue;
+            }
+            Rule::arg | Rule::kwarg => "an argument (KEYWORD=value or a value)",
+            Rule::stmt | Rule::assign | Rule::ident => {
+                "a statement (NAME = value or a command call)"
+            }
+            _ => VALUE,
+        };
+        if !out.contains(&word) {
+            out.push(word);
+        }
+    }
+    if out.is_empty() && operator {
+        out.push("an operator");
+    }
+    // "a value" already says what an argument can be.
+    if out.contains(&VALUE) {
+        out.retain(|w| !w.starts_with("an argument"));
+    }
+    let rank = |w: &&str| match *w {
+        "'='" => 0,
+        "','" => 1,
+        "')'" | "']'" => 2,
+        _ => 3,
+    };
+    out.sort_by_key(rank);
+    out
+}
+
+fn join_or(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
+struct Found {
+    description: String,
+    /// Byte length of the token, for the caret.
+    len: usize,
+    /// Whether it could start a value (a missing ',' is then likely).
+    starts_value: bool,
+}
+
+fn is_ident_char(c: char) -> bool {
+    c.is_ascii_alphanumeric() || c == '_'
+}
+
+fn found_token(text: &str, pos: usize) -> Found {
+    let rest = &text[pos..];
+    let Some(c) = rest.chars().next() else {
+        return Found {
+            description: "end of file".into(),
+            len: 0,
+            starts_value: false,
+        };
+    };
+    if c == '\n' || c == '\r' {
+        return Found {
+            description: "end of line".into(),
+            len: 0,
+            starts_value: false,
+        };
+    }
+    if is_ident_char(c) || c == '.' && rest[1..].starts_with(|d: char| d.is_ascii_digit()) {
+        let len = rest
+            .find(|d: char| !(is_ident_char(d) || d == '.'))
+            .unwrap_or(rest.len());
+        return Found {
+            description: format!("'{}'", &rest[..len]),
+            len,
+            starts_value: true,
+        };
+    }
+    if c == '\'' || c == '"' {
+        return Found {
+            description: "a string".into(),
+            len: 1,
+            starts_value: true,
+        };
+    }
+    let two = rest.get(..2).filter(|t| matches!(*t, "**" | "==" | "//"));
+    let tok = two.unwrap_or(&rest[..c.len_utf8()]);
+    Found {
+        description: format!("'{tok}'"),
+        len: tok.len(),
+        starts_value: matches!(c, '(' | '['),
+    }
+}
+
+/// If the failure is inside or right after a numeric literal (`1.E`, `007`,
+/// `1.5.3`, `12abc`), the span of the whole malformed token.
+fn malformed_number(text: &str, pos: usize) -> Option<Span> {
+    let b = text.as_bytes();
+    let numeric = |c: u8| c.is_ascii_alphanumeric() || c == b'_' || c == b'.';
+    // A sign belongs to the token only right after an exponent letter that
+    // follows a digit or a point (`1e+`, `1.E-`).
+    let sign_in_token = |i: usize| {
+        i >= 2
+            && (b[i - 1] == b'e' || b[i - 1] == b'E')
+            && (b[i - 2].is_ascii_digit() || b[i - 2] == b'.')
+    };
+    let mut start = pos.min(b.len());
+    while start > 0
+        && (numeric(b[start - 1])
+            || (matches!(b[start - 1], b'+' | b'-') && sign_in_token(start - 1)))
+    {
+        start -= 1;
+    }
+    let first = *b.get(start)?;
+    let starts_number = first.is_ascii_digit()
+        || (first == b'.' && b.get(start + 1).is_some_and(|c| c.is_ascii_digit()));
+    if !starts_number || start == pos {
+        return None;
+    }
+    let mut end = pos.min(b.len());
+    while end < b.len()
+        && (numeric(b[end]) || (matches!(b[end], b'+' | b'-') && sign_in_token(end)))
+    {
+        end += 1;
+    }
+    // The failure must be inside the token: `(1, 2]` fails after a
+    // well-formed `2`.
+    if end == pos {
+        return None;
+    }
+
+    Some(Span::new(start, end))
+}
+
+/// A Python keyword at the failure position or just before it on the same
+/// line (`import math` fails at `math`, `[x for x in l]` at `for`).
+fn keyword_near(text: &str, pos: usize) -> Option<(&'static str, Span)> {
+    let word_at = |start: usize| {
+        let len = text[start..]
+            .find(|c: char| !is_ident_char(c))
+            .unwrap_or(text.len() - start);
+        &text[start..start + len]
+    };
+    let kw = |w: &str| {
+        PYTHON_KEYWORDS
+            .iter()
+            .find(|k| **k == w && w != "None")
+            .copied()
+    };
+    if pos < text.len() && text[pos..].starts_with(|c: char| is_ident_char(c)) {
+        let starts_word =
+            pos == 0 || !is_ident_char(text[..pos].chars().next_back().unwrap_or(' '));
+        if starts_word {
+            if let Some(k) = kw(word_at(pos)) {
+                return Some((k, Span::new(pos, pos + k.len())));
+            }
+        }
+    }
+    let before = text[..pos].trim_end_matches([' ', '\t']);
+    // Name characters are ASCII, so counting bytes stays on a boundary.
+    let start = before.len()
+        - before
+            .bytes()
+            .rev()
+            .take_while(|&b| is_ident_char(b as char))
+            .count();
+    let word = &before[start..];
+    if word.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        if let Some(k) = kw(word) {
+            return Some((k, Span::new(start, start + k.len())));
+        }
+    }
+    None
+}
+
+/// A character that starts no token of the language.
+fn stray_character(text: &str, pos: usize) -> Option<Diagnostic> {
+    let c = text[pos..].chars().next()?;
+    let span = Span::new(pos, pos + c.len_utf8());
+    if c == '\\' {
+        return Some(
+            syntax_error("unexpected '\\'", span)
+                .note("a backslash continues a statement only as the last character of a line"),
+        );
+    }
+    let known = is_ident_char(c) || " \t\x0C\r\n'\"()[],=+-*/.;#".contains(c) || c == '\u{FEFF}';
+    if known {
+        return None;
+    }
+    let shown = if c.is_control() {
+        format!("U+{:04X}", c as u32)
+    } else {
+        format!("'{c}'")
+    };
+    let d = syntax_error(format!("unexpected character {shown}"), span);
+    Some(match c {
+        '{' | '}' | ':' => {
+            d.note("dictionaries are not supported; factor keywords are written _F(KEY=value, ...)")
+        }
+        _ if c.is_alphabetic() => d.note("names use only ASCII letters, digits and '_'"),
+        _ => d,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse_str(text: &str) -> Result<Program, Diagnostic> {
+        parse(&Source::new("t.comm", text))
+    }
+
+    fn ok(text: &str) -> Program {
+        match parse_str(text) {
+            Ok(p) => p,
+            Err(d) => panic!("{}", d.render(Some(&Source::new("t.comm", text)))),
+        }
+    }
+
+    fn err(text: &str) -> Diagnostic {
+        match parse_str(text) {
+            Ok(p) => panic!("expected an error for {text:?}, got {p:?}"),
+            Err(d) => d,
+        }
+    }
+
+    /// The value of `A = <text>`.
+    fn value(text: &str) -> Expr {
+        let p = ok(&format!("A = {text}\n"));
+        match p.stmts.into_iter().next().unwrap().kind {
+            StmtKind::Assign { value, .. } => value,
+            k => panic!("not an assignment: {k:?}"),
+        }
+    }
+
+    /// A compact s-expression, to state expected trees briefly.
+    fn sx(e: &Expr) -> String {
+        match &e.kind {
+            ExprKind::Int(i) => i.to_string(),
+            ExprKind::Real(r) => format!("{r:?}"),
+            ExprKind::Str(s) => format!("{s:?}"),
+            ExprKind::NoneLit => "None".into(),
+            ExprKind::Name(n) => n.clone(),
+            ExprKind::Tuple(items) => {
+                let v: Vec<String> = items.iter().map(sx).collect();
+                format!("(tuple {})", v.join(" "))
+            }
+            ExprKind::Call { func, args } => {
+                let v: Vec<String> = args
+                    .iter()
+                    .map(|a| match &a.name {
+                        Some(n) => format!("{}={}", n.name, sx(&a.value)),
+                        None => sx(&a.value),
+                    })
+                    .collect();
+                format!("({} {})", func.name, v.join(" "))
+            }
+            ExprKind::Unary { op, operand } => {
+                let o = if *op == UnOp::Neg { "neg" } else { "pos" };
+                format!("({o} {})", sx(operand))
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                format!("({} {} {})", op.symbol(), sx(lhs), sx(rhs))
+            }
+        }
+    }
+
+    fn sv(text: &str) -> String {
+        sx(&value(text))
+    }
+
+    #[test]
+    fn number_forms_and_values() {
+        let cases: &[(&str, f64)] = &[
+            ("1.E-5", 1e-5),
+            ("227000.", 227000.0),
+            (".35", 0.35),
+            ("1.0E+2", 100.0),
+            ("1e5", 1e5),
+            ("100.E3", 100e3),
+            ("8.930E-9", 8.93e-9),
+            ("0.", 0.0),
+            ("00.5", 0.5),
+            ("1.e5", 1e5),
+            ("2.27", 2.27),
+        ];
+        for &(text, v) in cases {
+            match value(text).kind {
+                ExprKind::Real(r) => assert_eq!(r, v, "{text}"),
+                k => panic!("{text}: {k:?}"),
+            }
+        }
+        assert_eq!(value("30").kind, ExprKind::Int(30));
+        assert_eq!(value("0").kind, ExprKind::Int(0));
+        assert_eq!(value("9223372036854775807").kind, ExprKind::Int(i64::MAX));
+    }
+
+    #[test]
+    fn integer_overflow_is_a_diagnostic() {
+        let d = err("A = 9223372036854775808\n");
+        assert!(d.message.contains("too large"), "{}", d.message);
+        assert_eq!(d.span, Some(Span::new(4, 23)));
+        let d = err("A = 1e999\n");
+        assert!(
+            d.message.contains("too large for a 64-bit float"),
+            "{}",
+            d.message
+        );
+    }
+
+    #[test]
+    fn malformed_numbers() {
+        for (text, token) in [
+            ("A = 1.E\n", "1.E"),
+            ("A = 1e\n", "1e"),
+            ("A = 1e+\n", "1e+"),
+            ("A = 007\n", "007"),
+            ("A = 1.5.3\n", "1.5.3"),
+            ("F(X=12abc)\n", "12abc"),
+        ] {
+            let d = err(text);
+            assert_eq!(
+                d.message,
+                format!("syntax error: malformed number '{token}'"),
+                "{text}"
+            );
+            let s = d.span.unwrap();
+            assert_eq!(&text[s.start..s.end], token);
+        }
+    }
+
+    #[test]
+    fn precedence_and_associativity() {
+        assert_eq!(sv("1 + 2 * 3"), "(+ 1 (* 2 3))");
+        assert_eq!(sv("1 - 2 - 3"), "(- (- 1 2) 3)");
+        assert_eq!(sv("8 / 4 / 2"), "(/ (/ 8 4) 2)");
+        assert_eq!(sv("2 ** 3 ** 2"), "(** 2 (** 3 2))");
+        assert_eq!(sv("-2**2"), "(neg (** 2 2))");
+        assert_eq!(sv("2**-1"), "(** 2 (neg 1))");
+        assert_eq!(sv("2**-3**2"), "(** 2 (neg (** 3 2)))");
+        assert_eq!(sv("-x*y"), "(* (neg x) y)");
+        assert_eq!(sv("--+1"), "(neg (neg (pos 1)))");
+        assert_eq!(sv("(1 + 2) * 3"), "(* (+ 1 2) 3)");
+        assert_eq!(sv("a*b**c"), "(* a (** b c))");
+        assert_eq!(sv("1.0*IMPACT_THEORIQUE"), "(* 1.0 IMPACT_THEORIQUE)");
+        assert_eq!(sv("int(NPAS/2)+1"), "(+ (int (/ NPAS 2)) 1)");
+    }
+
+    #[test]
+    fn tuples_lists_and_parentheses() {
+        assert_eq!(sv("('CYLBAS')"), "\"CYLBAS\"");
+        assert_eq!(sv("('CYLBAS',)"), "(tuple \"CYLBAS\")");
+        assert_eq!(sv("(1, 2,)"), "(tuple 1 2)");
+        assert_eq!(sv("(1, 2)"), "(tuple 1 2)");
+        assert_eq!(sv("()"), "(tuple )");
+        assert_eq!(sv("[1]"), "(tuple 1)");
+        assert_eq!(sv("[]"), "(tuple )");
+        assert_eq!(sv("[1, (2,), [3, 4,],]"), "(tuple 1 (tuple 2) (tuple 3 4))");
+        assert_eq!(sv("((1))"), "1");
+    }
+
+    #[test]
+    fn calls_and_keywords() {
+        assert_eq!(
+            sv("DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=(_F(TOUT_GROUP_MA='OUI'),),)"),
+            "(DEFI_GROUP reuse=MA MAILLAGE=MA CREA_GROUP_NO=(tuple (_F TOUT_GROUP_MA=\"OUI\")))"
+        );
+        assert_eq!(sv("min(1, 2.)"), "(min 1 2.0)");
+        assert_eq!(sv("F()"), "(F )");
+        assert_eq!(sv("F (X = None)"), "(F X=None)");
+        let d = err("F(A=1, 2)\n");
+        assert!(
+            d.message.contains("positional argument after keyword"),
+            "{}",
+            d.message
+        );
+        // Python refuses a repeated keyword at compile time; here the
+        // checker reports it, naming the command, so the parser keeps both.
+        assert_eq!(sv("F(A=1, A=2)"), "(F A=1 A=2)");
+    }
+
+    #[test]
+    fn strings_and_escapes() {
+        assert_eq!(value(r#"'a\'b'"#).kind, ExprKind::Str("a'b".into()));
+        assert_eq!(
+            value(r#""a\"b\\c\n\t""#).kind,
+            ExprKind::Str("a\"b\\c\n\t".into())
+        );
+        assert_eq!(value(r#""it's""#).kind, ExprKind::Str("it's".into()));
+        assert_eq!(value("'ab' \"cd\"").kind, ExprKind::Str("abcd".into()));
+        assert_eq!(
+            value("'é # not a comment'").kind,
+            ExprKind::Str("é # not a comment".into())
+        );
+        let d = err(r"A = 'C:\data'");
+        assert!(d.message.contains("unknown escape '\\d'"), "{}", d.message);
+        assert_eq!(d.span, Some(Span::new(7, 9)));
+        let d = err("A = 'abc\nB = 1\n");
+        assert_eq!(d.message, "syntax error: unterminated string");
+        assert_eq!(d.span, Some(Span::new(4, 8)));
+    }
+
+    #[test]
+    fn statements_separators_and_comments() {
+        let p = ok("\u{FEFF}# head\n\nDEBUT();  # c\nNPAS = 30; IMPACT = 1.0*NPAS ;\n   \nFIN()");
+        assert_eq!(p.stmts.len(), 4);
+        let d = err("A = 1 B = 2\n");
+        assert_eq!(
+            d.message,
+            "syntax error: expected end of statement (new line or ';'), found 'B'"
+        );
+        assert_eq!(d.span, Some(Span::new(6, 7)));
+        assert!(parse_str("A = 1;;\n").is_err());
+        assert!(parse_str(";\n").is_err());
+        assert_eq!(ok("").stmts.len(), 0);
+        assert_eq!(ok("\n\n# only comments\n").stmts.len(), 0);
+    }
+
+    #[test]
+    fn newlines_inside_brackets_and_continuation() {
+        let p = ok("A = F(X=1,\n  # comment inside\n\n  Y=(1,\n 2),\n)\nB = 1 + \\\n  2\n");
+        assert_eq!(p.stmts.len(), 2);
+        // Outside brackets a newline ends the statement.
+        let d = err("A = 1 +\n2\n");
+        assert!(d.message.contains("expected a value"), "{}", d.message);
+    }
+
+    #[test]
+    fn windows_line_endings() {
+        let text = "DEBUT()\r\nA = F(X=1,\r\n  Y=2)\r\nFIN()\r\n";
+        let p = ok(text);
+        assert_eq!(p.stmts.len(), 3);
+        let s = p.stmts[2].span;
+        assert_eq!(&text[s.start..s.end], "FIN()");
+    }
+
+    #[test]
+    fn spans_point_at_the_right_bytes() {
+        let text = "DEBUT()\nMA = DEFI_GROUP(reuse=MA, CREA=(_F(NOM='A'),),)\nX = -(1 + 2)*3\n";
+        let p = ok(text);
+        let at = |s: Span| &text[s.start..s.end];
+        assert_eq!(at(p.stmts[0].span), "DEBUT()");
+        let StmtKind::Assign { target, value } = &p.stmts[1].kind else {
+            panic!()
+        };
+        assert_eq!(at(target.span), "MA");
+        assert_eq!(at(value.span), "DEFI_GROUP(reuse=MA, CREA=(_F(NOM='A'),),)");
+        let ExprKind::Call { func, args } = &value.kind else {
+            panic!()
+        };
+        assert_eq!(at(func.span), "DEFI_GROUP");
+        assert_eq!(at(args[0].span), "reuse=MA");
+        assert_eq!(at(args[0].name.as_ref().unwrap().span), "reuse");
+        assert_eq!(at(args[0].value.span), "MA");
+        assert_eq!(at(args[1].value.span), "(_F(NOM='A'),)");
+        let ExprKind::Tuple(items) = &args[1].value.kind else {
+            panic!()
+        };
+        assert_eq!(at(items[0].span), "_F(NOM='A')");
+        let StmtKind::Assign { value, .. } = &p.stmts[2].kind else {
+            panic!()
+        };
+        assert_eq!(at(value.span), "-(1 + 2)*3");
+        let ExprKind::Binary { lhs, .. } = &value.kind else {
+            panic!()
+        };
+        assert_eq!(at(lhs.span), "-(1 + 2)");
+        let ExprKind::Unary { operand, .. } = &lhs.kind else {
+            panic!()
+        };
+        assert_eq!(at(operand.span), "(1 + 2)");
+    }
+
+    #[test]
+    fn syntax_error_messages() {
+        let cases = [
+            (
+                "F(A=1 B=2)\n",
+                "syntax error: expected ',' or ')', found 'B'",
+            ),
+            (
+                "F(A=)\n",
+                "syntax error: expected a value (number, string, name, tuple or call), found ')'",
+            ),
+            ("F(A=1\n", "syntax error: '(' was never closed"),
+            (
+                "A = (1, 2]\n",
+                "syntax error: ']' does not match the '(' opened at line 1, column 5",
+            ),
+            ("A = 1 @ 2\n", "syntax error: unexpected character '@'"),
+            (
+                "import math\n",
+                "syntax error: 'import' is Python syntax that command files do not support",
+            ),
+            (
+                "A = [x for x in L]\n",
+                "syntax error: 'for' is Python syntax that command files do not support",
+            ),
+            (
+                "A = True\n",
+                "syntax error: 'True' is not supported: command files have no booleans",
+            ),
+            ("A = 1 \\ 2\n", "syntax error: unexpected '\\'"),
+        ];
+        for (text, msg) in cases {
+            assert_eq!(err(text).message, msg, "{text:?}");
+        }
+    }
+
+    #[test]
+    fn unclosed_brackets() {
+        // The next statement, in the first column, shows the '(' is open.
+        let d = err("A = F(X=1,\n  Y=2\nFIN()\n");
+        assert_eq!(d.message, "syntax error: '(' was never closed");
+        assert_eq!(d.span, Some(Span::new(5, 6)));
+        assert!(
+            d.notes.iter().any(|n| n.contains("line 3")),
+            "{:?}",
+            d.notes
+        );
+        // An indented line is read as a continuation: a ',' is missing.
+        let d = err("A = F(X=1,\n  Y=2\n  Z=3)\n");
+        assert_eq!(d.message, "syntax error: expected ',' or ')', found 'Z'");
+        let d = err("FIN())\n");
+        assert_eq!(d.message, "syntax error: unmatched ')'");
+        let d = err("A = [1, 2)\n");
+        assert_eq!(
+            d.message,
+            "syntax error: ')' does not match the '[' opened at line 1, column 5"
+        );
+    }
+
+    #[test]
+    fn depth_limits_are_errors_not_crashes() {
+        let deep = format!("A = {}1{}\n", "(".repeat(100), ")".repeat(100));
+        assert!(err(&deep).message.contains("nested more than 64"));
+        let ok_depth = format!("A = {}1{}\n", "(".repeat(64), ")".repeat(64));
+        ok(&ok_depth);
+        let long = format!("A = 1{}\n", "+1".repeat(10_000));
+        assert!(err(&long).message.contains("too deeply nested"));
+        let signs = format!("A = {}1\n", "-".repeat(10_000));
+        assert!(err(&signs).message.contains("too deeply nested"));
+        let pow = format!("A = 2{}\n", "**2".repeat(10_000));
+        assert!(err(&pow).message.contains("too deeply nested"));
+    }
 }
