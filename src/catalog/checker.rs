@@ -80,10 +80,19 @@ pub fn check_program(
             continue;
         }
         let Some((func, args)) = call else {
-            // A plain Python statement: evaluate it now.
-            if !seen_debut {
-                if let ExprKind::Call { func, .. } = &expr.kind {
+            // A plain Python statement: evaluate it now. A call of an
+            // unknown name at statement level is most likely a misspelt
+            // command.
+            if let ExprKind::Call { func, .. } = &expr.kind {
+                let known = func.name == "_F"
+                    || crate::catalog::eval::BUILTINS.contains(&func.name.as_str());
+                if !known {
                     ck.unknown_call(func, &names);
+                    if let Some(t) = target {
+                        ck.env
+                            .names
+                            .insert(t.name.clone(), Binding::Var(PyVal::Poison));
+                    }
                     continue;
                 }
             }
@@ -99,7 +108,14 @@ pub fn check_program(
                         .warnings
                         .push(Diagnostic::warning("this statement has no effect").at(stmt.span)),
                 },
-                Err(d) => ck.errors.push(d),
+                Err(d) => {
+                    ck.errors.push(d);
+                    if let Some(t) = target {
+                        ck.env
+                            .names
+                            .insert(t.name.clone(), Binding::Var(PyVal::Poison));
+                    }
+                }
             }
             continue;
         };
@@ -224,7 +240,16 @@ impl Checker<'_> {
                 .eval(&a.value, &|n| registry.iter().any(|d| d.spec.name == n))
             {
                 Ok(v) => given.push((k.clone(), v)),
-                Err(d) => self.errors.push(with_ctx(d, cmd, &k.name)),
+                Err(d) => {
+                    self.errors.push(with_ctx(d, cmd, &k.name));
+                    given.push((
+                        k.clone(),
+                        SpVal {
+                            v: PyVal::Poison,
+                            span: a.value.span,
+                        },
+                    ));
+                }
             }
         }
 
@@ -506,8 +531,15 @@ impl Checker<'_> {
             }
         }
 
-        // Rules, on the keywords present after defaults (as code_aster).
-        let present: Vec<&str> = out.entries.keys().map(String::as_str).collect();
+        // Rules, on the keywords present after defaults (as code_aster). A
+        // keyword the user gave counts as present even if its value was
+        // wrong: that error is already reported.
+        let mut present: Vec<&str> = out.entries.keys().map(String::as_str).collect();
+        for (k, _) in &given {
+            if !present.contains(&k.name.as_str()) {
+                present.push(k.name.as_str());
+            }
+        }
         for r in rules.iter().chain(block_rules.iter().copied()) {
             if let Some(msg) = rule_violation(r, &present) {
                 let mut d = Diagnostic::error(msg).at(out.span).in_command(cmd);
@@ -568,6 +600,19 @@ impl Checker<'_> {
             PyVal::Tuple(items) => items.iter().collect(),
             _ => vec![v],
         };
+        if items.iter().any(|it| it.v == PyVal::Poison) {
+            // Already reported where the value was defined; keep the
+            // keyword present so that rules do not report it again.
+            out.entries.insert(
+                s.name.to_string(),
+                Entry {
+                    span,
+                    defaulted: false,
+                    data: EntryData::Simple(Vec::new()),
+                },
+            );
+            return;
+        }
         if let Some(max) = s.max {
             if items.len() > max {
                 self.errors.push(err(format!(
@@ -727,6 +772,22 @@ impl Checker<'_> {
             PyVal::Tuple(items) => items.iter().collect(),
             _ => vec![v],
         };
+        if let Some(o) = occs
+            .iter()
+            .find(|o| !matches!(o.v, PyVal::Fact(_) | PyVal::Poison))
+        {
+            self.errors.push(
+                Diagnostic::error(format!(
+                    "{} is a factor keyword: expected _F(...) or a tuple of _F(...), found {}",
+                    f.name,
+                    o.v.describe()
+                ))
+                .at(o.span)
+                .in_command(cmd)
+                .keyword(kp),
+            );
+            return;
+        }
         if let Some(max) = f.max {
             if occs.len() > max {
                 self.errors.push(
@@ -745,6 +806,9 @@ impl Checker<'_> {
         }
         let mut checked = Vec::new();
         for o in occs {
+            if o.v == PyVal::Poison {
+                continue;
+            }
             let PyVal::Fact(items) = &o.v else {
                 self.errors.push(
                     Diagnostic::error(format!(

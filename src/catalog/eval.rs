@@ -28,6 +28,9 @@ pub enum PyVal {
         name: String,
         ty: ConceptType,
     },
+    /// The value of a name whose definition failed (already reported):
+    /// it propagates silently so that one mistake gives one error.
+    Poison,
 }
 
 impl PyVal {
@@ -41,6 +44,7 @@ impl PyVal {
             PyVal::Tuple(_) => "a tuple".into(),
             PyVal::Fact(_) => "a factor keyword occurrence _F(...)".into(),
             PyVal::Concept { name, ty } => format!("the concept {name} of type {ty}"),
+            PyVal::Poison => "an invalid value".into(),
         }
     }
 }
@@ -105,6 +109,7 @@ impl Env {
             ExprKind::Unary { op, operand } => {
                 let x = self.eval(operand, is_command)?;
                 match (op, x.v) {
+                    (_, PyVal::Poison) => PyVal::Poison,
                     (UnOp::Neg, PyVal::Int(i)) => PyVal::Int(
                         i.checked_neg()
                             .ok_or_else(|| Diagnostic::error("integer overflow").at(e.span))?,
@@ -124,6 +129,12 @@ impl Env {
             ExprKind::Binary { op, lhs, rhs } => {
                 let a = self.eval(lhs, is_command)?;
                 let b = self.eval(rhs, is_command)?;
+                if a.v == PyVal::Poison || b.v == PyVal::Poison {
+                    return Ok(SpVal {
+                        v: PyVal::Poison,
+                        span: e.span,
+                    });
+                }
                 binary(*op, a.v, b.v).map_err(|m| Diagnostic::error(m).at(e.span))?
             }
             ExprKind::Call { func, args } => {
@@ -188,6 +199,9 @@ impl Env {
                 );
             }
             vals.push(self.eval(&a.value, is_command)?);
+        }
+        if vals.iter().any(|v| v.v == PyVal::Poison) {
+            return Ok(PyVal::Poison);
         }
         // min/max of a single tuple argument work on its items, as in Python.
         if (f == "min" || f == "max") && vals.len() == 1 {

@@ -4,11 +4,11 @@ use super::blocks::*;
 use super::mesh_args::{check_groups, mesh_error, mesh_of, GroupKind};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
+use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
+use crate::concepts::ConceptType as C;
 use crate::mesh::ops;
 use crate::run::Study;
-use crate::catalog::schema::*;
-use crate::concepts::ConceptType as C;
 
 pub fn def() -> CommandDef {
     let selection = || vec![tout(), maille(), group_ma()];
@@ -64,7 +64,11 @@ pub fn def() -> CommandDef {
 /// QUAD_LINE only: a new linear mesh, the source left unchanged.
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let Some(occ) = args.fact("QUAD_LINE") else {
-        let key = if args.has("LINE_QUAD") { "LINE_QUAD" } else { "RESTREINT" };
+        let key = if args.has("LINE_QUAD") {
+            "LINE_QUAD"
+        } else {
+            "RESTREINT"
+        };
         return Err(args.not_implemented(key, "only QUAD_LINE"));
     };
     let src = mesh_of(study, args, "MAILLAGE")?;

@@ -4,13 +4,13 @@ use super::blocks::*;
 use super::mesh_args::{check_groups, log_report, mesh_error, mesh_of, GroupKind};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
+use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
+use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::mesh::ops::{self, CritNoeud, GroupSetOp, PlaneNormal};
 use crate::mesh::Mesh;
 use crate::run::Study;
-use crate::catalog::schema::*;
-use crate::concepts::ConceptType as C;
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -56,14 +56,18 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     for occ in args.facts("DETR_GROUP_MA") {
         for name in occ.texts("NOM") {
             if mesh.cell_groups.shift_remove(name).is_none() {
-                study.log(format!("<A> <DEFI_GROUP> the cell group {name} to delete does not exist"));
+                study.log(format!(
+                    "<A> <DEFI_GROUP> the cell group {name} to delete does not exist"
+                ));
             }
         }
     }
     for occ in args.facts("DETR_GROUP_NO") {
         for name in occ.texts("NOM") {
             if mesh.node_groups.shift_remove(name).is_none() {
-                study.log(format!("<A> <DEFI_GROUP> the node group {name} to delete does not exist"));
+                study.log(format!(
+                    "<A> <DEFI_GROUP> the node group {name} to delete does not exist"
+                ));
             }
         }
     }
@@ -102,7 +106,10 @@ fn run_crea_group_ma(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(
         return Err(occ.not_implemented(key, "CREA_GROUP_MA supports TOUT, GROUP_MA and UNION"));
     };
     if mesh.cell_groups.contains_key(&name) {
-        return Err(occ.error("NOM", format!("the cell group {name} already exists (SOUSTRUC_37)")));
+        return Err(occ.error(
+            "NOM",
+            format!("the cell group {name} already exists (SOUSTRUC_37)"),
+        ));
     }
     mesh.cell_groups.insert(name, cells);
     Ok(())
@@ -138,7 +145,8 @@ fn run_crea_group_no(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(
     .find(|(k, _)| occ.has(k))
     {
         check_groups(mesh, occ, key, GroupKind::Nodes)?;
-        ops::crea_group_no_set(mesh, op, &occ.texts(key), &nom).map_err(|e| mesh_error(occ, key, e))?
+        ops::crea_group_no_set(mesh, op, &occ.texts(key), &nom)
+            .map_err(|e| mesh_error(occ, key, e))?
     } else if occ.has("GROUP_NO") {
         if occ.has("NUME_INIT") || occ.has("POSITION") {
             return Err(occ.not_implemented("NUME_INIT", "sub-ranges of a node group"));

@@ -3,10 +3,10 @@
 use super::blocks::*;
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
-use crate::concepts::ConceptData;
-use crate::run::Study;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -70,7 +70,11 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             "UNITE",
             format!(
                 "logical unit {unit} {} '{}', which does not exist",
-                if mapped { "is mapped to" } else { "is not mapped; its default file is" },
+                if mapped {
+                    "is mapped to"
+                } else {
+                    "is not mapped; its default file is"
+                },
                 path.display()
             ),
         );
@@ -81,8 +85,16 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         }
         return Err(d);
     }
-    let mesh = crate::medio::read_mesh(&path, args.text("NOM_MED"))
-        .map_err(|e| args.error(if args.given("NOM_MED") { "NOM_MED" } else { "UNITE" }, e.to_string()))?;
+    let mesh = crate::medio::read_mesh(&path, args.text("NOM_MED")).map_err(|e| {
+        args.error(
+            if args.given("NOM_MED") {
+                "NOM_MED"
+            } else {
+                "UNITE"
+            },
+            e.to_string(),
+        )
+    })?;
     study.log(format!(
         "    mesh '{}' read from {}: {} nodes, {} cells",
         mesh.name,

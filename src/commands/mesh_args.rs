@@ -15,7 +15,10 @@ pub fn mesh_of<'s>(study: &'s Study, args: &Args, key: &str) -> Result<&'s Mesh,
         .ok_or_else(|| args.error(key, "a mesh concept is expected"))?;
     match study.concepts.get(name).map(|c| &c.data) {
         Some(ConceptData::Mesh(m)) => Ok(m),
-        _ => Err(args.error(key, format!("the mesh {name} holds no data (its command did not run)"))),
+        _ => Err(args.error(
+            key,
+            format!("the mesh {name} holds no data (its command did not run)"),
+        )),
     }
 }
 
@@ -26,16 +29,34 @@ pub enum GroupKind {
 
 /// Checks that every group named under `key` exists in the mesh; the
 /// error names the group, lists the existing ones and suggests the closest.
-pub fn check_groups(mesh: &Mesh, args: &Args, key: &str, kind: GroupKind) -> Result<(), Diagnostic> {
+pub fn check_groups(
+    mesh: &Mesh,
+    args: &Args,
+    key: &str,
+    kind: GroupKind,
+) -> Result<(), Diagnostic> {
     let (known, what): (Vec<&str>, &str) = match kind {
-        GroupKind::Cells => (mesh.cell_groups.keys().map(String::as_str).collect(), "cell group (GROUP_MA)"),
-        GroupKind::Nodes => (mesh.node_groups.keys().map(String::as_str).collect(), "node group (GROUP_NO)"),
+        GroupKind::Cells => (
+            mesh.cell_groups.keys().map(String::as_str).collect(),
+            "cell group (GROUP_MA)",
+        ),
+        GroupKind::Nodes => (
+            mesh.node_groups.keys().map(String::as_str).collect(),
+            "node group (GROUP_NO)",
+        ),
     };
     for g in args.texts(key) {
         if !known.contains(&g) {
             let mut d = args.error(
                 key,
-                format!("the mesh {} has no {what} '{g}'", if mesh.name.is_empty() { "read" } else { &mesh.name }),
+                format!(
+                    "the mesh {} has no {what} '{g}'",
+                    if mesh.name.is_empty() {
+                        "read"
+                    } else {
+                        &mesh.name
+                    }
+                ),
             );
             d.suggestion = closest(g, &known);
             d.choices = known.iter().map(|s| s.to_string()).collect();

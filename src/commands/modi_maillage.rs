@@ -4,11 +4,11 @@ use super::blocks::*;
 use super::mesh_args::{check_groups, log_report, mesh_error, mesh_of, GroupKind};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
+use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
+use crate::concepts::ConceptType as C;
 use crate::mesh::ops::{self, OrieDim};
 use crate::run::Study;
-use crate::catalog::schema::*;
-use crate::concepts::ConceptType as C;
 
 pub fn def() -> CommandDef {
     let spec = command(

@@ -195,7 +195,7 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
             for (u, p) in &study.units.map.clone() {
                 study.log(format!("unit {u:>3} -> {}", p.display()));
             }
-            match study.execute(&program, &registry) {
+            match study.execute(&program, &registry, &src) {
                 Ok(()) => {
                     if study.tests.nook > 0 {
                         EXIT_STUDY

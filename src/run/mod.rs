@@ -84,15 +84,16 @@ impl Study {
         &mut self,
         program: &CheckedProgram,
         registry: &[CommandDef],
+        source: &crate::diag::Source,
     ) -> Result<(), Diagnostic> {
         for c in &program.commands {
+            let (line, _) = source.line_col(c.span.start);
             let def = &registry[c.def];
             let target = c.result.as_ref().map(|t| t.name.as_str());
             self.log(format!(
-                "# ---- {}{} (byte {})",
+                "# ---- {}{} (line {line})",
                 target.map(|t| format!("{t} = ")).unwrap_or_default(),
                 c.name,
-                c.span.start
             ));
             let started = std::time::Instant::now();
             let data = (def.exec)(self, &c.args, target)?;
