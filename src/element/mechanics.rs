@@ -13,20 +13,22 @@
 //! so R > 0 there for any valid mesh even when nodes lie on the axis.
 //!
 //! For each dof α = (node a, direction i) the element uses the *virtual
-//! gradient* G_α = ∇(N_a e_i) (3×3; in AXIS, i = r adds N_a/r in θθ). With
-//! S the stress conjugate to it, f_α = ∫ S : G_α, and the tangent is
-//! K_αβ = ∫ G_α : M_β with one 3×3 M_β per dof (docs/laws-elements.md §4.2
-//! derives M_β for each strain measure). That keeps a Gauss point at
-//! O(ndof²·9) flops with no allocation: all per-point data live in stack
-//! arrays sized by [`MAX_DOFS`].
+//! gradient* G_α = ∇(N_a e_i) (3×3; in AXIS, i = r adds N_a/r in θθ), or
+//! A_α = G⁰_α F⁻¹ for SIMO_MIEHE. With S the stress conjugate to it,
+//! f_α = ∫ S : A_α, and the tangent is K_αβ = ∫ A_α : M_β with one 3×3 M_β
+//! per dof (docs/laws-elements.md §4.2 derives M_β for each strain
+//! measure). A Gauss point then costs O(9·ndof²) flops with no
+//! allocation: all per-point data live in stack arrays sized by
+//! [`MAX_DOFS`].
 //!
 //! # Strain measures
 //! - PETIT: G on the initial geometry, Δε = sym ∇Δu, S = σ, ∫ dV₀.
 //! - PETIT_REAC: G on x = X + u (start-of-step u_n plus increment), Δε =
 //!   sym ∇ₓΔu added to σ_n by the law, **no objective rotation**, ∫ dv
 //!   (semantics.md §4.5). The tangent is the exact derivative, including
-//!   the change of geometry with u (code_aster keeps only ∫Bᵀ D B; the
-//!   residual, hence the converged solution, is the same).
+//!   the change of geometry with u. code_aster keeps only ∫Bᵀ D B on the
+//!   updated geometry (from memory of te0139/nmpl3d, not re-read); the
+//!   residual, hence the converged solution, is the same.
 //! - SIMO_MIEHE: F = 1 + Grad_X u on the initial geometry; the law gives
 //!   Kirchhoff τ and ∂τ/∂F; f_α = ∫ τ : (G⁰_α F⁻¹) dV₀ = ∫ P : G⁰_α dV₀.
 //!   SIEF is Cauchy σ = τ/J. The tangent is not symmetric.
