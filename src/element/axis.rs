@@ -17,11 +17,12 @@ use nalgebra::{SMatrix, SVector};
 
 use super::quadrature::{rule, Fpg};
 use super::shape::eval;
-use crate::law::{
-    IntegrationFailure, InternalVars, Mat6, SmallStrainBehaviour, SmallStrainInput, TangentKind,
-    Vec6,
-};
+use crate::law::{Mat6, SmallStrainBehaviour, SmallStrainInput, TangentKind, Vec6};
 use crate::mesh::CellType;
+
+// Shared with the generic element interface, which supersedes this module
+// for the engine (it also covers PETIT_REAC and SIMO_MIEHE).
+pub use super::mechanics::{ElementFailure, PointState};
 
 pub const NODES: usize = 8;
 pub const DOFS: usize = 16;
@@ -50,21 +51,6 @@ impl AxisModelisation {
     pub fn mass(self) -> Fpg {
         Fpg::Fpg9
     }
-}
-
-/// Why an element computation failed.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ElementFailure {
-    /// Non-positive Jacobian or a Gauss point at r ≤ 0: the cell is
-    /// inverted or crosses the axis (mesh error or too large a step).
-    BadGeometry { point: usize, message: String },
-    /// The caller passed states for another Gauss family.
-    StateCount { expected: usize, got: usize },
-    /// The law failed at Gauss point `point`.
-    Law {
-        point: usize,
-        failure: IntegrationFailure,
-    },
 }
 
 /// Geometry of one Gauss point on the current cell.
@@ -153,13 +139,6 @@ pub fn b_matrix(g: &GaussPoint) -> BMatrix {
         b[(3, uz)] = g.dn[a][0];
     }
     b
-}
-
-/// Stress and internal variables of one Gauss point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointState {
-    pub stress: Vec6,
-    pub internal: InternalVars,
 }
 
 /// Internal forces, optional stiffness and the new Gauss-point states.

@@ -1,10 +1,20 @@
 //! Finite elements: reference shape functions ([`shape`]), Gauss rules
-//! ([`quadrature`]) and the mechanical formulations built on them.
+//! ([`quadrature`]), the element catalogue ([`spec`]) and the mechanical
+//! formulations built on them ([`mechanics`], the engine's entry point;
+//! [`axis`], the earlier small-strain axisymmetric QUAD8).
 //!
 //! The reference data follow code_aster (node coordinates of `elrfno`,
 //! Gauss families of `elraga`) so that per-Gauss-point results can be
 //! compared with code_aster listings point by point.
 
 pub mod axis;
+pub mod mechanics;
 pub mod quadrature;
 pub mod shape;
+pub mod spec;
+
+pub use mechanics::{
+    initial_states, internal_forces, mass, rigi_points, ElementFailure, ElementResponse,
+    Kinematics, LawRef, PointState, MAX_DOFS,
+};
+pub use spec::{element_spec, unimplemented_element, ElementSpec, Formulation};

@@ -1,0 +1,650 @@
+//! The one element interface of the nonlinear mechanics engine: internal
+//! forces, tangent stiffness and new Gauss-point states for every cell,
+//! formulation (AXIS, 3D) and strain measure (PETIT, PETIT_REAC,
+//! SIMO_MIEHE), and the consistent mass.
+//!
+//! # One code path for 2D axisymmetric and 3D
+//! Everything is written with 3×3 tensors. In AXIS the third index is the
+//! hoop direction θ: a displacement gradient is
+//! `[[∂u_r/∂r, ∂u_r/∂z, 0], [∂u_z/∂r, ∂u_z/∂z, 0], [0, 0, u_r/r]]`, so the
+//! 6-vector (xx, yy, zz, xy, xz, yz) reads (rr, zz, θθ, rz, 0, 0) as
+//! code_aster's AXIS SIEF_ELGA does, and the finite-strain law sees
+//! F = diag-block(F_rz, F_θθ = (R + u_r)/R). Gauss points are interior,
+//! so R > 0 there for any valid mesh even when nodes lie on the axis.
+//!
+//! For each dof α = (node a, direction i) the element uses the *virtual
+//! gradient* G_α = ∇(N_a e_i) (3×3; in AXIS, i = r adds N_a/r in θθ), or
+//! A_α = G⁰_α F⁻¹ for SIMO_MIEHE. With S the stress conjugate to it,
+//! f_α = ∫ S : A_α, and the tangent is K_αβ = ∫ A_α : M_β with one 3×3 M_β
+//! per dof (docs/laws-elements.md §4.2 derives M_β for each strain
+//! measure). A Gauss point then costs O(9·ndof²) flops with no
+//! allocation: all per-point data live in stack arrays sized by
+//! [`MAX_DOFS`].
+//!
+//! # Strain measures
+//! - PETIT: G on the initial geometry, Δε = sym ∇Δu, S = σ, ∫ dV₀.
+//! - PETIT_REAC: G on x = X + u (start-of-step u_n plus increment), Δε =
+//!   sym ∇ₓΔu added to σ_n by the law, **no objective rotation**, ∫ dv
+//!   (semantics.md §4.5). The tangent is the exact derivative, including
+//!   the change of geometry with u. code_aster keeps only ∫Bᵀ D B on the
+//!   updated geometry (from memory of te0139/nmpl3d, not re-read); the
+//!   residual, hence the converged solution, is the same.
+//! - SIMO_MIEHE: F = 1 + Grad_X u on the initial geometry; the law gives
+//!   Kirchhoff τ and ∂τ/∂F; f_α = ∫ τ : (G⁰_α F⁻¹) dV₀ = ∫ P : G⁰_α dV₀.
+//!   SIEF is Cauchy σ = τ/J. The tangent is not symmetric.
+//!
+//! Failures are values: a non-positive Jacobian on the initial mesh is a
+//! mesh error ([`ElementFailure::BadGeometry`]); on the deformed
+//! configuration, or det F ≤ 0, it is a step that went too far
+//! ([`ElementFailure::Inverted`], retry with a smaller step), as is a law
+//! that did not converge.
+
+use std::fmt;
+use std::sync::OnceLock;
+
+use nalgebra::{DMatrix, DVector, Matrix3, SVector};
+
+use super::quadrature::{families, rule, Fpg};
+use super::shape::{eval, ShapeEval, MAX_NODES};
+use super::spec::{ElementSpec, Formulation};
+use crate::law::simo_miehe::{FiniteStrainInput, SimoMiehe};
+use crate::law::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
+use crate::law::{
+    IntegrationFailure, InternalVars, SmallStrainBehaviour, SmallStrainInput, StrainMeasure,
+    TangentKind, Vec6,
+};
+use crate::mesh::CellType;
+
+/// The largest number of dofs of an element (HEXA20 in 3D).
+pub const MAX_DOFS: usize = 3 * MAX_NODES;
+
+/// code_aster's `DEFORMATION` values the element implements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Kinematics {
+    Petit,
+    PetitReac,
+    SimoMiehe,
+}
+
+impl Kinematics {
+    /// `None` for GDEF_LOG and GROT_GDEP, which are not implemented.
+    pub fn from_strain_measure(m: StrainMeasure) -> Option<Kinematics> {
+        match m {
+            StrainMeasure::Petit => Some(Kinematics::Petit),
+            StrainMeasure::PetitReac => Some(Kinematics::PetitReac),
+            StrainMeasure::SimoMiehe => Some(Kinematics::SimoMiehe),
+            StrainMeasure::GdefLog | StrainMeasure::GrotGdep => None,
+        }
+    }
+    pub fn strain_measure(self) -> StrainMeasure {
+        match self {
+            Kinematics::Petit => StrainMeasure::Petit,
+            Kinematics::PetitReac => StrainMeasure::PetitReac,
+            Kinematics::SimoMiehe => StrainMeasure::SimoMiehe,
+        }
+    }
+}
+
+/// The law of a cell: a small-strain law (PETIT, PETIT_REAC: strain
+/// increment in, σ and dσ/dΔε out) or the finite-strain SIMO_MIEHE law
+/// (F_n, F_{n+1} in, τ and ∂τ/∂F out). The two contracts differ in kind,
+/// hence an enum rather than one trait.
+#[derive(Clone, Copy)]
+pub enum LawRef<'a> {
+    Small(&'a dyn SmallStrainBehaviour),
+    SimoMiehe(&'a SimoMiehe),
+}
+
+impl LawRef<'_> {
+    /// Internal variables of a virgin material point.
+    pub fn initial_internal(&self) -> InternalVars {
+        match self {
+            LawRef::Small(l) => l.initial_internal(),
+            LawRef::SimoMiehe(l) => l.initial_internal(),
+        }
+    }
+    fn name(&self) -> &'static str {
+        match self {
+            LawRef::Small(l) => l.metadata().name,
+            LawRef::SimoMiehe(l) => l.metadata().name,
+        }
+    }
+}
+
+/// Stress and internal variables of one Gauss point. The stress is the
+/// Cauchy stress (SIEF_ELGA) in the order xx, yy, zz, xy, xz, yz; in AXIS
+/// (rr, zz, θθ, rz, 0, 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointState {
+    pub stress: Vec6,
+    pub internal: InternalVars,
+}
+
+/// Why an element computation failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ElementFailure {
+    /// Non-positive Jacobian or a Gauss point at r ≤ 0 on the initial
+    /// mesh: a mesh error, retrying cannot help.
+    BadGeometry { point: usize, message: String },
+    /// Non-positive Jacobian, radius or det F on the deformed
+    /// configuration: the step went too far.
+    Inverted { point: usize, message: String },
+    /// The caller passed states for another Gauss family.
+    StateCount { expected: usize, got: usize },
+    /// Inconsistent call: array sizes, non-finite values, a law that does
+    /// not support the strain measure.
+    BadInput { message: String },
+    /// The law failed at Gauss point `point`.
+    Law {
+        point: usize,
+        failure: IntegrationFailure,
+    },
+}
+
+impl ElementFailure {
+    /// Suggested step ratio for a retry; 0 when retrying cannot help.
+    pub fn dt_factor(&self) -> f64 {
+        match self {
+            ElementFailure::Inverted { .. } => 0.5,
+            ElementFailure::Law { failure, .. } => failure.dt_factor,
+            _ => 0.0,
+        }
+    }
+}
+
+impl fmt::Display for ElementFailure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ElementFailure::BadGeometry { point, message } => {
+                write!(
+                    f,
+                    "invalid element geometry at Gauss point {}: {message}",
+                    point + 1
+                )
+            }
+            ElementFailure::Inverted { point, message } => write!(
+                f,
+                "element inverted at Gauss point {}: {message}; a smaller step is needed",
+                point + 1
+            ),
+            ElementFailure::StateCount { expected, got } => {
+                write!(f, "{got} Gauss-point states given, {expected} expected")
+            }
+            ElementFailure::BadInput { message } => f.write_str(message),
+            ElementFailure::Law { point, failure } => {
+                write!(f, "at Gauss point {}: {failure}", point + 1)
+            }
+        }
+    }
+}
+
+impl std::error::Error for ElementFailure {}
+
+/// Internal forces, optional tangent and the new Gauss-point states.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementResponse {
+    /// f_int, dof order node-major (node a, direction i at `a·d + i`).
+    pub forces: DVector<f64>,
+    /// ∂f_int/∂u, same order; `None` for [`TangentKind::None`].
+    pub stiffness: Option<DMatrix<f64>>,
+    /// One per RIGI Gauss point, in code_aster's point order.
+    pub states: Vec<PointState>,
+}
+
+/// Virgin states (zero stress, the law's initial internal variables) for
+/// the RIGI points of `spec`.
+pub fn initial_states(spec: &ElementSpec, law: LawRef) -> Vec<PointState> {
+    let n = tabulated(spec.cell, spec.rigi).map_or(0, |t| t.weights.len());
+    vec![
+        PointState {
+            stress: Vec6::zeros(),
+            internal: law.initial_internal(),
+        };
+        n
+    ]
+}
+
+/// Number of RIGI Gauss points of `spec` (length of the state arrays).
+pub fn rigi_points(spec: &ElementSpec) -> usize {
+    tabulated(spec.cell, spec.rigi).map_or(0, |t| t.weights.len())
+}
+
+/// Integrates the law at every RIGI point for the step u_n → u and
+/// assembles the internal forces and, unless `tangent` is
+/// [`TangentKind::None`], their derivative with respect to u.
+///
+/// `coords` are the initial node coordinates (3 components; AXIS reads
+/// x = r and y = z), MED node order. `u_n` and `u` are the nodal
+/// displacements at the start of the step and now, node-major, 2 (AXIS) or
+/// 3 per node. `states_n` are the Gauss-point states at the start of the
+/// step. `dt` is passed to rate-dependent laws.
+#[allow(clippy::too_many_arguments)]
+pub fn internal_forces(
+    spec: &ElementSpec,
+    kin: Kinematics,
+    coords: &[[f64; 3]],
+    u_n: &[f64],
+    u: &[f64],
+    states_n: &[PointState],
+    law: LawRef,
+    dt: f64,
+    tangent: TangentKind,
+) -> Result<ElementResponse, ElementFailure> {
+    let tab = table(spec, spec.rigi)?;
+    let nn = spec.nnodes();
+    let d = spec.formulation.dofs_per_node();
+    let ndof = nn * d;
+    check_sizes(spec, coords, ndof, &[("u_n", u_n), ("u", u)])?;
+    if states_n.len() != tab.weights.len() {
+        return Err(ElementFailure::StateCount {
+            expected: tab.weights.len(),
+            got: states_n.len(),
+        });
+    }
+    check_law(kin, law)?;
+
+    let mut forces = DVector::zeros(ndof);
+    let mut stiffness = (tangent != TangentKind::None).then(|| DMatrix::zeros(ndof, ndof));
+    let mut states = Vec::with_capacity(tab.weights.len());
+
+    let mut du = [0.0; MAX_DOFS];
+    for k in 0..ndof {
+        du[k] = u[k] - u_n[k];
+    }
+    // Current node positions (PETIT_REAC only).
+    let mut x = [[0.0; 3]; MAX_NODES];
+    for a in 0..nn {
+        x[a] = coords[a];
+        if kin == Kinematics::PetitReac {
+            for i in 0..d {
+                x[a][i] += u[a * d + i];
+            }
+        }
+    }
+    // Per-dof virtual gradients G_α (or G⁰_α F⁻¹) and tangent partners M_α.
+    let mut g = [Matrix3::zeros(); MAX_DOFS];
+    let mut m = [Matrix3::zeros(); MAX_DOFS];
+
+    for (p, (shape, w)) in tab.shapes.iter().zip(&tab.weights).enumerate() {
+        let st = &states_n[p];
+        let geom = match kin {
+            Kinematics::PetitReac => point_geometry(spec.formulation, shape, &x[..nn], *w)
+                .map_err(|message| ElementFailure::Inverted { point: p, message })?,
+            _ => point_geometry(spec.formulation, shape, coords, *w)
+                .map_err(|message| ElementFailure::BadGeometry { point: p, message })?,
+        };
+        for a in 0..nn {
+            for i in 0..d {
+                g[a * d + i] = geom.virtual_gradient(a, i);
+            }
+        }
+        let want_k = stiffness.is_some();
+        // S: the stress conjugate to the virtual gradients g.
+        let (s, new_state) = match (kin, law) {
+            (Kinematics::Petit | Kinematics::PetitReac, LawRef::Small(l)) => {
+                let grad_du = geom.gradient(&du[..ndof], d);
+                let out = l
+                    .integrate(&SmallStrainInput {
+                        stress: st.stress,
+                        internal: st.internal.as_slice(),
+                        strain_increment: tensor_to_strain(&grad_du),
+                        dt,
+                        tangent,
+                    })
+                    .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                let s = stress_to_tensor(&out.stress);
+                if want_k {
+                    let dmat = out.tangent.ok_or_else(|| missing_tangent(law))?;
+                    for k in 0..ndof {
+                        // δ(Δε) = sym δG on the initial geometry; on the
+                        // moving one the gradient of Δu also changes:
+                        // δL = G − L G, and dv and G change (last terms).
+                        let dl = if kin == Kinematics::PetitReac {
+                            g[k] - grad_du * g[k]
+                        } else {
+                            g[k]
+                        };
+                        m[k] = stress_to_tensor(&(dmat * tensor_to_strain(&dl)));
+                        if kin == Kinematics::PetitReac {
+                            m[k] += s * g[k].trace() - s * g[k].transpose();
+                        }
+                    }
+                }
+                (
+                    s,
+                    PointState {
+                        stress: out.stress,
+                        internal: out.internal,
+                    },
+                )
+            }
+            (Kinematics::SimoMiehe, LawRef::SimoMiehe(l)) => {
+                let f_n = Matrix3::identity() + geom.gradient(&u_n[..ndof], d);
+                let f = Matrix3::identity() + geom.gradient(&u[..ndof], d);
+                let (j_n, j) = (f_n.determinant(), f.determinant());
+                if !(j_n > 0.0 && j > 0.0) {
+                    return Err(ElementFailure::Inverted {
+                        point: p,
+                        message: format!("det F = {j} (start of step {j_n})"),
+                    });
+                }
+                let f_inv = f.try_inverse().ok_or_else(|| ElementFailure::Inverted {
+                    point: p,
+                    message: "singular deformation gradient".into(),
+                })?;
+                let out = l
+                    .integrate(&FiniteStrainInput {
+                        f_n,
+                        f_np1: f,
+                        internal: st.internal.as_slice(),
+                        dt,
+                        tangent,
+                    })
+                    .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                let tau = out.kirchhoff;
+                if want_k {
+                    let c = out.dtau_df.ok_or_else(|| missing_tangent(law))?;
+                    for k in 0..ndof {
+                        // δτ = ∂τ/∂F : G⁰_β (row 3i+j, column 3k+l).
+                        let v = SVector::<f64, 9>::from_fn(|r, _| g[k][(r / 3, r % 3)]);
+                        let dtau = c * v;
+                        let spatial = g[k] * f_inv;
+                        m[k] = Matrix3::from_fn(|i, j| dtau[3 * i + j]) - tau * spatial.transpose();
+                    }
+                }
+                for k in 0..ndof {
+                    g[k] *= f_inv;
+                }
+                (
+                    tau,
+                    PointState {
+                        stress: tensor_to_stress(&out.cauchy),
+                        internal: out.internal,
+                    },
+                )
+            }
+            _ => unreachable!("check_law rejects other pairs"),
+        };
+        for k in 0..ndof {
+            forces[k] += geom.dv * s.dot(&g[k]);
+        }
+        if let Some(kmat) = stiffness.as_mut() {
+            for a in 0..ndof {
+                for b in 0..ndof {
+                    kmat[(a, b)] += geom.dv * g[a].dot(&m[b]);
+                }
+            }
+        }
+        states.push(new_state);
+    }
+    Ok(ElementResponse {
+        forces,
+        stiffness,
+        states,
+    })
+}
+
+/// Consistent mass ∫ ρ Nᵀ N dV₀ on the MASS family (per radian in AXIS).
+pub fn mass(
+    spec: &ElementSpec,
+    coords: &[[f64; 3]],
+    rho: f64,
+) -> Result<DMatrix<f64>, ElementFailure> {
+    let tab = table(spec, spec.mass)?;
+    let nn = spec.nnodes();
+    let d = spec.formulation.dofs_per_node();
+    check_sizes(spec, coords, nn * d, &[])?;
+    if !(rho.is_finite() && rho >= 0.0) {
+        return Err(ElementFailure::BadInput {
+            message: format!("{}: density RHO = {rho} must be finite and >= 0", spec.name),
+        });
+    }
+    let mut out = DMatrix::zeros(nn * d, nn * d);
+    for (p, (shape, w)) in tab.shapes.iter().zip(&tab.weights).enumerate() {
+        let geom = point_geometry(spec.formulation, shape, coords, *w)
+            .map_err(|message| ElementFailure::BadGeometry { point: p, message })?;
+        for a in 0..nn {
+            for b in 0..nn {
+                let v = rho * geom.n[a] * geom.n[b] * geom.dv;
+                for i in 0..d {
+                    out[(a * d + i, b * d + i)] += v;
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+// ------------------------------------------------------------ internals
+
+fn missing_tangent(law: LawRef) -> ElementFailure {
+    ElementFailure::BadInput {
+        message: format!("law {} returned no tangent", law.name()),
+    }
+}
+
+fn check_law(kin: Kinematics, law: LawRef) -> Result<(), ElementFailure> {
+    let ok = match (kin, law) {
+        (Kinematics::Petit | Kinematics::PetitReac, LawRef::Small(l)) => {
+            l.metadata().accepts(kin.strain_measure())
+        }
+        (Kinematics::SimoMiehe, LawRef::SimoMiehe(_)) => true,
+        _ => false,
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(ElementFailure::BadInput {
+            message: format!(
+                "law {} cannot be used with DEFORMATION='{}' here",
+                law.name(),
+                kin.strain_measure().aster_name()
+            ),
+        })
+    }
+}
+
+fn check_sizes(
+    spec: &ElementSpec,
+    coords: &[[f64; 3]],
+    ndof: usize,
+    fields: &[(&str, &[f64])],
+) -> Result<(), ElementFailure> {
+    if coords.len() != spec.nnodes() {
+        return Err(ElementFailure::BadInput {
+            message: format!(
+                "{}: {} node coordinates given, {} expected",
+                spec.name,
+                coords.len(),
+                spec.nnodes()
+            ),
+        });
+    }
+    if coords.iter().flatten().any(|v| !v.is_finite()) {
+        return Err(ElementFailure::BadInput {
+            message: format!("{}: non-finite node coordinate", spec.name),
+        });
+    }
+    for (name, f) in fields {
+        if f.len() != ndof {
+            return Err(ElementFailure::BadInput {
+                message: format!(
+                    "{}: {name} has {} values, {ndof} expected",
+                    spec.name,
+                    f.len()
+                ),
+            });
+        }
+        if f.iter().any(|v| !v.is_finite()) {
+            return Err(ElementFailure::BadInput {
+                message: format!("{}: non-finite value in {name}", spec.name),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Shape functions tabulated at the points of one Gauss family.
+struct Tabulated {
+    cell: CellType,
+    fpg: Fpg,
+    weights: Vec<f64>,
+    shapes: Vec<ShapeEval>,
+}
+
+/// Every (cell, family) pair, tabulated once per process: the element loop
+/// then neither rebuilds rules nor allocates.
+fn tabulated(cell: CellType, fpg: Fpg) -> Option<&'static Tabulated> {
+    static CACHE: OnceLock<Vec<Tabulated>> = OnceLock::new();
+    CACHE
+        .get_or_init(|| {
+            let mut all = Vec::new();
+            for c in CellType::ALL {
+                for &f in families(c) {
+                    if let Some(q) = rule(c, f) {
+                        all.push(Tabulated {
+                            cell: c,
+                            fpg: f,
+                            shapes: q.points.iter().map(|xi| eval(c, *xi)).collect(),
+                            weights: q.weights,
+                        });
+                    }
+                }
+            }
+            all
+        })
+        .iter()
+        .find(|t| t.cell == cell && t.fpg == fpg)
+}
+
+fn table(spec: &ElementSpec, fpg: Fpg) -> Result<&'static Tabulated, ElementFailure> {
+    tabulated(spec.cell, fpg).ok_or_else(|| ElementFailure::BadInput {
+        message: format!(
+            "{}: {} has no Gauss family {}",
+            spec.name,
+            spec.cell.aster_name(),
+            fpg.name()
+        ),
+    })
+}
+
+/// Geometry of one Gauss point on some configuration.
+struct PointGeometry {
+    axis: bool,
+    n: [f64; MAX_NODES],
+    /// ∇N_a with respect to the configuration's coordinates (third
+    /// component 0 in AXIS).
+    grad: [[f64; 3]; MAX_NODES],
+    /// Radius of the point (AXIS), 0 in 3D.
+    r: f64,
+    /// Weight × det J (× r in AXIS).
+    dv: f64,
+}
+
+impl PointGeometry {
+    /// ∇(N_a e_i): e_i ⊗ ∇N_a, plus N_a/r in θθ for the radial dof.
+    fn virtual_gradient(&self, a: usize, i: usize) -> Matrix3<f64> {
+        let mut g = Matrix3::zeros();
+        for k in 0..3 {
+            g[(i, k)] = self.grad[a][k];
+        }
+        if self.axis && i == 0 {
+            g[(2, 2)] = self.n[a] / self.r;
+        }
+        g
+    }
+
+    /// Gradient of the interpolated field `v` (node-major, `d` per node).
+    fn gradient(&self, v: &[f64], d: usize) -> Matrix3<f64> {
+        let mut h = Matrix3::zeros();
+        for a in 0..v.len() / d {
+            for i in 0..d {
+                for k in 0..3 {
+                    h[(i, k)] += v[a * d + i] * self.grad[a][k];
+                }
+            }
+            if self.axis {
+                h[(2, 2)] += v[a * d] * self.n[a] / self.r;
+            }
+        }
+        h
+    }
+}
+
+/// Maps the reference derivatives to the configuration with node
+/// positions `x`; the error message says what is wrong with it.
+fn point_geometry(
+    formulation: Formulation,
+    s: &ShapeEval,
+    x: &[[f64; 3]],
+    w: f64,
+) -> Result<PointGeometry, String> {
+    let nn = x.len();
+    let mut out = PointGeometry {
+        axis: formulation == Formulation::Axis,
+        n: [0.0; MAX_NODES],
+        grad: [[0.0; 3]; MAX_NODES],
+        r: 0.0,
+        dv: 0.0,
+    };
+    out.n[..nn].copy_from_slice(s.n());
+    let dn = s.dn();
+    match formulation {
+        Formulation::Solid3d => {
+            // J[k][j] = ∂x_k/∂ξ_j
+            let mut j = Matrix3::<f64>::zeros();
+            for a in 0..nn {
+                for k in 0..3 {
+                    for l in 0..3 {
+                        j[(k, l)] += x[a][k] * dn[a][l];
+                    }
+                }
+            }
+            let det = j.determinant();
+            if det.is_nan() || det <= 0.0 {
+                return Err(format!("non-positive Jacobian {det}"));
+            }
+            let inv = j
+                .try_inverse()
+                .ok_or_else(|| "singular Jacobian".to_string())?;
+            // ∇ₓN = J⁻ᵀ ∇_ξ N
+            for a in 0..nn {
+                for k in 0..3 {
+                    out.grad[a][k] = (0..3).map(|l| inv[(l, k)] * dn[a][l]).sum();
+                }
+            }
+            out.dv = w * det;
+        }
+        Formulation::Axis => {
+            let mut j = [[0.0; 2]; 2];
+            let mut r = 0.0;
+            for a in 0..nn {
+                r += out.n[a] * x[a][0];
+                for k in 0..2 {
+                    for l in 0..2 {
+                        j[k][l] += x[a][k] * dn[a][l];
+                    }
+                }
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            if det.is_nan() || det <= 0.0 {
+                return Err(format!("non-positive Jacobian {det}"));
+            }
+            if r.is_nan() || r <= 0.0 {
+                return Err(format!("Gauss point at radius {r} <= 0"));
+            }
+            let inv = [
+                [j[1][1] / det, -j[0][1] / det],
+                [-j[1][0] / det, j[0][0] / det],
+            ];
+            for a in 0..nn {
+                for k in 0..2 {
+                    out.grad[a][k] = inv[0][k] * dn[a][0] + inv[1][k] * dn[a][1];
+                }
+            }
+            out.r = r;
+            out.dv = w * det * r;
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,102 @@
+//! Which finite element a cell gets under a modelisation, and with which
+//! Gauss families: code_aster's element catalogue (`meca_3d.py`,
+//! `meca_3d_si.py`, `meca_axis.py`, `meca_axis_si.py`; semantics.md §3.3)
+//! reduced to the volume elements that carry stiffness and mass.
+//!
+//! Skin cells (QUAD8 in 3D, SEG3 in AXIS, ...) do get elements in
+//! code_aster (MECA_FACE8, MEAXSE3), but those only carry loads and
+//! contact; they are not stiffness elements, so [`element_spec`] returns
+//! `None` for them and the model builder treats them separately.
+
+use super::quadrature::Fpg;
+use crate::mesh::CellType;
+
+/// The mechanical formulation shared by the elements of a modelisation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Formulation {
+    /// 2D axisymmetric: x is r, y is z, dofs (DX, DY) = (u_r, u_z);
+    /// integrals per radian (r dr dz, no 2π).
+    Axis,
+    /// 3D continuum, dofs (DX, DY, DZ).
+    Solid3d,
+}
+
+impl Formulation {
+    /// Degrees of freedom per node (2 for AXIS, 3 in 3D).
+    pub fn dofs_per_node(self) -> usize {
+        match self {
+            Formulation::Axis => 2,
+            Formulation::Solid3d => 3,
+        }
+    }
+}
+
+/// A volume element: cell, formulation and the two Gauss families.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ElementSpec {
+    /// code_aster's element name (MECA_HEXA20, MEAXQS8, ...), for messages.
+    pub name: &'static str,
+    pub cell: CellType,
+    pub formulation: Formulation,
+    /// Family of the stiffness, internal forces and SIEF_ELGA/VARI_ELGA.
+    pub rigi: Fpg,
+    /// Family of the consistent mass.
+    pub mass: Fpg,
+}
+
+impl ElementSpec {
+    pub fn nnodes(&self) -> usize {
+        self.cell.nnodes()
+    }
+    pub fn ndofs(&self) -> usize {
+        self.nnodes() * self.formulation.dofs_per_node()
+    }
+}
+
+/// The volume element of `modelisation` (an AFFE_MODELE MODELISATION
+/// value) on `cell`, or `None` when that modelisation defines no volume
+/// element there (the cell then keeps an earlier assignment, semantics.md
+/// §3.2) **or when the element is not implemented** — check
+/// [`unimplemented_element`] before concluding the former.
+pub fn element_spec(modelisation: &str, cell: CellType) -> Option<ElementSpec> {
+    use CellType::*;
+    use Formulation::*;
+    use Fpg::*;
+    let (name, formulation, rigi, mass) = match (modelisation, cell) {
+        ("3D", Hexa8) => ("MECA_HEXA8", Solid3d, Fpg8, Fpg8),
+        ("3D", Hexa20) => ("MECA_HEXA20", Solid3d, Fpg27, Fpg27),
+        ("3D", Penta6) => ("MECA_PENTA6", Solid3d, Fpg6, Fpg6),
+        ("3D", Penta15) => ("MECA_PENTA15", Solid3d, Fpg21, Fpg21),
+        // One point is exact for the constant strain of TETRA4; the mass
+        // (degree 2) needs four.
+        ("3D", Tetra4) => ("MECA_TETRA4", Solid3d, Fpg1, Fpg4),
+        ("3D_SI", Hexa20) => ("MECA_HEXS20", Solid3d, Fpg8, Fpg27),
+        ("AXIS", Quad8) => ("MEAXQU8", Axis, Fpg9, Fpg9),
+        ("AXIS", Quad4) => ("MEAXQU4", Axis, Fpg4, Fpg4),
+        ("AXIS", Tria6) => ("MEAXTR6", Axis, Fpg6, Fpg6),
+        ("AXIS", Tria3) => ("MEAXTR3", Axis, Fpg1, Fpg3),
+        ("AXIS_SI", Quad8) => ("MEAXQS8", Axis, Fpg4, Fpg9),
+        _ => return None,
+    };
+    Some(ElementSpec {
+        name,
+        cell,
+        formulation,
+        rigi,
+        mass,
+    })
+}
+
+/// code_aster elements that exist but are not implemented here, by name.
+/// The model builder must turn these into an error: treating them as "no
+/// element" would silently keep an earlier (e.g. fully integrated 3D)
+/// element on the cell.
+///
+/// - MECA_HEXS8 (3D_SI on HEXA8): one-point integration with assumed-strain
+///   hourglass stabilisation (semantics.md §3.4).
+pub fn unimplemented_element(modelisation: &str, cell: CellType) -> Option<&'static str> {
+    match (modelisation, cell) {
+        ("3D_SI", CellType::Hexa8) => Some("MECA_HEXS8"),
+        _ => None,
+    }
+}
