@@ -23,6 +23,7 @@ pub mod lang;
 pub mod law;
 pub mod medio;
 pub mod mesh;
+pub mod model;
 pub mod post;
 pub mod result;
 pub mod run;

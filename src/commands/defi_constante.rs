@@ -31,5 +31,8 @@ fn exec(_study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let v = args
         .real("VALE")
         .ok_or_else(|| args.error("VALE", "VALE is missing"))?;
-    Ok(Some(ConceptData::Constant(v)))
+    let nom_resu = args.text("NOM_RESU").unwrap_or("TOUTRESU");
+    Ok(Some(ConceptData::Function(Box::new(
+        crate::post::function::Function::constant(v, nom_resu),
+    ))))
 }

@@ -61,9 +61,22 @@ pub enum ConceptData {
     Mesh(Box<crate::mesh::Mesh>),
     /// A list of reals (DEFI_LIST_REEL).
     ListReal(Vec<f64>),
-    /// A constant function (DEFI_CONSTANTE).
-    Constant(f64),
     Table(Box<crate::post::table::Table>),
+    Model(Box<crate::model::Model>),
+    Material(Box<crate::model::Material>),
+    MaterialField(Box<crate::model::MaterialField>),
+    MechLoad(Box<crate::model::MechLoad>),
+    /// DEFI_LIST_INST.
+    TimeList(Box<crate::time::list::TimeList>),
+    /// A nodal field (CREA_CHAMP).
+    Field(Box<crate::result::NodalField>),
+    /// A transient result (DYNA_NON_LINE).
+    Result(Box<crate::result::EvolNoli>),
+    /// A tabulated or constant function (RECU_FONCTION, DEFI_CONSTANTE).
+    Function(Box<crate::post::function::Function>),
+    /// DEFI_CONTACT: kept as checked keywords until the contact engine
+    /// turns them into its own data.
+    Contact(Box<crate::catalog::args::Args>),
 }
 
 #[derive(Debug, Clone)]
@@ -89,6 +102,10 @@ impl Concepts {
     }
     pub fn get(&self, name: &str) -> Option<&Concept> {
         self.table.get(name)
+    }
+    /// The data of a concept (None if unknown or not computed).
+    pub fn data(&self, name: &str) -> Option<&ConceptData> {
+        self.table.get(name).map(|c| &c.data)
     }
     pub fn get_mut(&mut self, name: &str) -> Option<&mut Concept> {
         self.table.get_mut(name)

@@ -1,0 +1,111 @@
+//! The data of the model-building concepts: the finite-element model
+//! (AFFE_MODELE), materials (DEFI_MATERIAU), the material field
+//! (AFFE_MATERIAU) and mechanical loads (AFFE_CHAR_MECA).
+//!
+//! These are what the commands produce and what the engine consumes; the
+//! engine never reads keywords.
+
+use indexmap::IndexMap;
+
+use crate::element::ElementSpec;
+
+/// A degree of freedom of the displacement quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Dof {
+    Dx,
+    Dy,
+    Dz,
+}
+
+impl Dof {
+    pub const ALL: [Dof; 3] = [Dof::Dx, Dof::Dy, Dof::Dz];
+    pub fn name(self) -> &'static str {
+        match self {
+            Dof::Dx => "DX",
+            Dof::Dy => "DY",
+            Dof::Dz => "DZ",
+        }
+    }
+    pub fn from_name(s: &str) -> Option<Dof> {
+        Dof::ALL.into_iter().find(|d| d.name() == s)
+    }
+    pub fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// How a cell takes part in the model.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CellRole {
+    /// Not in the model.
+    None,
+    /// A volume (3D) or surface (AXIS) element with stiffness and mass.
+    Element(ElementSpec),
+    /// A boundary cell of the model (SEG in AXIS, TRIA/QUAD in 3D): it
+    /// carries no stiffness but belongs to the model (loads, contact).
+    Skin { modelisation: String },
+}
+
+/// The result of AFFE_MODELE.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Model {
+    /// The mesh concept.
+    pub mesh: String,
+    /// Displacement components per node: [DX, DY] for AXIS, [DX, DY, DZ] for 3D.
+    pub dofs: Vec<Dof>,
+    /// One entry per mesh cell.
+    pub cells: Vec<CellRole>,
+}
+
+impl Model {
+    /// The number of components per node.
+    pub fn ndof_per_node(&self) -> usize {
+        self.dofs.len()
+    }
+    /// Indices of the cells that are elements.
+    pub fn element_cells(&self) -> impl Iterator<Item = (usize, &ElementSpec)> {
+        self.cells.iter().enumerate().filter_map(|(i, r)| match r {
+            CellRole::Element(s) => Some((i, s)),
+            _ => None,
+        })
+    }
+}
+
+/// The result of DEFI_MATERIAU: named blocks (ELAS, ECRO_LINE, ECRO_COOK)
+/// of named real parameters, as the user gave them plus defaults.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Material {
+    pub blocks: IndexMap<String, IndexMap<String, f64>>,
+}
+
+impl Material {
+    /// A parameter, e.g. `get("ELAS", "E")`.
+    pub fn get(&self, block: &str, param: &str) -> Option<f64> {
+        self.blocks.get(block)?.get(param).copied()
+    }
+}
+
+/// The result of AFFE_MATERIAU: the material concept of each cell (later
+/// occurrences win on overlapping cells).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialField {
+    pub mesh: String,
+    pub cell_material: Vec<Option<String>>,
+}
+
+/// One imposed degree of freedom (DDL_IMPO).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImposedDof {
+    pub node: usize,
+    pub dof: Dof,
+    pub value: f64,
+}
+
+/// The result of AFFE_CHAR_MECA. The same dof may be imposed several times
+/// (sdnv103a blocks the nodes shared by RIGID and VOL_RIG twice); the engine
+/// keeps the last value and fails if two differ.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MechLoad {
+    pub model: String,
+    pub imposed: Vec<ImposedDof>,
+}
