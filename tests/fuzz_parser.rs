@@ -8,11 +8,14 @@
 //! 2. Round trip: a random syntax tree printed with random layout (spaces,
 //!    newlines inside brackets, comments, continuations, both quotes, every
 //!    number form, redundant parentheses, trailing commas, `;`) parses back
-//!    to the same tree, and so does the parsed tree printed again.
+//!    to the same tree, and so does the parsed tree printed again. The
+//!    printed text, damaged by a few random edits, goes through the checks
+//!    of property 1: near-valid files reach error paths that random token
+//!    soup rarely does.
 //!
 //! The number of cases is `ASTER_FUZZ_CASES` (default 100000) for the token
 //! streams and a tenth of it for the round trip, whose inputs are larger:
-//! `ASTER_FUZZ_CASES=1000000 cargo test --release --test fuzz_parser`.
+//! `ASTER_FUZZ_CASES=1000000 cargo test --test fuzz_parser` (about 4 minutes).
 
 use aster::diag::{Source, Span};
 use aster::lang::ast::{Arg, BinOp, Expr, ExprKind, Ident, Program, Stmt, StmtKind, UnOp};
@@ -158,6 +161,32 @@ fn check_expr(text: &str, e: &Expr, parent: Span) {
     }
 }
 
+/// Parses `text` and checks what any result must satisfy.
+fn check_no_panic(text: &str) {
+    let src = Source::new("fuzz.comm", text);
+    match parse(&src) {
+        Ok(program) => {
+            for stmt in &program.stmts {
+                check_span(text, stmt.span, "statement");
+                match &stmt.kind {
+                    StmtKind::Assign { target, value } => {
+                        assert!(inside(target.span, stmt.span));
+                        check_expr(text, value, stmt.span);
+                    }
+                    StmtKind::Expr(e) => check_expr(text, e, stmt.span),
+                }
+            }
+        }
+        Err(d) => {
+            assert!(d.message.starts_with("syntax error: "), "{}", d.message);
+            let span = d.span.expect("a syntax error has a position");
+            check_span(text, span, "error");
+            let rendered = d.render(Some(&src));
+            assert!(rendered.contains("fuzz.comm:"), "{rendered}");
+        }
+    }
+}
+
 #[test]
 fn random_token_streams_never_panic() {
     let mut runner = TestRunner::new(Config {
@@ -167,28 +196,7 @@ fn random_token_streams_never_panic() {
     });
     runner
         .run(&token_stream(), |text| {
-            let src = Source::new("fuzz.comm", text.clone());
-            match parse(&src) {
-                Ok(program) => {
-                    for stmt in &program.stmts {
-                        check_span(&text, stmt.span, "statement");
-                        match &stmt.kind {
-                            StmtKind::Assign { target, value } => {
-                                assert!(inside(target.span, stmt.span));
-                                check_expr(&text, value, stmt.span);
-                            }
-                            StmtKind::Expr(e) => check_expr(&text, e, stmt.span),
-                        }
-                    }
-                }
-                Err(d) => {
-                    assert!(d.message.starts_with("syntax error: "), "{}", d.message);
-                    let span = d.span.expect("a syntax error has a position");
-                    check_span(&text, span, "error");
-                    let rendered = d.render(Some(&src));
-                    assert!(rendered.contains("fuzz.comm:"), "{rendered}");
-                }
-            }
+            check_no_panic(&text);
             Ok(())
         })
         .unwrap();
@@ -553,6 +561,45 @@ fn strip(mut p: Program) -> Program {
     p
 }
 
+/// One to three edits chosen by `noise`: delete a few characters, insert
+/// a token, or duplicate a slice.
+fn mutate(text: &str, noise: &[u8]) -> String {
+    const INSERTS: &[&str] = &[
+        "(", ")", ",", "=", "'", "\"", "\n", "#", "\\", "1.E", "]", ";", "**",
+    ];
+    let mut chars: Vec<char> = text.chars().collect();
+    let mut n = noise.iter().copied().chain(std::iter::repeat(0));
+    let edits = 1 + n.next().unwrap_or(0) % 3;
+    for _ in 0..edits {
+        let at = if chars.is_empty() {
+            0
+        } else {
+            n.next().unwrap_or(0) as usize * 7919 % (chars.len() + 1)
+        };
+        match n.next().unwrap_or(0) % 3 {
+            0 => {
+                let len = 1 + n.next().unwrap_or(0) as usize % 4;
+                let end = (at + len).min(chars.len());
+                chars.drain(at..end);
+            }
+            1 => {
+                let t = INSERTS[n.next().unwrap_or(0) as usize % INSERTS.len()];
+                for (k, c) in t.chars().enumerate() {
+                    chars.insert(at + k, c);
+                }
+            }
+            _ => {
+                let end = (at + 1 + n.next().unwrap_or(0) as usize % 8).min(chars.len());
+                let slice: Vec<char> = chars[at..end].to_vec();
+                for (k, c) in slice.into_iter().enumerate() {
+                    chars.insert(end + k, c);
+                }
+            }
+        }
+    }
+    chars.into_iter().collect()
+}
+
 fn parse_text(text: &str) -> Program {
     let src = Source::new("roundtrip.comm", text);
     match parse(&src) {
@@ -576,6 +623,10 @@ fn printed_programs_parse_back_to_the_same_tree() {
             prop_assert_eq!(&parsed, &tree, "source:\n{}", text);
             let again = print(&parsed, &[7]);
             prop_assert_eq!(strip(parse_text(&again)), parsed, "source:\n{}", again);
+            // The same text slightly damaged: near-valid files reach error
+            // paths that random token soup rarely does.
+            let damaged = mutate(&text, &noise);
+            check_no_panic(&damaged);
             Ok(())
         })
         .unwrap();

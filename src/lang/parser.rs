@@ -29,10 +29,12 @@ mod grammar {
 }
 use grammar::{CommParser, Rule};
 
-/// Deepest bracket nesting accepted. Real files nest four or five levels
-/// (command, tuple, `_F`, tuple); pest recurses about ten frames per level,
-/// so this bound keeps parsing well inside a 2 MiB thread stack.
-pub const MAX_BRACKET_DEPTH: usize = 64;
+/// Deepest bracket nesting accepted. Real files nest five or six levels
+/// (command, tuple, `_F`, tuple, arithmetic). Each level costs about 16 KiB
+/// of stack in an unoptimised build (pest's generated code plus lowering)
+/// and a tenth of that when optimised, so 32 levels fit in a 1 MiB stack,
+/// half of a test thread's.
+pub const MAX_BRACKET_DEPTH: usize = 32;
 
 /// Deepest expression tree accepted (operators, calls, tuples). It protects
 /// every later recursive pass over the tree (checker, evaluator, `Drop`)
@@ -506,7 +508,14 @@ fn explain(text: &str, scan: &Scan, err: &pest::error::Error<Rule>) -> Diagnosti
     };
     let positives: Vec<Rule> = match &err.variant {
         ErrorVariant::ParsingError { positives, .. } => positives.clone(),
-        ErrorVariant::CustomError { .. } => Vec::new(),
+        // pest's own guard: the native stack ran low (a thread much smaller
+        // than MAX_BRACKET_DEPTH assumes).
+        ErrorVariant::CustomError { message } => {
+            return syntax_error(
+                format!("the file is nested too deeply to parse here ({message})"),
+                Span::new(pos, pos),
+            )
+        }
     };
 
     if let Some((start, end)) = scan.unterminated.filter(|&(s, _)| s <= pos) {
@@ -591,24 +600,68 @@ fn explain(text: &str, scan: &Scan, err: &pest::error::Error<Rule>) -> Diagnosti
         )
     };
     let wants = |rules: &[Rule]| positives.iter().any(|r| rules.contains(r));
-    let wants_end = wants(&[Rule::semi, Rule::eol, Rule::EOI]);
-    let follows_quote = text[..pos].ends_with(['\'', '"']);
-    if text[pos..].starts_with("==") {
-        d = d.note("a keyword argument takes a single '='; comparisons are not supported");
-    } else if wants_end && text[pos..].starts_with('=') {
-        d = d.note("assign one name per statement (A = B = value is not supported)");
-    } else if wants_end && found.starts_value {
-        d = d.note("put each statement on its own line, or separate them with ';'");
-    } else if found.starts_value && follows_quote {
-        d = d.note("is a quote misplaced? the string before it ends just here");
-    } else if wants(&[Rule::eq]) && found.starts_value {
-        d = d.note("write KEYWORD=value, and separate arguments with ','");
-    } else if wants(&[Rule::comma]) && found.starts_value {
-        d = d.note("is a ',' missing before it?");
-    } else if found.len == 0 && found.description == "end of line" && open.is_empty() {
-        d = d.note("a statement continues on the next line only inside brackets or after a '\\'");
+    if let Some(note) = hint(
+        text,
+        pos,
+        &found,
+        &open,
+        wants(&[Rule::semi, Rule::eol, Rule::EOI]),
+        wants(&[Rule::eq]),
+        wants(&[Rule::comma]),
+    ) {
+        d = d.note(note);
     }
     d
+}
+
+/// A guess at the cause, for the mistakes that the expected-token list
+/// alone explains badly. At most one, the most specific.
+fn hint(
+    text: &str,
+    pos: usize,
+    found: &Found,
+    open: &[(usize, char)],
+    wants_end: bool,
+    wants_eq: bool,
+    wants_comma: bool,
+) -> Option<&'static str> {
+    let rest = &text[pos..];
+    let before = &text[..pos];
+    let prev = before.chars().next_back().unwrap_or(' ');
+    // Directly after a name or a closing bracket, without space.
+    let attached = is_ident_char(prev) || prev == ')' || prev == ']';
+    let word_start = rest.starts_with(|c: char| is_ident_char(c) || c == '\'' || c == '"');
+    Some(if rest.starts_with("==") {
+        "a keyword argument takes a single '='; comparisons are not supported"
+    } else if rest.starts_with("//") {
+        "'//' is not supported; write int(a / b)"
+    } else if rest.starts_with('=') && before.ends_with(['+', '-', '*', '/']) {
+        "augmented assignment (+=, -=, ...) is not supported; write A = A + ..."
+    } else if wants_end && rest.starts_with('=') {
+        "assign one name per statement (A = B = value is not supported)"
+    } else if rest.starts_with('.') && !found.starts_value {
+        "attribute access and methods (A.B, A.f()) are not supported"
+    } else if rest.starts_with('[') && attached {
+        "indexing (A[0]) is not supported"
+    } else if rest.starts_with('(') && attached {
+        "only a name can be called: NAME(...)"
+    } else if rest.starts_with(['\'', '"'])
+        && before.ends_with(['r', 'R', 'u', 'U', 'f', 'F', 'b', 'B'])
+    {
+        "string prefixes (r'', u'', f'', b'') are not supported"
+    } else if wants_end && word_start {
+        "put each statement on its own line, or separate them with ';'"
+    } else if found.starts_value && before.ends_with(['\'', '"']) {
+        "is a quote misplaced? the string before it ends just here"
+    } else if wants_eq && found.starts_value {
+        "write KEYWORD=value, and separate arguments with ','"
+    } else if wants_comma && found.starts_value {
+        "is a ',' missing before it?"
+    } else if found.description == "end of line" && open.is_empty() {
+        "a statement continues on the next line only inside brackets or after a '\\'"
+    } else {
+        return None;
+    })
 }
 
 /// 1-based line and column (in characters) of a byte offset.
@@ -630,6 +683,7 @@ fn line_of(text: &str, pos: usize) -> usize {
 /// operator could follow, and listing them only hides the useful part.
 fn expectations(positives: &[Rule]) -> Vec<&'static str> {
     const VALUE: &str = "a value (number, string, name, tuple or call)";
+    const STATEMENT: &str = "a statement (NAME = value or a command call)";
     let mut out: Vec<&'static str> = Vec::new();
     let mut operator = false;
     for r in positives {
@@ -647,9 +701,7 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
                 continue;
             }
             Rule::arg | Rule::kwarg => "an argument (KEYWORD=value or a value)",
-            Rule::stmt | Rule::assign | Rule::ident => {
-                "a statement (NAME = value or a command call)"
-            }
+            Rule::program | Rule::stmt | Rule::assign | Rule::ident => STATEMENT,
             _ => VALUE,
         };
         if !out.contains(&word) {
@@ -659,9 +711,13 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
     if out.is_empty() && operator {
         out.push("an operator");
     }
-    // "a value" already says what an argument can be.
+    // "a value" already says what an argument can be, and where a
+    // statement may start a blank line may too: saying so is noise.
     if out.contains(&VALUE) {
         out.retain(|w| !w.starts_with("an argument"));
+    }
+    if out.contains(&STATEMENT) {
+        out.retain(|w| *w == STATEMENT);
     }
     let rank = |w: &&str| match *w {
         "'='" => 0,
@@ -840,6 +896,7 @@ fn stray_character(text: &str, pos: usize) -> Option<Diagnostic> {
         '{' | '}' | ':' => {
             d.note("dictionaries are not supported; factor keywords are written _F(KEY=value, ...)")
         }
+        '%' | '<' | '>' | '&' | '|' | '^' | '~' | '!' => d.note("the operators are + - * / and **"),
         _ if c.is_alphabetic() => d.note("names use only ASCII letters, digits and '_'"),
         _ => d,
     })
@@ -1151,6 +1208,34 @@ mod tests {
     }
 
     #[test]
+    fn hints_for_python_that_is_not_supported() {
+        let cases = [
+            ("A = B.C\n", "attribute access"),
+            ("A = B[0]\n", "indexing"),
+            ("A += 1\n", "augmented assignment"),
+            ("A = 7 // 2\n", "int(a / b)"),
+            ("A = r'x'\n", "string prefixes"),
+            ("A = f(x)(y)\n", "only a name can be called"),
+            ("A = 1 % 2\n", "the operators are"),
+            ("F(A==1)\n", "single '='"),
+            ("F(MAILLAGE MA)\n", "KEYWORD=value"),
+        ];
+        for (text, note) in cases {
+            let d = err(text);
+            assert!(
+                d.notes.iter().any(|n| n.contains(note)),
+                "{text:?}: {} {:?}",
+                d.message,
+                d.notes
+            );
+        }
+        assert_eq!(
+            err("A = 1;;\n").message,
+            "syntax error: expected a statement (NAME = value or a command call), found ';'"
+        );
+    }
+
+    #[test]
     fn unclosed_brackets() {
         // The next statement, in the first column, shows the '(' is open.
         let d = err("A = F(X=1,\n  Y=2\nFIN()\n");
@@ -1175,9 +1260,13 @@ mod tests {
 
     #[test]
     fn depth_limits_are_errors_not_crashes() {
-        let deep = format!("A = {}1{}\n", "(".repeat(100), ")".repeat(100));
-        assert!(err(&deep).message.contains("nested more than 64"));
-        let ok_depth = format!("A = {}1{}\n", "(".repeat(64), ")".repeat(64));
+        let deep = format!("A = {}1{}\n", "(".repeat(33), ")".repeat(33));
+        let d = err(&deep);
+        assert!(d.message.contains("nested more than 32"), "{}", d.message);
+        assert_eq!(d.span, Some(Span::new(36, 37)));
+        let deep = format!("A = {}\n", "[".repeat(100_000));
+        assert!(err(&deep).message.contains("nested more than 32"));
+        let ok_depth = format!("A = {}1{}\n", "(".repeat(32), ")".repeat(32));
         ok(&ok_depth);
         let long = format!("A = 1{}\n", "+1".repeat(10_000));
         assert!(err(&long).message.contains("too deeply nested"));
