@@ -1,0 +1,120 @@
+//! The mesh commands at run time: what they do to the SDNV103 meshes, and
+//! the messages a user gets for a missing group, an unmapped unit or a bad
+//! file (file, line, command, keyword; never a panic).
+
+use std::path::{Path, PathBuf};
+
+use aster::concepts::ConceptData;
+use aster::diag::Source;
+use aster::run::driver::{run_file, RunOptions};
+use aster::run::Study;
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Writes a study to a scratch directory and runs it with unit 20 mapped
+/// to `mesh`; returns the exit code and what the terminal shows.
+fn run(name: &str, text: &str, mesh: &Path) -> (i32, String, PathBuf) {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("mesh_cmd_{name}"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = dir.join(format!("{name}.comm"));
+    std::fs::write(&comm, text).unwrap();
+    let mut out = Vec::new();
+    let code = run_file(
+        &RunOptions {
+            comm,
+            units: vec![(20, mesh.to_path_buf())],
+            out_dir: Some(dir.clone()),
+            ..RunOptions::default()
+        },
+        &mut out,
+    );
+    (code, String::from_utf8(out).unwrap(), dir)
+}
+
+/// Runs a study in-process and returns the study (to inspect concepts).
+fn run_in_process(text: &str, mesh: &Path) -> Study {
+    let src = Source::new("inline.comm", text);
+    let reg = aster::commands::all();
+    let mut msgs = String::new();
+    let prog = aster::run::driver::parse_and_check(&src, &reg, &mut msgs).expect(&msgs);
+    let mut study = Study::default();
+    study.units.map.insert(20, mesh.to_path_buf());
+    study.execute(&prog, &reg, &src).unwrap_or_else(|d| panic!("{}", d.render(Some(&src))));
+    study
+}
+
+fn mesh(study: &Study, name: &str) -> aster::mesh::Mesh {
+    match study.concepts.data(name) {
+        Some(ConceptData::Mesh(m)) => (**m).clone(),
+        _ => panic!("{name} is not a mesh"),
+    }
+}
+
+#[test]
+fn unknown_group_is_named_with_the_line_and_a_suggestion() {
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+        MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL,\n                  CREA_GROUP_NO=_F(GROUP_MA='SZ', NOM='BAS'))\nFIN()\n";
+    let (code, out, _) = run("unknown_group", text, &root().join("med/sdnv103b.mmed"));
+    assert_eq!(code, 1);
+    assert!(out.contains("DEFI_GROUP/CREA_GROUP_NO/GROUP_MA"), "{out}");
+    assert!(out.contains("unknown_group.comm:4:"), "{out}");
+    assert!(out.contains("no cell group (GROUP_MA) 'SZ'"), "{out}");
+    assert!(out.contains("did you mean 'SZZ'"), "{out}");
+}
+
+#[test]
+fn unmapped_unit_and_bad_file_are_clear_errors() {
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED', UNITE=33)\nFIN()\n";
+    let (code, out, _) = run("unmapped", text, &root().join("med/sdnv103b.mmed"));
+    assert_eq!(code, 1);
+    assert!(out.contains("LIRE_MAILLAGE/UNITE: logical unit 33 is not mapped"), "{out}");
+    assert!(out.contains("F mmed <path> D 33"), "{out}");
+
+    let bad = Path::new(env!("CARGO_TARGET_TMPDIR")).join("not_a_mesh.mmed");
+    std::fs::write(&bad, b"this is not HDF5 at all").unwrap();
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\nFIN()\n";
+    let (code, out, _) = run("badfile", text, &bad);
+    assert_eq!(code, 1);
+    assert!(out.contains("LIRE_MAILLAGE/UNITE"), "{out}");
+    assert!(out.contains("not_a_mesh.mmed"), "{out}");
+
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED', NOM_MED='NOPE')\nFIN()\n";
+    let (code, out, _) = run("badname", text, &root().join("med/sdnv103b.mmed"));
+    assert_eq!(code, 1);
+    assert!(out.contains("LIRE_MAILLAGE/NOM_MED"), "{out}");
+    assert!(out.contains("TAYLOR_AXIS"), "the message lists the meshes present: {out}");
+}
+
+#[test]
+fn quarter_mesh_groups_as_the_3d_command_files_build_them() {
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+        MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, CREA_GROUP_NO=(\n\
+          _F(TOUT_GROUP_MA='OUI'),\n\
+          _F(GROUP_MA='SZZ', NOM='MILIEU', CRIT_NOEUD='MILIEU'),\n\
+          _F(DIFFE=('SXX', 'MILIEU'), NOM='SXX1'),\n\
+          _F(DIFFE=('SYY', 'MILIEU'), NOM='SYY1'),))\n\
+        MAIL = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ORIE_PEAU_3D=_F(GROUP_MA=('SZZ', 'RIGID')))\n\
+        LIN = CREA_MAILLAGE(MAILLAGE=MAIL, QUAD_LINE=_F(TOUT='OUI'))\nFIN()\n";
+    let study = run_in_process(text, &root().join("med/sdnv103a.mmed"));
+    let m = mesh(&study, "MAIL");
+    assert_eq!(m.node_groups["MILIEU"].len(), 65);
+    let sxx = m.node_groups["SXX"].len();
+    assert_eq!(m.node_groups["SXX1"].len(), sxx - m.node_groups["SXX"].iter().filter(|n| m.node_groups["MILIEU"].contains(n)).count());
+    // SZZ faces now point down (out of the bar), RIGID up (out of the block).
+    for (g, sign) in [("SZZ", -1.0), ("RIGID", 1.0)] {
+        for &c in &m.cell_groups[g] {
+            let n = &m.cells[c].nodes;
+            let (a, b, d) = (m.coords[n[0]], m.coords[n[1]], m.coords[n[2]]);
+            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let v = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+            let nz = u[0] * v[1] - u[1] * v[0];
+            assert!(nz * sign > 0.0, "{g} cell {c} normal z = {nz}");
+        }
+    }
+    let lin = mesh(&study, "LIN");
+    assert!(lin.cells.iter().all(|c| !c.kind.is_quadratic()));
+    assert!(!lin.node_groups.contains_key("MILIEU"), "QUAD_LINE drops node groups left empty");
+    assert_eq!(lin.node_groups["A2"].len(), 1);
+}
