@@ -11,37 +11,7 @@ use indexmap::IndexMap;
 
 /// MED edge tables of the quadratic cells: mid node `nv + k` sits on edge k.
 pub fn med_edges(t: CellType) -> &'static [(usize, usize)] {
-    match t {
-        CellType::Seg3 => &[(0, 1)],
-        CellType::Tria6 => &[(0, 1), (1, 2), (2, 0)],
-        CellType::Quad8 => &[(0, 1), (1, 2), (2, 3), (3, 0)],
-        CellType::Penta15 => &[
-            (0, 1),
-            (1, 2),
-            (2, 0),
-            (3, 4),
-            (4, 5),
-            (5, 3),
-            (0, 3),
-            (1, 4),
-            (2, 5),
-        ],
-        CellType::Hexa20 => &[
-            (0, 1),
-            (1, 2),
-            (2, 3),
-            (3, 0),
-            (4, 5),
-            (5, 6),
-            (6, 7),
-            (7, 4),
-            (0, 4),
-            (1, 5),
-            (2, 6),
-            (3, 7),
-        ],
-        _ => &[],
-    }
+    t.mid_edges()
 }
 
 /// Corner coordinates of a reference cell of type `t`, MED order, shifted

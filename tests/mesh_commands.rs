@@ -41,7 +41,9 @@ fn run_in_process(text: &str, mesh: &Path) -> Study {
     let prog = aster::run::driver::parse_and_check(&src, &reg, &mut msgs).expect(&msgs);
     let mut study = Study::default();
     study.units.map.insert(20, mesh.to_path_buf());
-    study.execute(&prog, &reg, &src).unwrap_or_else(|d| panic!("{}", d.render(Some(&src))));
+    study
+        .execute(&prog, &reg, &src)
+        .unwrap_or_else(|d| panic!("{}", d.render(Some(&src))));
     study
 }
 
@@ -69,7 +71,10 @@ fn unmapped_unit_and_bad_file_are_clear_errors() {
     let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED', UNITE=33)\nFIN()\n";
     let (code, out, _) = run("unmapped", text, &root().join("med/sdnv103b.mmed"));
     assert_eq!(code, 1);
-    assert!(out.contains("LIRE_MAILLAGE/UNITE: logical unit 33 is not mapped"), "{out}");
+    assert!(
+        out.contains("LIRE_MAILLAGE/UNITE: logical unit 33 is not mapped"),
+        "{out}"
+    );
     assert!(out.contains("F mmed <path> D 33"), "{out}");
 
     let bad = Path::new(env!("CARGO_TARGET_TMPDIR")).join("not_a_mesh.mmed");
@@ -84,7 +89,10 @@ fn unmapped_unit_and_bad_file_are_clear_errors() {
     let (code, out, _) = run("badname", text, &root().join("med/sdnv103b.mmed"));
     assert_eq!(code, 1);
     assert!(out.contains("LIRE_MAILLAGE/NOM_MED"), "{out}");
-    assert!(out.contains("TAYLOR_AXIS"), "the message lists the meshes present: {out}");
+    assert!(
+        out.contains("TAYLOR_AXIS"),
+        "the message lists the meshes present: {out}"
+    );
 }
 
 #[test]
@@ -101,7 +109,13 @@ fn quarter_mesh_groups_as_the_3d_command_files_build_them() {
     let m = mesh(&study, "MAIL");
     assert_eq!(m.node_groups["MILIEU"].len(), 65);
     let sxx = m.node_groups["SXX"].len();
-    assert_eq!(m.node_groups["SXX1"].len(), sxx - m.node_groups["SXX"].iter().filter(|n| m.node_groups["MILIEU"].contains(n)).count());
+    assert_eq!(
+        m.node_groups["SXX1"].len(),
+        sxx - m.node_groups["SXX"]
+            .iter()
+            .filter(|n| m.node_groups["MILIEU"].contains(n))
+            .count()
+    );
     // SZZ faces now point down (out of the bar), RIGID up (out of the block).
     for (g, sign) in [("SZZ", -1.0), ("RIGID", 1.0)] {
         for &c in &m.cell_groups[g] {
@@ -115,6 +129,9 @@ fn quarter_mesh_groups_as_the_3d_command_files_build_them() {
     }
     let lin = mesh(&study, "LIN");
     assert!(lin.cells.iter().all(|c| !c.kind.is_quadratic()));
-    assert!(!lin.node_groups.contains_key("MILIEU"), "QUAD_LINE drops node groups left empty");
+    assert!(
+        !lin.node_groups.contains_key("MILIEU"),
+        "QUAD_LINE drops node groups left empty"
+    );
     assert_eq!(lin.node_groups["A2"].len(), 1);
 }

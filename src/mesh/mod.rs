@@ -83,6 +83,46 @@ impl CellType {
         self.nvertices() != self.nnodes()
     }
 
+    /// The edges carrying the mid-nodes of a quadratic cell, in MED order:
+    /// mid-node `nvertices() + k` sits on the edge between the two vertices
+    /// of entry k. Empty for linear cells.
+    pub fn mid_edges(self) -> &'static [(usize, usize)] {
+        const QUAD: [(usize, usize); 4] = [(0, 1), (1, 2), (2, 3), (3, 0)];
+        const PENTA: [(usize, usize); 9] = [
+            (0, 1),
+            (1, 2),
+            (2, 0),
+            (3, 4),
+            (4, 5),
+            (5, 3),
+            (0, 3),
+            (1, 4),
+            (2, 5),
+        ];
+        const HEXA: [(usize, usize); 12] = [
+            (0, 1),
+            (1, 2),
+            (2, 3),
+            (3, 0),
+            (4, 5),
+            (5, 6),
+            (6, 7),
+            (7, 4),
+            (0, 4),
+            (1, 5),
+            (2, 6),
+            (3, 7),
+        ];
+        match self {
+            CellType::Seg3 => &[(0, 1)],
+            CellType::Tria6 => &[(0, 1), (1, 2), (2, 0)],
+            CellType::Quad8 => &QUAD,
+            CellType::Penta15 => &PENTA,
+            CellType::Hexa20 => &HEXA,
+            _ => &[],
+        }
+    }
+
     /// The linear cell with the same vertices (QUAD_LINE).
     pub fn linear(self) -> CellType {
         match self {

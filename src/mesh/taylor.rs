@@ -978,39 +978,7 @@ mod tests {
     /// each other.
     #[test]
     fn mid_nodes_follow_med_edge_order() {
-        fn edges(k: CellType) -> &'static [(usize, usize)] {
-            match k {
-                CellType::Seg3 => &[(0, 1)],
-                CellType::Tria6 => &[(0, 1), (1, 2), (2, 0)],
-                CellType::Quad8 => &[(0, 1), (1, 2), (2, 3), (3, 0)],
-                CellType::Penta15 => &[
-                    (0, 1),
-                    (1, 2),
-                    (2, 0),
-                    (3, 4),
-                    (4, 5),
-                    (5, 3),
-                    (0, 3),
-                    (1, 4),
-                    (2, 5),
-                ],
-                CellType::Hexa20 => &[
-                    (0, 1),
-                    (1, 2),
-                    (2, 3),
-                    (3, 0),
-                    (4, 5),
-                    (5, 6),
-                    (6, 7),
-                    (7, 4),
-                    (0, 4),
-                    (1, 5),
-                    (2, 6),
-                    (3, 7),
-                ],
-                _ => &[],
-            }
-        }
+        let edges = |k: CellType| k.mid_edges();
         for l in ['A', 'B', 'H'] {
             let m = gen(l);
             let dist = |a: usize, b: usize| -> f64 {
