@@ -261,8 +261,8 @@ fn check_gaps(letter: char, modelisation: &str, vertical: usize) {
         assert!((l.normal[vertical] + 1.0).abs() < 1e-14);
         // The projection is the slave node brought down to height 0.
         let x = m.coords[l.slave];
-        for c in 0..3 {
-            let expect = if c == vertical { 0.0 } else { x[c] };
+        for (c, &xc) in x.iter().enumerate() {
+            let expect = if c == vertical { 0.0 } else { xc };
             assert!((l.proj[c] - expect).abs() < 1e-12);
         }
     }
