@@ -17,6 +17,7 @@
 pub mod catalog;
 pub mod commands;
 pub mod concepts;
+pub mod contact;
 pub mod diag;
 pub mod element;
 pub mod lang;

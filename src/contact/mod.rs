@@ -1,0 +1,428 @@
+//! Discrete frictional contact (`DEFI_CONTACT` with `FORMULATION='DISCRETE'`,
+//! penalised contact and penalised Coulomb friction), as a library the
+//! Newton loop of DYNA_NON_LINE calls (docs/contact.md, semantics.md §6).
+//!
+//! The flow of one time step is:
+//! 1. [`pairing::pair`] projects every slave node on the master surface in
+//!    the current geometry and freezes the result in [`Link`]s (as many
+//!    times per step as `REAC_GEOM` asks);
+//! 2. at every Newton iteration [`discrete::evaluate`] gives, at fixed
+//!    pairing, the contact contribution to the residual and to the tangent
+//!    matrix, and the [`ContactState`] of every link;
+//! 3. after convergence, [`ContactState::accumulate_percussion`] and
+//!    [`ContactState::cont_noeu`] give the `CONT_NOEU` field, and
+//!    [`collision_started`] / [`ContactState::max_interpenetration`] feed the
+//!    `COLLISION` and `INTERPENETRATION` events of DEFI_LIST_INST.
+//!
+//! This module turns the checked keywords into a [`ContactDef`]; what the
+//! engine does not implement (continuous formulation, LIAISON_UNIL, NODAL
+//! pairing, smoothing, ...) is refused here with a clear error rather than
+//! silently ignored.
+
+pub mod cont_noeu;
+pub mod discrete;
+pub mod pairing;
+
+pub use cont_noeu::{collision_started, ContactState, LinkState, LinkStatus, CONT_NOEU_COMPONENTS};
+pub use discrete::{evaluate, Contribution, IterationInput, RESI_COEF_MATR_FROT};
+pub use pairing::{pair, project, Link, Pairing, Projection};
+
+use crate::catalog::args::Args;
+use crate::diag::Diagnostic;
+use crate::mesh::Mesh;
+
+/// The geometric update (`REAC_GEOM`), i.e. when pairing is redone.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ReacGeom {
+    /// Re-pair after each Newton convergence until
+    /// max|Δu since the last pairing| / max|u| < `resi_geom`, at most
+    /// `iter_geom_maxi` times (reaching it is an error event).
+    Automatique {
+        iter_geom_maxi: usize,
+        resi_geom: f64,
+    },
+    /// Exactly `nb_iter_geom` (≥ 1) pairings per time step, the first at
+    /// the start of the step.
+    Controle { nb_iter_geom: usize },
+    /// Pairing once (`NB_ITER_GEOM=0` means the same).
+    Sans,
+}
+
+/// Penalised Coulomb friction of a zone.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coulomb {
+    /// Friction coefficient μ (`COULOMB`).
+    pub mu: f64,
+    /// Tangential penalty stiffness (`E_T`), a nodal stiffness (N/mm).
+    pub e_t: f64,
+    /// Weight of the slip tangent while RESI_GLOB_RELA ≥ 1e-3
+    /// (`COEF_MATR_FROT`).
+    pub coef_matr_frot: f64,
+}
+
+/// One `ZONE` occurrence, resolved on the mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactZone {
+    pub master_group: String,
+    pub slave_group: String,
+    /// Master cells (SEG2/SEG3 in 2D, TRIA3/TRIA6/QUAD4/QUAD8 in 3D).
+    pub master_cells: Vec<usize>,
+    /// Slave nodes: nodes of GROUP_MA_ESCL minus SANS_GROUP_NO and the
+    /// nodes of SANS_GROUP_MA, ascending.
+    pub slave_nodes: Vec<usize>,
+    /// Normal penalty stiffness (`E_N`), a nodal stiffness (N/mm). Public
+    /// and mutable because the INTERPENETRATION event's ADAPT_COEF_PENA
+    /// doubles it between attempts of a step.
+    pub e_n: f64,
+    pub friction: Option<Coulomb>,
+    /// Allowed projection outside a master cell, in parametric units;
+    /// None: no limit (a negative `TOLE_PROJ_EXT`).
+    pub tole_proj_ext: Option<f64>,
+    /// Slave nodes farther than this from their projection are not paired
+    /// (`DIST_APPA`; None for the default −1).
+    pub dist_appa: Option<f64>,
+}
+
+/// A checked `DEFI_CONTACT` with `FORMULATION='DISCRETE'`, ready for the
+/// solver.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactDef {
+    /// Space dimension of the model (2 or 3): the number of displacement
+    /// components a link couples.
+    pub dim: usize,
+    /// `FROTTEMENT='COULOMB'`.
+    pub friction: bool,
+    pub reac_geom: ReacGeom,
+    pub zones: Vec<ContactZone>,
+}
+
+impl ContactDef {
+    /// Builds the definition from DEFI_CONTACT's checked keywords on the
+    /// model's mesh. Every error names the keyword it is about.
+    pub fn from_args(args: &Args, mesh: &Mesh) -> Result<ContactDef, Diagnostic> {
+        let formulation = args.text("FORMULATION").unwrap_or("DISCRETE");
+        match formulation {
+            "DISCRETE" => {}
+            "CONTINUE" => {
+                return Err(args.not_implemented(
+                    "FORMULATION",
+                    "the continuous formulation (FORMULATION='CONTINUE'); only 'DISCRETE' penalised contact is available",
+                ))
+            }
+            "LIAISON_UNIL" => {
+                return Err(args.not_implemented(
+                    "FORMULATION",
+                    "unilateral linear conditions (FORMULATION='LIAISON_UNIL'); only 'DISCRETE' penalised contact is available",
+                ))
+            }
+            other => {
+                return Err(args.error(
+                    "FORMULATION",
+                    format!("FORMULATION='{other}' is not supported"),
+                ))
+            }
+        }
+        if mesh.dim != 2 && mesh.dim != 3 {
+            return Err(args.error(
+                "",
+                format!(
+                    "contact needs a 2D or 3D mesh, {} has dimension {}",
+                    mesh.name, mesh.dim
+                ),
+            ));
+        }
+        let friction = args.text("FROTTEMENT") == Some("COULOMB");
+        if args.text("LISSAGE") == Some("OUI") {
+            return Err(args.not_implemented("LISSAGE", "normal smoothing (LISSAGE='OUI')"));
+        }
+        let reac_geom = reac_geom(args)?;
+        let zones = args.facts("ZONE");
+        if zones.is_empty() {
+            return Err(args.error("ZONE", "at least one ZONE is required"));
+        }
+        let zones = zones
+            .iter()
+            .map(|z| zone(z, mesh, friction))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(ContactDef {
+            dim: mesh.dim,
+            friction,
+            reac_geom,
+            zones,
+        })
+    }
+
+    /// All slave nodes of all zones (with repetitions if zones share one).
+    pub fn slave_nodes(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        self.zones
+            .iter()
+            .enumerate()
+            .flat_map(|(z, zone)| zone.slave_nodes.iter().map(move |&n| (z, n)))
+    }
+}
+
+fn reac_geom(args: &Args) -> Result<ReacGeom, Diagnostic> {
+    Ok(match args.text("REAC_GEOM").unwrap_or("AUTOMATIQUE") {
+        "CONTROLE" => {
+            let n = args.int("NB_ITER_GEOM").unwrap_or(2);
+            if n < 0 {
+                return Err(args.error(
+                    "NB_ITER_GEOM",
+                    format!("NB_ITER_GEOM must be >= 0, got {n}"),
+                ));
+            }
+            if n == 0 {
+                ReacGeom::Sans
+            } else {
+                ReacGeom::Controle {
+                    nb_iter_geom: n as usize,
+                }
+            }
+        }
+        "SANS" => ReacGeom::Sans,
+        _ => {
+            let n = args.int("ITER_GEOM_MAXI").unwrap_or(10);
+            if n < 1 {
+                return Err(args.error(
+                    "ITER_GEOM_MAXI",
+                    format!("ITER_GEOM_MAXI must be >= 1, got {n}"),
+                ));
+            }
+            let r = args.real("RESI_GEOM").unwrap_or(0.01);
+            if r.is_nan() || r <= 0.0 {
+                return Err(args.error("RESI_GEOM", format!("RESI_GEOM must be > 0, got {r:e}")));
+            }
+            ReacGeom::Automatique {
+                iter_geom_maxi: n as usize,
+                resi_geom: r,
+            }
+        }
+    })
+}
+
+/// Cells of a group, or an error naming the keyword and the nearest group.
+fn cell_group<'m>(
+    z: &Args,
+    key: &str,
+    name: &str,
+    mesh: &'m Mesh,
+) -> Result<&'m [usize], Diagnostic> {
+    match mesh.cell_groups.get(name) {
+        Some(c) => Ok(c),
+        None => {
+            let names: Vec<&str> = mesh.cell_groups.keys().map(String::as_str).collect();
+            Err(z
+                .error(
+                    key,
+                    format!("the mesh {} has no cell group '{name}'", mesh.name),
+                )
+                .choices(name, &names))
+        }
+    }
+}
+
+fn zone(z: &Args, mesh: &Mesh, friction: bool) -> Result<ContactZone, Diagnostic> {
+    // Keywords whose meaning aster does not implement: refuse, never ignore.
+    for key in ["MAILLE_MAIT", "MAILLE_ESCL", "SANS_NOEUD", "SANS_MAILLE"] {
+        if z.given(key) {
+            return Err(z.not_implemented(key, "cells and nodes are designated by groups"));
+        }
+    }
+    let unsupported: [(&str, &str, &str); 5] = [
+        ("APPARIEMENT", "MAIT_ESCL", "NODAL pairing"),
+        ("NORMALE", "MAIT", "a normal from the slave surface"),
+        ("VECT_MAIT", "AUTO", "an imposed master normal"),
+        (
+            "TYPE_PROJECTION",
+            "ORTHOGONALE",
+            "a fixed projection direction",
+        ),
+        (
+            "RESOLUTION",
+            "OUI",
+            "pairing-only checks (RESOLUTION='NON')",
+        ),
+    ];
+    for (key, ok, what) in unsupported {
+        if let Some(v) = z.text(key) {
+            if v != ok {
+                return Err(z.not_implemented(key, what));
+            }
+        }
+    }
+    for key in ["DIST_MAIT", "DIST_ESCL"] {
+        if z.has(key) {
+            return Err(z.not_implemented(key, "fictitious thicknesses added to the gap"));
+        }
+    }
+    let algo = z.text("ALGO_CONT").unwrap_or("CONTRAINTE");
+    if friction && algo != "PENALISATION" {
+        return Err(z
+            .error(
+                "ALGO_CONT",
+                format!(
+                    "with FROTTEMENT='COULOMB' the discrete formulation needs ALGO_CONT='PENALISATION', not '{algo}' (code_aster CONTACT3_3)"
+                ),
+            )
+            .note("the catalogue default of ALGO_CONT is 'CONTRAINTE': write ALGO_CONT='PENALISATION' and give E_N"));
+    }
+    if algo != "PENALISATION" {
+        return Err(z.not_implemented(
+            "ALGO_CONT",
+            &format!("ALGO_CONT='{algo}'; only the penalised discrete method (ALGO_CONT='PENALISATION' with E_N) is available"),
+        ));
+    }
+    let positive = |key: &str| -> Result<f64, Diagnostic> {
+        let v = z
+            .real(key)
+            .ok_or_else(|| z.error(key, format!("{key} is required")))?;
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(z.error(key, format!("{key} must be > 0, got {v:e}")))
+        }
+    };
+    let e_n = positive("E_N")?;
+    let coulomb = if friction {
+        let e_t = positive("E_T")?;
+        let mu = z
+            .real("COULOMB")
+            .ok_or_else(|| z.error("COULOMB", "COULOMB is required with FROTTEMENT='COULOMB'"))?;
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(z.error("COULOMB", format!("COULOMB must be >= 0, got {mu:e}")));
+        }
+        let c = z.real("COEF_MATR_FROT").unwrap_or(0.0);
+        if !(0.0..=1.0).contains(&c) {
+            return Err(z.error(
+                "COEF_MATR_FROT",
+                format!("COEF_MATR_FROT must be in [0, 1], got {c:e}"),
+            ));
+        }
+        Some(Coulomb {
+            mu,
+            e_t,
+            coef_matr_frot: c,
+        })
+    } else {
+        None
+    };
+
+    let skin_dim = mesh.dim - 1;
+    let allowed = if skin_dim == 1 {
+        "SEG2/SEG3"
+    } else {
+        "TRIA3/TRIA6/QUAD4/QUAD8"
+    };
+    let mut groups = Vec::new();
+    for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
+        let name = z
+            .text(key)
+            .ok_or_else(|| z.error(key, format!("{key} is required")))?;
+        let cells = cell_group(z, key, name, mesh)?;
+        if cells.is_empty() {
+            return Err(z.error(key, format!("the cell group '{name}' is empty")));
+        }
+        for &c in cells {
+            let kind = mesh.cells[c].kind;
+            let ok = is_contact_surface(kind, mesh.dim);
+            if !ok {
+                return Err(z.error(
+                    key,
+                    format!(
+                        "group '{name}': cell {} is a {}; a contact surface of a {}D model is made of {allowed} cells",
+                        c + 1,
+                        kind.aster_name(),
+                        mesh.dim
+                    ),
+                ));
+            }
+        }
+        groups.push((name.to_string(), cells.to_vec()));
+    }
+    let (slave_group, slave_cells) = groups.pop().expect("two groups pushed");
+    let (master_group, master_cells) = groups.pop().expect("two groups pushed");
+
+    let mut excluded = vec![false; mesh.nnodes()];
+    for name in z.texts("SANS_GROUP_NO") {
+        let nodes = mesh.node_groups.get(name).ok_or_else(|| {
+            let names: Vec<&str> = mesh.node_groups.keys().map(String::as_str).collect();
+            z.error(
+                "SANS_GROUP_NO",
+                format!("the mesh {} has no node group '{name}'", mesh.name),
+            )
+            .choices(name, &names)
+        })?;
+        for &n in nodes {
+            excluded[n] = true;
+        }
+    }
+    for name in z.texts("SANS_GROUP_MA") {
+        let cells = cell_group(z, "SANS_GROUP_MA", name, mesh)?;
+        for n in mesh.nodes_of_cells(cells) {
+            excluded[n] = true;
+        }
+    }
+    let slave_nodes: Vec<usize> = mesh
+        .nodes_of_cells(&slave_cells)
+        .into_iter()
+        .filter(|&n| !excluded[n])
+        .collect();
+    if slave_nodes.is_empty() {
+        return Err(z.error(
+            "GROUP_MA_ESCL",
+            format!("no slave node is left in '{slave_group}' once SANS_GROUP_NO/SANS_GROUP_MA are removed"),
+        ));
+    }
+    let tole = z.real("TOLE_PROJ_EXT").unwrap_or(0.5);
+    let dist_appa = z.real("DIST_APPA").unwrap_or(-1.0);
+    Ok(ContactZone {
+        master_group,
+        slave_group,
+        master_cells,
+        slave_nodes,
+        e_n,
+        friction: coulomb,
+        tole_proj_ext: (tole >= 0.0).then_some(tole),
+        dist_appa: (dist_appa > 0.0).then_some(dist_appa),
+    })
+}
+
+/// The cells a contact surface of a `dim`-dimensional model is made of:
+/// SEG2/SEG3 in the x-y plane in 2D, TRIA3/TRIA6/QUAD4/QUAD8 in 3D.
+pub fn is_contact_surface(kind: crate::mesh::CellType, dim: usize) -> bool {
+    use crate::mesh::CellType as T;
+    matches!(
+        (dim, kind),
+        (2, T::Seg2 | T::Seg3) | (3, T::Tria3 | T::Tria6 | T::Quad4 | T::Quad8)
+    )
+}
+
+// Small fixed-size vector algebra shared by the submodules.
+
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+pub(crate) fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+pub(crate) fn scale(s: f64, a: [f64; 3]) -> [f64; 3] {
+    [s * a[0], s * a[1], s * a[2]]
+}
+
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+pub(crate) fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}

@@ -1,0 +1,311 @@
+//! DEFI_CONTACT keywords → ContactDef, and pairing on the generated SDNV103
+//! meshes: after MODI_MAILLAGE/ORIE_PEAU (as the command files do), the
+//! initial gap of every slave node of SZZ on RIGID is the bar's height
+//! above the foundation, 2.27.
+
+use aster::catalog::args::Args;
+use aster::commands;
+use aster::contact::{pair, ContactDef, ReacGeom};
+use aster::diag::Source;
+use aster::mesh::ops::{orie_peau, OrieDim};
+use aster::mesh::taylor::{generate, TaylorParams, GAP};
+use aster::mesh::Mesh;
+use aster::run::driver::parse_and_check;
+
+/// The checked keywords of a DEFI_CONTACT call, through the real parser
+/// and checker (defaults filled in as for a study).
+fn defi_contact(modelisation: &str, keywords: &str) -> Args {
+    let text = format!(
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='{modelisation}'))\n\
+         CONT = DEFI_CONTACT(MODELE=MO, {keywords})\nFIN()\n"
+    );
+    let src = Source::new("contact.comm", text);
+    let mut messages = String::new();
+    let program = parse_and_check(&src, &commands::all(), &mut messages)
+        .unwrap_or_else(|| panic!("check failed:\n{messages}"));
+    program
+        .commands
+        .into_iter()
+        .find(|c| c.name == "DEFI_CONTACT")
+        .expect("DEFI_CONTACT in the program")
+        .args
+}
+
+fn mesh(letter: char) -> Mesh {
+    let mut m = generate(&TaylorParams::for_modelling(letter).unwrap()).unwrap();
+    let dim = if m.dim == 2 { OrieDim::D2 } else { OrieDim::D3 };
+    orie_peau(&mut m, dim, &["SZZ", "RIGID"], None).unwrap();
+    m
+}
+
+const SDNV103B: &str = "FORMULATION='DISCRETE', REAC_GEOM='CONTROLE', NB_ITER_GEOM=2, \
+    FROTTEMENT='COULOMB', ZONE=_F(ALGO_CONT='PENALISATION', ALGO_FROT='PENALISATION', \
+    COULOMB=0.25, E_N=1.E10, E_T=1.E5, COEF_MATR_FROT=0.4, APPARIEMENT='MAIT_ESCL', \
+    GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')";
+
+#[test]
+fn sdnv103b_definition() {
+    let m = mesh('B');
+    let def = ContactDef::from_args(&defi_contact("AXIS", SDNV103B), &m).unwrap();
+    assert_eq!(def.dim, 2);
+    assert!(def.friction);
+    assert_eq!(def.reac_geom, ReacGeom::Controle { nb_iter_geom: 2 });
+    let z = &def.zones[0];
+    assert_eq!(z.e_n, 1e10);
+    let f = z.friction.unwrap();
+    assert_eq!((f.mu, f.e_t, f.coef_matr_frot), (0.25, 1e5, 0.4));
+    assert_eq!(z.tole_proj_ext, Some(0.5));
+    assert_eq!(z.dist_appa, None);
+    // SZZ: 5 SEG3 cells across the radius, 11 nodes, all at y = GAP.
+    assert_eq!(z.slave_nodes.len(), 11);
+    assert!(z
+        .slave_nodes
+        .iter()
+        .all(|&n| (m.coords[n][1] - GAP).abs() < 1e-12));
+    assert_eq!(z.master_cells, m.cell_groups["RIGID"]);
+}
+
+#[test]
+fn defaults_and_sans_group_no() {
+    let m = mesh('D');
+    let args = defi_contact(
+        "AXIS",
+        "ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, GROUP_MA_MAIT='RIGID', \
+         GROUP_MA_ESCL='SZZ', SANS_GROUP_NO='A1')",
+    );
+    let def = ContactDef::from_args(&args, &m).unwrap();
+    assert!(!def.friction);
+    assert_eq!(
+        def.reac_geom,
+        ReacGeom::Automatique {
+            iter_geom_maxi: 10,
+            resi_geom: 0.01
+        }
+    );
+    let z = &def.zones[0];
+    assert!(z.friction.is_none());
+    // SZZ of D has 2 SEG3 cells, 5 nodes; A1 is removed.
+    let a1 = m.node_groups["A1"][0];
+    assert_eq!(z.slave_nodes.len(), 4);
+    assert!(!z.slave_nodes.contains(&a1));
+}
+
+#[test]
+fn nb_iter_geom_zero_means_sans() {
+    let m = mesh('D');
+    let args = defi_contact(
+        "AXIS",
+        "REAC_GEOM='CONTROLE', NB_ITER_GEOM=0, ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, \
+         GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert_eq!(
+        ContactDef::from_args(&args, &m).unwrap().reac_geom,
+        ReacGeom::Sans
+    );
+}
+
+fn error_of(modelisation: &str, letter: char, keywords: &str) -> aster::diag::Diagnostic {
+    let m = mesh(letter);
+    ContactDef::from_args(&defi_contact(modelisation, keywords), &m).unwrap_err()
+}
+
+#[test]
+fn coulomb_without_penalised_contact_is_contact3_3() {
+    // ALGO_CONT left to its catalogue default CONTRAINTE.
+    let e = error_of(
+        "AXIS",
+        'D',
+        "FROTTEMENT='COULOMB', ZONE=_F(COULOMB=0.25, E_T=1.E5, \
+         GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(e.message.contains("CONTACT3_3"), "{}", e.message);
+    assert_eq!(e.keyword.as_deref(), Some("ZONE/ALGO_CONT"));
+    assert_eq!(e.command.as_deref(), Some("DEFI_CONTACT"));
+}
+
+#[test]
+fn unknown_group_is_named_with_a_suggestion() {
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, GROUP_MA_MAIT='RIGIDE', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(e.message.contains("'RIGIDE'"), "{}", e.message);
+    assert_eq!(e.keyword.as_deref(), Some("ZONE/GROUP_MA_MAIT"));
+    assert_eq!(e.suggestion.as_deref(), Some("RIGID"));
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, GROUP_MA_MAIT='RIGID', \
+         GROUP_MA_ESCL='SZZ', SANS_GROUP_NO='NOPE')",
+    );
+    assert_eq!(e.keyword.as_deref(), Some("ZONE/SANS_GROUP_NO"));
+}
+
+#[test]
+fn wrong_cell_dimension_is_refused() {
+    // A volume group as slave surface in 2D (QUAD8 cells).
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='VOL')",
+    );
+    assert!(
+        e.message.contains("QUAD8") && e.message.contains("SEG2/SEG3"),
+        "{}",
+        e.message
+    );
+    assert_eq!(e.keyword.as_deref(), Some("ZONE/GROUP_MA_ESCL"));
+    // HEXA/PENTA cells as master in 3D.
+    let e = error_of(
+        "3D",
+        'H',
+        "ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, GROUP_MA_MAIT='VOL_RIG', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(e.message.contains("HEXA8"), "{}", e.message);
+    assert_eq!(e.keyword.as_deref(), Some("ZONE/GROUP_MA_MAIT"));
+}
+
+#[test]
+fn unimplemented_formulations_and_options_are_refused() {
+    let e = error_of(
+        "AXIS",
+        'D',
+        "FORMULATION='CONTINUE', ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(
+        e.message
+            .starts_with("not implemented yet: DEFI_CONTACT/FORMULATION"),
+        "{}",
+        e.message
+    );
+    assert!(e.message.contains("CONTINUE"));
+    let m = mesh('D');
+    let text = "FORMULATION='LIAISON_UNIL', ZONE=_F(GROUP_NO='A1', NOM_CMP='DY', \
+                COEF_MULT=F1, COEF_IMPO=F1)";
+    // LIAISON_UNIL needs function concepts: declare one before.
+    let args = defi_contact_with_function(text);
+    let e = ContactDef::from_args(&args, &m).unwrap_err();
+    assert!(e.message.contains("LIAISON_UNIL"), "{}", e.message);
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(
+        e.message.contains("ALGO_CONT='CONTRAINTE'"),
+        "{}",
+        e.message
+    );
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, APPARIEMENT='NODAL', \
+         GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(e.message.contains("ZONE/APPARIEMENT"), "{}", e.message);
+    let e = error_of(
+        "AXIS",
+        'D',
+        "LISSAGE='OUI', ZONE=_F(ALGO_CONT='PENALISATION', E_N=1.E5, \
+         GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(e.message.contains("LISSAGE"), "{}", e.message);
+}
+
+fn defi_contact_with_function(keywords: &str) -> Args {
+    let text = format!(
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='AXIS'))\n\
+         F1 = DEFI_CONSTANTE(VALE=1.)\n\
+         CONT = DEFI_CONTACT(MODELE=MO, {keywords})\nFIN()\n"
+    );
+    let src = Source::new("contact.comm", text);
+    let mut messages = String::new();
+    let program = parse_and_check(&src, &commands::all(), &mut messages)
+        .unwrap_or_else(|| panic!("check failed:\n{messages}"));
+    program
+        .commands
+        .into_iter()
+        .find(|c| c.name == "DEFI_CONTACT")
+        .unwrap()
+        .args
+}
+
+#[test]
+fn negative_penalty_is_refused() {
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=_F(ALGO_CONT='PENALISATION', E_N=-1., GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert_eq!(e.keyword.as_deref(), Some("ZONE/E_N"));
+}
+
+/// Pairs the zone at the given displacement of all slave nodes and checks
+/// every gap and normal.
+fn check_gaps(letter: char, modelisation: &str, vertical: usize) {
+    let m = mesh(letter);
+    let def = ContactDef::from_args(&defi_contact(modelisation, SDNV103B), &m).unwrap();
+    let nslave = def.zones[0].slave_nodes.len();
+    let zero = vec![[0.0; 3]; m.nnodes()];
+    let p = pair(&def, &m, &zero);
+    assert!(p.unpaired.is_empty());
+    assert_eq!(p.links.len(), nslave);
+    for l in &p.links {
+        // Exactly the generator's GAP up to rounding of the coordinates.
+        assert!((l.gap - GAP).abs() < 1e-12, "{letter}: gap {}", l.gap);
+        assert!((l.gap_ref - GAP).abs() < 1e-12);
+        // n_in points down, into the foundation.
+        assert!((l.normal[vertical] + 1.0).abs() < 1e-14);
+        // The projection is the slave node brought down to height 0.
+        let x = m.coords[l.slave];
+        for (c, &xc) in x.iter().enumerate() {
+            let expect = if c == vertical { 0.0 } else { xc };
+            assert!((l.proj[c] - expect).abs() < 1e-12);
+        }
+    }
+    // The bar moved down by 3: every node is 0.73 inside the foundation.
+    let mut u = zero.clone();
+    for &n in &def.zones[0].slave_nodes {
+        u[n][vertical] = -3.0;
+    }
+    let p = pair(&def, &m, &u);
+    assert_eq!(p.links.len(), nslave);
+    for l in &p.links {
+        assert!(
+            (l.gap - (GAP - 3.0)).abs() < 1e-12,
+            "{letter}: gap {}",
+            l.gap
+        );
+        assert!((aster::contact::discrete::link_gap(l, &u) - l.gap).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn initial_gap_is_2_27_on_modelling_b() {
+    check_gaps('B', "AXIS", 1);
+}
+
+#[test]
+fn initial_gap_is_2_27_on_modelling_h() {
+    check_gaps('H', "3D", 2);
+}
+
+#[test]
+fn far_slave_nodes_stay_unpaired() {
+    // The 2x2 axis mesh with the master group moved 30 mm sideways: SZZ
+    // (x ∈ [0, 3.2]) projects beyond TOLE_PROJ_EXT of RIGID (x ∈ [30, 50]).
+    let m = mesh('D');
+    let def = ContactDef::from_args(&defi_contact("AXIS", SDNV103B), &m).unwrap();
+    let mut u = vec![[0.0; 3]; m.nnodes()];
+    for &c in &m.cell_groups["RIGID"] {
+        for &n in &m.cells[c].nodes {
+            u[n][0] = 30.0;
+        }
+    }
+    let p = pair(&def, &m, &u);
+    assert!(p.links.is_empty());
+    assert_eq!(p.unpaired.len(), 5);
+}
