@@ -298,8 +298,8 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         lines.push(format!(
             "      zone {}: slave {escl} ({} cells) on master {mait} ({} cells), ALGO_CONT={algo}",
             k + 1,
-            mesh.cell_groups[escl].len(),
-            mesh.cell_groups[mait].len()
+            mesh.cell_groups.get(escl).map_or(0, Vec::len),
+            mesh.cell_groups.get(mait).map_or(0, Vec::len)
         ));
     }
     if formulation != "CONTINUE" {
@@ -328,7 +328,9 @@ fn check_surface(
     key: &str,
 ) -> Result<(), Diagnostic> {
     check_groups(mesh, zone, key, GroupKind::Cells)?;
-    let group = zone.text(key).unwrap_or_default();
+    let Some(group) = zone.text(key) else {
+        return Err(zone.error(key, "one cell group is expected"));
+    };
     let dim = model.dofs.len() - 1;
     for &c in &mesh.cell_groups[group] {
         let kind = mesh.cells[c].kind;

@@ -38,6 +38,17 @@ pub fn mesh_of_model<'s>(
     model: &Model,
 ) -> Result<&'s Mesh, Diagnostic> {
     match study.concepts.data(&model.mesh) {
+        // A mesh concept rebound (reuse=) to a mesh with other cells would
+        // no longer match the model's per-cell roles.
+        Some(ConceptData::Mesh(m)) if m.ncells() != model.cells.len() => Err(args.error(
+            key,
+            format!(
+                "the mesh {} has {} cells but had {} when the model was built: rebuild the model",
+                model.mesh,
+                m.ncells(),
+                model.cells.len()
+            ),
+        )),
         Some(ConceptData::Mesh(m)) => Ok(m),
         _ => Err(args.error(
             key,

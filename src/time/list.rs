@@ -300,3 +300,59 @@ impl TimeList {
             .unwrap_or(&Action::Arret)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn manuel(subd_niveau: usize) -> Subdivision {
+        Subdivision::Manuel {
+            subd_pas: 2,
+            subd_niveau,
+            subd_pas_mini: 0.0,
+        }
+    }
+
+    /// The level limit is the largest SUBD_NIVEAU of any MANUEL cutting
+    /// rule, the ITER_SUPPL fallback included; AUTO cutting has no level;
+    /// METHODE='AUTO' has none at all.
+    #[test]
+    fn shared_subdivision_level() {
+        let mut l = TimeList::plain(vec![0.0, 0.1, 0.3]);
+        assert_eq!(l.max_subd_niveau(), None);
+        l.rules = vec![
+            FailureRule {
+                event: Event::Erreur,
+                action: Action::IterSuppl {
+                    pcent_iter_plus: 50.0,
+                    subdivision: manuel(6),
+                },
+            },
+            FailureRule {
+                event: Event::Collision,
+                action: Action::Decoupe(manuel(2)),
+            },
+            FailureRule {
+                event: Event::ResiMaxi {
+                    resi_glob_maxi: 1.0,
+                },
+                action: Action::Decoupe(Subdivision::AutoExtrapole { subd_pas_mini: 0.0 }),
+            },
+        ];
+        assert_eq!(l.max_subd_niveau(), Some(6));
+        l.auto = true;
+        assert_eq!(l.max_subd_niveau(), None);
+        assert!((l.min_step().unwrap() - 0.1).abs() < 1e-15);
+        assert_eq!(TimeList::plain(vec![1.0]).min_step(), None);
+    }
+
+    #[test]
+    fn implicit_rule_and_its_text() {
+        let r = TimeList::implicit_error_rule();
+        assert_eq!(r.action_subd_pas_mini(), Some(1e-12));
+        assert_eq!(
+            r.action.to_string(),
+            "DECOUPE MANUEL (SUBD_PAS=4, SUBD_NIVEAU=3, SUBD_PAS_MINI=1e-12)"
+        );
+    }
+}
