@@ -1,9 +1,14 @@
 //! AFFE_CHAR_MECA: mechanical loads and boundary conditions.
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::model_args::{mesh_of_model, model_of, select_nodes, selection_label};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::model::{Dof, ImposedDof, MechLoad};
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let mut ddl = vec![
@@ -53,8 +58,98 @@ pub fn def() -> CommandDef {
     )
     .rules(vec![au_moins_un(&["DDL_IMPO"])])
     .doc("Defines mechanical boundary conditions on a model.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// DDL_IMPO: for each occurrence, every selected node gets each given
+/// component. `GROUP_MA` means all nodes of those cells and `TOUT` all
+/// nodes of the model. Entries are kept in occurrence order, duplicates
+/// included (the engine keeps the last value and fails if two differ).
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let (model_name, model) = model_of(study, args, "MODELE")?;
+    let model = model.clone();
+    let mesh = mesh_of_model(study, args, "MODELE", &model)?;
+    let in_model = model.node_mask(mesh);
+    let model_nodes: Vec<usize> = (0..mesh.nnodes()).filter(|&n| in_model[n]).collect();
+    let dof_names = model
+        .dofs
+        .iter()
+        .map(|d| d.name())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let mut imposed = Vec::new();
+    let mut lines = Vec::new();
+    for (k, occ) in args.facts("DDL_IMPO").iter().enumerate() {
+        let mut dofs: Vec<(Dof, f64)> = Vec::new();
+        if occ.has("LIAISON") {
+            dofs.extend(model.dofs.iter().map(|&d| (d, 0.0)));
+        }
+        for &c in CMP_DEPL {
+            let Some(v) = occ.real(c) else { continue };
+            match Dof::from_name(c).filter(|d| model.has_dof(*d)) {
+                Some(d) => {
+                    dofs.retain(|(e, _)| *e != d);
+                    dofs.push((d, v));
+                }
+                None => {
+                    return Err(occ.error(
+                        c,
+                        format!(
+                            "{c} is not a degree of freedom of the model {model_name}, whose nodes carry {dof_names}"
+                        ),
+                    ));
+                }
+            }
+        }
+        let nodes = select_nodes(mesh, occ, &model_nodes)?;
+        let outside: Vec<usize> = nodes.iter().copied().filter(|&n| !in_model[n]).collect();
+        if let Some(&n0) = outside.first() {
+            return Err(occ.error(
+                "",
+                format!(
+                    "{} of the nodes of {} (node {} first) belong to no cell of the model {model_name}: they carry no degree of freedom",
+                    outside.len(),
+                    selection_label(occ),
+                    n0 + 1
+                ),
+            ));
+        }
+        if nodes.is_empty() {
+            lines.push(format!(
+                "<A> <AFFE_CHAR_MECA> occurrence {} of DDL_IMPO selects no node",
+                k + 1
+            ));
+        }
+        for &n in &nodes {
+            for &(dof, value) in &dofs {
+                imposed.push(ImposedDof {
+                    node: n,
+                    dof,
+                    value,
+                });
+            }
+        }
+        lines.push(format!(
+            "      DDL_IMPO {}: {} nodes of {}, {}",
+            k + 1,
+            nodes.len(),
+            selection_label(occ),
+            dofs.iter()
+                .map(|(d, v)| format!("{}={v}", d.name()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        ));
     }
+    study.log(format!(
+        "    load {} on model {model_name}: {} imposed dofs",
+        result.unwrap_or("(unnamed)"),
+        imposed.len()
+    ));
+    for l in lines {
+        study.log(l);
+    }
+    Ok(Some(ConceptData::MechLoad(Box::new(MechLoad {
+        model: model_name,
+        imposed,
+    }))))
 }

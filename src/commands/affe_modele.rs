@@ -1,9 +1,20 @@
 //! AFFE_MODELE: assigns finite elements to the cells of a mesh.
 
+use std::collections::BTreeMap;
+
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::mesh_args::mesh_of;
+use super::model_args::{groups_containing, select_cells};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::element::{element_spec, unimplemented_element, Formulation};
+use crate::mesh::ops::jacobian_dets;
+use crate::mesh::CellType;
+use crate::model::{CellRole, Dof, Model};
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -46,8 +57,244 @@ pub fn def() -> CommandDef {
         ],
     )
     .doc("Defines the model: physics and element type per cell.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// The modelisations aster builds, with their formulation. The others of
+/// the catalogue (D_PLAN, C_PLAN, ...) are refused as not implemented
+/// rather than silently giving no element.
+fn formulation_of(modelisation: &str) -> Option<Formulation> {
+    match modelisation {
+        "3D" | "3D_SI" => Some(Formulation::Solid3d),
+        "AXIS" | "AXIS_SI" => Some(Formulation::Axis),
+        _ => None,
     }
+}
+
+/// The boundary element a modelisation puts on a cell one dimension below
+/// its volume cells (code_aster's MECA_FACE* in 3D, MEAXSE* in AXIS):
+/// such cells carry loads and contact, no stiffness.
+fn skin_element(formulation: Formulation, cell: CellType) -> Option<&'static str> {
+    use CellType::*;
+    match (formulation, cell) {
+        (Formulation::Solid3d, Tria3) => Some("MECA_FACE3"),
+        (Formulation::Solid3d, Tria6) => Some("MECA_FACE6"),
+        (Formulation::Solid3d, Quad4) => Some("MECA_FACE4"),
+        (Formulation::Solid3d, Quad8) => Some("MECA_FACE8"),
+        (Formulation::Axis, Seg2) => Some("MEAXSE2"),
+        (Formulation::Axis, Seg3) => Some("MEAXSE3"),
+        _ => None,
+    }
+}
+
+/// The topological dimension of the volume cells of a formulation (the
+/// "main dimension" of code_aster's MODELE1_70 check).
+fn main_dim(f: Formulation) -> usize {
+    match f {
+        Formulation::Solid3d => 3,
+        Formulation::Axis => 2,
+    }
+}
+
+fn family_name(f: Formulation) -> &'static str {
+    match f {
+        Formulation::Solid3d => "3D (3D, 3D_SI)",
+        Formulation::Axis => "2D axisymmetric (AXIS, AXIS_SI)",
+    }
+}
+
+/// Applies the AFFE occurrences in order (semantics.md §3.2): wherever an
+/// occurrence's modelisation has an element for a cell's type it replaces
+/// what the cell had; elsewhere the cell keeps it. An element that exists
+/// in code_aster but not here must stop the run, because skipping it would
+/// silently keep the earlier (differently integrated) element.
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let mesh_name = args.concept("MAILLAGE").unwrap_or_default().to_string();
+    let mesh = mesh_of(study, args, "MAILLAGE")?.clone();
+    let mut roles = vec![CellRole::None; mesh.ncells()];
+    // The occurrence that gave each cell its element, for the count table.
+    let mut given_by: Vec<Option<usize>> = vec![None; mesh.ncells()];
+    let mut family: Option<(Formulation, usize, String)> = None;
+    let mut alarms = Vec::new();
+    let occs = args.facts("AFFE");
+    for (k, occ) in occs.iter().enumerate() {
+        let modelisation = occ.text("MODELISATION").unwrap_or_default();
+        let Some(form) = formulation_of(modelisation) else {
+            return Err(occ.not_implemented(
+                "MODELISATION",
+                &format!("MODELISATION='{modelisation}'; aster builds 3D, 3D_SI, AXIS and AXIS_SI models"),
+            ));
+        };
+        match &family {
+            Some((f, first, m)) if *f != form => {
+                return Err(occ.error(
+                    "MODELISATION",
+                    format!(
+                        "a model cannot mix {} and {} modelisations: occurrence {} of AFFE uses {m}, occurrence {} uses {modelisation}",
+                        family_name(*f),
+                        family_name(form),
+                        first + 1,
+                        k + 1
+                    ),
+                ));
+            }
+            Some(_) => {}
+            None => family = Some((form, k, modelisation.to_string())),
+        }
+        let cells = select_cells(&mesh, occ)?;
+        let blocked: Vec<usize> = cells
+            .iter()
+            .copied()
+            .filter(|&c| unimplemented_element(modelisation, mesh.cells[c].kind).is_some())
+            .collect();
+        if let Some(&c0) = blocked.first() {
+            let kind = mesh.cells[c0].kind;
+            let element = unimplemented_element(modelisation, kind).unwrap_or_default();
+            let groups = groups_containing(&mesh, &blocked);
+            return Err(occ.not_implemented(
+                "MODELISATION",
+                &format!(
+                    "{modelisation} on {} is the element {element}, which aster does not have; \
+                     it would be assigned to {} {} cell(s){}; restrict this occurrence with GROUP_MA \
+                     to the cells {modelisation} should take",
+                    kind.aster_name(),
+                    blocked.len(),
+                    kind.aster_name(),
+                    if groups.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" of group(s) {}", groups.join(", "))
+                    }
+                ),
+            ));
+        }
+        for &c in &cells {
+            let kind = mesh.cells[c].kind;
+            if let Some(spec) = element_spec(modelisation, kind) {
+                roles[c] = CellRole::Element(spec);
+                given_by[c] = Some(k);
+            } else if skin_element(form, kind).is_some() {
+                roles[c] = CellRole::Skin {
+                    modelisation: modelisation.to_string(),
+                };
+                given_by[c] = Some(k);
+            }
+        }
+        let holes = cells
+            .iter()
+            .filter(|&&c| mesh.cells[c].kind.dim() == main_dim(form) && roles[c] == CellRole::None)
+            .count();
+        if holes > 0 {
+            alarms.push(format!(
+                "<A> <AFFE_MODELE> <MODELE1_70> after occurrence {} of AFFE (MODELISATION='{modelisation}'), \
+                 {holes} cell(s) of dimension {} selected by it have no element: the model has holes there",
+                k + 1,
+                main_dim(form)
+            ));
+        }
+    }
+    let Some((form, _, _)) = family else {
+        return Err(args.error("AFFE", "no AFFE occurrence"));
+    };
+    let assigned = roles.iter().filter(|r| **r != CellRole::None).count();
+    if assigned == 0 {
+        return Err(args.error(
+            "AFFE",
+            format!("no finite element could be assigned to any cell of the mesh {mesh_name} (MODELE1_6)"),
+        ));
+    }
+    if !roles.iter().any(|r| matches!(r, CellRole::Element(_))) {
+        return Err(args.error(
+            "AFFE",
+            format!(
+                "the model has only boundary elements ({assigned} cells) and no volume element: \
+                 no cell of the mesh {mesh_name} has dimension {} (MODELE1_6)",
+                main_dim(form)
+            ),
+        ));
+    }
+    if form == Formulation::Axis && mesh.coords.iter().any(|x| x[2] != 0.0) {
+        alarms.push(
+            "<A> <AFFE_MODELE> <MODELE1_3> an AXIS model needs a mesh in the plane z = 0: \
+             the z coordinates are ignored"
+                .into(),
+        );
+    }
+    if args.text("VERI_JACOBIEN") == Some("OUI") {
+        let bad: Vec<usize> = roles
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| matches!(r, CellRole::Element(_)))
+            .filter(|(c, _)| {
+                jacobian_dets(&mesh, &mesh.cells[*c]).is_some_and(|d| d.iter().any(|&j| j <= 0.0))
+            })
+            .map(|(c, _)| c)
+            .collect();
+        if !bad.is_empty() {
+            alarms.push(format!(
+                "<A> <AFFE_MODELE> {} element(s) have a non-positive Jacobian determinant \
+                 (inverted or degenerate cells) in group(s) {}",
+                bad.len(),
+                groups_containing(&mesh, &bad).join(", ")
+            ));
+        }
+    }
+    let dofs = match form {
+        Formulation::Axis => vec![Dof::Dx, Dof::Dy],
+        Formulation::Solid3d => vec![Dof::Dx, Dof::Dy, Dof::Dz],
+    };
+
+    // The count table code_aster prints after AFFE_MODELE.
+    let mut table: BTreeMap<(usize, CellType), (&'static str, usize)> = BTreeMap::new();
+    for (c, role) in roles.iter().enumerate() {
+        let kind = mesh.cells[c].kind;
+        let Some(k) = given_by[c] else { continue };
+        let name = match role {
+            CellRole::Element(s) => s.name,
+            CellRole::Skin { .. } => skin_element(form, kind).unwrap_or("?"),
+            CellRole::None => continue,
+        };
+        table.entry((k, kind)).or_insert((name, 0)).1 += 1;
+    }
+    study.log(format!(
+        "    model {} on mesh {mesh_name}: of the {} cells, {} selected, {assigned} assigned",
+        result.unwrap_or("(unnamed)"),
+        mesh.ncells(),
+        selected_count(&mesh, occs)
+    ));
+    study.log(format!(
+        "      {:<14}{:<16}{:<10}{:>8}",
+        "MODELISATION", "ELEMENT", "CELL", "NUMBER"
+    ));
+    for ((k, kind), (name, n)) in &table {
+        study.log(format!(
+            "      {:<14}{:<16}{:<10}{:>8}",
+            occs[*k].text("MODELISATION").unwrap_or_default(),
+            name,
+            kind.aster_name(),
+            n
+        ));
+    }
+    for a in alarms {
+        study.log(a);
+    }
+    Ok(Some(ConceptData::Model(Box::new(Model {
+        mesh: mesh_name,
+        dofs,
+        cells: roles,
+    }))))
+}
+
+/// The number of distinct cells selected by any occurrence (code_aster's
+/// "ON A DEMANDE L'AFFECTATION DE" line).
+fn selected_count(mesh: &crate::mesh::Mesh, occs: &[Args]) -> usize {
+    let mut seen = vec![false; mesh.ncells()];
+    for occ in occs {
+        if let Ok(cells) = select_cells(mesh, occ) {
+            for c in cells {
+                seen[c] = true;
+            }
+        }
+    }
+    seen.iter().filter(|&&s| s).count()
 }

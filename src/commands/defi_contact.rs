@@ -6,9 +6,17 @@
 //! are not offered (they need concepts aster does not have).
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::mesh_args::{check_groups, GroupKind};
+use super::model_args::{mesh_of_model, model_of, select_nodes};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::diag::Diagnostic;
+use crate::mesh::Mesh;
+use crate::model::{CellRole, Dof, Model};
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -222,10 +230,198 @@ pub fn def() -> CommandDef {
         ],
     )
     .doc("Defines contact (or unilateral) conditions, given to DYNA_NON_LINE by CONTACT.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// Keeps the checked keywords for the contact engine and does, now, the
+/// checks code_aster does when the contact is defined: names, surfaces,
+/// and the algorithm combinations it refuses.
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let (model_name, model) = model_of(study, args, "MODELE")?;
+    let mesh = mesh_of_model(study, args, "MODELE", model)?;
+    let formulation = args.text("FORMULATION").unwrap_or("DISCRETE");
+    let friction = args.text("FROTTEMENT") == Some("COULOMB");
+    let zones = args.facts("ZONE");
+    let mut lines = Vec::new();
+    for (k, zone) in zones.iter().enumerate() {
+        for key in [
+            "MAILLE_MAIT",
+            "MAILLE_ESCL",
+            "MAILLE",
+            "NOEUD",
+            "SANS_NOEUD",
+            "SANS_MAILLE",
+            "SANS_NOEUD_FR",
+        ] {
+            if zone.has(key) {
+                return Err(zone.not_implemented(key, "cells and nodes by name; use groups"));
+            }
+        }
+        for key in ["SANS_GROUP_MA"] {
+            if zone.has(key) {
+                check_groups(mesh, zone, key, GroupKind::Cells)?;
+            }
+        }
+        for key in ["SANS_GROUP_NO", "SANS_GROUP_NO_FR"] {
+            if zone.has(key) {
+                check_groups(mesh, zone, key, GroupKind::Nodes)?;
+            }
+        }
+        if formulation == "LIAISON_UNIL" {
+            lines.push(unil_zone(mesh, model, &model_name, zone, k)?);
+            continue;
+        }
+        for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
+            check_surface(mesh, model, &model_name, zone, key)?;
+        }
+        let (mait, escl) = (
+            zone.text("GROUP_MA_MAIT").unwrap_or_default(),
+            zone.text("GROUP_MA_ESCL").unwrap_or_default(),
+        );
+        if mait == escl {
+            return Err(zone.error(
+                "GROUP_MA_ESCL",
+                format!("the slave surface {escl} is also the master surface"),
+            ));
+        }
+        let algo = zone.text("ALGO_CONT").unwrap_or_default();
+        if formulation == "DISCRETE" && friction && algo != "PENALISATION" {
+            return Err(zone.error(
+                "ALGO_CONT",
+                format!(
+                    "discrete contact with Coulomb friction needs ALGO_CONT='PENALISATION' \
+                     (zone {}: ALGO_CONT='{algo}') (CONTACT3_3)",
+                    k + 1
+                ),
+            ));
+        }
+        lines.push(format!(
+            "      zone {}: slave {escl} ({} cells) on master {mait} ({} cells), ALGO_CONT={algo}",
+            k + 1,
+            mesh.cell_groups.get(escl).map_or(0, Vec::len),
+            mesh.cell_groups.get(mait).map_or(0, Vec::len)
+        ));
     }
+    if formulation != "CONTINUE" {
+        same_algorithm(zones)?;
+    }
+    study.log(format!(
+        "    contact {} on model {model_name}: FORMULATION='{formulation}', FROTTEMENT='{}', {} zone(s)",
+        result.unwrap_or("(unnamed)"),
+        args.text("FROTTEMENT").unwrap_or("SANS"),
+        zones.len()
+    ));
+    for l in lines {
+        study.log(l);
+    }
+    Ok(Some(ConceptData::Contact(Box::new(args.clone()))))
+}
+
+/// A contact surface is one cell group whose cells all are boundary cells
+/// of the model (edges in AXIS, faces in 3D): the contact elements are
+/// built on them.
+fn check_surface(
+    mesh: &Mesh,
+    model: &Model,
+    model_name: &str,
+    zone: &Args,
+    key: &str,
+) -> Result<(), Diagnostic> {
+    check_groups(mesh, zone, key, GroupKind::Cells)?;
+    let Some(group) = zone.text(key) else {
+        return Err(zone.error(key, "one cell group is expected"));
+    };
+    let dim = model.dofs.len() - 1;
+    for &c in &mesh.cell_groups[group] {
+        let kind = mesh.cells[c].kind;
+        if kind.dim() != dim {
+            return Err(zone.error(
+                key,
+                format!(
+                    "the contact surface {group} holds a {} cell: a surface of this model is made of cells of dimension {dim}",
+                    kind.aster_name()
+                ),
+            ));
+        }
+        if model.cells[c] == CellRole::None {
+            return Err(zone.error(
+                key,
+                format!(
+                    "the cells of the contact surface {group} are not in the model {model_name}: add them to an AFFE of AFFE_MODELE"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// LIAISON_UNIL: the nodes must carry the named components, and each
+/// component has its coefficient.
+fn unil_zone(
+    mesh: &Mesh,
+    model: &Model,
+    model_name: &str,
+    zone: &Args,
+    k: usize,
+) -> Result<String, Diagnostic> {
+    let in_model = model.node_mask(mesh);
+    let nodes = select_nodes(mesh, zone, &[])?;
+    if let Some(n) = nodes.iter().find(|&&n| !in_model[n]) {
+        return Err(zone.error(
+            "",
+            format!(
+                "node {} of the zone belongs to no cell of the model {model_name}: it carries no degree of freedom",
+                n + 1
+            ),
+        ));
+    }
+    let cmps = zone.texts("NOM_CMP");
+    let mult = zone.concepts("COEF_MULT");
+    if cmps.len() != mult.len() {
+        return Err(zone.error(
+            "COEF_MULT",
+            format!(
+                "NOM_CMP gives {} component(s) and COEF_MULT {} coefficient(s): they must have the same length",
+                cmps.len(),
+                mult.len()
+            ),
+        ));
+    }
+    for c in &cmps {
+        if !Dof::from_name(c).is_some_and(|d| model.has_dof(d)) {
+            return Err(zone.error(
+                "NOM_CMP",
+                format!("{c} is not a degree of freedom of the model {model_name}"),
+            ));
+        }
+    }
+    Ok(format!(
+        "      zone {}: {} nodes, sum of COEF_MULT x ({}) <= COEF_IMPO",
+        k + 1,
+        nodes.len(),
+        cmps.join(", ")
+    ))
+}
+
+/// DISCRETE and LIAISON_UNIL solve all zones with one algorithm, so the
+/// zones must agree on it.
+fn same_algorithm(zones: &[Args]) -> Result<(), Diagnostic> {
+    let Some(first) = zones.first().and_then(|z| z.text("ALGO_CONT")) else {
+        return Ok(());
+    };
+    for (k, z) in zones.iter().enumerate().skip(1) {
+        let a = z.text("ALGO_CONT").unwrap_or_default();
+        if a != first {
+            return Err(z.error(
+                "ALGO_CONT",
+                format!(
+                    "all zones must use the same ALGO_CONT: zone 1 uses '{first}', zone {} '{a}'",
+                    k + 1
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The pairing loop of the fixed-point geometric method.

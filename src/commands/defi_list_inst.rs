@@ -1,9 +1,16 @@
 //! DEFI_LIST_INST: a time list with step-cutting and adaptation rules.
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::diag::Diagnostic;
+use crate::run::Study;
+use crate::time::list::{
+    Action, AdaptEvent, Adaptation, Event, FailureRule, Subdivision, TimeList, TplusMode,
+};
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -71,10 +78,257 @@ pub fn def() -> CommandDef {
         ],
     )
     .doc("Defines a time list for INCREMENT/LIST_INST with failure handling (step cutting) and adaptation.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let auto = args.text("METHODE") == Some("AUTO");
+    let Some(dl) = args.fact("DEFI_LIST") else {
+        return Err(args.error("DEFI_LIST", "DEFI_LIST is required"));
+    };
+    let instants = instants(study, dl)?;
+    let nb_pas_maxi = dl.int("NB_PAS_MAXI").unwrap_or(1_000_000);
+    if nb_pas_maxi < 1 {
+        return Err(dl.error("NB_PAS_MAXI", "NB_PAS_MAXI must be at least 1"));
     }
+    let pas_mini = dl.real("PAS_MINI");
+    let pas_maxi = dl.real("PAS_MAXI");
+    if let (Some(lo), Some(hi)) = (pas_mini, pas_maxi) {
+        if lo > hi {
+            return Err(dl.error(
+                "PAS_MINI",
+                format!("PAS_MINI = {lo:e} is larger than PAS_MAXI = {hi:e}"),
+            ));
+        }
+    }
+    let mut list = TimeList {
+        instants,
+        auto,
+        pas_mini,
+        pas_maxi,
+        nb_pas_maxi: nb_pas_maxi as usize,
+        rules: Vec::new(),
+        adaptation: Vec::new(),
+    };
+    let min_step = list.min_step().unwrap_or(f64::INFINITY);
+
+    // A defaulted ECHEC is the checker's single default occurrence: it
+    // stands for "no rule given", which code_aster turns into the implicit
+    // ERREUR rule (with SUBD_PAS_MINI 1e-12, not the catalogue's 0).
+    let given_echec = args.given("ECHEC");
+    let occs: &[Args] = if given_echec {
+        args.facts("ECHEC")
+    } else {
+        &[]
+    };
+    let mut seen: Vec<(String, usize)> = Vec::new();
+    for (k, occ) in occs.iter().enumerate() {
+        let rule = failure_rule(occ)?;
+        let name = rule.event.name().to_string();
+        if name != "DELTA_GRANDEUR" {
+            if let Some((_, first)) = seen.iter().find(|(n, _)| *n == name) {
+                return Err(occ.error(
+                    "EVENEMENT",
+                    format!(
+                        "the event {name} is given twice (occurrences {} and {} of ECHEC): give one rule per event",
+                        first + 1,
+                        k + 1
+                    ),
+                ));
+            }
+            seen.push((name, k));
+        }
+        if let Some(m) = rule.action_subd_pas_mini().filter(|&m| m > min_step) {
+            return Err(occ.error(
+                "SUBD_PAS_MINI",
+                format!(
+                    "SUBD_PAS_MINI = {m:e} is larger than the smallest step of the list, {min_step:e} (DISCRETISATION_6)"
+                ),
+            ));
+        }
+        list.rules.push(rule);
+    }
+    let implicit = !list.rules.iter().any(|r| r.event == Event::Erreur);
+    if implicit {
+        let rule = TimeList::implicit_error_rule();
+        if let Some(m) = rule.action_subd_pas_mini().filter(|&m| m > min_step) {
+            return Err(args.error(
+                "DEFI_LIST",
+                format!(
+                    "the smallest step of the list, {min_step:e}, is below the SUBD_PAS_MINI = {m:e} of the implicit ERREUR rule (DISCRETISATION_6)"
+                ),
+            ));
+        }
+        list.rules.push(rule);
+    }
+    if auto {
+        for occ in args.facts("ADAPTATION") {
+            list.adaptation.push(adaptation_rule(occ)?);
+        }
+    }
+
+    let n = list.instants.len();
+    study.log(format!(
+        "    time list {} (METHODE='{}'): {n} instants from {:e} to {:e}, smallest step {min_step:e}",
+        result.unwrap_or("(unnamed)"),
+        if auto { "AUTO" } else { "MANUEL" },
+        list.instants[0],
+        list.instants[n - 1],
+    ));
+    for (k, r) in list.rules.iter().enumerate() {
+        let tag = if implicit && k + 1 == list.rules.len() {
+            " (implicit: no ERREUR rule given)"
+        } else {
+            ""
+        };
+        study.log(format!("      {} -> {}{tag}", r.event.name(), r.action));
+    }
+    if let Some(level) = list.max_subd_niveau() {
+        study.log(format!(
+            "      maximum subdivision level shared by all events: {level}"
+        ));
+    }
+    Ok(Some(ConceptData::TimeList(Box::new(list))))
+}
+
+/// The instants of DEFI_LIST: a DEFI_LIST_REEL list, or VALE.
+fn instants(study: &Study, dl: &Args) -> Result<Vec<f64>, Diagnostic> {
+    let (v, key) = if dl.has("RESULTAT") {
+        return Err(dl.not_implemented("RESULTAT", "the instants of a result"));
+    } else if let Some(name) = dl.concept("LIST_INST") {
+        match study.concepts.data(name) {
+            Some(ConceptData::ListReal(v)) => (v.clone(), "LIST_INST"),
+            _ => {
+                return Err(dl.error(
+                    "LIST_INST",
+                    format!("the list {name} holds no data (its command did not run)"),
+                ))
+            }
+        }
+    } else {
+        (dl.reals("VALE"), "VALE")
+    };
+    if v.len() < 2 {
+        return Err(dl.error(
+            key,
+            format!("a time list needs at least two instants, {} given", v.len()),
+        ));
+    }
+    if let Some(k) = (1..v.len()).find(|&k| v[k] <= v[k - 1]) {
+        return Err(dl.error(
+            key,
+            format!(
+                "the instants must be strictly increasing: instant {} ({:e}) follows {:e}",
+                k + 1,
+                v[k],
+                v[k - 1]
+            ),
+        ));
+    }
+    Ok(v)
+}
+
+/// One ECHEC occurrence. Values the catalogue always fills are read with
+/// code_aster's defaults as a fallback only.
+fn failure_rule(occ: &Args) -> Result<FailureRule, Diagnostic> {
+    let real = |k: &str| {
+        occ.real(k)
+            .ok_or_else(|| occ.error(k, format!("{k} is required")))
+    };
+    let text = |k: &str| occ.text(k).unwrap_or_default().to_string();
+    let event = match occ.text("EVENEMENT").unwrap_or("ERREUR") {
+        "ERREUR" => Event::Erreur,
+        "COLLISION" => Event::Collision,
+        "INTERPENETRATION" => Event::Interpenetration {
+            pene_maxi: real("PENE_MAXI")?,
+        },
+        "DELTA_GRANDEUR" => Event::DeltaGrandeur {
+            vale_ref: real("VALE_REF")?,
+            nom_cham: text("NOM_CHAM"),
+            nom_cmp: text("NOM_CMP"),
+        },
+        "RESI_MAXI" => Event::ResiMaxi {
+            resi_glob_maxi: real("RESI_GLOB_MAXI")?,
+        },
+        other => Event::Other(other.to_string()),
+    };
+    let action = match occ.text("ACTION").unwrap_or("DECOUPE") {
+        "ARRET" => Action::Arret,
+        "DECOUPE" => Action::Decoupe(subdivision(occ, &event)?),
+        "ITER_SUPPL" => Action::IterSuppl {
+            pcent_iter_plus: occ.int("PCENT_ITER_PLUS").unwrap_or(50) as f64,
+            subdivision: subdivision(occ, &event)?,
+        },
+        "ADAPT_COEF_PENA" => Action::AdaptCoefPena {
+            coef_maxi: occ.real("COEF_MAXI").unwrap_or(1e12),
+        },
+        "CONTINUE" => Action::Continue,
+        other => {
+            return Err(
+                occ.not_implemented("ACTION", &format!("ACTION='{other}' (it needs PILOTAGE)"))
+            )
+        }
+    };
+    Ok(FailureRule { event, action })
+}
+
+/// The cutting method of an occurrence: MANUEL (equal sub-steps, levels),
+/// AUTO (collision refinement for COLLISION, extrapolation otherwise).
+fn subdivision(occ: &Args, event: &Event) -> Result<Subdivision, Diagnostic> {
+    let int = |k: &str, d: i64| occ.int(k).unwrap_or(d);
+    let pas_mini = occ.real("SUBD_PAS_MINI").unwrap_or(0.0);
+    Ok(match occ.text("SUBD_METHODE").unwrap_or("MANUEL") {
+        "MANUEL" => Subdivision::Manuel {
+            subd_pas: int("SUBD_PAS", 4).max(2) as usize,
+            subd_niveau: int("SUBD_NIVEAU", 3).max(2) as usize,
+            subd_pas_mini: pas_mini,
+        },
+        _ if *event == Event::Collision => Subdivision::AutoCollision {
+            subd_inst: occ
+                .real("SUBD_INST")
+                .ok_or_else(|| occ.error("SUBD_INST", "SUBD_INST is required"))?,
+            subd_duree: occ
+                .real("SUBD_DUREE")
+                .ok_or_else(|| occ.error("SUBD_DUREE", "SUBD_DUREE is required"))?,
+        },
+        _ => Subdivision::AutoExtrapole {
+            subd_pas_mini: pas_mini,
+        },
+    })
+}
+
+/// One ADAPTATION occurrence (METHODE='AUTO').
+fn adaptation_rule(occ: &Args) -> Result<Adaptation, Diagnostic> {
+    let text = |k: &str, d: &str| occ.text(k).unwrap_or(d).to_string();
+    let event = match occ.text("EVENEMENT").unwrap_or("SEUIL") {
+        "SEUIL" => AdaptEvent::Seuil {
+            nb_incr_seuil: occ.int("NB_INCR_SEUIL").unwrap_or(2).max(1) as usize,
+            nom_para: text("NOM_PARA", "NB_ITER_NEWTON"),
+            crit_comp: text("CRIT_COMP", "LE"),
+            vale_i: occ.int("VALE_I"),
+        },
+        "TOUT_INST" => AdaptEvent::ToutInst,
+        _ => AdaptEvent::Aucun,
+    };
+    let mode = match occ.text("MODE_CALCUL_TPLUS").unwrap_or("FIXE") {
+        "FIXE" => TplusMode::Fixe {
+            pcent_augm: occ.real("PCENT_AUGM").unwrap_or(100.0),
+        },
+        "DELTA_GRANDEUR" => TplusMode::DeltaGrandeur {
+            vale_ref: occ
+                .real("VALE_REF")
+                .ok_or_else(|| occ.error("VALE_REF", "VALE_REF is required"))?,
+            nom_cham: text("NOM_CHAM", ""),
+            nom_cmp: text("NOM_CMP", ""),
+        },
+        "ITER_NEWTON" => TplusMode::IterNewton {
+            nb_iter_newton_ref: occ
+                .int("NB_ITER_NEWTON_REF")
+                .ok_or_else(|| occ.error("NB_ITER_NEWTON_REF", "NB_ITER_NEWTON_REF is required"))?,
+        },
+        _ => TplusMode::Implex,
+    };
+    Ok(Adaptation { event, mode })
 }
 
 /// Manual cutting: equal sub-steps, a maximum level, a minimum step.

@@ -1,9 +1,16 @@
 //! DEFI_MATERIAU: material parameters, by behaviour block.
 
+use indexmap::IndexMap;
+
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::model_args::real_text;
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::model::Material;
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -80,8 +87,86 @@ pub fn def() -> CommandDef {
         exclus(&["ECRO_LINE", "ECRO_COOK"]),
     ])
     .doc("Defines a material: one factor keyword per behaviour ingredient.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// The blocks aster keeps, in the order they are stored.
+const BLOCKS: [&str; 3] = ["ELAS", "ECRO_LINE", "ECRO_COOK"];
+
+/// The values VMIS_JOHN_COOK uses for the optional ECRO_COOK parameters
+/// when they are absent (code_aster's `nmtevp`): no rate term (C = 0,
+/// EPSP0 = 1) and no thermal softening (TROOM = -1 switches it off). They
+/// are stored so that the law never has to know them.
+const ECRO_COOK_ABSENT: [(&str, f64); 5] = [
+    ("C", 0.0),
+    ("EPSP0", 1.0),
+    ("M_PUIS", 0.0),
+    ("TROOM", -1.0),
+    ("TMELT", 1.0),
+];
+
+/// Stores the blocks with their given and defaulted reals, then checks
+/// what code_aster checks before any computation can use the material.
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let mut mat = Material::default();
+    for block in BLOCKS {
+        let Some(occ) = args.fact(block) else {
+            continue;
+        };
+        let mut params = IndexMap::new();
+        for (key, _) in &occ.entries {
+            if let Some(v) = occ.real(key) {
+                params.insert(key.clone(), v);
+            }
+        }
+        if block == "ECRO_COOK" {
+            for (key, v) in ECRO_COOK_ABSENT {
+                params.entry(key.to_string()).or_insert(v);
+            }
+        }
+        mat.blocks.insert(block.to_string(), params);
     }
+    for block in ["ECRO_LINE", "ECRO_COOK"] {
+        if mat.blocks.contains_key(block) && !mat.blocks.contains_key("ELAS") {
+            return Err(args.error(
+                block,
+                format!("{block} needs ELAS in the same material: the plasticity laws read E and NU from it"),
+            ));
+        }
+    }
+    let mut notes = Vec::new();
+    if let (Some(e), Some(et)) = (mat.get("ELAS", "E"), mat.get("ECRO_LINE", "D_SIGM_EPSI")) {
+        if et >= e {
+            let occ = args.fact("ECRO_LINE").unwrap_or(args);
+            return Err(occ.error(
+                "D_SIGM_EPSI",
+                format!(
+                    "the tangent slope D_SIGM_EPSI = {et} must be smaller than Young's modulus E = {e} (COMPOR1_54)"
+                ),
+            ));
+        }
+        notes.push(format!(
+            "      ECRO_LINE: hardening modulus H = E.D_SIGM_EPSI/(E - D_SIGM_EPSI) = {}",
+            e * et / (e - et)
+        ));
+    }
+    study.log(format!(
+        "    material {}: {}",
+        result.unwrap_or("(unnamed)"),
+        mat.blocks
+            .iter()
+            .map(|(b, p)| format!(
+                "{b}({})",
+                p.iter()
+                    .map(|(k, v)| format!("{k}={}", real_text(*v)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))
+            .collect::<Vec<_>>()
+            .join(" ")
+    ));
+    for n in notes {
+        study.log(n);
+    }
+    Ok(Some(ConceptData::Material(Box::new(mat))))
 }

@@ -35,6 +35,7 @@ pub mod impr_resu;
 pub mod impr_table;
 pub mod lire_maillage;
 pub mod mesh_args;
+pub mod model_args;
 pub mod modi_maillage;
 pub mod post_releve_t;
 pub mod recu_fonction;

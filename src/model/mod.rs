@@ -8,6 +8,7 @@
 use indexmap::IndexMap;
 
 use crate::element::ElementSpec;
+use crate::mesh::Mesh;
 
 /// A degree of freedom of the displacement quantity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -68,6 +69,26 @@ impl Model {
             CellRole::Element(s) => Some((i, s)),
             _ => None,
         })
+    }
+
+    /// True if the model carries this component (DZ is absent in AXIS).
+    pub fn has_dof(&self, dof: Dof) -> bool {
+        self.dofs.contains(&dof)
+    }
+
+    /// Per mesh node, whether it carries the model's dofs: a node does
+    /// when it belongs to a cell of the model (element or skin). Loads and
+    /// fields on other nodes would have no unknown to act on.
+    pub fn node_mask(&self, mesh: &Mesh) -> Vec<bool> {
+        let mut mask = vec![false; mesh.nnodes()];
+        for (c, role) in self.cells.iter().enumerate() {
+            if *role != CellRole::None {
+                for &n in &mesh.cells[c].nodes {
+                    mask[n] = true;
+                }
+            }
+        }
+        mask
     }
 }
 

@@ -1,0 +1,193 @@
+//! What the model-building commands share: fetching the model and mesh a
+//! command works on, and turning `TOUT`/`GROUP_MA`/`GROUP_NO` selections
+//! into cells and nodes with the same checks everywhere (unknown groups
+//! named with a suggestion, deprecated by-name selectors refused clearly).
+
+use super::mesh_args::{check_groups, GroupKind};
+use crate::catalog::args::Args;
+use crate::concepts::ConceptData;
+use crate::diag::Diagnostic;
+use crate::mesh::Mesh;
+use crate::model::Model;
+use crate::run::Study;
+
+/// The model concept given under `key`, with its name.
+pub fn model_of<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+) -> Result<(String, &'s Model), Diagnostic> {
+    let name = args
+        .concept(key)
+        .ok_or_else(|| args.error(key, "a model concept is expected"))?;
+    match study.concepts.data(name) {
+        Some(ConceptData::Model(m)) => Ok((name.to_string(), m)),
+        _ => Err(args.error(
+            key,
+            format!("the model {name} holds no data (its command did not run)"),
+        )),
+    }
+}
+
+/// The mesh a model was built on. `key` is the keyword that named the
+/// model, for the message if the mesh concept is gone.
+pub fn mesh_of_model<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+    model: &Model,
+) -> Result<&'s Mesh, Diagnostic> {
+    match study.concepts.data(&model.mesh) {
+        // A mesh concept rebound (reuse=) to a mesh with other cells would
+        // no longer match the model's per-cell roles.
+        Some(ConceptData::Mesh(m)) if m.ncells() != model.cells.len() => Err(args.error(
+            key,
+            format!(
+                "the mesh {} has {} cells but had {} when the model was built: rebuild the model",
+                model.mesh,
+                m.ncells(),
+                model.cells.len()
+            ),
+        )),
+        Some(ConceptData::Mesh(m)) => Ok(m),
+        _ => Err(args.error(
+            key,
+            format!(
+                "the mesh {} of this model holds no data (its command did not run)",
+                model.mesh
+            ),
+        )),
+    }
+}
+
+/// The cells an occurrence selects with `TOUT='OUI'` or `GROUP_MA`
+/// (the union of the groups), in increasing order.
+pub fn select_cells(mesh: &Mesh, occ: &Args) -> Result<Vec<usize>, Diagnostic> {
+    if occ.has("MAILLE") {
+        return Err(occ.not_implemented("MAILLE", "cells by name; use GROUP_MA"));
+    }
+    if occ.has("TOUT") {
+        return Ok((0..mesh.ncells()).collect());
+    }
+    if occ.has("GROUP_MA") {
+        check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
+        let mut cells: Vec<usize> = occ
+            .texts("GROUP_MA")
+            .iter()
+            .flat_map(|g| mesh.cell_groups[*g].iter().copied())
+            .collect();
+        cells.sort_unstable();
+        cells.dedup();
+        return Ok(cells);
+    }
+    Err(occ.error("", "one of TOUT or GROUP_MA is required"))
+}
+
+/// The nodes an occurrence selects: the union of `TOUT` (the nodes given
+/// in `tout`), all nodes of the cells of `GROUP_MA` and the nodes of
+/// `GROUP_NO`, minus those of `SANS_GROUP_NO` and of the cells of
+/// `SANS_GROUP_MA` when the level declares them. Increasing order, no
+/// duplicates.
+pub fn select_nodes(mesh: &Mesh, occ: &Args, tout: &[usize]) -> Result<Vec<usize>, Diagnostic> {
+    for (key, what) in [
+        ("MAILLE", "cells by name; use GROUP_MA"),
+        ("NOEUD", "nodes by name; use GROUP_NO"),
+        ("SANS_MAILLE", "cells by name; use SANS_GROUP_MA"),
+        ("SANS_NOEUD", "nodes by name; use SANS_GROUP_NO"),
+    ] {
+        if occ.has(key) {
+            return Err(occ.not_implemented(key, what));
+        }
+    }
+    let mut mask = vec![false; mesh.nnodes()];
+    if occ.has("TOUT") {
+        for &n in tout {
+            mask[n] = true;
+        }
+    }
+    if occ.has("GROUP_MA") {
+        check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
+        for g in occ.texts("GROUP_MA") {
+            for &c in &mesh.cell_groups[g] {
+                for &n in &mesh.cells[c].nodes {
+                    mask[n] = true;
+                }
+            }
+        }
+    }
+    if occ.has("GROUP_NO") {
+        check_groups(mesh, occ, "GROUP_NO", GroupKind::Nodes)?;
+        for g in occ.texts("GROUP_NO") {
+            for &n in &mesh.node_groups[g] {
+                mask[n] = true;
+            }
+        }
+    }
+    if occ.has("SANS_GROUP_MA") {
+        check_groups(mesh, occ, "SANS_GROUP_MA", GroupKind::Cells)?;
+        for g in occ.texts("SANS_GROUP_MA") {
+            for &c in &mesh.cell_groups[g] {
+                for &n in &mesh.cells[c].nodes {
+                    mask[n] = false;
+                }
+            }
+        }
+    }
+    if occ.has("SANS_GROUP_NO") {
+        check_groups(mesh, occ, "SANS_GROUP_NO", GroupKind::Nodes)?;
+        for g in occ.texts("SANS_GROUP_NO") {
+            for &n in &mesh.node_groups[g] {
+                mask[n] = false;
+            }
+        }
+    }
+    Ok(mask
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &s)| s.then_some(i))
+        .collect())
+}
+
+/// The names of the mesh's cell groups that contain at least one of
+/// `cells`, for messages that must say where offending cells are.
+pub fn groups_containing(mesh: &Mesh, cells: &[usize]) -> Vec<String> {
+    let mut set = vec![false; mesh.ncells()];
+    for &c in cells {
+        set[c] = true;
+    }
+    mesh.cell_groups
+        .iter()
+        .filter(|(_, g)| g.iter().any(|&c| set[c]))
+        .map(|(n, _)| n.clone())
+        .collect()
+}
+
+/// "the selected nodes" or the names of the selecting groups, for messages.
+pub fn selection_label(occ: &Args) -> String {
+    let mut parts = Vec::new();
+    if occ.has("TOUT") {
+        parts.push("TOUT='OUI'".to_string());
+    }
+    for key in ["GROUP_MA", "GROUP_NO"] {
+        let g = occ.texts(key);
+        if !g.is_empty() {
+            parts.push(format!("{key}={}", g.join(",")));
+        }
+    }
+    if parts.is_empty() {
+        "the selection".into()
+    } else {
+        parts.join(" ")
+    }
+}
+
+/// A real for the message file: plain when of moderate size, otherwise in
+/// exponent notation (Rust's plain `{}` writes 8.93e-9 as 0.00000000893).
+pub fn real_text(v: f64) -> String {
+    let a = v.abs();
+    if a != 0.0 && !(1e-3..1e7).contains(&a) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
