@@ -25,7 +25,14 @@ pub fn def() -> CommandDef {
     CommandDef { spec, exec }
 }
 
-/// Nothing to do: the runner flushes the files after the last command.
-fn exec(_study: &mut Study, _args: &Args, _result: Option<&str>) -> ExecResult {
+/// Ends the .resu with the count of TEST_RESU / TEST_TABLE lines (an
+/// aster extension, docs/testing-report.md §3) when the study tested
+/// something; the runner then flushes the files.
+fn exec(study: &mut Study, _args: &Args, _result: Option<&str>) -> ExecResult {
+    let t = study.tests;
+    if t.ok + t.nook + t.skip > 0 {
+        let text = crate::post::test_report::summary(&t);
+        study.write_unit(8, &text);
+    }
     Ok(None)
 }

@@ -1,9 +1,20 @@
 //! IMPR_RESU: writes meshes and results (MED files, readable listings).
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::post_args::{
+    alarm, cell_name, cham_no_of, component_index, mesh_for_field, mesh_named, node_name, nodes_of,
+    pad8, result_of, select_steps,
+};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptType as C;
+use crate::diag::Diagnostic;
+use crate::medio::{self, ElemField, FieldStep, NodalField as MedNodal};
+use crate::mesh::Mesh;
+use crate::post::table::RealFormat;
+use crate::result::{GaussField, NodalField, Step};
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let mut acces = vec![
@@ -110,8 +121,481 @@ pub fn def() -> CommandDef {
         ],
     )
     .doc("Writes a mesh and/or results in a file format.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+    match args.text("FORMAT").unwrap_or("MED") {
+        "MED" => med(study, args),
+        "RESULTAT" => listing(study, args),
+        other => Err(args.not_implemented("FORMAT", &format!("FORMAT='{other}'"))),
+    }?;
+    Ok(None)
+}
+
+// ---------------------------------------------------------------- MED
+
+/// Keywords of a RESU occurrence the MED writer does not honour yet; they
+/// are refused so that a file is never silently different from the request.
+const MED_UNSUPPORTED: [&str; 8] = [
+    "GROUP_NO",
+    "NOEUD",
+    "GROUP_MA",
+    "MAILLE",
+    "VALE_MAX",
+    "VALE_MIN",
+    "BORNE_SUP",
+    "BORNE_INF",
+];
+
+/// What one IMPR_RESU puts in its MED file.
+#[derive(Default)]
+struct MedContent {
+    /// The mesh (named after its concept) and the occurrence that set it.
+    mesh: Option<Mesh>,
+    nodal: Vec<MedNodal>,
+    cells: Vec<ElemField>,
+}
+
+/// The marker logged after a MED write. code_aster adds the fields of a
+/// later IMPR_RESU on the same unit to the file; aster does not yet, so a
+/// second write to the same unit is refused rather than silently replacing
+/// the first.
+fn med_marker(unit: i64, path: &std::path::Path) -> String {
+    format!(
+        "    IMPR_RESU: MED file of unit {unit} written: {}",
+        path.display()
+    )
+}
+
+/// FORMAT='MED': the mesh and the fields of every occurrence in one file
+/// (all occurrences must be on the same mesh).
+fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
+    let unit = args.int("UNITE").unwrap_or(80);
+    let path = study.unit_path(unit);
+    let mut out = MedContent::default();
+    let mut notes: Vec<String> = Vec::new();
+    for occ in args.facts("RESU") {
+        for k in MED_UNSUPPORTED {
+            if occ.has(k) {
+                return Err(occ.not_implemented(k, "MED output of part of a mesh"));
+            }
+        }
+        if occ.has("NOM_RESU_MED") {
+            return Err(occ.not_implemented("NOM_RESU_MED", ""));
+        }
+        if let Some(m) = occ.concept("MAILLAGE") {
+            let mesh = mesh_named(study, m)
+                .ok_or_else(|| occ.error("MAILLAGE", format!("{m} holds no mesh")))?;
+            set_mesh(&mut out, occ, "MAILLAGE", m, mesh)?;
+        }
+        if occ.has("RESULTAT") {
+            let (rname, res) = result_of(study, occ, "RESULTAT")?;
+            let mesh = mesh_named(study, &res.mesh).ok_or_else(|| {
+                occ.error(
+                    "RESULTAT",
+                    format!("the mesh '{}' of result {rname} is not available", res.mesh),
+                )
+            })?;
+            set_mesh(&mut out, occ, "RESULTAT", &res.mesh, mesh)?;
+            let steps = select_steps(study, res, occ)?;
+            result_fields(occ, rname, &steps, mesh, &mut out, &mut notes)?;
+        } else if occ.has("CHAM_GD") {
+            let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
+            let mesh = mesh_for_field(study, occ, "CHAM_GD", fname, field, &[])?;
+            let mname = study
+                .concepts
+                .iter()
+                .find(|c| matches!(&c.data, crate::concepts::ConceptData::Mesh(m) if **m == *mesh))
+                .map(|c| c.name.clone())
+                .unwrap_or_else(|| "MAILLAGE".to_string());
+            set_mesh(&mut out, occ, "CHAM_GD", &mname, mesh)?;
+            let name = occ
+                .texts("NOM_CHAM_MED")
+                .first()
+                .map(|s| s.to_string())
+                .unwrap_or_else(|| fname.to_string());
+            let (components, values) = pick_components(occ, field, fname)?;
+            out.nodal.push(MedNodal {
+                name,
+                components,
+                steps: vec![FieldStep {
+                    numdt: -1,
+                    time: 0.0,
+                    values,
+                }],
+            });
+        }
     }
+    let Some(mesh) = out.mesh.take() else {
+        return Err(args.error(
+            "RESU",
+            "nothing to write: give MAILLAGE, RESULTAT or CHAM_GD",
+        ));
+    };
+    let marker = med_marker(unit, &path);
+    if study.mess.lines().any(|l| l == marker) {
+        return Err(args.not_implemented(
+            "UNITE",
+            &format!(
+                "adding fields to the MED file of unit {unit} written by an earlier IMPR_RESU; \
+                 give all the fields to one IMPR_RESU (several RESU occurrences) or use another UNITE"
+            ),
+        ));
+    }
+    medio::write_result_fields(&path, &mesh, &out.nodal, &out.cells)
+        .map_err(|e| args.error("UNITE", e.to_string()))?;
+    for n in notes {
+        alarm(study, "IMPR_RESU", "", &n);
+    }
+    study.log(marker);
+    study.log(format!(
+        "    mesh {} ({} nodes, {} cells); fields: {}",
+        mesh.name,
+        mesh.nnodes(),
+        mesh.ncells(),
+        out.nodal
+            .iter()
+            .map(|f| format!("{} ({} steps)", f.name, f.steps.len()))
+            .chain(out.cells.iter().map(|f| format!(
+                "{} (cell means, {} steps)",
+                f.name,
+                f.steps.len()
+            )))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    Ok(())
+}
+
+/// Sets the mesh of the file, or checks that an occurrence uses the same.
+fn set_mesh(
+    out: &mut MedContent,
+    occ: &Args,
+    key: &str,
+    name: &str,
+    mesh: &Mesh,
+) -> Result<(), Diagnostic> {
+    match &out.mesh {
+        None => {
+            let mut m = mesh.clone();
+            m.name = name.to_string();
+            out.mesh = Some(m);
+            Ok(())
+        }
+        Some(m) if m.coords == mesh.coords && m.cells == mesh.cells => Ok(()),
+        Some(m) => Err(occ.not_implemented(
+            key,
+            &format!(
+                "a second mesh ({name}) in the MED file of mesh {}: write it with another IMPR_RESU and UNITE",
+                m.name
+            ),
+        )),
+    }
+}
+
+/// The fields of a result over the selected steps: nodal fields as they
+/// are, Gauss-point fields as their mean per cell (the MED layer does not
+/// write Gauss points yet), each named `<result padded to 8 with _><field>`
+/// unless NOM_CHAM_MED renames it.
+fn result_fields(
+    occ: &Args,
+    rname: &str,
+    steps: &[&Step],
+    mesh: &Mesh,
+    out: &mut MedContent,
+    notes: &mut Vec<String>,
+) -> Result<(), Diagnostic> {
+    let names: Vec<String> = if occ.has("NOM_CHAM") {
+        occ.texts("NOM_CHAM")
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+    } else {
+        let mut all: Vec<String> = Vec::new();
+        for s in steps {
+            for n in s.nodal.keys().chain(s.gauss.keys()) {
+                if !all.contains(n) {
+                    all.push(n.clone());
+                }
+            }
+        }
+        all
+    };
+    let renames = occ.texts("NOM_CHAM_MED");
+    if !renames.is_empty() && renames.len() != names.len() {
+        return Err(occ.error(
+            "NOM_CHAM_MED",
+            format!(
+                "{} MED names for {} fields: give one per NOM_CHAM",
+                renames.len(),
+                names.len()
+            ),
+        ));
+    }
+    for (i, nom_cham) in names.iter().enumerate() {
+        let med_name = renames
+            .get(i)
+            .map(|s| s.to_string())
+            .unwrap_or_else(|| format!("{}{nom_cham}", pad8(rname)));
+        let nodal: Vec<(&Step, &NodalField)> = steps
+            .iter()
+            .filter_map(|s| s.nodal.get(nom_cham).map(|f| (*s, f)))
+            .collect();
+        let gauss: Vec<(&Step, &GaussField)> = steps
+            .iter()
+            .filter_map(|s| s.gauss.get(nom_cham).map(|f| (*s, f)))
+            .collect();
+        if !nodal.is_empty() {
+            let mut f = MedNodal {
+                name: med_name,
+                components: Vec::new(),
+                steps: Vec::new(),
+            };
+            for (s, field) in nodal {
+                let (components, values) = pick_components(occ, field, nom_cham)?;
+                if f.steps.is_empty() {
+                    f.components = components;
+                } else if f.components != components {
+                    return Err(occ.error(
+                        "NOM_CHAM",
+                        format!(
+                            "the components of {nom_cham} change at NUME_ORDRE {}: one MED field cannot hold both",
+                            s.nume_ordre
+                        ),
+                    ));
+                }
+                f.steps.push(FieldStep {
+                    numdt: s.nume_ordre as i32,
+                    time: s.inst,
+                    values,
+                });
+            }
+            out.nodal.push(f);
+        } else if !gauss.is_empty() {
+            if occ.has("NOM_CMP") {
+                return Err(occ.not_implemented("NOM_CMP", "component selection of Gauss fields"));
+            }
+            let mut f = ElemField {
+                name: med_name.clone(),
+                components: gauss[0].1.components.clone(),
+                steps: Vec::new(),
+            };
+            for (s, field) in gauss {
+                if field.components != f.components || field.offsets.len() != mesh.ncells() + 1 {
+                    return Err(occ.error(
+                        "NOM_CHAM",
+                        format!(
+                            "{nom_cham} at NUME_ORDRE {} does not match the mesh or the other steps",
+                            s.nume_ordre
+                        ),
+                    ));
+                }
+                f.steps.push(FieldStep {
+                    numdt: s.nume_ordre as i32,
+                    time: s.inst,
+                    values: cell_means(field, mesh.ncells()),
+                });
+            }
+            notes.push(format!(
+                "{med_name}: the MED writer cannot store Gauss points yet; the mean over \
+                 the Gauss points of each cell is written as a cell field"
+            ));
+            out.cells.push(f);
+        } else {
+            notes.push(format!(
+                "field {nom_cham} is not stored in result {rname} at the selected steps: not written"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The mean over the Gauss points of each cell, per component (NaN for
+/// cells without points, and for components absent at every point).
+fn cell_means(f: &GaussField, ncells: usize) -> Vec<f64> {
+    let nc = f.ncmp();
+    let mut out = vec![f64::NAN; ncells * nc];
+    for c in 0..ncells {
+        let npg = f.npg(c);
+        if npg == 0 {
+            continue;
+        }
+        let vals = f.cell(c);
+        for k in 0..nc {
+            let (sum, n) = (0..npg)
+                .map(|p| vals[p * nc + k])
+                .filter(|v| !v.is_nan())
+                .fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
+            if n > 0 {
+                out[c * nc + k] = sum / n as f64;
+            }
+        }
+    }
+    out
+}
+
+/// The components asked (NOM_CMP, or all) and the values node-major.
+fn pick_components(
+    occ: &Args,
+    f: &NodalField,
+    field: &str,
+) -> Result<(Vec<String>, Vec<f64>), Diagnostic> {
+    if !occ.has("NOM_CMP") {
+        return Ok((f.components.clone(), f.values.clone()));
+    }
+    let idx: Vec<usize> = occ
+        .texts("NOM_CMP")
+        .iter()
+        .map(|c| component_index(&f.components, c, occ, "NOM_CMP", field))
+        .collect::<Result<_, _>>()?;
+    let n = f.nnodes();
+    let mut values = Vec::with_capacity(n * idx.len());
+    for node in 0..n {
+        values.extend(idx.iter().map(|&k| f.values[node * f.ncmp() + k]));
+    }
+    Ok((
+        idx.iter().map(|&k| f.components[k].clone()).collect(),
+        values,
+    ))
+}
+
+// ---------------------------------------------------------------- RESULTAT
+
+/// FORMAT='RESULTAT': readable listings of the fields, per stored step,
+/// one line per node (`1X, name, values` in FORMAT_R, six values per
+/// line) or per Gauss point.
+fn listing(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
+    let unit = args.int("UNITE").unwrap_or(8);
+    let mut text = String::new();
+    for occ in args.facts("RESU") {
+        let fmt_text = occ.text("FORMAT_R").unwrap_or("1PE21.14");
+        let fmt = RealFormat::from_fortran(fmt_text).ok_or_else(|| {
+            occ.error(
+                "FORMAT_R",
+                format!("'{fmt_text}' is not a Fortran real format"),
+            )
+        })?;
+        if occ.has("RESULTAT") {
+            let (rname, res) = result_of(study, occ, "RESULTAT")?;
+            let mesh = mesh_named(study, &res.mesh).ok_or_else(|| {
+                occ.error(
+                    "RESULTAT",
+                    format!("the mesh of result {rname} is not available"),
+                )
+            })?;
+            let nodes = selected_nodes(mesh, occ)?;
+            let wanted: Vec<&str> = occ.texts("NOM_CHAM");
+            for s in select_steps(study, res, occ)? {
+                for (name, f) in &s.nodal {
+                    if wanted.is_empty() || wanted.contains(&name.as_str()) {
+                        let (components, values) = pick_components(occ, f, name)?;
+                        let f = NodalField { components, values };
+                        text.push_str(&format!(
+                            "\n CHAMP AUX NOEUDS DE NOM SYMBOLIQUE  {name}\n NUMERO D'ORDRE: {:>8} INST: {}\n\n",
+                            s.nume_ordre,
+                            fmt.format(s.inst)
+                        ));
+                        text.push_str(&node_lines(&f, &nodes, &fmt));
+                    }
+                }
+                for (name, f) in &s.gauss {
+                    if wanted.is_empty() || wanted.contains(&name.as_str()) {
+                        text.push_str(&format!(
+                            "\n CHAMP AUX POINTS DE GAUSS DE NOM SYMBOLIQUE  {name}\n NUMERO D'ORDRE: {:>8} INST: {}\n\n",
+                            s.nume_ordre,
+                            fmt.format(s.inst)
+                        ));
+                        text.push_str(&gauss_lines(f, &fmt));
+                    }
+                }
+            }
+        } else if occ.has("CHAM_GD") {
+            let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
+            let nodes: Vec<usize> = if occ.has("GROUP_NO") || occ.has("NOEUD") {
+                let groups = occ.texts("GROUP_NO");
+                let mesh = mesh_for_field(study, occ, "CHAM_GD", fname, field, &groups)?;
+                nodes_of(mesh, occ)?
+            } else {
+                (0..field.nnodes()).collect()
+            };
+            let (components, values) = pick_components(occ, field, fname)?;
+            text.push_str(&format!("\n CHAMP AUX NOEUDS  {fname}\n\n"));
+            text.push_str(&node_lines(
+                &NodalField { components, values },
+                &nodes,
+                &fmt,
+            ));
+        } else if let Some(m) = occ.concept("MAILLAGE") {
+            let mesh = mesh_named(study, m)
+                .ok_or_else(|| occ.error("MAILLAGE", format!("{m} holds no mesh")))?;
+            text.push_str(&format!("\n MAILLAGE {m}\n{}", medio::mesh_info(mesh)));
+        }
+    }
+    study.write_unit(unit, &text);
+    Ok(())
+}
+
+fn selected_nodes(mesh: &Mesh, occ: &Args) -> Result<Vec<usize>, Diagnostic> {
+    if occ.has("GROUP_NO") || occ.has("NOEUD") {
+        nodes_of(mesh, occ)
+    } else {
+        Ok((0..mesh.nnodes()).collect())
+    }
+}
+
+/// Values in `fmt`, six per line, an absent value printed `-`.
+fn value_lines(lead: &str, values: &[f64], fmt: &RealFormat) -> String {
+    let w = fmt.format(0.0).len();
+    let mut out = String::new();
+    for (k, chunk) in values.chunks(6).enumerate() {
+        out.push_str(if k == 0 { lead } else { "" });
+        if k > 0 {
+            out.push_str(&" ".repeat(lead.len()));
+        }
+        for v in chunk {
+            if v.is_nan() {
+                out.push_str(&format!("{:>w$}", "-"));
+            } else {
+                out.push_str(&fmt.format(*v));
+            }
+        }
+        out.push('\n');
+    }
+    out
+}
+
+fn node_lines(f: &NodalField, nodes: &[usize], fmt: &RealFormat) -> String {
+    let w = fmt.format(0.0).len();
+    let mut out = format!(" {:<8}", "NOEUD");
+    for c in &f.components {
+        out.push_str(&format!("{c:>w$}"));
+    }
+    out.push('\n');
+    for &n in nodes {
+        let vals = &f.values[n * f.ncmp()..(n + 1) * f.ncmp()];
+        out.push_str(&value_lines(&format!(" {:<8}", node_name(n)), vals, fmt));
+    }
+    out
+}
+
+fn gauss_lines(f: &GaussField, fmt: &RealFormat) -> String {
+    let w = fmt.format(0.0).len();
+    let mut out = format!(" {:<8} {:>5}", "MAILLE", "POINT");
+    for c in &f.components {
+        out.push_str(&format!("{c:>w$}"));
+    }
+    out.push('\n');
+    let nc = f.ncmp();
+    for c in 0..f.offsets.len().saturating_sub(1) {
+        for p in 0..f.npg(c) {
+            let vals = &f.cell(c)[p * nc..(p + 1) * nc];
+            out.push_str(&value_lines(
+                &format!(" {:<8} {:>5}", cell_name(c), p + 1),
+                vals,
+                fmt,
+            ));
+        }
+    }
+    out
 }

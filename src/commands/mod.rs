@@ -37,6 +37,7 @@ pub mod lire_maillage;
 pub mod mesh_args;
 pub mod model_args;
 pub mod modi_maillage;
+pub mod post_args;
 pub mod post_releve_t;
 pub mod recu_fonction;
 pub mod test_resu;

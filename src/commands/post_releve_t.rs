@@ -1,9 +1,20 @@
 //! POST_RELEVE_T: extracts field values into a table.
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::post_args::{
+    cham_no_of, concept_title, is_gauss_name, mesh_for_field, mesh_of_result, node_name, nodes_of,
+    result_of, select_steps, step_nodal, table_error,
+};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::diag::Diagnostic;
+use crate::mesh::Mesh;
+use crate::post::table::{Cell, ColumnType, Table};
+use crate::result::NodalField;
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let mut extrac = vec![
@@ -105,8 +116,189 @@ pub fn def() -> CommandDef {
         ],
     )
     .doc("Extracts values of fields into a table (columns INTITULE, RESU, NOM_CHAM, NUME_ORDRE, INST, NOEUD, COOR_*, components).");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// The leading columns of an extraction table, in code_aster's order
+/// (`rvtec0`): label, concept, field, access parameters, node, coordinates.
+/// Component columns follow, in order of first appearance.
+const LEADING: [(&str, ColumnType); 10] = [
+    ("INTITULE", ColumnType::Text(16)),
+    ("RESU", ColumnType::Text(8)),
+    ("CHAM_GD", ColumnType::Text(8)),
+    ("NOM_CHAM", ColumnType::Text(16)),
+    ("NUME_ORDRE", ColumnType::Int),
+    ("INST", ColumnType::Real),
+    ("NOEUD", ColumnType::Text(8)),
+    ("COOR_X", ColumnType::Real),
+    ("COOR_Y", ColumnType::Real),
+    ("COOR_Z", ColumnType::Real),
+];
+
+/// Keywords of ACTION whose operation is not built: refused rather than
+/// ignored, since ignoring them would change the numbers.
+const UNSUPPORTED: [&str; 12] = [
+    "RESULTANTE",
+    "MOMENT",
+    "INVARIANT",
+    "ELEM_PRINCIPAUX",
+    "TRAC_NOR",
+    "TRAC_DIR",
+    "TOUT",
+    "GROUP_MA",
+    "MAILLE",
+    "POINT",
+    "ANGL_NAUT",
+    "ORIGINE",
+];
+
+type Row = Vec<(String, Cell)>;
+
+/// Builds one table from every ACTION occurrence, rows appended in order.
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let mut rows: Vec<Row> = Vec::new();
+    for occ in args.facts("ACTION") {
+        extract(study, occ, &mut rows)?;
     }
+    let mut table = Table::new();
+    table.title = if args.has("TITRE") {
+        args.texts("TITRE").iter().map(|s| s.to_string()).collect()
+    } else {
+        concept_title(result.unwrap_or(""), "table_sdaster")
+    };
+    for (name, ty) in LEADING {
+        if rows.iter().any(|r| r.iter().any(|(n, _)| n == name)) {
+            table
+                .add_column(name, ty)
+                .map_err(|e| table_error(args, "ACTION", e))?;
+        }
+    }
+    for r in &rows {
+        for (name, _) in r {
+            if table.column_index(name).is_none() {
+                table
+                    .add_column(name, ColumnType::Real)
+                    .map_err(|e| table_error(args, "ACTION", e))?;
+            }
+        }
+    }
+    for r in rows {
+        let mut cells = vec![None; table.columns.len()];
+        for (name, cell) in r {
+            if let Some(i) = table.column_index(&name) {
+                cells[i] = Some(cell);
+            }
+        }
+        table
+            .push_row(cells)
+            .map_err(|e| table_error(args, "ACTION", e))?;
+    }
+    Ok(Some(ConceptData::Table(Box::new(table))))
+}
+
+/// One ACTION occurrence: OPERATION='EXTRACTION' of nodal values.
+fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnostic> {
+    if let Some(op) = occ
+        .texts("OPERATION")
+        .into_iter()
+        .find(|o| *o != "EXTRACTION")
+    {
+        return Err(occ.not_implemented("OPERATION", &format!("OPERATION='{op}'")));
+    }
+    for k in UNSUPPORTED {
+        if occ.has(k) {
+            return Err(occ.not_implemented(k, "only nodal extraction on GROUP_NO/NOEUD is built"));
+        }
+    }
+    if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
+        return Err(occ.not_implemented("REPERE", "only the global frame is built"));
+    }
+    let intitule = occ.text("INTITULE").unwrap_or_default().to_string();
+    if intitule.chars().count() > 16 {
+        return Err(occ.error(
+            "INTITULE",
+            format!("INTITULE '{intitule}' is longer than the 16 characters code_aster keeps"),
+        ));
+    }
+    if occ.has("RESULTAT") {
+        let (rname, res) = result_of(study, occ, "RESULTAT")?;
+        let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
+        let nom_cham = occ.text("NOM_CHAM").unwrap_or_default();
+        if is_gauss_name(nom_cham) {
+            return Err(occ.not_implemented(
+                "NOM_CHAM",
+                "extraction of Gauss-point fields (project them to the nodes first)",
+            ));
+        }
+        let nodes = nodes_of(mesh, occ)?;
+        for step in select_steps(study, res, occ)? {
+            let field = step_nodal(step, nom_cham, occ, "NOM_CHAM", rname)?;
+            let lead = vec![
+                ("INTITULE".to_string(), Cell::Text(intitule.clone())),
+                ("RESU".to_string(), Cell::Text(rname.to_string())),
+                ("NOM_CHAM".to_string(), Cell::Text(nom_cham.to_string())),
+                ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre as i64)),
+                ("INST".to_string(), Cell::Real(step.inst)),
+            ];
+            node_rows(occ, mesh, field, nom_cham, &nodes, &lead, rows)?;
+        }
+    } else {
+        let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
+        let groups = occ.texts("GROUP_NO");
+        let mesh = mesh_for_field(study, occ, "CHAM_GD", fname, field, &groups)?;
+        let nodes = nodes_of(mesh, occ)?;
+        let lead = vec![
+            ("INTITULE".to_string(), Cell::Text(intitule.clone())),
+            ("CHAM_GD".to_string(), Cell::Text(fname.to_string())),
+        ];
+        node_rows(occ, mesh, field, fname, &nodes, &lead, rows)?;
+    }
+    Ok(())
+}
+
+/// The rows of one field at the selected nodes: coordinates (COOR_Z only
+/// for a 3D mesh) and the components asked. A component of the field that
+/// is absent at a node leaves its cell empty, as code_aster does.
+fn node_rows(
+    occ: &Args,
+    mesh: &Mesh,
+    field: &NodalField,
+    field_name: &str,
+    nodes: &[usize],
+    lead: &Row,
+    rows: &mut Vec<Row>,
+) -> Result<(), Diagnostic> {
+    let cmps: Vec<(String, usize)> = if occ.has("TOUT_CMP") {
+        field
+            .components
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (c.clone(), i))
+            .collect()
+    } else {
+        occ.texts("NOM_CMP")
+            .into_iter()
+            .map(|c| {
+                super::post_args::component_index(&field.components, c, occ, "NOM_CMP", field_name)
+                    .map(|i| (c.to_string(), i))
+            })
+            .collect::<Result<_, _>>()?
+    };
+    let coords = ["COOR_X", "COOR_Y", "COOR_Z"];
+    let ndim = if mesh.dim == 3 { 3 } else { 2 };
+    for &n in nodes {
+        let mut row = lead.clone();
+        row.push(("NOEUD".to_string(), Cell::Text(node_name(n))));
+        for (k, name) in coords.iter().take(ndim).enumerate() {
+            row.push((name.to_string(), Cell::Real(mesh.coords[n][k])));
+        }
+        for (c, i) in &cmps {
+            let v = field.values[n * field.ncmp() + i];
+            if !v.is_nan() {
+                row.push((c.clone(), Cell::Real(v)));
+            }
+        }
+        rows.push(row);
+    }
+    Ok(())
 }

@@ -1,9 +1,18 @@
 //! RECU_FONCTION: a function of time extracted from a result or a table.
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::post_args::{
+    alarm, cell_name, component_index, filters_of, is_gauss_name, mesh_of_result, node_name,
+    nodes_of, result_of, select_steps, single_cell, step_gauss, step_nodal, table_error, table_of,
+};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::diag::Diagnostic;
+use crate::post::function::{Extrapolation, Function, Interp};
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let mut prec = critere_precision(1e-6);
@@ -106,8 +115,135 @@ pub fn def() -> CommandDef {
     )
     .rules(vec![un_parmi(&["RESULTAT", "TABLE"])])
     .doc("Extracts the evolution of one component at one node over all stored instants (or columns of a table) as a function.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// A function of INST from a result (one component at one node, or at one
+/// Gauss point), or of a column of a table; then the NOM_PARA, NOM_RESU,
+/// INTERPOL and PROL_* overrides.
+fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+    let mut f = if args.has("RESULTAT") {
+        from_result(study, args)?
+    } else {
+        from_table(study, args)?
+    };
+    if let Some(p) = args.text("NOM_PARA") {
+        f.para = p.to_string();
     }
+    if let Some(r) = args.text("NOM_RESU") {
+        f.resu = r.to_string();
+    }
+    let interp = args.texts("INTERPOL");
+    if !interp.is_empty() {
+        let one = |s: &str| match s {
+            "LIN" => Ok(Interp::Lin),
+            "LOG" => Ok(Interp::Log),
+            other => Err(args.not_implemented("INTERPOL", &format!("INTERPOL='{other}'"))),
+        };
+        let x = one(interp[0])?;
+        let y = one(interp.get(1).copied().unwrap_or(interp[0]))?;
+        f.interpolation = (x, y);
+    }
+    for (key, side) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
+        if let Some(p) = args.text(key) {
+            *side = Extrapolation::parse(p)
+                .ok_or_else(|| args.error(key, format!("unknown extension '{p}'")))?;
+        }
+    }
+    Ok(Some(ConceptData::Function(Box::new(f))))
+}
+
+fn from_result(study: &mut Study, args: &Args) -> Result<Function, Diagnostic> {
+    for k in ["NOM_PARA_RESU", "SOUS_POINT", "INTERP_NUME"] {
+        if args.has(k) {
+            return Err(args.not_implemented(k, ""));
+        }
+    }
+    let (rname, res) = result_of(study, args, "RESULTAT")?;
+    let mesh = mesh_of_result(study, args, "RESULTAT", rname, res)?;
+    let nom_cham = args.text("NOM_CHAM").unwrap_or_default();
+    let cmp = args.text("NOM_CMP").unwrap_or_default();
+    let steps = select_steps(study, res, args)?;
+    let mut xs = Vec::with_capacity(steps.len());
+    let mut ys = Vec::with_capacity(steps.len());
+    let mut alarms = Vec::new();
+    if is_gauss_name(nom_cham) {
+        let (cell, _, _) = single_cell(mesh, args)?;
+        let point = args
+            .int("POINT")
+            .ok_or_else(|| args.error("POINT", format!("POINT is needed for {nom_cham}")))?;
+        for s in &steps {
+            let f = step_gauss(s, nom_cham, args, "NOM_CHAM", rname)?;
+            let c = component_index(&f.components, cmp, args, "NOM_CMP", nom_cham)?;
+            let npg = f.npg(cell);
+            if point < 1 || point as usize > npg {
+                return Err(args.error(
+                    "POINT",
+                    format!(
+                        "cell {} has {npg} Gauss point(s) in {nom_cham} at NUME_ORDRE {}",
+                        cell_name(cell),
+                        s.nume_ordre
+                    ),
+                ));
+            }
+            xs.push(s.inst);
+            ys.push(f.cell(cell)[(point as usize - 1) * f.ncmp() + c]);
+        }
+    } else {
+        let nodes = nodes_of(mesh, args)?;
+        let Some(&node) = nodes.first() else {
+            return Err(args.error("GROUP_NO", "the node group is empty"));
+        };
+        if nodes.len() > 1 {
+            alarms.push(format!(
+                "GROUP_NO holds {} nodes: the first one, {}, is used",
+                nodes.len(),
+                node_name(node)
+            ));
+        }
+        for s in &steps {
+            let f = step_nodal(s, nom_cham, args, "NOM_CHAM", rname)?;
+            component_index(&f.components, cmp, args, "NOM_CMP", nom_cham)?;
+            let v = f.get(node, cmp).ok_or_else(|| {
+                args.error(
+                    "NOM_CMP",
+                    format!(
+                        "component {cmp} of {nom_cham} is absent at node {} at NUME_ORDRE {}",
+                        node_name(node),
+                        s.nume_ordre
+                    ),
+                )
+            })?;
+            xs.push(s.inst);
+            ys.push(v);
+        }
+    }
+    for a in alarms {
+        alarm(study, "RECU_FONCTION", "", &a);
+    }
+    Function::new("INST", cmp, xs, ys).map_err(|e| args.error("RESULTAT", e))
+}
+
+/// PARA_X / PARA_Y of a table after FILTRE; rows missing either cell are
+/// left out.
+fn from_table(study: &Study, args: &Args) -> Result<Function, Diagnostic> {
+    if args.has("NOM_PARA_TABL") {
+        return Err(args.not_implemented("NOM_PARA_TABL", ""));
+    }
+    let (_, table) = table_of(study, args, "TABLE")?;
+    let t = table
+        .filter_all(&filters_of(args)?)
+        .map_err(|e| table_error(args, "FILTRE", e))?;
+    let px = args.text("PARA_X").unwrap_or_default();
+    let py = args.text("PARA_Y").unwrap_or_default();
+    let xs = t.column(px).map_err(|e| table_error(args, "PARA_X", e))?;
+    let ys = t.column(py).map_err(|e| table_error(args, "PARA_Y", e))?;
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for (a, b) in xs.into_iter().zip(ys) {
+        if let (Some(a), Some(b)) = (a.and_then(|c| c.as_f64()), b.and_then(|c| c.as_f64())) {
+            x.push(a);
+            y.push(b);
+        }
+    }
+    Function::new(px, py, x, y).map_err(|e| args.error("TABLE", e))
 }

@@ -1,9 +1,19 @@
 //! TEST_RESU: checks values of results against recorded and reference values.
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::post_args::{
+    cham_no_of, component_index, is_gauss_name, mesh_for_field, mesh_of_result, node_name,
+    report_checks, result_of, run_checks, single_cell, single_node, step_gauss, step_nodal,
+    test_spec,
+};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptType as C;
+use crate::diag::Diagnostic;
+use crate::post::test_report::{format_checks, header_lines, resu_block, Value};
+use crate::result::{Access, NodalField};
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let (refe_kws, refe_rules) = c_test_reference(true, false);
@@ -78,8 +88,246 @@ pub fn def() -> CommandDef {
     )
     .rules(vec![au_moins_un(&["RESU", "CHAM_NO"])])
     .doc("Tests computed values: non-regression against VALE_CALC, and against VALE_REFE when REFERENCE is given; prints OK/NOOK/SKIP lines.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// Every RESU occurrence, then every CHAM_NO occurrence, in order: each
+/// prints its block in the .resu. A value that cannot be found is an error
+/// (it stops the study), never a NOOK line.
+fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+    for occ in args.facts("RESU") {
+        let spec = test_spec(occ)?;
+        let (name, fields, computed) = resu_value(study, occ)?;
+        let lines = run_checks(occ, &spec, &Value::Real(computed))?;
+        let fields: Vec<(&str, &str)> = fields.iter().map(|(k, v)| (*k, v.as_str())).collect();
+        let block = resu_block(&name, &fields, &lines);
+        report_checks(study, occ, &block, &lines);
+    }
+    for occ in args.facts("CHAM_NO") {
+        let spec = test_spec(occ)?;
+        let (name, fields, computed) = cham_no_value(study, occ)?;
+        let lines = run_checks(occ, &spec, &Value::Real(computed))?;
+        let mut block = String::new();
+        let fields: Vec<(&str, &str)> = fields.iter().map(|(k, v)| (*k, v.as_str())).collect();
+        for l in header_lines("CHAM_NO", &name, &fields) {
+            block.push_str(&l);
+            block.push('\n');
+        }
+        for l in format_checks(&lines) {
+            block.push_str(&l);
+            block.push('\n');
+        }
+        block.push_str("  \n");
+        report_checks(study, occ, &block, &lines);
+    }
+    Ok(None)
+}
+
+/// Header columns of the .resu block, in order.
+type Header = Vec<(&'static str, String)>;
+
+/// The value a RESU occurrence tests, with the result name and the header
+/// columns.
+fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagnostic> {
+    for k in ["PARA", "NOM_VARI", "SOUS_POINT"] {
+        if occ.has(k) {
+            return Err(occ.not_implemented(k, ""));
+        }
+    }
+    let (rname, res) = result_of(study, occ, "RESULTAT")?;
+    let (access, key) = match occ.int("NUME_ORDRE") {
+        Some(n) => (
+            Access::NumeOrdre(
+                usize::try_from(n)
+                    .map_err(|_| occ.error("NUME_ORDRE", format!("NUME_ORDRE {n} is negative")))?,
+            ),
+            "NUME_ORDRE",
+        ),
+        None => {
+            // The instant is searched with TOLE_MACHINE(2) and CRITERE(2).
+            let inst = occ
+                .real("INST")
+                .ok_or_else(|| occ.error("", "NUME_ORDRE or INST is needed"))?;
+            let tole = occ.reals("TOLE_MACHINE").get(1).copied().unwrap_or(1e-6);
+            let crit = occ.texts("CRITERE").get(1).copied().unwrap_or("RELATIF");
+            (
+                Access::Inst {
+                    inst,
+                    precision: tole,
+                    relative: crit != "ABSOLU",
+                },
+                "INST",
+            )
+        }
+    };
+    let step = res.find(access).map_err(|e| occ.error(key, e))?;
+    let nom_cham = occ.text("NOM_CHAM").unwrap_or_default();
+    let mut header: Header = vec![
+        ("NUME_ORDRE", step.nume_ordre.to_string()),
+        ("NOM_CHAM", nom_cham.to_string()),
+    ];
+    let gauss = is_gauss_name(nom_cham);
+    if let Some(tt) = occ.text("TYPE_TEST") {
+        let v = if gauss {
+            let f = step_gauss(step, nom_cham, occ, "NOM_CHAM", rname)?;
+            aggregate(occ, &f.components, &f.values, nom_cham, tt)?
+        } else {
+            let f = step_nodal(step, nom_cham, occ, "NOM_CHAM", rname)?;
+            aggregate(occ, &f.components, &f.values, nom_cham, tt)?
+        };
+        if let Some(c) = occ.text("NOM_CMP") {
+            header.push(("NOM_CMP", c.to_string()));
+        }
+        header.push(("TYPE_TEST", tt.to_string()));
+        return Ok((rname.to_string(), header, v));
+    }
+    let cmp = occ.text("NOM_CMP").ok_or_else(|| {
+        occ.error(
+            "NOM_CMP",
+            "NOM_CMP is needed to test one value (or give TYPE_TEST)",
+        )
+    })?;
+    header.push(("NOM_CMP", cmp.to_string()));
+    let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
+    if gauss {
+        if occ.has("GROUP_NO") || occ.has("NOEUD") {
+            return Err(occ.error(
+                if occ.has("GROUP_NO") {
+                    "GROUP_NO"
+                } else {
+                    "NOEUD"
+                },
+                format!("{nom_cham} is a Gauss-point field: give GROUP_MA (or MAILLE) and POINT"),
+            ));
+        }
+        let (cell, ckey, clabel) = single_cell(mesh, occ)?;
+        let point = occ
+            .int("POINT")
+            .ok_or_else(|| occ.error("POINT", format!("POINT is needed to test {nom_cham}")))?;
+        let f = step_gauss(step, nom_cham, occ, "NOM_CHAM", rname)?;
+        let c = component_index(&f.components, cmp, occ, "NOM_CMP", nom_cham)?;
+        let npg = f.npg(cell);
+        if point < 1 || point as usize > npg {
+            return Err(occ.error(
+                "POINT",
+                format!(
+                    "cell {} has {npg} Gauss point(s) in {nom_cham}: POINT must be in 1..{npg}",
+                    super::post_args::cell_name(cell)
+                ),
+            ));
+        }
+        let v = f.cell(cell)[(point as usize - 1) * f.ncmp() + c];
+        if v.is_nan() {
+            return Err(occ.error(
+                "NOM_CMP",
+                format!(
+                    "{cmp} is absent at point {point} of cell {}",
+                    super::post_args::cell_name(cell)
+                ),
+            ));
+        }
+        header.push((ckey, clabel));
+        header.push(("POINT", point.to_string()));
+        return Ok((rname.to_string(), header, v));
+    }
+    if occ.has("GROUP_MA") || occ.has("MAILLE") {
+        return Err(occ.error(
+            if occ.has("GROUP_MA") {
+                "GROUP_MA"
+            } else {
+                "MAILLE"
+            },
+            format!("{nom_cham} is a nodal field: give GROUP_NO (or NOEUD)"),
+        ));
+    }
+    let (node, nkey, nlabel) = single_node(mesh, occ)?;
+    let f = step_nodal(step, nom_cham, occ, "NOM_CHAM", rname)?;
+    let v = node_value(occ, f, nom_cham, node, cmp)?;
+    header.push((nkey, nlabel));
+    Ok((rname.to_string(), header, v))
+}
+
+/// The value a CHAM_NO occurrence tests.
+fn cham_no_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagnostic> {
+    let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
+    let mut header: Header = Vec::new();
+    if let Some(tt) = occ.text("TYPE_TEST") {
+        let v = aggregate(occ, &field.components, &field.values, fname, tt)?;
+        if let Some(c) = occ.text("NOM_CMP") {
+            header.push(("NOM_CMP", c.to_string()));
+        }
+        header.push(("TYPE_TEST", tt.to_string()));
+        return Ok((fname.to_string(), header, v));
+    }
+    if !(occ.has("GROUP_NO") || occ.has("NOEUD")) {
+        return Err(occ.error("", "give GROUP_NO (or NOEUD) and NOM_CMP, or TYPE_TEST"));
+    }
+    let cmp = occ.text("NOM_CMP").unwrap_or_default();
+    let groups = occ.texts("GROUP_NO");
+    let mesh = mesh_for_field(study, occ, "CHAM_GD", fname, field, &groups)?;
+    let (node, nkey, nlabel) = single_node(mesh, occ)?;
+    let v = node_value(occ, field, fname, node, cmp)?;
+    header.push(("NOM_CMP", cmp.to_string()));
+    header.push((nkey, nlabel));
+    Ok((fname.to_string(), header, v))
+}
+
+/// One component at one node; absent is an error on NOM_CMP.
+fn node_value(
+    occ: &Args,
+    f: &NodalField,
+    field: &str,
+    node: usize,
+    cmp: &str,
+) -> Result<f64, Diagnostic> {
+    component_index(&f.components, cmp, occ, "NOM_CMP", field)?;
+    f.get(node, cmp).ok_or_else(|| {
+        occ.error(
+            "NOM_CMP",
+            format!(
+                "component {cmp} of {field} is absent at node {}",
+                node_name(node)
+            ),
+        )
+    })
+}
+
+/// TYPE_TEST over a whole field (one component with NOM_CMP, else all);
+/// absent values are left out.
+fn aggregate(
+    occ: &Args,
+    components: &[String],
+    values: &[f64],
+    field: &str,
+    type_test: &str,
+) -> Result<f64, Diagnostic> {
+    let n = components.len().max(1);
+    let only = match occ.text("NOM_CMP") {
+        Some(c) => Some(component_index(components, c, occ, "NOM_CMP", field)?),
+        None => None,
+    };
+    let vals = values
+        .iter()
+        .enumerate()
+        .filter(|(i, v)| !v.is_nan() && only.is_none_or(|c| i % n == c))
+        .map(|(_, v)| *v);
+    let mut count = 0usize;
+    let mut acc: Option<f64> = None;
+    for v in vals {
+        count += 1;
+        acc = Some(match (type_test, acc) {
+            ("SOMM", a) => a.unwrap_or(0.0) + v,
+            ("SOMM_ABS", a) => a.unwrap_or(0.0) + v.abs(),
+            ("MAX", Some(a)) => a.max(v),
+            ("MIN", Some(a)) => a.min(v),
+            (_, _) => v,
+        });
+    }
+    match acc {
+        Some(v) if count > 0 => Ok(v),
+        _ => Err(occ.error(
+            "TYPE_TEST",
+            format!("field {field} has no value to aggregate"),
+        )),
     }
 }

@@ -1,0 +1,679 @@
+//! What the post-processing commands share: fetching results, fields,
+//! tables and functions from the study, naming nodes and cells the way
+//! code_aster does, resolving GROUP_NO / NOEUD / GROUP_MA / MAILLE, and
+//! selecting stored steps (TOUT_ORDRE, NUME_ORDRE, INST, LIST_INST with
+//! CRITERE / PRECISION).
+//!
+//! Node and cell names: aster meshes carry no names, so entities are
+//! named with code_aster's defaults for meshes built without names, `N1`,
+//! `N2`... and `M1`, `M2`... (1-based, in mesh order). NOEUD='N12' and
+//! MAILLE='M3' are read back the same way.
+
+use crate::catalog::args::Args;
+use crate::concepts::ConceptData;
+use crate::diag::{closest, Diagnostic};
+use crate::mesh::Mesh;
+use crate::post::function::Function;
+use crate::post::table::{CritComp, Filter, FilterValues, Table, TableError};
+use crate::post::test_report::{
+    occurrence_checks, CheckLine, Critere, RefKind, Reference, TestSpec, Value as TestValue,
+};
+use crate::result::{Access, EvolNoli, GaussField, NodalField, Step};
+use crate::run::Study;
+
+/// code_aster's default name of node `i` (0-based index): `N<i+1>`.
+pub fn node_name(i: usize) -> String {
+    format!("N{}", i + 1)
+}
+
+/// code_aster's default name of cell `i` (0-based index): `M<i+1>`.
+pub fn cell_name(i: usize) -> String {
+    format!("M{}", i + 1)
+}
+
+/// Reads `N12` (or `M12`) back to its 0-based index, if it names one of
+/// `count` entities.
+fn parse_name(name: &str, prefix: char, count: usize) -> Option<usize> {
+    let digits = name.trim().strip_prefix(prefix)?;
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) || digits.starts_with('0') {
+        return None;
+    }
+    let k: usize = digits.parse().ok()?;
+    (1..=count).contains(&k).then(|| k - 1)
+}
+
+/// A result name padded with `_` to 8 characters, as code_aster prefixes
+/// MED field names (`RESU` -> `RESU____`).
+pub fn pad8(name: &str) -> String {
+    format!("{name:_<8}")
+}
+
+/// Logs an alarm in code_aster's `<A> <COMMAND> <ID> text` shape.
+pub fn alarm(study: &mut Study, command: &str, id: &str, text: &str) {
+    if id.is_empty() {
+        study.log(format!("<A> <{command}> {text}"));
+    } else {
+        study.log(format!("<A> <{command}> <{id}> {text}"));
+    }
+}
+
+fn no_data(args: &Args, key: &str, name: &str, what: &str) -> Diagnostic {
+    args.error(
+        key,
+        format!("{name} holds no {what} (its command did not run or produced something else)"),
+    )
+}
+
+/// The transient result named under `key`, with its name.
+pub fn result_of<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+) -> Result<(&'s str, &'s EvolNoli), Diagnostic> {
+    let name = args
+        .concept(key)
+        .ok_or_else(|| args.error(key, "a result concept is expected"))?;
+    match study.concepts.get(name) {
+        Some(c) => match &c.data {
+            ConceptData::Result(r) => Ok((c.name.as_str(), r)),
+            _ => Err(no_data(args, key, name, "result data")),
+        },
+        None => Err(no_data(args, key, name, "result data")),
+    }
+}
+
+/// The nodal field (cham_no) named under `key`, with its name.
+pub fn cham_no_of<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+) -> Result<(&'s str, &'s NodalField), Diagnostic> {
+    let name = args
+        .concept(key)
+        .ok_or_else(|| args.error(key, "a field concept is expected"))?;
+    match study.concepts.get(name) {
+        Some(c) => match &c.data {
+            ConceptData::Field(f) => Ok((c.name.as_str(), f)),
+            _ => Err(no_data(args, key, name, "nodal field")),
+        },
+        None => Err(no_data(args, key, name, "nodal field")),
+    }
+}
+
+/// The table named under `key`, with its name.
+pub fn table_of<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+) -> Result<(&'s str, &'s Table), Diagnostic> {
+    let name = args
+        .concept(key)
+        .ok_or_else(|| args.error(key, "a table concept is expected"))?;
+    match study.concepts.get(name) {
+        Some(c) => match &c.data {
+            ConceptData::Table(t) => Ok((c.name.as_str(), t)),
+            _ => Err(no_data(args, key, name, "table")),
+        },
+        None => Err(no_data(args, key, name, "table")),
+    }
+}
+
+/// The function named under `key`, with its name.
+pub fn function_of<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+) -> Result<(&'s str, &'s Function), Diagnostic> {
+    let name = args
+        .concept(key)
+        .ok_or_else(|| args.error(key, "a function concept is expected"))?;
+    match study.concepts.get(name) {
+        Some(c) => match &c.data {
+            ConceptData::Function(f) => Ok((c.name.as_str(), f)),
+            _ => Err(no_data(args, key, name, "function")),
+        },
+        None => Err(no_data(args, key, name, "function")),
+    }
+}
+
+/// The mesh concept called `name`.
+pub fn mesh_named<'s>(study: &'s Study, name: &str) -> Option<&'s Mesh> {
+    match study.concepts.data(name) {
+        Some(ConceptData::Mesh(m)) => Some(m),
+        _ => None,
+    }
+}
+
+/// The mesh a result lives on.
+pub fn mesh_of_result<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+    result_name: &str,
+    result: &EvolNoli,
+) -> Result<&'s Mesh, Diagnostic> {
+    mesh_named(study, &result.mesh).ok_or_else(|| {
+        args.error(
+            key,
+            format!(
+                "the mesh '{}' of result {result_name} is not available in this study",
+                result.mesh
+            ),
+        )
+    })
+}
+
+/// The mesh of a nodal field (cham_no).
+///
+/// A [`NodalField`] does not record its mesh, so it is found among the
+/// mesh concepts: those with the field's node count that have every group
+/// in `groups`. Several candidates are accepted only when they agree on
+/// coordinates and on those groups (the same mesh modified in place, or a
+/// copy); otherwise the field is ambiguous and this is an error.
+pub fn mesh_for_field<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+    field_name: &str,
+    field: &NodalField,
+    groups: &[&str],
+) -> Result<&'s Mesh, Diagnostic> {
+    let n = field.nnodes();
+    let sized: Vec<(&str, &Mesh)> = study
+        .concepts
+        .iter()
+        .filter_map(|c| match &c.data {
+            ConceptData::Mesh(m) if m.nnodes() == n => Some((c.name.as_str(), &**m)),
+            _ => None,
+        })
+        .collect();
+    if sized.is_empty() {
+        return Err(args.error(
+            key,
+            format!("no mesh of this study has the {n} nodes of field {field_name}"),
+        ));
+    }
+    let fit: Vec<&(&str, &Mesh)> = sized
+        .iter()
+        .filter(|(_, m)| groups.iter().all(|g| m.node_groups.contains_key(*g)))
+        .collect();
+    let Some(last) = fit.last() else {
+        let names: Vec<&str> = sized.iter().map(|(n, _)| *n).collect();
+        return Err(args.error(
+            key,
+            format!(
+                "no mesh with the {n} nodes of field {field_name} ({}) has the node group(s) {}",
+                names.join(", "),
+                groups.join(", ")
+            ),
+        ));
+    };
+    let same = fit.iter().all(|(_, m)| {
+        m.coords == last.1.coords
+            && groups
+                .iter()
+                .all(|g| m.node_groups.get(*g) == last.1.node_groups.get(*g))
+    });
+    if !same {
+        let names: Vec<&str> = fit.iter().map(|(n, _)| *n).collect();
+        return Err(args.error(
+            key,
+            format!(
+                "field {field_name} could lie on several different meshes ({}): a cham_no \
+                 does not record its mesh in aster, so it cannot be told which",
+                names.join(", ")
+            ),
+        ));
+    }
+    Ok(last.1)
+}
+
+/// The nodes designated by GROUP_NO and NOEUD at this level, in the order
+/// written (groups in their own order), without duplicates.
+pub fn nodes_of(mesh: &Mesh, args: &Args) -> Result<Vec<usize>, Diagnostic> {
+    let mut out: Vec<usize> = Vec::new();
+    let mut seen = vec![false; mesh.nnodes()];
+    let mut push = |i: usize, out: &mut Vec<usize>| {
+        if !seen[i] {
+            seen[i] = true;
+            out.push(i);
+        }
+    };
+    for g in args.texts("GROUP_NO") {
+        let Some(nodes) = mesh.node_groups.get(g) else {
+            let known: Vec<&str> = mesh.node_groups.keys().map(String::as_str).collect();
+            let mut d = args.error("GROUP_NO", format!("the mesh has no node group '{g}'"));
+            d.suggestion = closest(g, &known);
+            d.choices = known.iter().map(|s| s.to_string()).collect();
+            return Err(d);
+        };
+        for &i in nodes {
+            push(i, &mut out);
+        }
+    }
+    for name in args.texts("NOEUD") {
+        let i = parse_name(name, 'N', mesh.nnodes()).ok_or_else(|| {
+            args.error(
+                "NOEUD",
+                format!(
+                    "'{name}' is not a node of the mesh: nodes are named N1 to N{} \
+                     (aster meshes have no node names)",
+                    mesh.nnodes()
+                ),
+            )
+        })?;
+        push(i, &mut out);
+    }
+    Ok(out)
+}
+
+/// The single node of GROUP_NO / NOEUD (TEST_RESU): more or fewer is an
+/// error, as code_aster's `utnono` makes it fatal. Returns the node and
+/// the header column (`GROUP_NO` or `NOEUD`, with the value written).
+pub fn single_node(mesh: &Mesh, args: &Args) -> Result<(usize, &'static str, String), Diagnostic> {
+    let nodes = nodes_of(mesh, args)?;
+    let (key, label) = if args.has("GROUP_NO") {
+        ("GROUP_NO", args.texts("GROUP_NO").join(" "))
+    } else {
+        ("NOEUD", args.texts("NOEUD").join(" "))
+    };
+    match nodes.as_slice() {
+        [one] => Ok((*one, key, label)),
+        [] => Err(args.error(
+            key,
+            format!("{key} {label} holds no node: exactly one is needed"),
+        )),
+        many => Err(args.error(
+            key,
+            format!(
+                "{key} {label} holds {} nodes ({}{}): exactly one is needed",
+                many.len(),
+                many.iter()
+                    .take(5)
+                    .map(|&i| node_name(i))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                if many.len() > 5 { ", ..." } else { "" }
+            ),
+        )),
+    }
+}
+
+/// The single cell of GROUP_MA / MAILLE (TEST_RESU on a Gauss field).
+pub fn single_cell(mesh: &Mesh, args: &Args) -> Result<(usize, &'static str, String), Diagnostic> {
+    let mut cells: Vec<usize> = Vec::new();
+    let key = if args.has("GROUP_MA") {
+        "GROUP_MA"
+    } else {
+        "MAILLE"
+    };
+    for g in args.texts("GROUP_MA") {
+        let Some(list) = mesh.cell_groups.get(g) else {
+            let known: Vec<&str> = mesh.cell_groups.keys().map(String::as_str).collect();
+            let mut d = args.error("GROUP_MA", format!("the mesh has no cell group '{g}'"));
+            d.suggestion = closest(g, &known);
+            d.choices = known.iter().map(|s| s.to_string()).collect();
+            return Err(d);
+        };
+        cells.extend(list);
+    }
+    for name in args.texts("MAILLE") {
+        cells.push(parse_name(name, 'M', mesh.ncells()).ok_or_else(|| {
+            args.error(
+                "MAILLE",
+                format!(
+                    "'{name}' is not a cell of the mesh: cells are named M1 to M{}",
+                    mesh.ncells()
+                ),
+            )
+        })?);
+    }
+    cells.sort_unstable();
+    cells.dedup();
+    let label = args.texts(key).join(" ");
+    match cells.as_slice() {
+        [one] => Ok((*one, key, label)),
+        other => Err(args.error(
+            key,
+            format!(
+                "{key} {label} holds {} cells: exactly one is needed",
+                other.len()
+            ),
+        )),
+    }
+}
+
+/// CRITERE / PRECISION of an instant search at this level: `PRECISION`
+/// relative to the instant (RELATIF) or absolute.
+pub fn inst_access(args: &Args, inst: f64, default_precision: f64) -> Access {
+    Access::Inst {
+        inst,
+        precision: args.real("PRECISION").unwrap_or(default_precision),
+        relative: args.text("CRITERE").unwrap_or("RELATIF") != "ABSOLU",
+    }
+}
+
+/// The steps selected by TOUT_ORDRE / NUME_ORDRE / INST / LIST_INST at this
+/// level, in the order asked; all stored steps when none is given. An
+/// index or instant that is not stored is an error naming the keyword (the
+/// message gives the nearest stored instant).
+pub fn select_steps<'r>(
+    study: &Study,
+    result: &'r EvolNoli,
+    args: &Args,
+) -> Result<Vec<&'r Step>, Diagnostic> {
+    if args.has("NUME_ORDRE") {
+        return args
+            .ints("NUME_ORDRE")
+            .into_iter()
+            .map(|n| {
+                let n = usize::try_from(n)
+                    .map_err(|_| args.error("NUME_ORDRE", format!("NUME_ORDRE {n} is negative")))?;
+                result
+                    .find(Access::NumeOrdre(n))
+                    .map_err(|e| args.error("NUME_ORDRE", e))
+            })
+            .collect();
+    }
+    let (key, instants) = if args.has("INST") {
+        ("INST", args.reals("INST"))
+    } else if args.has("LIST_INST") {
+        let name = args.concept("LIST_INST").unwrap_or_default();
+        match study.concepts.data(name) {
+            Some(ConceptData::ListReal(v)) => ("LIST_INST", v.clone()),
+            _ => return Err(no_data(args, "LIST_INST", name, "list of reals")),
+        }
+    } else {
+        return Ok(result.steps.iter().collect());
+    };
+    instants
+        .into_iter()
+        .map(|t| {
+            result
+                .find(inst_access(args, t, 1e-6))
+                .map_err(|e| args.error(key, e))
+        })
+        .collect()
+}
+
+/// Nodal field `nom_cham` of a step; its absence is an error on `key`
+/// listing the fields the step holds.
+pub fn step_nodal<'r>(
+    step: &'r Step,
+    nom_cham: &str,
+    args: &Args,
+    key: &str,
+    result_name: &str,
+) -> Result<&'r NodalField, Diagnostic> {
+    step.nodal.get(nom_cham).ok_or_else(|| {
+        args.error(
+            key,
+            format!(
+                "result {result_name} has no nodal field {nom_cham} at NUME_ORDRE {} (INST {}){}",
+                step.nume_ordre,
+                crate::post::test_report::py_repr(step.inst),
+                fields_held(step)
+            ),
+        )
+    })
+}
+
+/// Gauss field `nom_cham` of a step, as [`step_nodal`].
+pub fn step_gauss<'r>(
+    step: &'r Step,
+    nom_cham: &str,
+    args: &Args,
+    key: &str,
+    result_name: &str,
+) -> Result<&'r GaussField, Diagnostic> {
+    step.gauss.get(nom_cham).ok_or_else(|| {
+        args.error(
+            key,
+            format!(
+                "result {result_name} has no Gauss-point field {nom_cham} at NUME_ORDRE {} (INST {}){}",
+                step.nume_ordre,
+                crate::post::test_report::py_repr(step.inst),
+                fields_held(step)
+            ),
+        )
+    })
+}
+
+fn fields_held(step: &Step) -> String {
+    let names: Vec<&str> = step
+        .nodal
+        .keys()
+        .chain(step.gauss.keys())
+        .map(String::as_str)
+        .collect();
+    if names.is_empty() {
+        "; this step holds no field".to_string()
+    } else {
+        format!("; this step holds {}", names.join(", "))
+    }
+}
+
+/// Whether a field name is one of the Gauss-point fields (`*_ELGA`).
+pub fn is_gauss_name(nom_cham: &str) -> bool {
+    nom_cham.ends_with("_ELGA")
+}
+
+/// The index of component `cmp` in `components`, or an error on `key`
+/// listing them.
+pub fn component_index(
+    components: &[String],
+    cmp: &str,
+    args: &Args,
+    key: &str,
+    field: &str,
+) -> Result<usize, Diagnostic> {
+    components.iter().position(|c| c == cmp).ok_or_else(|| {
+        let mut d = args.error(
+            key,
+            format!(
+                "field {field} has no component {cmp} (components: {})",
+                components.join(", ")
+            ),
+        );
+        d.suggestion = closest(cmp, components);
+        d
+    })
+}
+
+/// A table error as a diagnostic on the keyword it names (or `key`).
+pub fn table_error(args: &Args, key: &str, e: TableError) -> Diagnostic {
+    let kw = e.keyword.clone().unwrap_or_else(|| key.to_string());
+    // `FILTRE/VALE_I` names a keyword inside an occurrence: point at the
+    // factor keyword, whose path is known here.
+    let top = kw.split('/').next().unwrap_or(key).to_string();
+    let mut d = args.error(&top, e.message);
+    if kw != top {
+        d = d.note(format!("keyword {kw}"));
+    }
+    d
+}
+
+/// code_aster's automatic title of a produced concept (`ASTER <version>
+/// CONCEPT <name> CALCULE LE <date> A <time> DE TYPE <type>`), with the
+/// current date and time (UTC).
+pub fn concept_title(name: &str, ty: &str) -> Vec<String> {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    let (y, m, d) = civil_from_days((secs / 86_400) as i64);
+    let s = secs % 86_400;
+    crate::post::table::default_title(
+        env!("CARGO_PKG_VERSION"),
+        name,
+        &format!("{m:02}/{d:02}/{y:04}"),
+        &format!("{:02}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60),
+        ty,
+    )
+}
+
+/// Gregorian date of a day count since 1970-01-01 (H. Hinnant's
+/// days-to-civil algorithm).
+fn civil_from_days(z: i64) -> (i64, u32, u32) {
+    let z = z + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = (doy - (153 * mp + 2) / 5 + 1) as u32;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    (y, m, d)
+}
+
+/// The test keywords of a TEST_RESU / TEST_TABLE occurrence: VALE_CALC
+/// (`_I`, `_K`), TOLE_MACHINE(1) and CRITERE(1) (1e-6 and RELATIF when
+/// absent), REFERENCE with VALE_REFE and PRECISION, ORDRE_GRANDEUR,
+/// VALE_ABS and LEGENDE.
+pub fn test_spec(occ: &Args) -> Result<TestSpec, Diagnostic> {
+    let vale_calc: Vec<TestValue> = if occ.has("VALE_CALC_I") {
+        occ.ints("VALE_CALC_I")
+            .into_iter()
+            .map(TestValue::Int)
+            .collect()
+    } else if occ.has("VALE_CALC_K") {
+        occ.texts("VALE_CALC_K")
+            .into_iter()
+            .map(|s| TestValue::Text(s.to_string()))
+            .collect()
+    } else {
+        occ.reals("VALE_CALC")
+            .into_iter()
+            .map(TestValue::Real)
+            .collect()
+    };
+    let mut spec = TestSpec::new(vale_calc);
+    spec.legend = occ.text("LEGENDE").map(str::to_string);
+    if let Some(t) = occ.reals("TOLE_MACHINE").first() {
+        spec.tole_machine = *t;
+    }
+    if let Some(c) = occ.texts("CRITERE").first() {
+        spec.critere = Critere::parse(c)
+            .ok_or_else(|| occ.error("CRITERE", format!("unknown CRITERE '{c}'")))?;
+    }
+    spec.ordre_grandeur = occ.real("ORDRE_GRANDEUR");
+    spec.vale_abs = occ.text("VALE_ABS") == Some("OUI");
+    if let Some(kind) = occ.text("REFERENCE") {
+        let kind = RefKind::parse(kind)
+            .ok_or_else(|| occ.error("REFERENCE", format!("unknown REFERENCE '{kind}'")))?;
+        let values: Vec<TestValue> = if occ.has("VALE_REFE_I") {
+            occ.ints("VALE_REFE_I")
+                .into_iter()
+                .map(TestValue::Int)
+                .collect()
+        } else if occ.has("VALE_REFE_K") {
+            occ.texts("VALE_REFE_K")
+                .into_iter()
+                .map(|s| TestValue::Text(s.to_string()))
+                .collect()
+        } else {
+            occ.reals("VALE_REFE")
+                .into_iter()
+                .map(TestValue::Real)
+                .collect()
+        };
+        let mut r = Reference::new(kind, values);
+        if let Some(p) = occ.real("PRECISION") {
+            r.precision = p;
+        }
+        spec.reference = Some(r);
+    }
+    Ok(spec)
+}
+
+/// Runs the checks of one occurrence on `computed`; a reference of the
+/// wrong type or a bad tolerance is an error on VALE_CALC.
+pub fn run_checks(
+    occ: &Args,
+    spec: &TestSpec,
+    computed: &TestValue,
+) -> Result<Vec<CheckLine>, Diagnostic> {
+    occurrence_checks(spec, computed).map_err(|e| {
+        let key = if occ.has("VALE_CALC_I") {
+            "VALE_CALC_I"
+        } else if occ.has("VALE_CALC_K") {
+            "VALE_CALC_K"
+        } else {
+            "VALE_CALC"
+        };
+        occ.error(key, e)
+    })
+}
+
+/// Writes an occurrence's block to the .resu, counts its lines and logs
+/// its alarms (with the location of the occurrence in the message file).
+pub fn report_checks(study: &mut Study, occ: &Args, block: &str, lines: &[CheckLine]) {
+    study.write_unit(8, block);
+    crate::post::test_report::tally(&mut study.tests, lines);
+    for l in lines {
+        for a in &l.alarms {
+            alarm(study, &occ.command, a.id, &a.text);
+        }
+    }
+    let statuses: Vec<String> = lines
+        .iter()
+        .map(|l| format!("{} {}", l.kind.as_str(), l.status.as_str().trim()))
+        .collect();
+    study.log(format!("    {}: {}", occ.key_path(""), statuses.join(", ")));
+}
+
+/// The FILTRE occurrences of a command (TEST_TABLE, IMPR_TABLE,
+/// RECU_FONCTION), with their defaults.
+pub fn filters_of(args: &Args) -> Result<Vec<Filter>, Diagnostic> {
+    args.facts("FILTRE")
+        .iter()
+        .map(|f| {
+            let crit = f.text("CRIT_COMP").unwrap_or("EQ");
+            let crit_comp = CritComp::parse(crit)
+                .ok_or_else(|| f.error("CRIT_COMP", format!("unknown CRIT_COMP '{crit}'")))?;
+            let values = if f.has("VALE") {
+                FilterValues::Real(f.reals("VALE"))
+            } else if f.has("VALE_I") {
+                FilterValues::Int(f.ints("VALE_I"))
+            } else if f.has("VALE_K") {
+                FilterValues::Text(f.texts("VALE_K").iter().map(|s| s.to_string()).collect())
+            } else {
+                FilterValues::None
+            };
+            let mut filter = Filter::new(f.text("NOM_PARA").unwrap_or_default(), crit_comp, values);
+            if f.text("CRITERE") == Some("ABSOLU") {
+                filter.critere = Critere::Absolu;
+            }
+            if let Some(p) = f.real("PRECISION") {
+                filter.precision = p;
+            }
+            Ok(filter)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_read_back() {
+        assert_eq!(node_name(0), "N1");
+        assert_eq!(parse_name("N12", 'N', 12), Some(11));
+        assert_eq!(parse_name("N13", 'N', 12), None);
+        assert_eq!(parse_name("N0", 'N', 12), None);
+        assert_eq!(parse_name("N01", 'N', 12), None);
+        assert_eq!(parse_name("M3", 'N', 12), None);
+        assert_eq!(pad8("RESU"), "RESU____");
+        assert_eq!(pad8("RESULTAT"), "RESULTAT");
+    }
+
+    #[test]
+    fn dates_from_day_counts() {
+        assert_eq!(civil_from_days(0), (1970, 1, 1));
+        // 2020-11-09, the date of the code_aster commit the docs cite.
+        assert_eq!(civil_from_days(18_575), (2020, 11, 9));
+        assert_eq!(civil_from_days(11_016), (2000, 2, 29));
+    }
+}

@@ -1,0 +1,550 @@
+//! The post-processing commands run on a synthetic result whose values are
+//! known in closed form: POST_RELEVE_T, TEST_RESU, TEST_TABLE, IMPR_TABLE,
+//! RECU_FONCTION, IMPR_FONCTION, IMPR_RESU (MED read back, RESULTAT).
+//!
+//! The study text goes through the real parser, checker and runner; three
+//! test-only commands (SYNTH_MAIL, SYNTH_RESU, SYNTH_CHAMP) produce the
+//! mesh, the evol_noli and the cham_no, so the checker knows their types.
+//!
+//! The synthetic data: a 2D mesh of two QUAD4 (nodes N1..N6 at x = 0, 1, 2
+//! on y = 0 then y = 1); five stored steps at t = -1e-5, 0, 2.5e-7, 5e-7,
+//! 1e-6 (NUME_ORDRE 0..4) with
+//!   DEPL  DX = 1000 t x,  DY = -227000 t + 0.1 (n + 1)   (n = node index)
+//!   VITE  DY = -227000, DX absent at N1 (set elsewhere to 0)
+//!   SIEF_ELGA (4 points per cell) SIXX = 10 c + p + 1e6 t, SIYY = -SIXX.
+
+// Executors return `Result<_, Diagnostic>` as the registry requires.
+#![allow(clippy::result_large_err)]
+
+use std::path::PathBuf;
+
+use aster::catalog::args::Args;
+use aster::catalog::schema::{command, concept, Produces};
+use aster::commands::{self, CommandDef, ExecResult};
+use aster::concepts::{ConceptData, ConceptType as C};
+use aster::diag::Source;
+use aster::mesh::{Cell, CellType, Mesh};
+use aster::post::table::Cell as TCell;
+use aster::result::{EvolNoli, GaussField, NodalField, Step};
+use aster::run::driver::parse_and_check;
+use aster::run::Study;
+
+const INSTS: [f64; 5] = [-1e-5, 0.0, 2.5e-7, 5e-7, 1e-6];
+
+fn dx(t: f64, x: f64) -> f64 {
+    1000.0 * t * x
+}
+fn dy(t: f64, n: usize) -> f64 {
+    -227000.0 * t + 0.1 * (n as f64 + 1.0)
+}
+fn sixx(t: f64, c: usize, p: usize) -> f64 {
+    10.0 * c as f64 + p as f64 + 1e6 * t
+}
+
+fn mesh() -> Mesh {
+    let mut m = Mesh {
+        name: "synthetic".into(),
+        dim: 2,
+        coords: vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [2.0, 1.0, 0.0],
+        ],
+        cells: vec![
+            Cell {
+                kind: CellType::Quad4,
+                nodes: vec![0, 1, 4, 3],
+            },
+            Cell {
+                kind: CellType::Quad4,
+                nodes: vec![1, 2, 5, 4],
+            },
+        ],
+        ..Mesh::default()
+    };
+    m.node_groups.insert("A".into(), vec![4]);
+    m.node_groups.insert("B".into(), vec![0, 1]);
+    m.node_groups.insert("O".into(), vec![0]);
+    m.cell_groups.insert("C1".into(), vec![0]);
+    m.cell_groups.insert("C2".into(), vec![1]);
+    m
+}
+
+fn result(mesh_name: &str) -> EvolNoli {
+    let m = mesh();
+    let cmps = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let mut r = EvolNoli {
+        mesh: mesh_name.to_string(),
+        ..EvolNoli::default()
+    };
+    for (k, &t) in INSTS.iter().enumerate() {
+        let mut depl = NodalField::zeros(cmps(&["DX", "DY"]), 6);
+        let mut vite = NodalField::absent(cmps(&["DX", "DY"]), 6);
+        for n in 0..6 {
+            depl.set(n, 0, dx(t, m.coords[n][0]));
+            depl.set(n, 1, dy(t, n));
+            if n > 0 {
+                vite.set(n, 0, 0.0);
+            }
+            vite.set(n, 1, -227000.0);
+        }
+        let mut sief = GaussField {
+            components: cmps(&["SIXX", "SIYY"]),
+            offsets: vec![0, 8, 16],
+            values: Vec::new(),
+        };
+        for c in 0..2 {
+            for p in 0..4 {
+                sief.values.push(sixx(t, c, p));
+                sief.values.push(-sixx(t, c, p));
+            }
+        }
+        let mut s = Step {
+            nume_ordre: k,
+            inst: t,
+            ..Step::default()
+        };
+        s.nodal.insert("DEPL".into(), depl);
+        s.nodal.insert("VITE".into(), vite);
+        s.gauss.insert("SIEF_ELGA".into(), sief);
+        r.steps.push(s);
+    }
+    r
+}
+
+fn synth_mail(_s: &mut Study, _a: &Args, _r: Option<&str>) -> ExecResult {
+    Ok(Some(ConceptData::Mesh(Box::new(mesh()))))
+}
+fn synth_resu(_s: &mut Study, a: &Args, _r: Option<&str>) -> ExecResult {
+    Ok(Some(ConceptData::Result(Box::new(result(
+        a.concept("MAILLAGE").unwrap(),
+    )))))
+}
+/// A cham_no with DX = n, DY = -n (n = node index), DZ absent.
+fn synth_champ(_s: &mut Study, _a: &Args, _r: Option<&str>) -> ExecResult {
+    let mut f = NodalField::absent(vec!["DX".into(), "DY".into(), "DZ".into()], 6);
+    for n in 0..6 {
+        f.set(n, 0, n as f64);
+        f.set(n, 1, -(n as f64));
+    }
+    Ok(Some(ConceptData::Field(Box::new(f))))
+}
+
+fn registry() -> Vec<CommandDef> {
+    let mut r = commands::all();
+    r.push(CommandDef {
+        spec: command("SYNTH_MAIL", Produces::Concept(C::Maillage), vec![]),
+        exec: synth_mail,
+    });
+    r.push(CommandDef {
+        spec: command(
+            "SYNTH_RESU",
+            Produces::Concept(C::EvolNoli),
+            vec![concept("MAILLAGE", &[C::Maillage]).required().kw()],
+        ),
+        exec: synth_resu,
+    });
+    r.push(CommandDef {
+        spec: command("SYNTH_CHAMP", Produces::Concept(C::ChamNo), vec![]),
+        exec: synth_champ,
+    });
+    r
+}
+
+const PRELUDE: &str =
+    "DEBUT()\nMA = SYNTH_MAIL()\nRESU = SYNTH_RESU(MAILLAGE=MA)\nCH = SYNTH_CHAMP()\n";
+
+fn out_dir(tag: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("post_commands_{tag}"));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs PRELUDE + `body`; Ok(study) or Err(rendered error).
+fn run_in(study: &mut Study, body: &str) -> Result<(), String> {
+    let text = format!("{PRELUDE}{body}");
+    let src = Source::new("t.comm", text);
+    let reg = registry();
+    let mut msgs = String::new();
+    let Some(program) = parse_and_check(&src, &reg, &mut msgs) else {
+        return Err(msgs);
+    };
+    study
+        .execute(&program, &reg, &src)
+        .map_err(|d| d.render(Some(&src)))
+}
+
+fn run(tag: &str, body: &str) -> Study {
+    let mut s = Study {
+        out_dir: out_dir(tag),
+        ..Study::default()
+    };
+    if let Err(e) = run_in(&mut s, body) {
+        panic!("study failed:\n{e}\n--- mess:\n{}", s.mess);
+    }
+    s
+}
+
+fn run_err(body: &str) -> String {
+    let mut s = Study {
+        out_dir: out_dir("errors"),
+        ..Study::default()
+    };
+    run_in(&mut s, body).expect_err("the study should fail")
+}
+
+fn table<'s>(s: &'s Study, name: &str) -> &'s aster::post::table::Table {
+    match s.concepts.data(name) {
+        Some(ConceptData::Table(t)) => t,
+        _ => panic!("{name} is not a table"),
+    }
+}
+
+/// HDF5 opens files without close-on-exec: a child process started while a
+/// MED file is open (insta runs `cargo metadata` on its first snapshot)
+/// inherits the descriptor and its lock, and reading the file back then
+/// fails with "unable to lock file". Snapshots and the MED test take turns.
+static NO_CHILD_PROCESS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn snapshot(name: &str, text: &str) {
+    let _guard = NO_CHILD_PROCESS.lock().unwrap_or_else(|e| e.into_inner());
+    insta::assert_snapshot!(name, text);
+}
+
+/// The automatic title holds the date: replaced for snapshots.
+fn undated(text: &str) -> String {
+    text.lines()
+        .map(|l| {
+            if l.starts_with("#ASTER ") || l.starts_with("#TABLE_SDASTER") {
+                "#<title with the date>"
+            } else {
+                l
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn post_releve_t_extracts_every_stored_step_in_aster_columns() {
+    let s = run(
+        "releve",
+        "TAB = POST_RELEVE_T(ACTION=(
+             _F(OPERATION='EXTRACTION', INTITULE='DEPL_B', RESULTAT=RESU, NOM_CHAM='DEPL',
+                GROUP_NO='B', NOM_CMP=('DX', 'DY')),
+             _F(OPERATION='EXTRACTION', INTITULE='VITE_N1', RESULTAT=RESU, NOM_CHAM='VITE',
+                NOEUD='N1', TOUT_CMP='OUI', INST=(0., 1.E-6)),))
+         IMPR_TABLE(TABLE=TAB)
+         IMPR_TABLE(TABLE=TAB, FORMAT='AGRAF', NOM_PARA=('INTITULE', 'NUME_ORDRE', 'DX'),
+                    FILTRE=_F(NOM_PARA='NUME_ORDRE', CRIT_COMP='GE', VALE_I=4), UNITE=9)
+         FIN()\n",
+    );
+    let t = table(&s, "TAB");
+    assert_eq!(
+        t.columns,
+        [
+            "INTITULE",
+            "RESU",
+            "NOM_CHAM",
+            "NUME_ORDRE",
+            "INST",
+            "NOEUD",
+            "COOR_X",
+            "COOR_Y",
+            "DX",
+            "DY"
+        ]
+    );
+    // 5 steps x 2 nodes, then 2 instants x 1 node.
+    assert_eq!(t.n_rows(), 12);
+    let m = mesh();
+    for (k, &t_k) in INSTS.iter().enumerate() {
+        for (j, n) in [0usize, 1].into_iter().enumerate() {
+            let r = 2 * k + j;
+            assert_eq!(t.cell(r, "NUME_ORDRE"), Some(&TCell::Int(k as i64)));
+            assert_eq!(
+                t.cell(r, "NOEUD"),
+                Some(&TCell::Text(format!("N{}", n + 1)))
+            );
+            assert_eq!(t.cell(r, "DX"), Some(&TCell::Real(dx(t_k, m.coords[n][0]))));
+            assert_eq!(t.cell(r, "DY"), Some(&TCell::Real(dy(t_k, n))));
+        }
+    }
+    // VITE at N1: DX absent there, so its cell is empty; DY = -227000.
+    assert_eq!(t.cell(10, "INST"), Some(&TCell::Real(0.0)));
+    assert_eq!(t.cell(11, "NUME_ORDRE"), Some(&TCell::Int(4)));
+    assert_eq!(t.cell(11, "DX"), None);
+    assert_eq!(t.cell(11, "DY"), Some(&TCell::Real(-227000.0)));
+    snapshot("impr_table_releve", &undated(&s.resu));
+    // AGRAF: the missing DX cells of the VITE rows print as \-.
+    snapshot("impr_table_agraf", &undated(&s.unit_text[&9]));
+}
+
+#[test]
+fn impr_table_options_filter_sort_and_select() {
+    let s = run(
+        "impr_table",
+        "TAB = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='DEPL_B',
+                RESULTAT=RESU, NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY'), TITRE='synthetic')
+         IMPR_TABLE(TABLE=TAB, NOM_PARA=('NUME_ORDRE', 'NOEUD', 'DY', 'NOPE'),
+                    FILTRE=_F(NOM_PARA='NUME_ORDRE', CRIT_COMP='GE', VALE_I=3),
+                    TRI=_F(NOM_PARA='DY', ORDRE='DECROISSANT'), FORMAT_R='F10.4', UNITE=9)
+         FIN()\n",
+    );
+    assert!(s
+        .mess
+        .contains("<A> <IMPR_TABLE> <TABLE0_7> the parameter 'NOPE'"));
+    assert!(s.resu.is_empty(), "nothing tested, nothing in unit 8");
+    snapshot("impr_table_options", &s.unit_text[&9]);
+}
+
+#[test]
+fn test_resu_prints_ok_nook_and_skip_lines_and_counts_them() {
+    // DY at N5 (group A) at t = 5e-7: -227000 * 5e-7 + 0.5 = 0.3865.
+    let v = dy(5e-7, 4);
+    assert!((v - 0.3865).abs() < 1e-12);
+    let s = run(
+        "test_resu",
+        "TEST_RESU(RESU=(
+            _F(RESULTAT=RESU, INST=5.E-7, NOM_CHAM='DEPL', NOM_CMP='DY', GROUP_NO='A',
+               VALE_CALC=0.3865, REFERENCE='ANALYTIQUE', VALE_REFE=0.3865, PRECISION=1.E-6),
+            _F(RESULTAT=RESU, NUME_ORDRE=3, NOM_CHAM='DEPL', NOM_CMP='DY', GROUP_NO='A',
+               VALE_CALC=0.3866, LEGENDE='wrong value'),
+            _F(RESULTAT=RESU, INST=1.E-6, NOM_CHAM='DEPL', NOM_CMP='DX', GROUP_NO='O',
+               VALE_CALC=0.),
+            _F(RESULTAT=RESU, INST=1.E-6, NOM_CHAM='DEPL', NOM_CMP='DX', GROUP_NO='O',
+               VALE_CALC=0., ORDRE_GRANDEUR=1., CRITERE='ABSOLU'),
+            _F(RESULTAT=RESU, INST=-1.E-5, NOM_CHAM='VITE', NOM_CMP='DY', NOEUD='N6'),
+            _F(RESULTAT=RESU, INST=1.E-6, NOM_CHAM='SIEF_ELGA', NOM_CMP='SIYY',
+               GROUP_MA='C2', POINT=3, VALE_CALC=-13.),
+            _F(RESULTAT=RESU, INST=1.E-6, NOM_CHAM='SIEF_ELGA', NOM_CMP='SIXX',
+               TYPE_TEST='MAX', VALE_CALC=14.),
+            _F(RESULTAT=RESU, NUME_ORDRE=1, NOM_CHAM='DEPL', TYPE_TEST='SOMM_ABS',
+               VALE_CALC=2.1),),
+          CHAM_NO=_F(CHAM_GD=CH, GROUP_NO='A', NOM_CMP='DY', VALE_CALC=-4.))
+         FIN()\n",
+    );
+    // OK: 0.3865 twice, ABSOLU zero, SIYY(c=1, p=2, 1e-6) = -(10+2+1) = -13,
+    // MAX SIXX = 10+3+1 = 14, SOMM_ABS at t=0 = sum 0.1(n+1) = 2.1, CHAM_NO
+    // DY(N5) = -4. NOOK: 0.3866. SKIP: VALE_CALC=0 and VALE_CALC absent.
+    assert_eq!(s.tests.ok, 7, "{}", s.resu);
+    assert_eq!(s.tests.nook, 1);
+    assert_eq!(s.tests.skip, 2);
+    assert!(s.mess.contains("<A> <TEST_RESU> <TEST0_12>"));
+    assert!(s.mess.contains("<A> <TEST_RESU> <TEST0_11>"));
+    assert!(s.resu.contains(" ---- DIAGNOSTIC : NOOK_TEST_RESU"));
+    snapshot("test_resu_blocks", &s.resu);
+}
+
+#[test]
+fn test_resu_refuses_what_it_cannot_find() {
+    let occ = |body: &str| {
+        run_err(&format!(
+            "TEST_RESU(RESU=_F(RESULTAT=RESU, NOM_CHAM='DEPL', {body}, VALE_CALC=1.))\n"
+        ))
+    };
+    let e = occ("INST=5.E-7, NOM_CMP='DY', GROUP_NO='B'");
+    assert!(e.contains("GROUP_NO B holds 2 nodes (N1, N2)"), "{e}");
+    let e = occ("INST=3.E-7, NOM_CMP='DY', GROUP_NO='A'");
+    assert!(
+        e.contains("INST=3e-7") && e.contains("nearest is 2.5e-7"),
+        "{e}"
+    );
+    assert!(e.contains("TEST_RESU") && e.contains("RESU/INST"), "{e}");
+    let e = occ("NUME_ORDRE=7, NOM_CMP='DY', GROUP_NO='A'");
+    assert!(e.contains("NUME_ORDRE 7 is not stored"), "{e}");
+    let e = occ("INST=0., NOM_CMP='DZ', GROUP_NO='A'");
+    assert!(
+        e.contains("no component DZ") && e.contains("RESU/NOM_CMP"),
+        "{e}"
+    );
+    let e = run_err(
+        "TEST_RESU(RESU=_F(RESULTAT=RESU, NOM_CHAM='VITE', INST=0., NOM_CMP='DX', \
+         GROUP_NO='O', VALE_CALC=0.))\n",
+    );
+    assert!(
+        e.contains("component DX of VITE is absent at node N1"),
+        "{e}"
+    );
+    let e = run_err(
+        "TEST_RESU(RESU=_F(RESULTAT=RESU, NOM_CHAM='DEPL', INST=0., NOM_CMP='DX', \
+         GROUP_NO='NOPE', VALE_CALC=0.))\n",
+    );
+    assert!(e.contains("no node group 'NOPE'"), "{e}");
+    let e = run_err(
+        "TEST_RESU(RESU=_F(RESULTAT=RESU, NOM_CHAM='SIEF_ELGA', INST=0., NOM_CMP='SIXX', \
+         GROUP_MA='C1', POINT=5, VALE_CALC=0.))\n",
+    );
+    assert!(e.contains("POINT must be in 1..4"), "{e}");
+}
+
+#[test]
+fn test_table_filters_and_aggregates() {
+    let s = run(
+        "test_table",
+        "TAB = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='DEPL_B',
+                RESULTAT=RESU, NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY'))
+         TEST_TABLE(TABLE=TAB, NOM_PARA='DY', VALE_CALC=-0.0135,
+                    FILTRE=(_F(NOM_PARA='NUME_ORDRE', VALE_I=3),
+                            _F(NOM_PARA='NOEUD', VALE_K='N1')))
+         TEST_TABLE(TABLE=TAB, NOM_PARA='DY', FILTRE=_F(NOM_PARA='INST', VALE=2.5E-7),
+                    TYPE_TEST='SOMM', VALE_CALC=0.18650000000000003,
+                    REFERENCE='ANALYTIQUE', VALE_REFE=0.1865)
+         TEST_TABLE(TABLE=TAB, NOM_PARA='NUME_ORDRE', TYPE_TEST='MAX', VALE_CALC_I=4)
+         TEST_TABLE(TABLE=TAB, NOM_PARA='NOEUD', FILTRE=_F(NOM_PARA='DY', CRIT_COMP='MAXI'),
+                    VALE_CALC_K='N2')
+         FIN()\n",
+    );
+    // t = 5e-7 at N1: -0.1135 + 0.1 = -0.0135.
+    assert!((dy(5e-7, 0) + 0.0135).abs() < 1e-12);
+    // t = 2.5e-7: DY(N1) + DY(N2) = 2 * (-0.05675) + 0.1 + 0.2 = 0.1865.
+    let sum = dy(2.5e-7, 0) + dy(2.5e-7, 1);
+    assert!((sum - 0.1865).abs() < 1e-12);
+    assert_eq!(s.tests.ok, 5, "{}", s.resu);
+    assert_eq!(s.tests.nook, 0);
+    snapshot("test_table_blocks", &s.resu);
+
+    let e = run_err(
+        "TAB = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='DEPL_B',
+                RESULTAT=RESU, NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY'))
+         TEST_TABLE(TABLE=TAB, NOM_PARA='DY', VALE_CALC=0.0865,
+                    FILTRE=_F(NOM_PARA='NUME_ORDRE', VALE_I=3))\n",
+    );
+    assert!(e.contains("2 rows are left after filtering"), "{e}");
+}
+
+#[test]
+fn recu_fonction_and_impr_fonction() {
+    let s = run(
+        "fonction",
+        "F = RECU_FONCTION(RESULTAT=RESU, NOM_CHAM='DEPL', NOM_CMP='DY', GROUP_NO='B')
+         G = RECU_FONCTION(RESULTAT=RESU, NOM_CHAM='SIEF_ELGA', NOM_CMP='SIXX', GROUP_MA='C2',
+                           POINT=2, INST=(0., 1.E-6))
+         IMPR_FONCTION(FORMAT='XMGRACE', COURBE=(_F(FONCTION=F), _F(FONCTION=G, LEGENDE='sixx')))
+         IMPR_FONCTION(COURBE=_F(FONCTION=F))
+         FIN()\n",
+    );
+    let Some(ConceptData::Function(f)) = s.concepts.data("F") else {
+        panic!("F is not a function")
+    };
+    assert_eq!(f.para, "INST");
+    assert_eq!(f.resu, "DY");
+    assert_eq!(f.abscissas, INSTS);
+    let expected: Vec<f64> = INSTS.iter().map(|&t| dy(t, 0)).collect();
+    assert_eq!(f.ordinates, expected);
+    assert_eq!(f.prol(), "EE");
+    assert!(s
+        .mess
+        .contains("<A> <RECU_FONCTION> GROUP_NO holds 2 nodes: the first one, N1, is used"));
+    let Some(ConceptData::Function(g)) = s.concepts.data("G") else {
+        panic!("G is not a function")
+    };
+    assert_eq!(g.ordinates, vec![sixx(0.0, 1, 1), sixx(1e-6, 1, 1)]);
+    let agr = &s.unit_text[&29];
+    assert!(agr.starts_with("# Grace project file") || agr.contains("@version 50100"));
+    assert!(agr.contains("@    legend \"sixx\"") || agr.contains("legend \"sixx\""));
+    // Data lines of F in %.8g: t = 2.5e-07 gives DY = 0.04325.
+    assert!(agr.contains("2.5e-07 0.04325\n"), "{agr}");
+    snapshot("impr_fonction_tableau", &s.resu);
+}
+
+#[test]
+fn impr_resu_med_round_trip() {
+    let _guard = NO_CHILD_PROCESS.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = out_dir("med");
+    let path = dir.join("resu.med");
+    let _ = std::fs::remove_file(&path);
+    let mut s = Study {
+        out_dir: dir.clone(),
+        ..Study::default()
+    };
+    s.units.map.insert(80, path.clone());
+    run_in(
+        &mut s,
+        "IMPR_RESU(FORMAT='MED', RESU=(_F(RESULTAT=RESU, NOM_CHAM=('DEPL', 'SIEF_ELGA'),
+                                          NUME_ORDRE=(1, 3)),
+                                       _F(CHAM_GD=CH)))
+         FIN()\n",
+    )
+    .unwrap();
+    let nodal = aster::medio::read_nodal_fields(&path, None).unwrap();
+    let names: Vec<&str> = nodal.iter().map(|f| f.name.as_str()).collect();
+    assert_eq!(names, ["CH", "RESU____DEPL"]);
+    let depl = &nodal[1];
+    assert_eq!(depl.components, ["DX", "DY"]);
+    assert_eq!(depl.steps.len(), 2);
+    let m = mesh();
+    for (st, k) in depl.steps.iter().zip([1usize, 3]) {
+        assert_eq!(st.numdt, k as i32);
+        assert_eq!(st.time, INSTS[k]);
+        for n in 0..6 {
+            assert_eq!(st.values[2 * n], dx(INSTS[k], m.coords[n][0]));
+            assert_eq!(st.values[2 * n + 1], dy(INSTS[k], n));
+        }
+    }
+    // The cham_no: DZ absent everywhere comes back as NaN.
+    assert_eq!(nodal[0].steps[0].values[3 * 5], 5.0);
+    assert!(nodal[0].steps[0].values[3 * 5 + 2].is_nan());
+    let cells = aster::medio::read_elem_fields(&path, None).unwrap();
+    assert_eq!(cells.len(), 1);
+    assert_eq!(cells[0].name, "RESU____SIEF_ELGA");
+    // Mean over p = 0..3 of 10 c + p + 1e6 t = 10 c + 1.5 + 1e6 t.
+    let st = &cells[0].steps[1];
+    assert_eq!(st.time, INSTS[3]);
+    for c in 0..2 {
+        let mean = 10.0 * c as f64 + 1.5 + 1e6 * INSTS[3];
+        assert!((st.values[2 * c] - mean).abs() < 1e-12);
+        assert!((st.values[2 * c + 1] + mean).abs() < 1e-12);
+    }
+    let mesh_back = aster::medio::read_mesh(&path, None).unwrap();
+    assert_eq!(mesh_back.name, "MA");
+    assert_eq!(mesh_back.coords, m.coords);
+    assert!(s
+        .mess
+        .contains("the mean over the Gauss points of each cell"));
+
+    let e = run_err(
+        "IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(CHAM_GD=CH))
+         IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(CHAM_GD=CH))\n",
+    );
+    assert!(e.contains("not implemented yet: IMPR_RESU/UNITE"), "{e}");
+    let e = run_err("IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=RESU, GROUP_NO='A'))\n");
+    assert!(
+        e.contains("not implemented yet: IMPR_RESU/RESU/GROUP_NO"),
+        "{e}"
+    );
+}
+
+#[test]
+fn impr_resu_resultat_listing() {
+    let s = run(
+        "listing",
+        "IMPR_RESU(FORMAT='RESULTAT', RESU=_F(RESULTAT=RESU, NOM_CHAM=('VITE', 'SIEF_ELGA'),
+                   NUME_ORDRE=2, FORMAT_R='1PE12.5'))
+         IMPR_RESU(FORMAT='RESULTAT', RESU=_F(CHAM_GD=CH, GROUP_NO='B'))\n",
+    );
+    snapshot("impr_resu_resultat", &s.resu);
+}
+
+#[test]
+fn post_releve_t_refuses_other_operations() {
+    let e = run_err(
+        "T = POST_RELEVE_T(ACTION=_F(OPERATION='MOYENNE', INTITULE='M', RESULTAT=RESU,
+                NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY'))\n",
+    );
+    assert!(
+        e.contains("not implemented yet: POST_RELEVE_T/ACTION/OPERATION"),
+        "{e}"
+    );
+    let e = run_err(
+        "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,
+                NOM_CHAM='DEPL', GROUP_NO='B', RESULTANTE='DY'))\n",
+    );
+    assert!(
+        e.contains("not implemented yet: POST_RELEVE_T/ACTION/RESULTANTE"),
+        "{e}"
+    );
+}
