@@ -8,6 +8,7 @@ mod dynamics_support;
 
 use aster::mesh::{Cell, CellType, Mesh};
 use aster::model::Dof;
+use aster::run::Study;
 use dynamics_support::*;
 
 /// A 2×2 QUAD8 patch of [0,2]² touching the axis, with the middle corner
@@ -152,6 +153,306 @@ fn patch_test_uniform_strain_through_the_assembled_solver() {
                     );
                 }
             }
+        }
+    }
+}
+
+const V0: f64 = -227000.0;
+const E_CU: f64 = 117000.0;
+const RHO_CU: f64 = 8.93e-9;
+
+/// Bar cells, bar nodes and the nodes of a cell group of a Taylor mesh.
+fn bar(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
+    let vol = mesh.cell_groups["VOL"].clone();
+    let nodes = mesh.nodes_of_cells(&vol);
+    (vol, nodes)
+}
+
+fn group_nodes(mesh: &Mesh, g: &str) -> Vec<usize> {
+    mesh.nodes_of_cells(&mesh.cell_groups[g])
+}
+
+fn dyna_text(comportement: &str, schema: &str, extra: &str) -> String {
+    format!(
+        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT,
+    COMPORTEMENT=_F({comportement}, TOUT='OUI'),
+    ETAT_INIT=_F(VITE=V0),
+    INCREMENT=_F(LIST_INST=L_INST),
+    SCHEMA_TEMPS=_F({schema}, FORMULATION='DEPLACEMENT'){extra})"
+    )
+}
+
+/// (1) Free flight of the SDNV103 D/F bar (no load, foundation left out of
+/// the model): DY = v (t − t0) at every step and node, VY = v, a = 0, for
+/// NEWMARK and both HHT variants, with the finite-strain plastic law.
+#[test]
+fn free_flight_is_exact_translation() {
+    for schema in [
+        "SCHEMA='NEWMARK'",
+        "SCHEMA='HHT', ALPHA=-0.6, MODI_EQUI='NON'",
+        "SCHEMA='HHT', ALPHA=-0.3, MODI_EQUI='OUI'",
+    ] {
+        let mesh = aster::medio::read_mesh(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("med/sdnv103d.mmed"),
+            None,
+        )
+        .unwrap();
+        let (vol, nodes) = bar(&mesh);
+        let mo = model(&mesh, "AXIS", &vol);
+        let v = velocity(mesh.nnodes(), &nodes, V0);
+        let t = linspace(-1e-5, 0.0, 10);
+        let mut st = study(
+            mesh,
+            mo,
+            material(E_CU, 0.35, RHO_CU, Some((400.0, 100.0))),
+            vec![],
+            Some(v),
+            t.clone(),
+            None,
+        );
+        let text = dyna_text(
+            "RELATION='VMIS_ISOT_LINE', DEFORMATION='SIMO_MIEHE'",
+            schema,
+            "",
+        );
+        exec(
+            &mut st,
+            "DYNA_NON_LINE",
+            &args_of(&text, "DYNA_NON_LINE", 0),
+            "RESU",
+        )
+        .unwrap();
+        let r = result(&st, "RESU");
+        assert_eq!(r.steps.len(), 11, "{schema}");
+        for (k, s) in r.steps.iter().enumerate() {
+            assert_eq!(s.inst, t[k]);
+            let expect = V0 * (s.inst - t[0]);
+            for &n in &nodes {
+                let dy = s.nodal["DEPL"].get(n, "DY").unwrap();
+                assert!(
+                    (dy - expect).abs() <= 1e-10 * expect.abs().max(1e-300),
+                    "{schema} step {k}: {dy} vs {expect}"
+                );
+                assert!(s.nodal["DEPL"].get(n, "DX").unwrap().abs() < 1e-12);
+                let vy = s.nodal["VITE"].get(n, "DY").unwrap();
+                assert!((vy - V0).abs() <= 1e-10 * V0.abs(), "{schema}: VY {vy}");
+                let ay = s.nodal["ACCE"].get(n, "DY").unwrap();
+                // |v|/dt ≈ 2e11: a must vanish to round-off of that scale.
+                assert!(ay.abs() <= 1e-6 * V0.abs() / 1e-6, "{schema}: ACCE {ay}");
+            }
+        }
+        // Nodes outside the model (the foundation) are absent.
+        let rig = match st.concepts.data("MAIL") {
+            Some(aster::concepts::ConceptData::Mesh(m)) => {
+                m.nodes_of_cells(&m.cell_groups["VOL_RIG"])
+            }
+            _ => unreachable!(),
+        };
+        assert!(r.steps[1].nodal["DEPL"].get(rig[0], "DY").is_none());
+    }
+}
+
+/// (2) Elastic wave in a rod (NU = 0, ELAS PETIT, 1 × 100 QUAD8 of the
+/// bar's section), bottom held (DY = 0 on SZZ), the rest at v = −227 m/s:
+/// behind the front σ_yy = ρ c v with c = √(E/ρ) (one-dimensional wave,
+/// exact for ν = 0), and the free top's velocity reverses (−v → +v) when
+/// the front reaches it at L/c (not 2L/c: the reflection at the free end
+/// is what reverses it).
+#[test]
+fn elastic_wave_in_a_rod() {
+    let mesh = taylor_axis(1, 100);
+    let (vol, nodes) = bar(&mesh);
+    let held = group_nodes(&mesh, "SZZ");
+    let moving: Vec<usize> = nodes
+        .iter()
+        .copied()
+        .filter(|n| !held.contains(n))
+        .collect();
+    let top = mesh.node_groups["A2"][0];
+    let mo = model(&mesh, "AXIS", &vol);
+    let v = velocity(mesh.nnodes(), &moving, V0);
+    let c = (E_CU / RHO_CU).sqrt();
+    let l = aster::mesh::taylor::LENGTH;
+    let dt = 2.5e-8;
+    let n = (1.3 * l / c / dt).ceil() as usize;
+    let t = linspace(0.0, n as f64 * dt, n);
+    let coords = mesh.coords.clone();
+    let cells = mesh.cells.clone();
+    let mut st = study(
+        mesh,
+        mo,
+        material(E_CU, 0.0, RHO_CU, None),
+        imposed(&held, Dof::Dy, 0.0),
+        Some(v),
+        t.clone(),
+        None,
+    );
+    let text = dyna_text(
+        "RELATION='ELAS'",
+        "SCHEMA='NEWMARK'",
+        ", EXCIT=_F(CHARGE=BLOQ)",
+    );
+    exec(
+        &mut st,
+        "DYNA_NON_LINE",
+        &args_of(&text, "DYNA_NON_LINE", 0),
+        "RESU",
+    )
+    .unwrap();
+    let r = result(&st, "RESU");
+    // Stress behind the front at t ≈ L/(2c): mean SIYY over the cells
+    // between 10 % and 80 % of the distance travelled by the front.
+    let k = ((0.5 * l / c) / dt).round() as usize;
+    let s = &r.steps[k];
+    let front = c * s.inst;
+    let y0 = aster::mesh::taylor::GAP;
+    let sief = &s.gauss["SIEF_ELGA"];
+    let (mut sum, mut cnt) = (0.0, 0);
+    for &cell in &vol {
+        let yc: f64 = cells[cell].nodes.iter().map(|&n| coords[n][1]).sum::<f64>() / 8.0 - y0;
+        if yc > 0.1 * front && yc < 0.8 * front {
+            for p in 0..sief.npg(cell) {
+                sum += sief.cell(cell)[p * 4 + 1];
+                cnt += 1;
+            }
+        }
+    }
+    let sigma = sum / cnt as f64;
+    let expect = RHO_CU * c * V0;
+    let rel = (sigma - expect).abs() / expect.abs();
+    eprintln!("wave: sigma_yy behind the front {sigma:.1} vs rho c v {expect:.1} ({rel:.2e})");
+    assert!(rel < 0.02, "{sigma} vs {expect}");
+    // Top velocity reversal: the zero crossing of VY, interpolated
+    // linearly between the two steps around it.
+    let vy = |k: usize| r.steps[k].nodal["VITE"].get(top, "DY").unwrap();
+    let k_rev = (1..r.steps.len())
+        .find(|&k| vy(k) > 0.0)
+        .expect("the top velocity reverses");
+    let (t0, t1) = (r.steps[k_rev - 1].inst, r.steps[k_rev].inst);
+    let t_rev = t0 + (t1 - t0) * (-vy(k_rev - 1)) / (vy(k_rev) - vy(k_rev - 1));
+    eprintln!(
+        "wave: top velocity reverses at {t_rev:e}, L/c = {:e}",
+        l / c
+    );
+    // The trapezoidal rule's dispersion delays the smeared front by about
+    // 1.7 steps here: 1 % of L/c bounds it.
+    assert!(
+        (t_rev - l / c).abs() <= 0.01 * l / c,
+        "{t_rev} vs {}",
+        l / c
+    );
+}
+
+/// Kinetic + strain energy of every archived step of an ELAS PETIT run:
+/// ½ vᵀMv with the engine's mass, ½ uᵀ FORC_NODA (FORC_NODA = K u for
+/// linear elasticity) from CALC_CHAMP.
+fn energies(st: &mut Study) -> Vec<f64> {
+    let args = args_of(
+        &format!(
+            "{NEWMARK_ELAS}\nRESU = CALC_CHAMP(reuse=RESU, RESULTAT=RESU, FORCE=('FORC_NODA',))"
+        ),
+        "CALC_CHAMP",
+        0,
+    );
+    exec(st, "CALC_CHAMP", &args, "RESU").unwrap();
+    let (mesh, mo, mat) = match (
+        st.concepts.data("MAIL"),
+        st.concepts.data("MO"),
+        st.concepts.data("MAT"),
+    ) {
+        (
+            Some(aster::concepts::ConceptData::Mesh(a)),
+            Some(aster::concepts::ConceptData::Model(b)),
+            Some(aster::concepts::ConceptData::Material(c)),
+        ) => (a.clone(), b.clone(), c.clone()),
+        _ => unreachable!(),
+    };
+    let mut mats = indexmap::IndexMap::new();
+    mats.insert("MAT".to_string(), (*mat).clone());
+    let mf = aster::model::MaterialField {
+        mesh: "MAIL".into(),
+        cell_material: vec![Some("MAT".into()); mesh.ncells()],
+    };
+    let (asm, _) = aster::nonlinear::discretize(&mesh, &mo, &mf, &mats, &[], &[]).unwrap();
+    let names = vec!["DX".to_string(), "DY".to_string()];
+    let r = result(st, "RESU");
+    r.steps
+        .iter()
+        .map(|s| {
+            let u = aster::nonlinear::fields::from_nodal(&asm, &names, &s.nodal["DEPL"]);
+            let v = aster::nonlinear::fields::from_nodal(&asm, &names, &s.nodal["VITE"]);
+            let f = aster::nonlinear::fields::from_nodal(&asm, &names, &s.nodal["FORC_NODA"]);
+            let mut mv = vec![0.0; v.len()];
+            asm.mass_mul(&v, &mut mv);
+            let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+            0.5 * dot(&v, &mv) + 0.5 * dot(&u, &f)
+        })
+        .collect()
+}
+
+/// (3) Energy: a free elastic bar (1 × 8 QUAD8, ν = 0.3) released with
+/// the velocity of its first free-free mode, v_y = V cos(π ξ). The average
+/// acceleration rule conserves ½vᵀMv + ½uᵀKu exactly for a linear system
+/// (1000 steps, 20 periods); HHT and NEWMARK(0.49, 0.9) dissipate it
+/// (sampled once per period, it decreases).
+#[test]
+fn energy_is_conserved_by_average_acceleration_and_dissipated_otherwise() {
+    let c = (E_CU / RHO_CU).sqrt();
+    let l = aster::mesh::taylor::LENGTH;
+    let period = 2.0 * l / c;
+    for (schema, steps, conserve) in [
+        ("SCHEMA='NEWMARK'", 1000, true),
+        ("SCHEMA='NEWMARK', BETA=0.49, GAMMA=0.9", 250, false),
+        ("SCHEMA='HHT', ALPHA=-0.3", 250, false),
+        ("SCHEMA='HHT', ALPHA=-0.6, MODI_EQUI='NON'", 250, false),
+    ] {
+        let mesh = taylor_axis(1, 8);
+        let (vol, nodes) = bar(&mesh);
+        let mo = model(&mesh, "AXIS", &vol);
+        let mut v = velocity(mesh.nnodes(), &nodes, 0.0);
+        for &n in &nodes {
+            let xi = (mesh.coords[n][1] - aster::mesh::taylor::GAP) / l;
+            v.set(n, 1, 1000.0 * (std::f64::consts::PI * xi).cos());
+        }
+        let dt = period / 50.0;
+        let t = linspace(0.0, steps as f64 * dt, steps);
+        let mut st = study(
+            mesh,
+            mo,
+            material(E_CU, 0.3, RHO_CU, None),
+            vec![],
+            Some(v),
+            t,
+            None,
+        );
+        let text = dyna_text(
+            "RELATION='ELAS'",
+            schema,
+            ", CONVERGENCE=_F(RESI_GLOB_RELA=1e-10)",
+        );
+        exec(
+            &mut st,
+            "DYNA_NON_LINE",
+            &args_of(&text, "DYNA_NON_LINE", 0),
+            "RESU",
+        )
+        .unwrap();
+        let e = energies(&mut st);
+        let e0 = e[0];
+        if conserve {
+            let worst = e.iter().map(|x| (x - e0).abs() / e0).fold(0.0, f64::max);
+            eprintln!("energy {schema}: worst relative drift {worst:.2e} over {steps} steps");
+            assert!(worst < 1e-6, "{worst}");
+        } else {
+            let per: Vec<f64> = e.iter().step_by(50).copied().collect();
+            eprintln!(
+                "energy {schema}: per period {:?}",
+                per.iter().map(|x| x / e0).collect::<Vec<_>>()
+            );
+            for w in per.windows(2) {
+                assert!(w[1] < w[0], "{schema}: {per:?}");
+            }
+            assert!(*per.last().unwrap() < 0.999 * e0, "{schema}: {per:?}");
         }
     }
 }
