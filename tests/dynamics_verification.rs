@@ -456,3 +456,292 @@ fn energy_is_conserved_by_average_acceleration_and_dissipated_otherwise() {
         }
     }
 }
+
+/// The plastic rod of the cutting tests: 1 × 10 QUAD8, bottom held,
+/// VMIS_ISOT_LINE PETIT (σ = ρcv ≈ 7300 ≫ SY = 400: every step yields).
+fn plastic_rod(instants: Vec<f64>, list: Option<aster::time::list::TimeList>) -> Study {
+    let mesh = taylor_axis(1, 10);
+    let (vol, nodes) = bar(&mesh);
+    let held = group_nodes(&mesh, "SZZ");
+    let moving: Vec<usize> = nodes
+        .iter()
+        .copied()
+        .filter(|n| !held.contains(n))
+        .collect();
+    let mo = model(&mesh, "AXIS", &vol);
+    let v = velocity(mesh.nnodes(), &moving, V0);
+    study(
+        mesh,
+        mo,
+        material(E_CU, 0.35, RHO_CU, Some((400.0, 100.0))),
+        imposed(&held, Dof::Dy, 0.0),
+        Some(v),
+        instants,
+        list,
+    )
+}
+
+/// (5) Step cutting. With the elastic Newton matrix the iteration count
+/// grows with the plastic increment; an ITER_GLOB_MAXI that the steps of
+/// dt meet and the steps of 4·dt do not (both measured first) makes every
+/// big step fail; DECOUPE MANUEL (SUBD_PAS = 4) redoes them as 4 steps of dt, so
+/// the result equals the run made with steps of dt from the start (the
+/// rolled-back state must be exact). With a plain list the same failure
+/// stops the run: the error says where and why, and the partial result
+/// keeps the steps computed before.
+#[test]
+fn failed_steps_are_cut_or_stop_with_the_partial_result() {
+    use aster::time::list::{Action, Subdivision, TimeList};
+    let dt = 2e-8;
+    let fine = linspace(0.0, 16.0 * dt, 16);
+    let coarse = linspace(0.0, 16.0 * dt, 4);
+    let text = |list: &str, iters: usize| {
+        format!(
+            "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ),
+    COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', TOUT='OUI'),
+    ETAT_INIT=_F(VITE=V0), INCREMENT=_F(LIST_INST={list}),
+    SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'),
+    NEWTON=_F(MATRICE='ELASTIQUE'),
+    CONVERGENCE=_F(RESI_GLOB_RELA=1e-8, ITER_GLOB_MAXI={iters}))"
+        )
+    };
+    // Reference: small steps, plenty of iterations.
+    let mut reference = plastic_rod(fine.clone(), None);
+    exec(
+        &mut reference,
+        "DYNA_NON_LINE",
+        &args_of(&text("L_INST", 20), "DYNA_NON_LINE", 0),
+        "RESU",
+    )
+    .unwrap();
+    // Find the iteration budget that the small steps meet and the big
+    // ones do not, from the logs of two runs.
+    let max_iters = |mess: &str| -> usize {
+        mess.lines()
+            .filter_map(|l| {
+                let w: Vec<&str> = l.split_whitespace().collect();
+                (w.len() >= 7 && w[0].parse::<usize>().is_ok())
+                    .then(|| w[3].parse::<usize>().ok())
+                    .flatten()
+            })
+            .max()
+            .unwrap()
+    };
+    let small = max_iters(&reference.mess);
+    let mut big = plastic_rod(coarse.clone(), None);
+    exec(
+        &mut big,
+        "DYNA_NON_LINE",
+        &args_of(&text("L_INST", 20), "DYNA_NON_LINE", 0),
+        "RESU",
+    )
+    .unwrap();
+    let min_big = big
+        .mess
+        .lines()
+        .filter_map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            (w.len() >= 7 && w[0].parse::<usize>().is_ok())
+                .then(|| w[3].parse::<usize>().ok())
+                .flatten()
+        })
+        .min()
+        .unwrap();
+    eprintln!("cutting: small steps need at most {small} iterations, big steps at least {min_big}");
+    assert!(
+        min_big > small,
+        "no iteration budget separates the step sizes"
+    );
+    let rule = TimeList {
+        rules: vec![aster::time::list::FailureRule {
+            event: aster::time::list::Event::Erreur,
+            action: Action::Decoupe(Subdivision::Manuel {
+                subd_pas: 4,
+                subd_niveau: 2,
+                subd_pas_mini: 1e-15,
+            }),
+        }],
+        ..TimeList::plain(coarse.clone())
+    };
+    let mut cut = plastic_rod(coarse.clone(), Some(rule));
+    exec(
+        &mut cut,
+        "DYNA_NON_LINE",
+        &args_of(&text("LI", small), "DYNA_NON_LINE", 0),
+        "RESU",
+    )
+    .unwrap();
+    assert_eq!(
+        cut.mess.matches("is cut into 4 sub-steps").count(),
+        4,
+        "{}",
+        cut.mess
+    );
+    let (rc, rr) = (result(&cut, "RESU"), result(&reference, "RESU"));
+    // Sub-steps are computed instants and archived (PAS_ARCH = 1).
+    assert_eq!(rc.steps.len(), rr.steps.len());
+    let mut worst: f64 = 0.0;
+    for (a, b) in rc.steps.iter().zip(&rr.steps) {
+        assert!((a.inst - b.inst).abs() < 1e-20);
+        for f in ["DEPL", "VITE"] {
+            let (x, y) = (&a.nodal[f].values, &b.nodal[f].values);
+            let scale = y
+                .iter()
+                .filter(|v| !v.is_nan())
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            for (p, q) in x.iter().zip(y) {
+                if !q.is_nan() {
+                    worst = worst.max((p - q).abs() / scale.max(1e-300));
+                }
+            }
+        }
+        let (x, y) = (&a.gauss["VARI_ELGA"].values, &b.gauss["VARI_ELGA"].values);
+        for (p, q) in x.iter().zip(y) {
+            assert!((p - q).abs() <= 1e-8 * q.abs().max(1e-6));
+        }
+    }
+    eprintln!("cutting: cut run vs small steps, worst relative difference {worst:.2e}");
+    assert!(worst < 1e-8, "{worst}");
+    let p_max = rr.steps.last().unwrap().gauss["VARI_ELGA"]
+        .values
+        .iter()
+        .copied()
+        .fold(0.0, f64::max);
+    assert!(p_max > 1e-4, "the steps are plastic: p = {p_max}");
+
+    // Plain list: ERREUR -> ARRET, the partial result is kept.
+    let mut stop = plastic_rod(coarse.clone(), None);
+    let err = exec(
+        &mut stop,
+        "DYNA_NON_LINE",
+        &args_of(&text("L_INST", small), "DYNA_NON_LINE", 0),
+        "RESU",
+    )
+    .unwrap_err();
+    assert!(
+        err.contains("DYNA_NON_LINE stopped at the step from t = 0e0"),
+        "{err}"
+    );
+    assert!(err.contains("Newton did not converge"), "{err}");
+    let partial = result(&stop, "RESU");
+    assert_eq!(
+        partial.steps.len(),
+        1,
+        "only the initial state was computed"
+    );
+    assert_eq!(partial.steps[0].inst, 0.0);
+}
+
+/// (6) Taylor bar without contact, mesh B (med/sdnv103b.mmed, 5 × 20
+/// QUAD8, AXIS_SI): the bottom face is held (DY = 0 on SZZ, a rigid wall
+/// from t = 0), DX = 0 on the axis, SIMO_MIEHE VMIS_ISOT_LINE, HHT
+/// (−0.6, MODI_EQUI='NON'), 8 steps of 2.5e-7. It must run to the end with
+/// p = V1 > 0 at the bottom, finite fields and a decreasing kinetic
+/// energy; the wall time per step is printed for docs/dynamics.md.
+#[test]
+fn plastic_taylor_bar_against_a_held_face() {
+    let mesh = aster::medio::read_mesh(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("med/sdnv103b.mmed"),
+        None,
+    )
+    .unwrap();
+    let (vol, nodes) = bar(&mesh);
+    let held = group_nodes(&mesh, "SZZ");
+    let axe = group_nodes(&mesh, "AXE");
+    let moving: Vec<usize> = nodes
+        .iter()
+        .copied()
+        .filter(|n| !held.contains(n))
+        .collect();
+    let mo = model(&mesh, "AXIS_SI", &vol);
+    let v = velocity(mesh.nnodes(), &moving, V0);
+    let mut imp = imposed(&held, Dof::Dy, 0.0);
+    imp.extend(imposed(&axe, Dof::Dx, 0.0));
+    let bottom_cells: Vec<usize> = vol
+        .iter()
+        .copied()
+        .filter(|&c| mesh.cells[c].nodes.iter().any(|n| held.contains(n)))
+        .collect();
+    let mut st = study(
+        mesh,
+        mo,
+        material(E_CU, 0.35, RHO_CU, Some((400.0, 100.0))),
+        imp,
+        Some(v),
+        linspace(0.0, 2e-6, 8),
+        None,
+    );
+    let text = dyna_text(
+        "RELATION='VMIS_ISOT_LINE', DEFORMATION='SIMO_MIEHE'",
+        "SCHEMA='HHT', ALPHA=-0.6, MODI_EQUI='NON'",
+        ", EXCIT=_F(CHARGE=BLOQ), CONVERGENCE=_F(RESI_GLOB_RELA=1e-6, ITER_GLOB_MAXI=20)",
+    );
+    let started = std::time::Instant::now();
+    exec(
+        &mut st,
+        "DYNA_NON_LINE",
+        &args_of(&text, "DYNA_NON_LINE", 0),
+        "RESU",
+    )
+    .unwrap();
+    let per_step = started.elapsed().as_secs_f64() / 8.0;
+    let line = st
+        .mess
+        .lines()
+        .find(|l| l.contains("Newton iterations"))
+        .unwrap_or("")
+        .to_string();
+    eprintln!("taylor B: {per_step:.3e} s per step (with set-up); {line}");
+    let r = result(&st, "RESU");
+    assert_eq!(r.steps.len(), 9);
+    let last = r.steps.last().unwrap();
+    let vari = &last.gauss["VARI_ELGA"];
+    let p_bottom = bottom_cells
+        .iter()
+        .flat_map(|&c| (0..vari.npg(c)).map(move |p| (c, p)))
+        .map(|(c, p)| vari.cell(c)[p * vari.ncmp()])
+        .fold(0.0, f64::max);
+    eprintln!("taylor B: max p at the bottom {p_bottom:.4}");
+    assert!(p_bottom > 0.01, "{p_bottom}");
+    for s in &r.steps {
+        assert!(s.nodal["DEPL"].values.iter().all(|v| !v.is_infinite()));
+        assert!(s.gauss["SIEF_ELGA"].values.iter().all(|v| v.is_finite()));
+    }
+    // Kinetic energy ½ vᵀMv with the consistent mass. The wall is fixed
+    // and the initial strain energy zero, so the kinetic energy can never
+    // exceed its initial value (a stable scheme creates no energy), and
+    // plastic dissipation must make it drop.
+    let (mesh, mo) = match (st.concepts.data("MAIL"), st.concepts.data("MO")) {
+        (
+            Some(aster::concepts::ConceptData::Mesh(a)),
+            Some(aster::concepts::ConceptData::Model(b)),
+        ) => (a.clone(), b.clone()),
+        _ => unreachable!(),
+    };
+    let mut mats = indexmap::IndexMap::new();
+    mats.insert("MAT".to_string(), material(E_CU, 0.35, RHO_CU, None));
+    let mf = aster::model::MaterialField {
+        mesh: "MAIL".into(),
+        cell_material: vec![Some("MAT".into()); mesh.ncells()],
+    };
+    let (asm, _) = aster::nonlinear::discretize(&mesh, &mo, &mf, &mats, &[], &[]).unwrap();
+    let names = vec!["DX".to_string(), "DY".to_string()];
+    let ke: Vec<f64> = r
+        .steps
+        .iter()
+        .map(|s| {
+            let v = aster::nonlinear::fields::from_nodal(&asm, &names, &s.nodal["VITE"]);
+            let mut mv = vec![0.0; v.len()];
+            asm.mass_mul(&v, &mut mv);
+            0.5 * v.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>()
+        })
+        .collect();
+    eprintln!(
+        "taylor B: kinetic energy / initial {:?}",
+        ke.iter().map(|k| k / ke[0]).collect::<Vec<_>>()
+    );
+    for (k, e) in ke.iter().enumerate() {
+        assert!(*e <= ke[0] * (1.0 + 1e-12), "step {k}: {ke:?}");
+    }
+    assert!(*ke.last().unwrap() < 0.99 * ke[0], "{ke:?}");
+}
