@@ -25,6 +25,7 @@ pub mod law;
 pub mod medio;
 pub mod mesh;
 pub mod model;
+pub mod nonlinear;
 pub mod post;
 pub mod result;
 pub mod run;

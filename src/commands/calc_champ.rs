@@ -1,9 +1,16 @@
 //! CALC_CHAMP: derived fields of a result (stresses at nodes, nodal forces...).
 
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::dyna_non_line::{loads_of, model_data, prepare_error};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
-use crate::concepts::ConceptType as C;
+use crate::concepts::{ConceptData, ConceptType as C};
+use crate::law::TangentKind;
+use crate::model::MechLoad;
+use crate::nonlinear::{self, fields, Occurrence};
+use crate::result::Access;
+use crate::run::Study;
 
 pub fn def() -> CommandDef {
     let mut kws = vec![
@@ -78,8 +85,203 @@ pub fn def() -> CommandDef {
             exclus(&["TOUT", "GROUP_MA", "MAILLE"]),
         ])
         .doc("Adds derived fields to a result, at all stored indices unless restricted.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
+    CommandDef { spec, exec }
+}
+
+/// FORC_NODA and REAC_NODA (semantics.md §9.1) at the selected steps.
+///
+/// FORC_NODA is the assembled ∫ Bᵀσ of the stored state: the law is
+/// re-evaluated with a zero increment from the stored SIEF_ELGA/VARI_ELGA
+/// and the stored DEPL, which returns the stored stress and integrates it
+/// on the element's own configuration (current geometry for PETIT_REAC,
+/// P = τF⁻ᵀ on the initial one for SIMO_MIEHE). REAC_NODA = FORC_NODA −
+/// F_ext + M·ACCE; DDL_IMPO loads have no F_ext, so at free nodes it is
+/// the dynamic residual (≈ 0) and at supports the support reaction.
+fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+    let name = args.concept("RESULTAT").unwrap_or("").to_string();
+    let mut evol = match study.concepts.data(&name) {
+        Some(ConceptData::Result(r)) => (**r).clone(),
+        _ => return Err(args.error("RESULTAT", format!("the result {name} holds no data"))),
+    };
+    for key in [
+        "CONTRAINTE",
+        "DEFORMATION",
+        "CRITERES",
+        "VARI_INTERNE",
+        "ENERGIE",
+    ] {
+        if args.has(key) {
+            return Err(args.not_implemented(key, ""));
+        }
     }
+    for key in ["TOUT", "GROUP_MA", "MAILLE"] {
+        if args.given(key) {
+            return Err(args.not_implemented(key, "the whole model is always used"));
+        }
+    }
+    let options = args.texts("FORCE");
+    if options.is_empty() {
+        return Ok(Some(ConceptData::Result(Box::new(evol))));
+    }
+    let model_name = args.concept("MODELE").unwrap_or(&evol.model).to_string();
+    let mat_name = args
+        .concept("CHAM_MATER")
+        .unwrap_or(&evol.cham_mater)
+        .to_string();
+    if model_name.is_empty() || mat_name.is_empty() {
+        return Err(args.error(
+            "RESULTAT",
+            format!("the result {name} does not say which model and material field it was computed with: give MODELE and CHAM_MATER"),
+        ));
+    }
+    let md = model_data(
+        study,
+        args,
+        ("MODELE", &model_name),
+        ("CHAM_MATER", &mat_name),
+    )?;
+    let load_names: Vec<String> = if args.has("EXCIT") {
+        for ex in args.facts("EXCIT") {
+            if ex.has("FONC_MULT") || ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {
+                return Err(ex.not_implemented("FONC_MULT", "only constant FIXE_CSTE loads"));
+            }
+        }
+        args.facts("EXCIT")
+            .iter()
+            .map(|e| e.concept("CHARGE").unwrap_or("").to_string())
+            .collect()
+    } else {
+        evol.loads.clone()
+    };
+    let loads = loads_of(study, args, "EXCIT", &load_names)?;
+    // The behaviour the result was computed with, one occurrence per
+    // (RELATION, DEFORMATION) pair.
+    let mut occs: Vec<Occurrence> = Vec::new();
+    for (c, b) in evol.comportement.iter().enumerate() {
+        if let Some((rel, def)) = b {
+            match occs
+                .iter_mut()
+                .find(|o| &o.relation == rel && &o.deformation == def)
+            {
+                Some(o) => o.cells.get_or_insert_with(Vec::new).push(c),
+                None => occs.push(Occurrence {
+                    cells: Some(vec![c]),
+                    relation: rel.clone(),
+                    deformation: def.clone(),
+                }),
+            }
+        }
+    }
+    let refs: Vec<&MechLoad> = loads.iter().collect();
+    let (mut asm, _) = nonlinear::discretize(
+        &md.mesh,
+        &md.model,
+        &md.matfield,
+        &md.materials,
+        &occs,
+        &refs,
+    )
+    .map_err(|e| prepare_error(args, e))?;
+    let dofs: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
+    // Selected steps.
+    let relative = args.text("CRITERE").unwrap_or("RELATIF") == "RELATIF";
+    let precision = args.real("PRECISION").unwrap_or(1e-6);
+    let mut selected: Vec<usize> = Vec::new();
+    let mut pick = |acc: Access| -> Result<(), String> {
+        let s = evol.find(acc)?;
+        selected.push(s.nume_ordre);
+        Ok(())
+    };
+    if args.has("NUME_ORDRE") {
+        for k in args.ints("NUME_ORDRE") {
+            pick(Access::NumeOrdre(k.max(0) as usize)).map_err(|m| args.error("NUME_ORDRE", m))?;
+        }
+    } else if args.has("INST") || args.has("LIST_INST") {
+        let insts = if let Some(l) = args.concept("LIST_INST") {
+            match study.concepts.data(l) {
+                Some(ConceptData::ListReal(v)) => v.clone(),
+                _ => return Err(args.error("LIST_INST", format!("the list {l} holds no data"))),
+            }
+        } else {
+            args.reals("INST")
+        };
+        for t in insts {
+            pick(Access::Inst {
+                inst: t,
+                precision,
+                relative,
+            })
+            .map_err(|m| args.error("INST", m))?;
+        }
+    } else {
+        selected = evol.steps.iter().map(|s| s.nume_ordre).collect();
+    }
+    let nfull = asm.numbering.nfull();
+    let fext = vec![0.0; nfull];
+    let mut fint = vec![0.0; nfull];
+    let mut ma = vec![0.0; nfull];
+    let mut scratch = asm.initial_states();
+    for step in evol.steps.iter_mut() {
+        if !selected.contains(&step.nume_ordre) {
+            continue;
+        }
+        let missing = |f: &str| {
+            args.error(
+                "RESULTAT",
+                format!("NUME_ORDRE {} of {name} has no {f} field", step.nume_ordre),
+            )
+        };
+        let u = fields::from_nodal(
+            &asm,
+            &dofs,
+            step.nodal.get("DEPL").ok_or_else(|| missing("DEPL"))?,
+        );
+        let points = fields::states_from_gauss(
+            &asm,
+            step.gauss
+                .get("SIEF_ELGA")
+                .ok_or_else(|| missing("SIEF_ELGA"))?,
+            step.gauss
+                .get("VARI_ELGA")
+                .ok_or_else(|| missing("VARI_ELGA"))?,
+        )
+        .map_err(|m| args.error("RESULTAT", m))?;
+        asm.compute(
+            &u,
+            &u,
+            &points,
+            &mut scratch,
+            1.0,
+            TangentKind::None,
+            &mut fint,
+            None,
+        )
+        .map_err(|f| {
+            args.error(
+                "RESULTAT",
+                format!(
+                    "NUME_ORDRE {}: cell {}: {}",
+                    step.nume_ordre,
+                    f.cell + 1,
+                    f.failure
+                ),
+            )
+        })?;
+        if options.contains(&"FORC_NODA") {
+            step.nodal
+                .insert("FORC_NODA".into(), fields::nodal(&asm, &dofs, &fint));
+        }
+        if options.contains(&"REAC_NODA") {
+            let a = step
+                .nodal
+                .get("ACCE")
+                .map(|f| fields::from_nodal(&asm, &dofs, f))
+                .unwrap_or_else(|| vec![0.0; nfull]);
+            asm.mass_mul(&a, &mut ma);
+            let reac: Vec<f64> = (0..nfull).map(|i| fint[i] - fext[i] + ma[i]).collect();
+            step.nodal
+                .insert("REAC_NODA".into(), fields::nodal(&asm, &dofs, &reac));
+        }
+    }
+    Ok(Some(ConceptData::Result(Box::new(evol))))
 }

@@ -1,9 +1,25 @@
 //! DYNA_NON_LINE: nonlinear transient dynamics.
 
+use indexmap::IndexMap;
+
 use super::blocks::*;
-use super::{not_implemented, CommandDef};
+use super::mesh_args::{check_groups, GroupKind};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
-use crate::concepts::ConceptType as C;
+use crate::concepts::{Concept, ConceptData, ConceptType as C};
+use crate::diag::Diagnostic;
+use crate::law::TangentKind;
+use crate::mesh::Mesh;
+use crate::model::{Material, MaterialField, MechLoad, Model};
+use crate::nonlinear::{
+    self, dyna, fields, ArchivePolicy, Assembler, ConvergenceSettings, Engine, NewtonSettings,
+    Occurrence, PrepareError, Reduce, Suivi, SuiviField, TimeLoop,
+};
+use crate::result::{Access, EvolNoli};
+use crate::run::Study;
+use crate::time::list::{Action, Event, TimeList};
+use crate::time::Scheme;
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -70,10 +86,7 @@ pub fn def() -> CommandDef {
     // given as initial state, as in `R = DYNA_NON_LINE(reuse=R, ETAT_INIT=_F(EVOL_NOLI=R), ...)`.
     .reentrant(Reentrant::Optional("ETAT_INIT/EVOL_NOLI"))
     .doc("Computes the nonlinear dynamic evolution of a structure (evol_noli); with reuse= it continues a result.");
-    CommandDef {
-        spec,
-        exec: not_implemented,
-    }
+    CommandDef { spec, exec }
 }
 
 fn schema_temps() -> Keyword {
@@ -176,4 +189,690 @@ fn schema_temps() -> Keyword {
     .required()
     .doc("time integration scheme")
     .kw()
+}
+
+// ------------------------------------------------------------------ executor
+
+/// The model, its mesh, the material field and the materials it names.
+pub(crate) struct ModelData {
+    pub model: Model,
+    pub mesh: Mesh,
+    pub matfield: MaterialField,
+    pub materials: IndexMap<String, Material>,
+}
+
+/// Fetches MODELE (`model_name`) and CHAM_MATER (`mat_name`) data;
+/// `key_model`/`key_mat` are the keywords to blame.
+pub(crate) fn model_data(
+    study: &Study,
+    args: &Args,
+    (key_model, model_name): (&str, &str),
+    (key_mat, mat_name): (&str, &str),
+) -> Result<ModelData, Diagnostic> {
+    let no_data = |key: &str, name: &str| {
+        args.error(
+            key,
+            format!("the concept {name} holds no data (its command did not run)"),
+        )
+    };
+    let model = match study.concepts.data(model_name) {
+        Some(ConceptData::Model(m)) => (**m).clone(),
+        _ => return Err(no_data(key_model, model_name)),
+    };
+    let mesh = match study.concepts.data(&model.mesh) {
+        Some(ConceptData::Mesh(m)) => (**m).clone(),
+        _ => return Err(no_data(key_model, &model.mesh)),
+    };
+    let matfield = match study.concepts.data(mat_name) {
+        Some(ConceptData::MaterialField(m)) => (**m).clone(),
+        _ => return Err(no_data(key_mat, mat_name)),
+    };
+    if matfield.mesh != model.mesh {
+        return Err(args.error(
+            key_mat,
+            format!(
+                "the CHAM_MATER {mat_name} is on the mesh {}, the model on {}",
+                matfield.mesh, model.mesh
+            ),
+        ));
+    }
+    let mut materials = IndexMap::new();
+    for name in matfield.cell_material.iter().flatten() {
+        if materials.contains_key(name) {
+            continue;
+        }
+        match study.concepts.data(name) {
+            Some(ConceptData::Material(m)) => {
+                materials.insert(name.clone(), (**m).clone());
+            }
+            _ => return Err(no_data(key_mat, name)),
+        }
+    }
+    Ok(ModelData {
+        model,
+        mesh,
+        matfield,
+        materials,
+    })
+}
+
+/// The mechanical loads named in `names`.
+pub(crate) fn loads_of(
+    study: &Study,
+    args: &Args,
+    key: &str,
+    names: &[String],
+) -> Result<Vec<MechLoad>, Diagnostic> {
+    names
+        .iter()
+        .map(|n| match study.concepts.data(n) {
+            Some(ConceptData::MechLoad(l)) => Ok((**l).clone()),
+            _ => Err(args.error(key, format!("the load {n} holds no data"))),
+        })
+        .collect()
+}
+
+/// The cells of a location (TOUT / GROUP_MA; MAILLE is not supported).
+fn location_cells(mesh: &Mesh, occ: &Args) -> Result<Option<Vec<usize>>, Diagnostic> {
+    if occ.given("MAILLE") {
+        return Err(occ.not_implemented("MAILLE", "use GROUP_MA"));
+    }
+    if occ.has("GROUP_MA") {
+        check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
+        let mut cells = Vec::new();
+        for g in occ.texts("GROUP_MA") {
+            cells.extend(mesh.cell_groups[g].iter().copied());
+        }
+        return Ok(Some(cells));
+    }
+    Ok(None)
+}
+
+/// The COMPORTEMENT occurrences resolved to cells.
+pub(crate) fn occurrences(mesh: &Mesh, args: &Args) -> Result<Vec<Occurrence>, Diagnostic> {
+    args.facts("COMPORTEMENT")
+        .iter()
+        .map(|o| {
+            Ok(Occurrence {
+                cells: location_cells(mesh, o)?,
+                relation: o.text("RELATION").unwrap_or("ELAS").to_string(),
+                deformation: o.text("DEFORMATION").unwrap_or("PETIT").to_string(),
+            })
+        })
+        .collect()
+}
+
+/// (RELATION, DEFORMATION) of each element cell, later occurrence wins,
+/// ELAS/PETIT elsewhere: what the result keeps for CALC_CHAMP.
+pub(crate) fn cell_comportement(
+    model: &Model,
+    occs: &[Occurrence],
+) -> Vec<Option<(String, String)>> {
+    let mut out: Vec<Option<(String, String)>> = model
+        .cells
+        .iter()
+        .map(|r| {
+            matches!(r, crate::model::CellRole::Element(_))
+                .then(|| ("ELAS".to_string(), "PETIT".to_string()))
+        })
+        .collect();
+    for o in occs {
+        let cells: Vec<usize> = match &o.cells {
+            Some(c) => c.clone(),
+            None => (0..out.len()).collect(),
+        };
+        for c in cells {
+            if let Some(slot) = out.get_mut(c) {
+                if slot.is_some() {
+                    *slot = Some((o.relation.clone(), o.deformation.clone()));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A discretization error as a diagnostic on the keyword at fault.
+pub(crate) fn prepare_error(args: &Args, e: PrepareError) -> Diagnostic {
+    match e {
+        PrepareError::Behaviour(b) => {
+            let level = b
+                .occurrence
+                .and_then(|k| args.facts("COMPORTEMENT").get(k))
+                .unwrap_or(args);
+            if b.not_implemented {
+                Diagnostic::error(b.message)
+                    .at(level.span_of(b.keyword))
+                    .in_command(args.command.clone())
+            } else {
+                level.error(b.keyword, b.message)
+            }
+        }
+        PrepareError::Load(m) => args.error("EXCIT", m),
+        PrepareError::Mesh(m) => args.error("MODELE", m),
+    }
+}
+
+fn scheme_of(args: &Args) -> Result<Scheme, Diagnostic> {
+    let st = args
+        .fact("SCHEMA_TEMPS")
+        .ok_or_else(|| args.error("SCHEMA_TEMPS", "SCHEMA_TEMPS is compulsory"))?;
+    let schema = st.text("SCHEMA").unwrap_or("");
+    let formulation = st.text("FORMULATION").unwrap_or("");
+    let scheme = match schema {
+        "NEWMARK" => Scheme::newmark(
+            st.real("BETA").unwrap_or(0.25),
+            st.real("GAMMA").unwrap_or(0.5),
+        ),
+        "HHT" => Scheme::hht(
+            st.real("ALPHA").unwrap_or(-0.1),
+            st.text("MODI_EQUI").unwrap_or("OUI") == "OUI",
+        ),
+        other => {
+            return Err(st.not_implemented(
+                "SCHEMA",
+                &format!("SCHEMA='{other}'; NEWMARK and HHT are implemented"),
+            ))
+        }
+    }
+    .map_err(|m| st.error("SCHEMA", m))?;
+    match formulation {
+        "DEPLACEMENT" => Ok(scheme),
+        "VITESSE" => Err(st.error(
+            "FORMULATION",
+            format!("FORMULATION='VITESSE' is forbidden with SCHEMA='{schema}' (as in code_aster)"),
+        )),
+        other => Err(st.not_implemented(
+            "FORMULATION",
+            &format!("FORMULATION='{other}'; only 'DEPLACEMENT' is implemented"),
+        )),
+    }
+}
+
+fn newton_of(args: &Args) -> Result<NewtonSettings, Diagnostic> {
+    let mut n = NewtonSettings::default();
+    if let Some(o) = args.fact("NEWTON") {
+        n.matrix = match o.text("MATRICE").unwrap_or("TANGENTE") {
+            "ELASTIQUE" => TangentKind::Elastic,
+            _ => TangentKind::Consistent,
+        };
+        if let Some(p) = o.text("PREDICTION") {
+            if p != o.text("MATRICE").unwrap_or("TANGENTE") {
+                return Err(o.not_implemented("PREDICTION", "a prediction different from MATRICE"));
+            }
+        }
+        n.reac_incr = o.int("REAC_INCR").unwrap_or(1).max(0) as usize;
+        n.reac_iter = o.int("REAC_ITER").unwrap_or(1).max(0) as usize;
+        n.symmetrize = o.text("MATR_RIGI_SYME") == Some("OUI");
+        if o.given("PAS_MINI_ELAS") {
+            return Err(o.not_implemented("PAS_MINI_ELAS", ""));
+        }
+    }
+    Ok(n)
+}
+
+fn convergence_of(args: &Args, log: &mut Vec<String>) -> Result<ConvergenceSettings, Diagnostic> {
+    let mut c = ConvergenceSettings::default();
+    if let Some(o) = args.fact("CONVERGENCE") {
+        if o.given("RESI_COMP_RELA") {
+            return Err(o.error(
+                "RESI_COMP_RELA",
+                "RESI_COMP_RELA is forbidden in dynamics (as in code_aster)",
+            ));
+        }
+        if o.given("RESI_REFE_RELA") {
+            return Err(o.not_implemented("RESI_REFE_RELA", ""));
+        }
+        let (rela, maxi) = (o.real("RESI_GLOB_RELA"), o.real("RESI_GLOB_MAXI"));
+        c.resi_glob_maxi = maxi;
+        c.resi_glob_rela = match (rela, maxi) {
+            (None, None) => Some(1e-6),
+            (r, _) => r,
+        };
+        if c.resi_glob_rela.is_some_and(|r| r > 1e-4) {
+            log.push(format!(
+                "alarm: RESI_GLOB_RELA = {:e} > 1e-4 is a loose criterion",
+                c.resi_glob_rela.unwrap_or(0.0)
+            ));
+        }
+        let it = o.int("ITER_GLOB_MAXI").unwrap_or(10);
+        if it < 1 {
+            return Err(o.error("ITER_GLOB_MAXI", "ITER_GLOB_MAXI must be >= 1"));
+        }
+        c.iter_glob_maxi = it as usize;
+        c.arret = o.text("ARRET").unwrap_or("OUI") == "OUI";
+    }
+    Ok(c)
+}
+
+fn archive_of(study: &Study, args: &Args) -> Result<ArchivePolicy, Diagnostic> {
+    let Some(o) = args.fact("ARCHIVAGE") else {
+        return Ok(ArchivePolicy::Every(1));
+    };
+    if o.given("CHAM_EXCLU") {
+        return Err(o.not_implemented("CHAM_EXCLU", ""));
+    }
+    let relative = o.text("CRITERE").unwrap_or("RELATIF") == "RELATIF";
+    let precision = o.real("PRECISION").unwrap_or(1e-6);
+    if let Some(p) = o.int("PAS_ARCH") {
+        if p < 1 {
+            return Err(o.error("PAS_ARCH", "PAS_ARCH must be >= 1"));
+        }
+        return Ok(ArchivePolicy::Every(p as usize));
+    }
+    let instants = if let Some(l) = o.concept("LIST_INST") {
+        match study.concepts.data(l) {
+            Some(ConceptData::ListReal(v)) => v.clone(),
+            Some(ConceptData::TimeList(t)) => t.instants.clone(),
+            _ => return Err(o.error("LIST_INST", format!("the list {l} holds no data"))),
+        }
+    } else if o.has("INST") {
+        o.reals("INST")
+    } else {
+        return Ok(ArchivePolicy::Every(1));
+    };
+    Ok(ArchivePolicy::Instants {
+        instants,
+        precision,
+        relative,
+    })
+}
+
+fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Suivi>, Diagnostic> {
+    let mut out = Vec::new();
+    for o in args.facts("SUIVI_DDL") {
+        let name = o.text("NOM_CHAM").unwrap_or("");
+        let field = match name {
+            "DEPL" => SuiviField::Depl,
+            "VITE" => SuiviField::Vite,
+            "ACCE" => SuiviField::Acce,
+            "FORC_NODA" => SuiviField::ForcNoda,
+            "SIEF_ELGA" => SuiviField::SiefElga,
+            "VARI_ELGA" => SuiviField::VariElga,
+            other => return Err(o.not_implemented("NOM_CHAM", &format!("NOM_CHAM='{other}'"))),
+        };
+        if o.given("NOEUD") || o.given("MAILLE") {
+            return Err(o.not_implemented("NOEUD", "use GROUP_NO / GROUP_MA"));
+        }
+        let nodal = matches!(
+            field,
+            SuiviField::Depl | SuiviField::Vite | SuiviField::Acce | SuiviField::ForcNoda
+        );
+        let entities: Vec<usize> = if nodal {
+            if o.has("GROUP_NO") {
+                check_groups(mesh, o, "GROUP_NO", GroupKind::Nodes)?;
+                o.texts("GROUP_NO")
+                    .iter()
+                    .flat_map(|g| mesh.node_groups[*g].iter().copied())
+                    .collect()
+            } else if o.has("GROUP_MA") {
+                check_groups(mesh, o, "GROUP_MA", GroupKind::Cells)?;
+                let cells: Vec<usize> = o
+                    .texts("GROUP_MA")
+                    .iter()
+                    .flat_map(|g| mesh.cell_groups[*g].iter().copied())
+                    .collect();
+                mesh.nodes_of_cells(&cells)
+            } else {
+                let cells: Vec<usize> = model.element_cells().map(|(c, _)| c).collect();
+                mesh.nodes_of_cells(&cells)
+            }
+        } else {
+            match location_cells(mesh, o)? {
+                Some(c) => c,
+                None => model.element_cells().map(|(c, _)| c).collect(),
+            }
+        };
+        let eval = Reduce::from_name(o.text("EVAL_CHAM").unwrap_or("VALE")).unwrap_or(Reduce::Vale);
+        let eval_elga =
+            Reduce::from_name(o.text("EVAL_ELGA").unwrap_or("VALE")).unwrap_or(Reduce::Vale);
+        let points: Vec<usize> = o.ints("POINT").iter().map(|&p| p.max(0) as usize).collect();
+        for cmp in o.texts("NOM_CMP") {
+            let component = match field {
+                SuiviField::SiefElga => ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"]
+                    .iter()
+                    .position(|c| *c == cmp),
+                SuiviField::VariElga => cmp
+                    .strip_prefix('V')
+                    .and_then(|k| k.parse::<usize>().ok())
+                    .filter(|k| *k >= 1)
+                    .map(|k| k - 1),
+                _ => model.dofs.iter().position(|d| d.name() == cmp),
+            }
+            .ok_or_else(|| {
+                o.error(
+                    "NOM_CMP",
+                    format!("the field {name} has no component '{cmp}' here"),
+                )
+            })?;
+            out.push(Suivi {
+                label: format!("{name} {cmp}"),
+                field,
+                component,
+                entities: entities.clone(),
+                eval,
+                eval_elga,
+                points: points.clone(),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The time list and the instants [INST_INIT .. INST_FIN] to compute;
+/// `t_etat` is the initial instant of an EVOL_NOLI initial state.
+fn time_range(
+    study: &Study,
+    args: &Args,
+    t_etat: Option<f64>,
+) -> Result<(TimeList, Vec<f64>), Diagnostic> {
+    let inc = args
+        .fact("INCREMENT")
+        .ok_or_else(|| args.error("INCREMENT", "INCREMENT is compulsory"))?;
+    let name = inc.concept("LIST_INST").unwrap_or("");
+    let list = match study.concepts.data(name) {
+        Some(ConceptData::ListReal(v)) => TimeList::plain(v.clone()),
+        Some(ConceptData::TimeList(t)) => (**t).clone(),
+        _ => return Err(inc.error("LIST_INST", format!("the list {name} holds no data"))),
+    };
+    let ins = &list.instants;
+    if ins.len() < 2 || ins.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(inc.error(
+            "LIST_INST",
+            format!("the list {name} must hold at least 2 strictly increasing instants"),
+        ));
+    }
+    let min_step = ins
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min);
+    let tol = inc.real("PRECISION").unwrap_or(1e-6) * min_step;
+    let find = |key: &str, t: f64| {
+        ins.iter().position(|&s| (s - t).abs() <= tol).ok_or_else(|| {
+            inc.error(
+                key,
+                format!(
+                    "{key} = {t:e} is not an instant of the list {name} (absolute tolerance {tol:e} = PRECISION x smallest step)"
+                ),
+            )
+        })
+    };
+    let index = |key: &str, k: i64| {
+        usize::try_from(k)
+            .ok()
+            .filter(|&k| k < ins.len())
+            .ok_or_else(|| {
+                inc.error(
+                    key,
+                    format!("{key} = {k} is outside the list (0..{})", ins.len() - 1),
+                )
+            })
+    };
+    let i0 = if let Some(t) = inc.real("INST_INIT") {
+        find("INST_INIT", t)?
+    } else if let Some(k) = inc.int("NUME_INST_INIT") {
+        index("NUME_INST_INIT", k)?
+    } else if let Some(t) = t_etat {
+        // The nearest list value not after the initial state's instant.
+        ins.iter().rposition(|&s| s <= t + tol).unwrap_or(0)
+    } else {
+        0
+    };
+    let i1 = if let Some(t) = inc.real("INST_FIN") {
+        find("INST_FIN", t)?
+    } else if let Some(k) = inc.int("NUME_INST_FIN") {
+        index("NUME_INST_FIN", k)?
+    } else {
+        ins.len() - 1
+    };
+    if i1 <= i0 {
+        return Err(inc.error(
+            "",
+            format!(
+                "nothing to compute: the final instant {:e} is not after the initial instant {:e}",
+                ins[i1], ins[i0]
+            ),
+        ));
+    }
+    let instants = ins[i0..=i1].to_vec();
+    Ok((list, instants))
+}
+
+/// The initial state: (t0 from EVOL_NOLI, u, v, a, Gauss states).
+struct Init {
+    t0: Option<f64>,
+    u: Option<Vec<f64>>,
+    v: Option<Vec<f64>>,
+    a: Option<Vec<f64>>,
+    points: Option<Vec<crate::element::PointState>>,
+}
+
+fn etat_init(
+    study: &Study,
+    args: &Args,
+    asm: &Assembler,
+    dofs: &[String],
+) -> Result<Init, Diagnostic> {
+    let mut init = Init {
+        t0: None,
+        u: None,
+        v: None,
+        a: None,
+        points: None,
+    };
+    let Some(o) = args.fact("ETAT_INIT") else {
+        return Ok(init);
+    };
+    if o.given("NUME_DIDI") {
+        return Err(o.not_implemented("NUME_DIDI", ""));
+    }
+    if let Some(name) = o.concept("EVOL_NOLI") {
+        let Some(ConceptData::Result(r)) = study.concepts.data(name) else {
+            return Err(o.error("EVOL_NOLI", format!("the result {name} holds no data")));
+        };
+        let step = if let Some(k) = o.int("NUME_ORDRE") {
+            r.find(Access::NumeOrdre(k.max(0) as usize))
+        } else if let Some(t) = o.real("INST") {
+            r.find(Access::Inst {
+                inst: t,
+                precision: o.real("PRECISION").unwrap_or(1e-6),
+                relative: o.text("CRITERE").unwrap_or("RELATIF") == "RELATIF",
+            })
+        } else {
+            r.steps
+                .last()
+                .ok_or_else(|| format!("the result {name} holds no step"))
+        }
+        .map_err(|m| o.error("EVOL_NOLI", m))?;
+        let nodal = |f: &str| {
+            step.nodal
+                .get(f)
+                .map(|fl| fields::from_nodal(asm, dofs, fl))
+        };
+        init.u = nodal("DEPL");
+        init.v = nodal("VITE");
+        init.a = nodal("ACCE");
+        if let (Some(s), Some(v)) = (step.gauss.get("SIEF_ELGA"), step.gauss.get("VARI_ELGA")) {
+            init.points =
+                Some(fields::states_from_gauss(asm, s, v).map_err(|m| o.error("EVOL_NOLI", m))?);
+        }
+        init.t0 = Some(o.real("INST_ETAT_INIT").unwrap_or(step.inst));
+    }
+    for (key, slot) in [
+        ("DEPL", &mut init.u),
+        ("VITE", &mut init.v),
+        ("ACCE", &mut init.a),
+    ] {
+        if let Some(name) = o.concept(key) {
+            match study.concepts.data(name) {
+                Some(ConceptData::Field(f)) => *slot = Some(fields::from_nodal(asm, dofs, f)),
+                _ => return Err(o.error(key, format!("the field {name} holds no data"))),
+            }
+        }
+    }
+    if init.t0.is_none() {
+        init.t0 = o.real("INST_ETAT_INIT");
+    }
+    Ok(init)
+}
+
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    if args.has("CONTACT") {
+        return Err(args.not_implemented("CONTACT", ""));
+    }
+    for key in ["RECH_LINEAIRE", "ENERGIE"] {
+        if args.given(key) {
+            return Err(args.not_implemented(key, ""));
+        }
+    }
+    if args.text("MASS_DIAG") == Some("OUI") {
+        return Err(args.error(
+            "MASS_DIAG",
+            "MASS_DIAG='OUI' is only allowed with explicit schemes",
+        ));
+    }
+    let scheme = scheme_of(args)?;
+    let mut notes: Vec<String> = Vec::new();
+    let model_name = args.concept("MODELE").unwrap_or("").to_string();
+    let mat_name = args.concept("CHAM_MATER").unwrap_or("").to_string();
+    let md = model_data(
+        study,
+        args,
+        ("MODELE", &model_name),
+        ("CHAM_MATER", &mat_name),
+    )?;
+    let mut load_names = Vec::new();
+    for ex in args.facts("EXCIT") {
+        if ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {
+            return Err(ex.not_implemented("TYPE_CHARGE", "only FIXE_CSTE"));
+        }
+        if ex.has("FONC_MULT") {
+            return Err(ex.not_implemented("FONC_MULT", ""));
+        }
+        load_names.push(ex.concept("CHARGE").unwrap_or("").to_string());
+    }
+    let loads = loads_of(study, args, "EXCIT", &load_names)?;
+    let occs = occurrences(&md.mesh, args)?;
+    let load_refs: Vec<&MechLoad> = loads.iter().collect();
+    let (asm, alarms) = nonlinear::discretize(
+        &md.mesh,
+        &md.model,
+        &md.matfield,
+        &md.materials,
+        &occs,
+        &load_refs,
+    )
+    .map_err(|e| prepare_error(args, e))?;
+    notes.extend(alarms);
+    let newton = newton_of(args)?;
+    let conv = convergence_of(args, &mut notes)?;
+    let archive = archive_of(study, args)?;
+    let suivi = suivi_of(&md.mesh, &md.model, args)?;
+    let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
+    let init = etat_init(study, args, &asm, &dof_names)?;
+    let (list, instants) = time_range(study, args, init.t0)?;
+    let on_error = list.on_error().clone();
+    if matches!(
+        on_error,
+        Action::IterSuppl { .. } | Action::AdaptCoefPena { .. }
+    ) {
+        return Err(args.not_implemented(
+            "INCREMENT",
+            &format!("the ERREUR action {on_error:?} of the time list"),
+        ));
+    }
+    let ignored: Vec<String> = list
+        .rules
+        .iter()
+        .filter(|r| r.event != Event::Erreur)
+        .map(|r| format!("{:?}", r.event))
+        .collect();
+    if !ignored.is_empty() {
+        notes.push(format!(
+            "the time list's events {} concern contact; without CONTACT they are ignored",
+            ignored.join(", ")
+        ));
+    }
+    if args.has("SOLVEUR") {
+        notes.push("SOLVEUR: every METHODE maps to one sparse direct LU (faer); the settings are accepted and ignored".into());
+    }
+    let info = args.int("INFO").unwrap_or(1);
+    let progress = study.verbose && std::io::IsTerminal::is_terminal(&std::io::stderr());
+    let tl = TimeLoop {
+        instants,
+        on_error,
+        archive,
+        newton_table: info >= 2 || !suivi.is_empty(),
+        suivi,
+        progress,
+        dof_names,
+        ncells: md.mesh.ncells(),
+    };
+    // With reuse= the result is still in the table: new steps are appended
+    // to it (instants not after its last one are not stored again).
+    let mut evol = match result.and_then(|r| study.concepts.data(r)) {
+        Some(ConceptData::Result(r)) => (**r).clone(),
+        _ => EvolNoli::default(),
+    };
+    evol.mesh = md.model.mesh.clone();
+    evol.model = model_name.clone();
+    evol.cham_mater = mat_name.clone();
+    evol.loads = load_names.clone();
+    evol.comportement = cell_comportement(&md.model, &occs);
+
+    let t_start = tl.instants[0];
+    let has_acce = init.a.is_some();
+    let mut state = nonlinear::initial_state(&asm, t_start, init.u, init.v, init.a);
+    if let Some(p) = init.points {
+        state.points = p;
+    }
+    let mut engine = Engine::new(asm, scheme, newton, conv, state);
+    for n in &notes {
+        study.log(format!("  {n}"));
+    }
+    study.log(format!(
+        "  DYNA_NON_LINE: {} equations ({} imposed dofs), {} elements, matrix pattern {} entries; {} steps from {:e} to {:e}",
+        engine.asm.numbering.neq(),
+        engine.asm.numbering.imposed.len(),
+        engine.asm.elements.len(),
+        engine.asm.pattern.nnz(),
+        tl.instants.len() - 1,
+        tl.instants[0],
+        tl.instants[tl.instants.len() - 1]
+    ));
+    match engine.initialize(!has_acce) {
+        Ok(Some(alarm)) => study.log(format!("  {alarm}")),
+        Ok(None) => {
+            if !has_acce {
+                study.log("  initial acceleration solved from M a0 = F_ext - F_int(u0)");
+            }
+        }
+        Err(f) => return Err(args.error("", format!("initial state: {f}"))),
+    }
+    let verbose = study.verbose && !progress;
+    let mess = &mut study.mess;
+    let mut log = |line: &str| {
+        if verbose {
+            eprintln!("{line}");
+        }
+        mess.push_str(line);
+        mess.push('\n');
+    };
+    match dyna::run(&mut engine, &tl, &mut evol, &mut log) {
+        Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
+        Err(stopped) => {
+            if let Some(name) = result {
+                study.concepts.insert(Concept {
+                    name: name.to_string(),
+                    ty: C::EvolNoli,
+                    defined_at: args.span,
+                    command: args.command.clone(),
+                    data: ConceptData::Result(Box::new(evol)),
+                });
+            }
+            Err(Diagnostic::error(stopped.message)
+                .at(args.span)
+                .in_command(args.command.clone()))
+        }
+    }
 }

@@ -109,6 +109,14 @@ pub struct EvolNoli {
     pub mesh: String,
     /// The model concept, if any.
     pub model: String,
+    /// The material field the result was computed with (CALC_CHAMP
+    /// re-derives nodal forces from it, as code_aster keeps it in the
+    /// result).
+    pub cham_mater: String,
+    /// The loads (EXCIT/CHARGE) of the computation.
+    pub loads: Vec<String>,
+    /// (RELATION, DEFORMATION) of each mesh cell with an element.
+    pub comportement: Vec<Option<(String, String)>>,
     pub steps: Vec<Step>,
 }
 

@@ -1,0 +1,275 @@
+//! The element loop and the assembly into fixed-pattern global arrays.
+//!
+//! Everything that depends only on the mesh is computed once per
+//! computation: the element list with its dof maps, the sparsity pattern of
+//! the free equations, each element entry's position in that pattern, and
+//! the consistent mass. Each Newton iteration then runs the element
+//! integrations in parallel (rayon; each element is independent and pure)
+//! and scatters them sequentially into arrays allocated once, so the
+//! global vectors and matrices never reallocate.
+
+use std::sync::Arc;
+
+use rayon::prelude::*;
+
+use super::behaviour::{BehaviourField, CellLaw};
+use super::dofs::{DofNumbering, NONE};
+use crate::element::{
+    initial_states, internal_forces, mass, ElementFailure, ElementResponse, ElementSpec,
+    Kinematics, PointState, MAX_DOFS,
+};
+use crate::law::TangentKind;
+use crate::mesh::Mesh;
+use crate::model::{CellRole, Model};
+use crate::solver::{CscPattern, SparseMatrix};
+
+/// One element of the model with its precomputed maps.
+#[derive(Debug, Clone)]
+pub struct ElementData {
+    pub cell: usize,
+    pub spec: ElementSpec,
+    pub kin: Kinematics,
+    /// Index into [`Assembler::laws`].
+    pub law: usize,
+    pub coords: Vec<[f64; 3]>,
+    /// Full dof index of each local dof (node-major).
+    pub full: Vec<usize>,
+    /// Position in the free pattern of local entry (a, b) at `a·ndof + b`,
+    /// [`NONE`] when a or b is not free.
+    pub pos: Vec<usize>,
+    /// First Gauss-point state of the element in the flat state arrays.
+    pub state_offset: usize,
+    pub npg: usize,
+}
+
+/// An element failure with the mesh cell where it happened.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CellFailure {
+    pub cell: usize,
+    pub failure: ElementFailure,
+}
+
+pub struct Assembler {
+    pub numbering: DofNumbering,
+    pub elements: Vec<ElementData>,
+    pub laws: Vec<CellLaw>,
+    /// Pattern of the free equations (stiffness and iteration matrix).
+    pub pattern: Arc<CscPattern>,
+    /// The mass restricted to the free equations, aligned with `pattern`.
+    pub mass_free: Vec<f64>,
+    /// The mass on all full dofs (inertia forces, reactions, REAC_NODA).
+    pub mass_full: SparseMatrix,
+    /// Total number of Gauss-point states.
+    pub nstates: usize,
+    /// Offset of each mesh cell's states (cells without element: empty
+    /// range), `ncells + 1` entries.
+    pub cell_state_offsets: Vec<usize>,
+    responses: Vec<Result<ElementResponse, ElementFailure>>,
+}
+
+impl Assembler {
+    /// Builds the element list, the patterns and the mass. Errors are mesh
+    /// errors (an inverted cell) or a negative density.
+    pub fn new(
+        mesh: &Mesh,
+        model: &Model,
+        behaviour: BehaviourField,
+        numbering: DofNumbering,
+    ) -> Result<Assembler, String> {
+        let d = numbering.ndpn;
+        let mut elements = Vec::new();
+        let mut nstates = 0;
+        let mut cell_state_offsets = Vec::with_capacity(mesh.ncells() + 1);
+        let mut rhos = Vec::new();
+        for (cell, role) in model.cells.iter().enumerate() {
+            cell_state_offsets.push(nstates);
+            let CellRole::Element(spec) = role else {
+                continue;
+            };
+            let Some(b) = behaviour.cells[cell] else {
+                continue;
+            };
+            let nodes = &mesh.cells[cell].nodes;
+            let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+            let full: Vec<usize> = nodes
+                .iter()
+                .flat_map(|&n| (0..d).map(move |i| n * d + i))
+                .collect();
+            let npg = crate::element::rigi_points(spec);
+            elements.push(ElementData {
+                cell,
+                spec: *spec,
+                kin: b.kinematics,
+                law: b.law,
+                coords,
+                full,
+                pos: Vec::new(),
+                state_offset: nstates,
+                npg,
+            });
+            rhos.push(b.rho);
+            nstates += npg;
+        }
+        cell_state_offsets.push(nstates);
+
+        // Patterns: free equations (all couplings of an element) and full
+        // dofs (mass couples equal directions only).
+        let mut entries = Vec::new();
+        let mut full_entries = Vec::new();
+        for e in &elements {
+            for &fa in &e.full {
+                for &fb in &e.full {
+                    let (ea, eb) = (numbering.eq[fa], numbering.eq[fb]);
+                    if ea != NONE && eb != NONE {
+                        entries.push((ea, eb));
+                    }
+                    if fa % d == fb % d {
+                        full_entries.push((fa, fb));
+                    }
+                }
+            }
+        }
+        let pattern = Arc::new(CscPattern::from_entries(numbering.neq(), entries));
+        let full_pattern = Arc::new(CscPattern::from_entries(numbering.nfull(), full_entries));
+        for e in &mut elements {
+            let n = e.full.len();
+            e.pos = vec![NONE; n * n];
+            for a in 0..n {
+                for b in 0..n {
+                    let (ea, eb) = (numbering.eq[e.full[a]], numbering.eq[e.full[b]]);
+                    if ea != NONE && eb != NONE {
+                        e.pos[a * n + b] = pattern.position(ea, eb).expect("entry in pattern");
+                    }
+                }
+            }
+        }
+        // Consistent mass, on the initial geometry (ρ₀ dV₀ is conserved).
+        let masses: Vec<Result<nalgebra::DMatrix<f64>, ElementFailure>> = elements
+            .par_iter()
+            .zip(&rhos)
+            .map(|(e, &rho)| mass(&e.spec, &e.coords, rho))
+            .collect();
+        let mut mass_free = vec![0.0; pattern.nnz()];
+        let mut mass_full = SparseMatrix::zeros(full_pattern);
+        for (e, m) in elements.iter().zip(masses) {
+            let m = m.map_err(|f| format!("cell {}: mass matrix: {f}", e.cell + 1))?;
+            let n = e.full.len();
+            for a in 0..n {
+                for b in 0..n {
+                    let v = m[(a, b)];
+                    if v == 0.0 {
+                        continue;
+                    }
+                    mass_full.add(e.full[a], e.full[b], v);
+                    let p = e.pos[a * n + b];
+                    if p != NONE {
+                        mass_free[p] += v;
+                    }
+                }
+            }
+        }
+        Ok(Assembler {
+            numbering,
+            elements,
+            laws: behaviour.laws,
+            pattern,
+            mass_free,
+            mass_full,
+            nstates,
+            cell_state_offsets,
+            responses: Vec::new(),
+        })
+    }
+
+    /// Virgin Gauss-point states of every element.
+    pub fn initial_states(&self) -> Vec<PointState> {
+        let mut out = Vec::with_capacity(self.nstates);
+        for e in &self.elements {
+            out.extend(initial_states(&e.spec, self.laws[e.law].law_ref()));
+        }
+        out
+    }
+
+    /// Internal variables count of each mesh cell's law (0 outside).
+    pub fn nvari_of_cell(&self, ncells: usize) -> Vec<usize> {
+        let mut out = vec![0; ncells];
+        for e in &self.elements {
+            out[e.cell] = self.laws[e.law].nvari();
+        }
+        out
+    }
+
+    /// Integrates every element for the step `u_n → u` (full vectors),
+    /// writes the new states into `states_out`, the internal forces into
+    /// `fint` (full, overwritten) and, when `stiffness` is given, the
+    /// assembled tangent of the free equations into it (overwritten).
+    #[allow(clippy::too_many_arguments)]
+    pub fn compute(
+        &mut self,
+        u_n: &[f64],
+        u: &[f64],
+        states_n: &[PointState],
+        states_out: &mut [PointState],
+        dt: f64,
+        tangent: TangentKind,
+        fint: &mut [f64],
+        stiffness: Option<&mut SparseMatrix>,
+    ) -> Result<(), CellFailure> {
+        let laws = &self.laws;
+        self.elements
+            .par_iter()
+            .map(|e| {
+                let n = e.full.len();
+                let mut lu_n = [0.0; MAX_DOFS];
+                let mut lu = [0.0; MAX_DOFS];
+                for k in 0..n {
+                    lu_n[k] = u_n[e.full[k]];
+                    lu[k] = u[e.full[k]];
+                }
+                internal_forces(
+                    &e.spec,
+                    e.kin,
+                    &e.coords,
+                    &lu_n[..n],
+                    &lu[..n],
+                    &states_n[e.state_offset..e.state_offset + e.npg],
+                    laws[e.law].law_ref(),
+                    dt,
+                    tangent,
+                )
+            })
+            .collect_into_vec(&mut self.responses);
+        fint.iter_mut().for_each(|v| *v = 0.0);
+        let mut stiffness = stiffness;
+        if let Some(k) = stiffness.as_deref_mut() {
+            k.fill_zero();
+        }
+        for (e, r) in self.elements.iter().zip(&self.responses) {
+            let r = r.as_ref().map_err(|f| CellFailure {
+                cell: e.cell,
+                failure: f.clone(),
+            })?;
+            let n = e.full.len();
+            for k in 0..n {
+                fint[e.full[k]] += r.forces[k];
+            }
+            states_out[e.state_offset..e.state_offset + e.npg].copy_from_slice(&r.states);
+            if let (Some(kmat), Some(ke)) = (stiffness.as_deref_mut(), r.stiffness.as_ref()) {
+                for b in 0..n {
+                    for a in 0..n {
+                        let p = e.pos[a * n + b];
+                        if p != NONE {
+                            kmat.values[p] += ke[(a, b)];
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// y = M x on full vectors.
+    pub fn mass_mul(&self, x: &[f64], y: &mut [f64]) {
+        self.mass_full.mul_vec(x, y);
+    }
+}

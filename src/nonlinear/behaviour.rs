@@ -1,0 +1,279 @@
+//! The COMPORTEMENT field: which law and strain measure each cell uses,
+//! and the law objects built from the cell's material.
+//!
+//! code_aster builds a "carte" from the occurrences: a later occurrence
+//! overrides earlier ones on common cells, and model cells that no
+//! occurrence covers get ELAS/PETIT with an alarm (semantics.md §4.2).
+//! Law/strain compatibility follows the law declarations: SIMO_MIEHE is
+//! refused for ELAS (no finite-strain elastic law of that kind exists in
+//! code_aster), and VMIS_ISOT_LINE with SIMO_MIEHE switches to the
+//! multiplicative law (VMIS2ISOT_LINE in code_aster).
+
+use indexmap::IndexMap;
+
+use crate::element::{Kinematics, LawRef};
+use crate::law::elas::Elas;
+use crate::law::simo_miehe::SimoMiehe;
+use crate::law::vmis_isot_line::VmisIsotLine;
+use crate::law::{EcroLineParams, ElasParams, StrainMeasure};
+use crate::model::{CellRole, Material, MaterialField, Model};
+
+/// A law instance, built once per (material, relation, kinematics); a
+/// handful per computation, so the size of the variants does not matter.
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)]
+pub enum CellLaw {
+    Elas(Elas),
+    VmisIsotLine(VmisIsotLine),
+    SimoMiehe(SimoMiehe),
+}
+
+impl CellLaw {
+    pub fn law_ref(&self) -> LawRef<'_> {
+        match self {
+            CellLaw::Elas(l) => LawRef::Small(l),
+            CellLaw::VmisIsotLine(l) => LawRef::Small(l),
+            CellLaw::SimoMiehe(l) => LawRef::SimoMiehe(l),
+        }
+    }
+    /// Number of internal variables (the length of VARI_ELGA for the cell).
+    pub fn nvari(&self) -> usize {
+        self.law_ref().initial_internal().as_slice().len()
+    }
+}
+
+/// One COMPORTEMENT occurrence, already resolved to cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Occurrence {
+    /// `None` for TOUT='OUI' (or no location at all).
+    pub cells: Option<Vec<usize>>,
+    pub relation: String,
+    pub deformation: String,
+}
+
+/// The behaviour of one model cell.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CellBehaviour {
+    pub kinematics: Kinematics,
+    /// Index into [`BehaviourField::laws`].
+    pub law: usize,
+    /// Density of the cell's material (the mass matrix needs it).
+    pub rho: f64,
+}
+
+/// The behaviour of every cell (None outside the model's elements).
+#[derive(Debug, Clone)]
+pub struct BehaviourField {
+    pub cells: Vec<Option<CellBehaviour>>,
+    pub laws: Vec<CellLaw>,
+    /// Alarms for the message file (uncovered cells...).
+    pub alarms: Vec<String>,
+}
+
+/// Why the field cannot be built; `occurrence` (0-based) and `keyword`
+/// locate the COMPORTEMENT entry at fault when there is one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BehaviourError {
+    pub occurrence: Option<usize>,
+    pub keyword: &'static str,
+    pub message: String,
+    /// True for valid input that aster does not implement yet.
+    pub not_implemented: bool,
+}
+
+fn err(occ: Option<usize>, keyword: &'static str, message: String) -> BehaviourError {
+    BehaviourError {
+        occurrence: occ,
+        keyword,
+        message,
+        not_implemented: false,
+    }
+}
+
+/// Builds the behaviour field. `materials` maps material concept names to
+/// their data (those named by the material field).
+pub fn build(
+    model: &Model,
+    matfield: &MaterialField,
+    materials: &IndexMap<String, Material>,
+    occurrences: &[Occurrence],
+) -> Result<BehaviourField, BehaviourError> {
+    let ncells = model.cells.len();
+    // Which occurrence covers each cell (later wins); None = default.
+    let mut chosen: Vec<Option<usize>> = vec![None; ncells];
+    for (k, occ) in occurrences.iter().enumerate() {
+        match &occ.cells {
+            None => chosen.iter_mut().for_each(|c| *c = Some(k)),
+            Some(cells) => {
+                for &c in cells {
+                    if c < ncells {
+                        chosen[c] = Some(k);
+                    }
+                }
+            }
+        }
+    }
+    let mut out = BehaviourField {
+        cells: vec![None; ncells],
+        laws: Vec::new(),
+        alarms: Vec::new(),
+    };
+    let mut law_index: IndexMap<(String, String, Kinematics), usize> = IndexMap::new();
+    let mut uncovered = 0usize;
+    for (cell, role) in model.cells.iter().enumerate() {
+        if !matches!(role, CellRole::Element(_)) {
+            continue;
+        }
+        let (relation, deformation, occ) = match chosen[cell] {
+            Some(k) => (
+                occurrences[k].relation.as_str(),
+                occurrences[k].deformation.as_str(),
+                Some(k),
+            ),
+            None => {
+                uncovered += 1;
+                ("ELAS", "PETIT", None)
+            }
+        };
+        let kinematics = kinematics_of(relation, deformation, occ)?;
+        let mat_name = matfield
+            .cell_material
+            .get(cell)
+            .and_then(|m| m.as_deref())
+            .ok_or_else(|| {
+                err(
+                    None,
+                    "",
+                    format!(
+                        "cell {} of the model has no material in the CHAM_MATER",
+                        cell + 1
+                    ),
+                )
+            })?;
+        let mat = materials.get(mat_name).ok_or_else(|| {
+            err(
+                None,
+                "",
+                format!("the material {mat_name} of the CHAM_MATER has no data"),
+            )
+        })?;
+        let key = (mat_name.to_string(), relation.to_string(), kinematics);
+        let law = match law_index.get(&key) {
+            Some(&i) => i,
+            None => {
+                let l = make_law(mat_name, mat, relation, kinematics, occ)?;
+                out.laws.push(l);
+                law_index.insert(key, out.laws.len() - 1);
+                out.laws.len() - 1
+            }
+        };
+        let rho = mat.get("ELAS", "RHO").ok_or_else(|| {
+            err(
+                occ,
+                "",
+                format!("material {mat_name}: ELAS/RHO is needed by the mass matrix of a dynamic computation"),
+            )
+        })?;
+        out.cells[cell] = Some(CellBehaviour {
+            kinematics,
+            law,
+            rho,
+        });
+    }
+    if uncovered > 0 {
+        out.alarms.push(format!(
+            "alarm: {uncovered} cells of the model are not covered by COMPORTEMENT; they get RELATION='ELAS', DEFORMATION='PETIT'"
+        ));
+    }
+    Ok(out)
+}
+
+fn kinematics_of(
+    relation: &str,
+    deformation: &str,
+    occ: Option<usize>,
+) -> Result<Kinematics, BehaviourError> {
+    let measure = StrainMeasure::from_aster_name(deformation).ok_or_else(|| {
+        err(
+            occ,
+            "DEFORMATION",
+            format!("unknown DEFORMATION '{deformation}'"),
+        )
+    })?;
+    match relation {
+        "ELAS" | "VMIS_ISOT_LINE" => {}
+        "VMIS_JOHN_COOK" => {
+            return Err(BehaviourError {
+                not_implemented: true,
+                ..err(
+                    occ,
+                    "RELATION",
+                    "not implemented yet: DYNA_NON_LINE/COMPORTEMENT/RELATION='VMIS_JOHN_COOK'"
+                        .into(),
+                )
+            })
+        }
+        other => return Err(err(occ, "RELATION", format!("unknown RELATION '{other}'"))),
+    }
+    if relation == "ELAS" && matches!(measure, StrainMeasure::SimoMiehe | StrainMeasure::GdefLog) {
+        return Err(err(
+            occ,
+            "DEFORMATION",
+            format!(
+                "RELATION='ELAS' does not accept DEFORMATION='{deformation}' (allowed: PETIT, PETIT_REAC, GROT_GDEP), as in code_aster"
+            ),
+        ));
+    }
+    Kinematics::from_strain_measure(measure).ok_or_else(|| BehaviourError {
+        not_implemented: true,
+        ..err(
+            occ,
+            "DEFORMATION",
+            format!("not implemented yet: DYNA_NON_LINE/COMPORTEMENT/DEFORMATION='{deformation}'"),
+        )
+    })
+}
+
+fn make_law(
+    name: &str,
+    mat: &Material,
+    relation: &str,
+    kin: Kinematics,
+    occ: Option<usize>,
+) -> Result<CellLaw, BehaviourError> {
+    let need = |block: &str, p: &str| {
+        mat.get(block, p).ok_or_else(|| {
+            err(
+                occ,
+                "RELATION",
+                format!("material {name}: {block}/{p} is needed by RELATION='{relation}'"),
+            )
+        })
+    };
+    let bad = |e: crate::law::MaterialError| {
+        err(
+            occ,
+            "RELATION",
+            format!("material {name}: {}: {}", e.keyword, e.message),
+        )
+    };
+    let elas = ElasParams::new(
+        need("ELAS", "E")?,
+        need("ELAS", "NU")?,
+        mat.get("ELAS", "RHO"),
+    )
+    .map_err(bad)?;
+    if relation == "ELAS" {
+        return Ok(CellLaw::Elas(Elas::new(elas)));
+    }
+    let ecro = EcroLineParams::new(
+        &elas,
+        need("ECRO_LINE", "SY")?,
+        need("ECRO_LINE", "D_SIGM_EPSI")?,
+    )
+    .map_err(bad)?;
+    Ok(match kin {
+        Kinematics::SimoMiehe => CellLaw::SimoMiehe(SimoMiehe::new(elas, ecro)),
+        _ => CellLaw::VmisIsotLine(VmisIsotLine::new(elas, ecro)),
+    })
+}

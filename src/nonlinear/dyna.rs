@@ -1,0 +1,474 @@
+//! The time loop of DYNA_NON_LINE: steps of the time list, step cutting on
+//! failure (DEFI_LIST_INST ECHEC), archiving, the step log and SUIVI_DDL.
+
+use std::time::Instant;
+
+use super::fields;
+use super::newton::{Engine, IterationRecord, State, StepReport};
+use crate::result::{EvolNoli, Step};
+use crate::time::list::{Action, Subdivision};
+
+/// Which computed steps are stored (ARCHIVAGE).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ArchivePolicy {
+    /// PAS_ARCH (1 = every step, the default).
+    Every(usize),
+    /// LIST_INST / INST with CRITERE and PRECISION.
+    Instants {
+        instants: Vec<f64>,
+        precision: f64,
+        relative: bool,
+    },
+}
+
+impl ArchivePolicy {
+    fn wants(&self, computed: usize, t: f64) -> bool {
+        match self {
+            ArchivePolicy::Every(p) => *p > 0 && computed.is_multiple_of(*p),
+            ArchivePolicy::Instants {
+                instants,
+                precision,
+                relative,
+            } => instants.iter().any(|&s| {
+                let tol = if *relative {
+                    precision * s.abs()
+                } else {
+                    *precision
+                };
+                (s - t).abs() <= tol
+            }),
+        }
+    }
+}
+
+/// The field a SUIVI_DDL column reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SuiviField {
+    Depl,
+    Vite,
+    Acce,
+    ForcNoda,
+    SiefElga,
+    VariElga,
+}
+
+/// EVAL_CHAM / EVAL_ELGA reductions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Reduce {
+    Min,
+    Max,
+    Moy,
+    MaxiAbs,
+    MiniAbs,
+    /// The value itself: the first selected entity.
+    Vale,
+}
+
+impl Reduce {
+    pub fn from_name(s: &str) -> Option<Reduce> {
+        Some(match s {
+            "MIN" => Reduce::Min,
+            "MAX" => Reduce::Max,
+            "MOY" => Reduce::Moy,
+            "MAXI_ABS" => Reduce::MaxiAbs,
+            "MINI_ABS" => Reduce::MiniAbs,
+            "VALE" => Reduce::Vale,
+            _ => return None,
+        })
+    }
+    fn apply(self, vals: impl Iterator<Item = f64>) -> f64 {
+        let mut n = 0usize;
+        let mut acc: Option<f64> = None;
+        let mut sum = 0.0;
+        for v in vals {
+            n += 1;
+            sum += v;
+            acc = Some(match (self, acc) {
+                (Reduce::Vale, Some(a)) => a,
+                (_, None) => match self {
+                    Reduce::MaxiAbs | Reduce::MiniAbs => v.abs(),
+                    _ => v,
+                },
+                (Reduce::Min, Some(a)) => a.min(v),
+                (Reduce::Max, Some(a)) => a.max(v),
+                (Reduce::MaxiAbs, Some(a)) => a.max(v.abs()),
+                (Reduce::MiniAbs, Some(a)) => a.min(v.abs()),
+                (Reduce::Moy, Some(a)) => a,
+            });
+        }
+        match self {
+            Reduce::Moy if n > 0 => sum / n as f64,
+            _ => acc.unwrap_or(f64::NAN),
+        }
+    }
+}
+
+/// One SUIVI_DDL column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Suivi {
+    pub label: String,
+    pub field: SuiviField,
+    /// Component index (dof index for nodal fields, SIEF/VARI component).
+    pub component: usize,
+    /// Nodes (nodal fields) or cells (Gauss fields) selected.
+    pub entities: Vec<usize>,
+    pub eval: Reduce,
+    /// EVAL_ELGA: MIN, MAX or VALE at `points` (1-based POINT values).
+    pub eval_elga: Reduce,
+    pub points: Vec<usize>,
+}
+
+impl Suivi {
+    /// The value of the column on `state`.
+    pub fn evaluate(&self, state: &State, ndpn: usize, cell_offsets: &[usize]) -> f64 {
+        let nodal = |v: &[f64]| {
+            self.eval
+                .apply(self.entities.iter().map(|&n| v[n * ndpn + self.component]))
+        };
+        match self.field {
+            SuiviField::Depl => nodal(&state.motion.u),
+            SuiviField::Vite => nodal(&state.motion.v),
+            SuiviField::Acce => nodal(&state.motion.a),
+            SuiviField::ForcNoda => nodal(&state.fint),
+            SuiviField::SiefElga | SuiviField::VariElga => {
+                let per_cell = self.entities.iter().filter_map(|&c| {
+                    let (a, b) = (cell_offsets[c], cell_offsets[c + 1]);
+                    if a == b {
+                        return None;
+                    }
+                    let value = |p: usize| {
+                        let st = &state.points[a + p];
+                        if self.field == SuiviField::SiefElga {
+                            st.stress[self.component]
+                        } else {
+                            st.internal
+                                .as_slice()
+                                .get(self.component)
+                                .copied()
+                                .unwrap_or(0.0)
+                        }
+                    };
+                    Some(match self.eval_elga {
+                        Reduce::Vale => self.eval.apply(
+                            self.points
+                                .iter()
+                                .filter(|&&p| p >= 1 && p <= b - a)
+                                .map(|&p| value(p - 1)),
+                        ),
+                        r => r.apply((0..b - a).map(value)),
+                    })
+                });
+                self.eval.apply(per_cell)
+            }
+        }
+    }
+}
+
+/// What the time loop needs besides the engine.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeLoop {
+    /// The instants to reach: the first is the initial instant.
+    pub instants: Vec<f64>,
+    /// The ERREUR rule of the time list.
+    pub on_error: Action,
+    pub archive: ArchivePolicy,
+    pub suivi: Vec<Suivi>,
+    /// Print the Newton table (INFO=2 or SUIVI_DDL present).
+    pub newton_table: bool,
+    /// Show an indicatif progress bar (the per-step lines then go to the
+    /// message file only).
+    pub progress: bool,
+    /// Dof names of the model (DX, DY[, DZ]).
+    pub dof_names: Vec<String>,
+    pub ncells: usize,
+}
+
+/// Totals of a run.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RunSummary {
+    pub steps: usize,
+    pub cuts: usize,
+    pub newton_iterations: usize,
+    pub archived: usize,
+    pub seconds: f64,
+}
+
+/// The computation stopped: `message` says where and why; the result
+/// holds every step archived before (and the last converged state).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stopped {
+    pub message: String,
+    pub summary: RunSummary,
+}
+
+/// Appends the state to the result if its instant is after the last
+/// stored one (an instant is never stored twice, which matters for reuse).
+pub fn archive(engine: &Engine, tl: &TimeLoop, result: &mut EvolNoli, state: &State) -> bool {
+    if let Some(last) = result.steps.last() {
+        if state.t <= last.inst {
+            return false;
+        }
+    }
+    let nume = result.steps.last().map_or(0, |s| s.nume_ordre + 1);
+    let asm = &engine.asm;
+    let mut step = Step {
+        nume_ordre: nume,
+        inst: state.t,
+        ..Step::default()
+    };
+    step.nodal.insert(
+        "DEPL".into(),
+        fields::nodal(asm, &tl.dof_names, &state.motion.u),
+    );
+    step.nodal.insert(
+        "VITE".into(),
+        fields::nodal(asm, &tl.dof_names, &state.motion.v),
+    );
+    step.nodal.insert(
+        "ACCE".into(),
+        fields::nodal(asm, &tl.dof_names, &state.motion.a),
+    );
+    let (sief, vari) = fields::gauss(asm, tl.ncells, &state.points);
+    step.gauss.insert("SIEF_ELGA".into(), sief);
+    step.gauss.insert("VARI_ELGA".into(), vari);
+    result.steps.push(step);
+    true
+}
+
+fn header(tl: &TimeLoop) -> String {
+    let mut h = format!(
+        "  {:>6}  {:>13}  {:>10}  {:>4}  {:>14}  {:>14}  {:>5}",
+        "step", "INST", "dt", "iter", "RESI_GLOB_RELA", "RESI_GLOB_MAXI", "level"
+    );
+    for s in &tl.suivi {
+        h.push_str(&format!("  {:>14}", s.label));
+    }
+    h
+}
+
+/// Runs the time loop from the engine's committed state (which must be at
+/// `tl.instants[0]` and already initialized), archiving into `result`.
+pub fn run(
+    engine: &mut Engine,
+    tl: &TimeLoop,
+    result: &mut EvolNoli,
+    log: &mut dyn FnMut(&str),
+) -> Result<RunSummary, Stopped> {
+    let started = Instant::now();
+    let mut summary = RunSummary::default();
+    let ndpn = engine.asm.numbering.ndpn;
+    let offsets = engine.asm.cell_state_offsets.clone();
+    if archive(engine, tl, result, &engine.committed.clone()) {
+        summary.archived += 1;
+    }
+    let bar = tl.progress.then(|| {
+        let pb = indicatif::ProgressBar::new(tl.instants.len().saturating_sub(1) as u64);
+        pb.set_style(
+            indicatif::ProgressStyle::with_template(
+                "DYNA_NON_LINE [{bar:40}] {pos}/{len} steps {msg} ({elapsed}, eta {eta})",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        pb
+    });
+    log(&header(tl));
+    // Pending targets (instant, level, is an instant of the list), last
+    // first; level 1 = a step of the list.
+    let mut pending: Vec<(f64, usize, bool)> = tl.instants[1..]
+        .iter()
+        .rev()
+        .map(|&t| (t, 1, true))
+        .collect();
+    let mut last_archived_t = result.steps.last().map(|s| s.inst);
+    while let Some((t_end, level, list_end)) = pending.pop() {
+        let t0 = engine.committed.t;
+        let dt = t_end - t0;
+        let suivi = &tl.suivi;
+        let table = tl.newton_table;
+        let mut rows: Vec<String> = Vec::new();
+        let outcome = engine.solve_step(dt, None, &mut |rec: &IterationRecord, st: &State| {
+            if table {
+                let mut line = format!(
+                    "      iter {:>2}  RESI_GLOB_RELA {:>10.3e}{}  RESI_GLOB_MAXI {:>10.3e}{}",
+                    rec.iteration,
+                    rec.resi_rela,
+                    if rec.swapped { "*" } else { " " },
+                    rec.resi_maxi,
+                    if rec.matrix_updated { "  matrix" } else { "" }
+                );
+                for s in suivi {
+                    line.push_str(&format!("  {:>14.6e}", s.evaluate(st, ndpn, &offsets)));
+                }
+                rows.push(line);
+            }
+        });
+        for r in &rows {
+            log(r);
+        }
+        match outcome {
+            Ok(rep) => {
+                engine.commit();
+                summary.steps += 1;
+                summary.newton_iterations += rep.iterations;
+                log(&step_line(
+                    summary.steps,
+                    t_end,
+                    dt,
+                    &rep,
+                    level,
+                    tl,
+                    engine,
+                    ndpn,
+                    &offsets,
+                ));
+                if rep.not_converged {
+                    log(&format!(
+                        "  alarm: the step to t = {t_end:e} did not converge in ITER_GLOB_MAXI = {} iterations and is accepted (ARRET='NON')",
+                        rep.iterations
+                    ));
+                }
+                let last = pending.is_empty();
+                if (tl.archive.wants(summary.steps, t_end) || last)
+                    && archive(engine, tl, result, &engine.committed.clone())
+                {
+                    summary.archived += 1;
+                    last_archived_t = Some(t_end);
+                }
+                if let (Some(pb), true) = (&bar, list_end) {
+                    pb.inc(1);
+                    pb.set_message(format!("t = {t_end:.4e}"));
+                }
+            }
+            Err(failure) => {
+                let reason = failure.to_string();
+                log(&format!(
+                    "  step failure from t = {t0:e} to {t_end:e} (dt = {dt:.3e}, level {level}): {reason}"
+                ));
+                let cut = if failure.is_fatal() {
+                    Err("a mesh error cannot be cured by cutting the step".to_string())
+                } else {
+                    cut_step(&tl.on_error, t0, t_end, level, list_end)
+                };
+                match cut {
+                    Ok(subs) => {
+                        summary.cuts += 1;
+                        log(&format!(
+                            "  the step is cut into {} sub-steps of {:.3e} (level {})",
+                            subs.len(),
+                            dt / subs.len() as f64,
+                            level + 1
+                        ));
+                        pending.extend(subs.into_iter().rev());
+                    }
+                    Err(why) => {
+                        if last_archived_t != Some(engine.committed.t)
+                            && archive(engine, tl, result, &engine.committed.clone())
+                        {
+                            summary.archived += 1;
+                        }
+                        if let Some(pb) = &bar {
+                            pb.abandon();
+                        }
+                        summary.seconds = started.elapsed().as_secs_f64();
+                        let message = format!(
+                            "DYNA_NON_LINE stopped at the step from t = {t0:e} to t = {t_end:e}: {reason}; {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
+                            result.steps.len(),
+                            result.steps.last().map_or(t0, |s| s.inst)
+                        );
+                        log(&message);
+                        return Err(Stopped { message, summary });
+                    }
+                }
+            }
+        }
+    }
+    if let Some(pb) = &bar {
+        pb.finish_and_clear();
+    }
+    summary.seconds = started.elapsed().as_secs_f64();
+    log(&format!(
+        "  {} steps ({} cuts), {} Newton iterations, {} archived, {:.3} s ({:.3e} s per step)",
+        summary.steps,
+        summary.cuts,
+        summary.newton_iterations,
+        summary.archived,
+        summary.seconds,
+        summary.seconds / summary.steps.max(1) as f64
+    ));
+    Ok(summary)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn step_line(
+    n: usize,
+    t: f64,
+    dt: f64,
+    rep: &StepReport,
+    level: usize,
+    tl: &TimeLoop,
+    engine: &Engine,
+    ndpn: usize,
+    offsets: &[usize],
+) -> String {
+    let mut line = format!(
+        "  {n:>6}  {t:>13.6e}  {dt:>10.3e}  {:>4}  {:>13.3e}{}  {:>14.3e}  {level:>5}",
+        rep.iterations,
+        rep.resi_rela,
+        if rep.swapped { "*" } else { " " },
+        rep.resi_maxi
+    );
+    for s in &tl.suivi {
+        line.push_str(&format!(
+            "  {:>14.6e}",
+            s.evaluate(&engine.committed, ndpn, offsets)
+        ));
+    }
+    line
+}
+
+/// The sub-steps replacing a failed step, or why it cannot be cut.
+fn cut_step(
+    action: &Action,
+    t0: f64,
+    t_end: f64,
+    level: usize,
+    list_end: bool,
+) -> Result<Vec<(f64, usize, bool)>, String> {
+    let dt = t_end - t0;
+    let (n, max_level, mini) = match action {
+        Action::Arret => return Err(
+            "the time list's ERREUR rule is ARRET (a plain DEFI_LIST_REEL list has no other rule)"
+                .into(),
+        ),
+        Action::Decoupe(Subdivision::Manuel {
+            subd_pas,
+            subd_niveau,
+            subd_pas_mini,
+        }) => (*subd_pas, *subd_niveau, *subd_pas_mini),
+        Action::Decoupe(Subdivision::AutoExtrapole) => (4, usize::MAX, 1e-12),
+        other => return Err(format!("the ERREUR action {other:?} is not implemented")),
+    };
+    if n < 2 {
+        return Err(format!("SUBD_PAS = {n} cannot cut a step"));
+    }
+    if level >= max_level {
+        return Err(format!(
+            "the step is already at the maximum subdivision level SUBD_NIVEAU = {max_level}"
+        ));
+    }
+    let sub = dt / n as f64;
+    if sub < mini || sub <= f64::EPSILON * t_end.abs().max(t0.abs()) {
+        return Err(format!(
+            "a sub-step of {sub:.3e} would be below SUBD_PAS_MINI = {mini:e}"
+        ));
+    }
+    Ok((1..=n)
+        .map(|k| {
+            if k == n {
+                (t_end, level + 1, list_end)
+            } else {
+                (t0 + k as f64 * sub, level + 1, false)
+            }
+        })
+        .collect())
+}

@@ -1,0 +1,478 @@
+//! One time step: Newmark/HHT predictor, Newton iterations on the
+//! displacement increment, residual norms and convergence criteria
+//! (semantics.md §8.4, §8.5).
+//!
+//! Residual on every active dof (full vectors):
+//! R = w_i M a + F_int(u) − F_ext + w_p (F_int − F_ext)_n [+ contact],
+//! with w_i, w_p the scheme's weights (1, 0 for Newmark). At imposed dofs
+//! R is balanced by the support reaction λ = −R; the free dofs are the
+//! equations. The iteration matrix is K_T + M/(β Δt²) (divided by 1+α for
+//! full HHT), on the free equations.
+
+use super::assembly::{Assembler, CellFailure};
+use super::dofs::DofNumbering;
+use crate::element::{ElementFailure, PointState};
+use crate::law::TangentKind;
+use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
+use crate::time::{Kinematics as Motion, Scheme};
+
+/// NEWTON keywords.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonSettings {
+    /// MATRICE: `Consistent` (TANGENTE) or `Elastic` (ELASTIQUE).
+    pub matrix: TangentKind,
+    /// Reassemble at the prediction every `reac_incr` steps (0: never).
+    pub reac_incr: usize,
+    /// Reassemble every `reac_iter` iterations (0: keep the prediction's).
+    pub reac_iter: usize,
+    /// MATR_RIGI_SYME='OUI': use (K + Kᵀ)/2.
+    pub symmetrize: bool,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            matrix: TangentKind::Consistent,
+            reac_incr: 1,
+            reac_iter: 1,
+            symmetrize: false,
+        }
+    }
+}
+
+/// CONVERGENCE keywords (all criteria given must hold).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConvergenceSettings {
+    pub resi_glob_rela: Option<f64>,
+    pub resi_glob_maxi: Option<f64>,
+    pub iter_glob_maxi: usize,
+    /// ARRET='NON' accepts a step not converged at ITER_GLOB_MAXI.
+    pub arret: bool,
+}
+
+impl Default for ConvergenceSettings {
+    fn default() -> Self {
+        ConvergenceSettings {
+            resi_glob_rela: Some(1e-6),
+            resi_glob_maxi: None,
+            iter_glob_maxi: 10,
+            arret: true,
+        }
+    }
+}
+
+/// The state of the structure at one instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    pub t: f64,
+    /// Full u, v, a.
+    pub motion: Motion,
+    /// Gauss-point states, element after element.
+    pub points: Vec<PointState>,
+    /// Internal forces of this state (full).
+    pub fint: Vec<f64>,
+}
+
+/// A contact (or any extra) term of the equilibrium. This is the single
+/// place where contact plugs into the Newton loop: it adds its forces to
+/// the residual and its stiffness to the iteration matrix at each
+/// iteration, and may veto convergence (e.g. while the active set moves).
+pub trait ContactTerm {
+    /// Before the iterations of a step from `t` over `dt`.
+    fn begin_step(&mut self, t: f64, dt: f64);
+    /// Adds the contact forces at displacement `u` (full) to `residual`
+    /// (full) and, when given, the contact tangent to `matrix` (free
+    /// equations, the pattern must hold its entries).
+    fn add(
+        &mut self,
+        numbering: &DofNumbering,
+        u: &[f64],
+        residual: &mut [f64],
+        matrix: Option<&mut SparseMatrix>,
+    ) -> Result<(), String>;
+    /// After the convergence test of an iteration; `false` forces another
+    /// iteration even if the residual is small.
+    fn accept(&mut self) -> bool;
+}
+
+/// One row of the Newton table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IterationRecord {
+    pub iteration: usize,
+    /// RESI_GLOB_RELA (−1 when the denominator is zero).
+    pub resi_rela: f64,
+    pub resi_maxi: f64,
+    /// The denominator of RESI_GLOB_RELA.
+    pub denominator: f64,
+    /// RESI_GLOB_RELA replaced by RESI_GLOB_MAXI for this step.
+    pub swapped: bool,
+    /// The matrix was reassembled for the correction that follows.
+    pub matrix_updated: bool,
+}
+
+/// A converged (or accepted) step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepReport {
+    /// Index of the last row of the Newton table (prediction = 0).
+    pub iterations: usize,
+    pub resi_rela: f64,
+    pub resi_maxi: f64,
+    pub swapped: bool,
+    /// ARRET='NON' accepted a step that did not converge.
+    pub not_converged: bool,
+    pub history: Vec<IterationRecord>,
+}
+
+/// Why a step failed: the time-step controller may cut it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StepFailure {
+    NotConverged { history: Vec<IterationRecord> },
+    Element(CellFailure),
+    Singular(String),
+    NonFinite(String),
+    Contact(String),
+}
+
+impl StepFailure {
+    /// A failure that no smaller step can cure (a mesh error).
+    pub fn is_fatal(&self) -> bool {
+        matches!(
+            self,
+            StepFailure::Element(CellFailure {
+                failure: ElementFailure::BadGeometry { .. } | ElementFailure::StateCount { .. },
+                ..
+            })
+        )
+    }
+}
+
+impl std::fmt::Display for StepFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StepFailure::NotConverged { history } => {
+                write!(
+                    f,
+                    "Newton did not converge in {} iterations; residual history (RESI_GLOB_RELA / RESI_GLOB_MAXI):",
+                    history.last().map_or(0, |r| r.iteration)
+                )?;
+                for r in history {
+                    write!(
+                        f,
+                        " [{}] {:.3e} / {:.3e}",
+                        r.iteration, r.resi_rela, r.resi_maxi
+                    )?;
+                }
+                Ok(())
+            }
+            StepFailure::Element(c) => write!(f, "cell {}: {}", c.cell + 1, c.failure),
+            StepFailure::Singular(m) => write!(f, "{m}"),
+            StepFailure::NonFinite(m) => write!(f, "{m}"),
+            StepFailure::Contact(m) => write!(f, "contact: {m}"),
+        }
+    }
+}
+
+/// The step solver: the discretization, the committed state and every
+/// work array, allocated once.
+pub struct Engine {
+    pub asm: Assembler,
+    pub scheme: Scheme,
+    pub newton: NewtonSettings,
+    pub conv: ConvergenceSettings,
+    /// External forces (full); constant in time (no Neumann load yet).
+    pub fext: Vec<f64>,
+    pub committed: State,
+    pub trial: State,
+    /// Converged steps so far (REAC_INCR, the swap rule).
+    pub steps_done: usize,
+    resid: Vec<f64>,
+    prev_term: Vec<f64>,
+    work: Vec<f64>,
+    rhs: Vec<f64>,
+    du: Vec<f64>,
+    matrix: SparseMatrix,
+    pub lu: DirectLu,
+    matrix_dt: Option<f64>,
+    min_denominator: Option<f64>,
+    last_maxi: Option<f64>,
+}
+
+impl Engine {
+    /// An engine at `initial` (whose `fint` is recomputed here).
+    pub fn new(
+        asm: Assembler,
+        scheme: Scheme,
+        newton: NewtonSettings,
+        conv: ConvergenceSettings,
+        initial: State,
+    ) -> Engine {
+        let nfull = asm.numbering.nfull();
+        let neq = asm.numbering.neq();
+        let matrix = SparseMatrix::zeros(asm.pattern.clone());
+        Engine {
+            scheme,
+            newton,
+            conv,
+            fext: vec![0.0; nfull],
+            trial: initial.clone(),
+            committed: initial,
+            steps_done: 0,
+            resid: vec![0.0; nfull],
+            prev_term: vec![0.0; nfull],
+            work: vec![0.0; nfull],
+            rhs: vec![0.0; neq],
+            du: vec![0.0; nfull],
+            matrix,
+            lu: DirectLu::new(),
+            matrix_dt: None,
+            min_denominator: None,
+            last_maxi: None,
+            asm,
+        }
+    }
+
+    /// Internal forces of the committed state (a zero increment from it),
+    /// then, when `solve_acceleration`, code_aster's accel0: M a₀ = F_ext −
+    /// F_int(u₀) on the free dofs, a₀ = 0 on imposed ones. Returns an alarm
+    /// when that solve fails (a₀ is then 0, as code_aster does).
+    pub fn initialize(&mut self, solve_acceleration: bool) -> Result<Option<String>, StepFailure> {
+        let c = &mut self.committed;
+        self.asm
+            .compute(
+                &c.motion.u,
+                &c.motion.u,
+                &c.points,
+                &mut self.trial.points,
+                1.0,
+                TangentKind::None,
+                &mut c.fint,
+                None,
+            )
+            .map_err(StepFailure::Element)?;
+        if !solve_acceleration {
+            return Ok(None);
+        }
+        let nb = &self.asm.numbering;
+        for (e, &f) in nb.free.iter().enumerate() {
+            self.rhs[e] = self.fext[f] - c.fint[f];
+        }
+        self.matrix.values.copy_from_slice(&self.asm.mass_free);
+        c.motion.a.iter_mut().for_each(|v| *v = 0.0);
+        let solved = self
+            .lu
+            .factorize(&self.matrix)
+            .and_then(|_| self.lu.solve(&mut self.rhs));
+        self.matrix_dt = None;
+        match solved {
+            Ok(()) => {
+                for (e, &f) in nb.free.iter().enumerate() {
+                    c.motion.a[f] = self.rhs[e];
+                }
+                Ok(None)
+            }
+            Err(e) => Ok(Some(format!(
+                "alarm: the initial acceleration could not be solved ({e}); it is set to 0"
+            ))),
+        }
+    }
+
+    /// Solves the step from the committed state over `dt` into `trial`.
+    /// `on_iteration` sees each row of the Newton table with the trial
+    /// state. The committed state is untouched: a failed step is rolled
+    /// back by simply not calling [`Engine::commit`].
+    pub fn solve_step(
+        &mut self,
+        dt: f64,
+        mut contact: Option<&mut dyn ContactTerm>,
+        on_iteration: &mut dyn FnMut(&IterationRecord, &State),
+    ) -> Result<StepReport, StepFailure> {
+        let s = self.scheme;
+        let nb = &self.asm.numbering;
+        self.trial.t = self.committed.t + dt;
+        s.predict(dt, &self.committed.motion, &mut self.trial.motion);
+        // Imposed values the initial state does not satisfy are reached
+        // in this step, through the Newmark relations.
+        self.du.iter_mut().for_each(|v| *v = 0.0);
+        let mut any = false;
+        for &(f, val) in &nb.imposed {
+            let d = val - self.trial.motion.u[f];
+            if d != 0.0 {
+                self.du[f] = d;
+                any = true;
+            }
+        }
+        if any {
+            s.correct(dt, &self.du, &mut self.trial.motion);
+        }
+        let wp = s.previous_weight();
+        let wi = s.inertia_weight();
+        for f in 0..self.prev_term.len() {
+            self.prev_term[f] = wp * (self.committed.fint[f] - self.fext[f]);
+        }
+        if let Some(c) = contact.as_deref_mut() {
+            c.begin_step(self.committed.t, dt);
+        }
+        let mut history = Vec::new();
+        let swap = self.steps_done > 0;
+        for it in 0..=self.conv.iter_glob_maxi {
+            let reassemble = if it == 0 {
+                self.matrix_dt != Some(dt)
+                    || (self.newton.reac_incr > 0
+                        && self.steps_done.is_multiple_of(self.newton.reac_incr))
+            } else {
+                self.matrix_dt != Some(dt)
+                    || (self.newton.reac_iter > 0 && it % self.newton.reac_iter == 0)
+            };
+            let tangent = if reassemble {
+                self.newton.matrix
+            } else {
+                TangentKind::None
+            };
+            self.asm
+                .compute(
+                    &self.committed.motion.u,
+                    &self.trial.motion.u,
+                    &self.committed.points,
+                    &mut self.trial.points,
+                    dt,
+                    tangent,
+                    &mut self.trial.fint,
+                    reassemble.then_some(&mut self.matrix),
+                )
+                .map_err(StepFailure::Element)?;
+            if reassemble {
+                if self.newton.symmetrize {
+                    self.matrix.symmetrize();
+                }
+                let cm = s.mass_coefficient(dt);
+                for (v, m) in self.matrix.values.iter_mut().zip(&self.asm.mass_free) {
+                    *v += cm * m;
+                }
+            }
+            self.asm.mass_mul(&self.trial.motion.a, &mut self.work);
+            let nb = &self.asm.numbering;
+            for f in 0..self.resid.len() {
+                self.resid[f] = if nb.is_active(f) {
+                    wi * self.work[f] + self.trial.fint[f] - self.fext[f] + self.prev_term[f]
+                } else {
+                    0.0
+                };
+            }
+            if let Some(c) = contact.as_deref_mut() {
+                c.add(
+                    nb,
+                    &self.trial.motion.u,
+                    &mut self.resid,
+                    reassemble.then_some(&mut self.matrix),
+                )
+                .map_err(StepFailure::Contact)?;
+            }
+            if let Some(f) = self.resid.iter().position(|v| !v.is_finite()) {
+                return Err(StepFailure::NonFinite(format!(
+                    "the residual is not finite at node {} ({})",
+                    f / nb.ndpn + 1,
+                    f % nb.ndpn
+                )));
+            }
+            if it > 0 {
+                let rec = self.norms(dt, it, swap, reassemble);
+                history.push(rec);
+                on_iteration(&rec, &self.trial);
+                let ok_rela = match self.conv.resi_glob_rela {
+                    None => true,
+                    Some(_) if rec.swapped => rec.resi_maxi <= self.last_maxi.unwrap_or(0.0),
+                    Some(r) => rec.resi_rela <= r,
+                };
+                let ok_maxi = self.conv.resi_glob_maxi.is_none_or(|m| rec.resi_maxi <= m);
+                let contact_ok = contact.as_deref_mut().is_none_or(|c| c.accept());
+                let converged = ok_rela && ok_maxi && contact_ok;
+                if converged || (it == self.conv.iter_glob_maxi && !self.conv.arret) {
+                    self.min_denominator = Some(
+                        self.min_denominator
+                            .map_or(rec.denominator, |m| m.min(rec.denominator)),
+                    );
+                    if converged {
+                        self.last_maxi = Some(rec.resi_maxi);
+                    }
+                    return Ok(StepReport {
+                        iterations: it,
+                        resi_rela: rec.resi_rela,
+                        resi_maxi: rec.resi_maxi,
+                        swapped: rec.swapped,
+                        not_converged: !converged,
+                        history,
+                    });
+                }
+                if it == self.conv.iter_glob_maxi {
+                    return Err(StepFailure::NotConverged { history });
+                }
+            }
+            if reassemble {
+                self.lu
+                    .factorize(&self.matrix)
+                    .map_err(|e| StepFailure::Singular(e.to_string()))?;
+                self.matrix_dt = Some(dt);
+            }
+            let nb = &self.asm.numbering;
+            for (e, &f) in nb.free.iter().enumerate() {
+                self.rhs[e] = -self.resid[f];
+            }
+            self.lu
+                .solve(&mut self.rhs)
+                .map_err(|e| StepFailure::Singular(e.to_string()))?;
+            self.du.iter_mut().for_each(|v| *v = 0.0);
+            for (e, &f) in nb.free.iter().enumerate() {
+                self.du[f] = self.rhs[e];
+            }
+            s.correct(dt, &self.du, &mut self.trial.motion);
+        }
+        unreachable!("the loop returns at it == iter_glob_maxi")
+    }
+
+    /// RESI_GLOB_MAXI over the free dofs and RESI_GLOB_RELA with the
+    /// denominator of semantics.md §8.5: the largest of |λ_i − F_ext,i|
+    /// (λ the reaction, −R at imposed dofs, 0 elsewhere) and of the
+    /// reference inertia |M v_{n+1}|_i/(β Δt).
+    fn norms(&mut self, dt: f64, it: usize, swap_allowed: bool, updated: bool) -> IterationRecord {
+        let nb = &self.asm.numbering;
+        let mut maxi: f64 = 0.0;
+        for &f in &nb.free {
+            maxi = maxi.max(self.resid[f].abs());
+        }
+        let mut denom: f64 = 0.0;
+        for &f in &nb.free {
+            denom = denom.max(self.fext[f].abs());
+        }
+        for &(f, _) in &nb.imposed {
+            denom = denom.max((-self.resid[f] - self.fext[f]).abs());
+        }
+        self.asm.mass_mul(&self.trial.motion.v, &mut self.work);
+        let inv = 1.0 / (self.scheme.beta * dt);
+        for f in 0..self.work.len() {
+            denom = denom.max(self.work[f].abs() * inv);
+        }
+        let swapped = swap_allowed
+            && self.conv.resi_glob_rela.is_some()
+            && self.min_denominator.is_some_and(|m| denom <= 1e-6 * m);
+        IterationRecord {
+            iteration: it,
+            resi_rela: if denom > 0.0 { maxi / denom } else { -1.0 },
+            resi_maxi: maxi,
+            denominator: denom,
+            swapped,
+            matrix_updated: updated,
+        }
+    }
+
+    /// Accepts the trial state as the new committed state.
+    pub fn commit(&mut self) {
+        std::mem::swap(&mut self.committed, &mut self.trial);
+        self.steps_done += 1;
+    }
+
+    /// The residual of the last evaluation (full; reactions at imposed dofs
+    /// are its opposite).
+    pub fn residual(&self) -> &[f64] {
+        &self.resid
+    }
+}
