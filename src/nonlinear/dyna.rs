@@ -445,7 +445,9 @@ fn cut_step(
             subd_niveau,
             subd_pas_mini,
         }) => (*subd_pas, *subd_niveau, *subd_pas_mini),
-        Action::Decoupe(Subdivision::AutoExtrapole) => (4, usize::MAX, 1e-12),
+        Action::Decoupe(Subdivision::AutoExtrapole { subd_pas_mini }) => {
+            (4, usize::MAX, subd_pas_mini.max(1e-12))
+        }
         other => return Err(format!("the ERREUR action {other:?} is not implemented")),
     };
     if n < 2 {
