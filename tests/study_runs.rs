@@ -47,3 +47,30 @@ fn mesh_commands_of_every_study_run() {
         }
     }
 }
+
+/// B and D without their contact definition run to FIN (issue: the engine
+/// without contact handles the whole study).
+#[test]
+fn b_and_d_without_contact_run_to_the_end() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for m in ["b", "d"] {
+        let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("sans_contact_{m}"));
+        let mut term = Vec::new();
+        let code = run_file(
+            &RunOptions {
+                comm: root.join(format!("tests/studies/sdnv103{m}_sans_contact.comm")),
+                out_dir: Some(out.clone()),
+                ..RunOptions::default()
+            },
+            &mut term,
+        );
+        let term = String::from_utf8(term).unwrap();
+        assert_eq!(code, 0, "{m}:\n{term}");
+        let mess =
+            std::fs::read_to_string(out.join(format!("sdnv103{m}_sans_contact.mess"))).unwrap();
+        assert!(
+            mess.contains("DYNA_NON_LINE done") && mess.contains("FIN done"),
+            "{mess}"
+        );
+    }
+}

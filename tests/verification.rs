@@ -27,8 +27,14 @@ fn run_study(name: &str) {
     let resu = std::fs::read_to_string(out.join(format!("{name}.resu"))).unwrap_or_default();
     assert_eq!(code, 0, "{name}:\n{term}\n{resu}");
     let lines: Vec<&str> = resu.lines().collect();
-    assert!(lines.iter().any(|l| l.starts_with(" OK ")), "{name}: no check ran:\n{resu}");
-    assert!(!lines.iter().any(|l| l.starts_with("NOOK")), "{name}:\n{resu}");
+    assert!(
+        lines.iter().any(|l| l.starts_with(" OK ")),
+        "{name}: no check ran:\n{resu}"
+    );
+    assert!(
+        !lines.iter().any(|l| l.starts_with("NOOK")),
+        "{name}:\n{resu}"
+    );
 }
 
 #[test]
@@ -39,6 +45,13 @@ fn free_flight() {
 #[test]
 fn elastic_wave_in_a_rod() {
     run_study("wave_rod");
+}
+
+/// The Taylor bar on a frictionless wall, 10 x 40 QUAD8, 80 us (about 30 s
+/// in an optimised build).
+#[test]
+fn taylor_bar_on_a_frictionless_wall() {
+    run_study("taylor_wall");
 }
 
 #[test]
