@@ -3,6 +3,8 @@
 //! (rigid-body kinematics, one-dimensional wave theory, the patch test);
 //! every study must end with exit code 0, at least one OK and no NOOK.
 
+#![allow(clippy::needless_range_loop)]
+
 use std::path::{Path, PathBuf};
 
 use aster::mesh::{Cell, CellType, Mesh};
