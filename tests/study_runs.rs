@@ -74,3 +74,36 @@ fn b_and_d_without_contact_run_to_the_end() {
         );
     }
 }
+
+/// A run that stops on a failed step reports the instant and the rule, and
+/// saves what it computed before in a MED file next to the .mess.
+#[test]
+fn a_stopped_run_keeps_its_results_on_disk() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("stop_plain_list");
+    let _ = std::fs::remove_dir_all(&out);
+    let mut term = Vec::new();
+    let code = run_file(
+        &RunOptions {
+            comm: root.join("tests/studies/stop_plain_list.comm"),
+            out_dir: Some(out.clone()),
+            ..RunOptions::default()
+        },
+        &mut term,
+    );
+    let term = String::from_utf8(term).unwrap();
+    assert_eq!(code, 1, "{term}");
+    assert!(
+        term.contains("DYNA_NON_LINE") && term.contains("ARRET"),
+        "{term}"
+    );
+    assert!(term.contains("stop_plain_list.comm:13:1"), "{term}");
+    let file = out.join("stop_plain_list_RESU.rmed");
+    assert!(term.contains("saved in"), "{term}");
+    let fields = aster::medio::read_nodal_fields(&file, None).unwrap();
+    let depl = fields
+        .iter()
+        .find(|f| f.name == "RESU____DEPL")
+        .expect("DEPL saved");
+    assert!(!depl.steps.is_empty());
+}

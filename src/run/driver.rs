@@ -207,9 +207,11 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
                     let r = d.render(Some(&src));
                     let _ = write!(out, "{r}");
                     study.mess.push_str(&r);
-                    study.mess.push_str(
-                        "the study stopped on this error; results computed so far are kept\n",
-                    );
+                    for line in save_results(&study) {
+                        let _ = writeln!(out, "{line}");
+                        study.mess.push_str(&line);
+                        study.mess.push('\n');
+                    }
                     EXIT_STUDY
                 }
             }
@@ -231,6 +233,60 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
         out_dir.join(format!("{stem}.mess")).display()
     );
     code
+}
+
+/// After a failure, writes every transient result computed so far (its
+/// nodal fields at every archived step) to `<study>_<RESULT>.rmed`, so
+/// that nothing computed is lost; returns the lines to report.
+fn save_results(study: &Study) -> Vec<String> {
+    use crate::concepts::ConceptData;
+    let mut lines = Vec::new();
+    for c in study.concepts.iter() {
+        let ConceptData::Result(res) = &c.data else {
+            continue;
+        };
+        let Some(ConceptData::Mesh(mesh)) = study.concepts.data(&res.mesh) else {
+            continue;
+        };
+        let mut fields: Vec<crate::medio::NodalField> = Vec::new();
+        for step in &res.steps {
+            for (name, f) in &step.nodal {
+                let full = format!("{:_<8}{name}", c.name);
+                let idx = match fields.iter().position(|x| x.name == full) {
+                    Some(i) => i,
+                    None => {
+                        fields.push(crate::medio::NodalField {
+                            name: full,
+                            components: f.components.clone(),
+                            steps: Vec::new(),
+                        });
+                        fields.len() - 1
+                    }
+                };
+                fields[idx].steps.push(crate::medio::FieldStep {
+                    numdt: step.nume_ordre as i32,
+                    time: step.inst,
+                    values: f.values.clone(),
+                });
+            }
+        }
+        let path = study
+            .out_dir
+            .join(format!("{}_{}.rmed", study.stem, c.name));
+        match crate::medio::write_result(&path, mesh, &fields) {
+            Ok(()) => lines.push(format!(
+                "the {} archived steps of {} computed before the error are saved in {}",
+                res.steps.len(),
+                c.name,
+                path.display()
+            )),
+            Err(e) => lines.push(format!("could not save the result {}: {e}", c.name)),
+        }
+    }
+    if lines.is_empty() {
+        lines.push("the study stopped on this error; no transient result had been computed".into());
+    }
+    lines
 }
 
 /// Writes .mess, .resu and the text of other logical units.
