@@ -359,3 +359,31 @@ fn coulomb_friction_slides_at_the_bound_and_sticks_below_it() {
     assert!(sticking > 10);
     eprintln!("friction: {sliding} sliding pairs (fast), {sticking} sticking pairs (slow)");
 }
+
+/// The command-file version of (1): tests/verification/contact_landing.comm
+/// (free flight exact, no force once the bar has left) runs to FIN with
+/// every check OK.
+#[test]
+fn landing_study_runs_with_every_check_ok() {
+    use aster::run::driver::{run_file, RunOptions};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("contact_landing");
+    let mut term = Vec::new();
+    let code = run_file(
+        &RunOptions {
+            comm: root.join("tests/verification/contact_landing.comm"),
+            out_dir: Some(out.clone()),
+            ..RunOptions::default()
+        },
+        &mut term,
+    );
+    let term = String::from_utf8(term).unwrap();
+    let resu = std::fs::read_to_string(out.join("contact_landing.resu")).unwrap();
+    assert_eq!(code, 0, "{term}");
+    assert!(!resu.lines().any(|l| l.starts_with("NOOK")), "{resu}");
+    assert_eq!(
+        resu.lines().filter(|l| l.starts_with(" OK ")).count(),
+        6,
+        "{resu}"
+    );
+}

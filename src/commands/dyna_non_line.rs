@@ -818,6 +818,15 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         .filter(|r| r.event != Event::Erreur)
         .map(|r| format!("{:?}", r.event))
         .collect();
+    if !ignored.is_empty() && contact_def.is_some() {
+        return Err(args.not_implemented(
+            "INCREMENT",
+            &format!(
+                "the time list's events {} with CONTACT (COLLISION, INTERPENETRATION and the other non-ERREUR events); only ERREUR is handled",
+                ignored.join(", ")
+            ),
+        ));
+    }
     if !ignored.is_empty() {
         notes.push(format!(
             "the time list's events {} concern contact; without CONTACT they are ignored",
