@@ -717,9 +717,6 @@ fn etat_init(
 }
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
-    if args.has("CONTACT") {
-        return Err(args.not_implemented("CONTACT", ""));
-    }
     for key in ["RECH_LINEAIRE", "ENERGIE"] {
         if args.given(key) {
             return Err(args.not_implemented(key, ""));
@@ -764,7 +761,41 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     )
     .map_err(|e| prepare_error(args, e))?;
     notes.extend(alarms);
-    let newton = newton_of(args)?;
+    let mut newton = newton_of(args)?;
+    let contact_def = match args.concept("CONTACT") {
+        Some(name) => {
+            let Some(ConceptData::Contact(cargs)) = study.concepts.data(name) else {
+                return Err(args.error(
+                    "CONTACT",
+                    format!("the contact {name} holds no data (its command did not run)"),
+                ));
+            };
+            if let Some(m) = cargs.concept("MODELE") {
+                if m != model_name {
+                    return Err(args.error(
+                        "CONTACT",
+                        format!(
+                            "the contact {name} is defined on the model {m}, not on {model_name}"
+                        ),
+                    ));
+                }
+            }
+            let def = crate::contact::ContactDef::from_args(cargs, &md.mesh)?;
+            if newton.reac_incr == 0 {
+                let o = args.fact("NEWTON").unwrap_or(args);
+                return Err(o.error(
+                    "REAC_INCR",
+                    "REAC_INCR=0 is forbidden with penalised discrete contact or friction: the contact stiffness changes with the pairing (CONTACT_88)",
+                ));
+            }
+            if !newton.symmetrize {
+                notes.push("discrete contact: the stiffness is symmetrised (MATR_RIGI_SYME='OUI' implied, as code_aster)".into());
+            }
+            newton.symmetrize = true;
+            Some(def)
+        }
+        None => None,
+    };
     let conv = convergence_of(args, &mut notes)?;
     let archive = archive_of(study, args)?;
     let suivi = suivi_of(&md.mesh, &md.model, args)?;
@@ -787,6 +818,15 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         .filter(|r| r.event != Event::Erreur)
         .map(|r| format!("{:?}", r.event))
         .collect();
+    if !ignored.is_empty() && contact_def.is_some() {
+        return Err(args.not_implemented(
+            "INCREMENT",
+            &format!(
+                "the time list's events {} with CONTACT (COLLISION, INTERPENETRATION and the other non-ERREUR events); only ERREUR is handled",
+                ignored.join(", ")
+            ),
+        ));
+    }
     if !ignored.is_empty() {
         notes.push(format!(
             "the time list's events {} concern contact; without CONTACT they are ignored",
@@ -858,7 +898,15 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         mess.push_str(line);
         mess.push('\n');
     };
-    match dyna::run(&mut engine, &tl, &mut evol, &mut log) {
+    let mut contact = contact_def.map(|def| {
+        nonlinear::DiscreteContact::new(
+            def,
+            &md.mesh,
+            &engine.asm.numbering,
+            &engine.committed.motion.u,
+        )
+    });
+    match dyna::run(&mut engine, contact.as_mut(), &tl, &mut evol, &mut log) {
         Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
         Err(stopped) => {
             if let Some(name) = result {

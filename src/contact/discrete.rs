@@ -245,17 +245,22 @@ impl LinkCalc {
                 r[i] += ls.friction[q] * self.bt[q][i];
             }
         }
-        // ∂F_t,q/∂u = −μ E_N e_q B_n + (λ_f/|g_t|) Σ_p (δ_qp − e_q e_p) B_t,p,
-        // weighted by COEF_MATR_FROT while the residual is large.
+        // The slip tangent as code_aster's frogdp builds it: the stick
+        // matrix E_T B_tᵀB_t of every active link minus, on a sliding
+        // link, the correction (E_T − λ_f/|g_t|) B_tᵀB_t, that correction
+        // weighted by COEF_MATR_FROT while RESI_GLOB_RELA ≥ 1e-3 (w = 1
+        // below). With w = 1 the tangential stiffness is the secant
+        // λ_f/|g_t| of the slip law; with w = 0 the stick matrix (stiffer:
+        // Newton converges linearly without stick/slip cycling). There is
+        // no normal-tangential coupling (the consistent derivative's
+        // −μ E_N e B_nᵀ): with E_N ≫ E_T it made Newton cycle between
+        // stick and slip on the Taylor bar (docs/contact.md §3).
         let w = if input.resi_glob_rela >= RESI_COEF_MATR_FROT {
             fr.coef_matr_frot
         } else {
             1.0
         };
-        if w == 0.0 {
-            return (ls, r, k);
-        }
-        let c = threshold / gt;
+        let kt = fr.e_t - w * (fr.e_t - threshold / gt);
         for q in 0..nt {
             for i in 0..nloc {
                 let bq = self.bt[q][i];
@@ -263,12 +268,7 @@ impl LinkCalc {
                     continue;
                 }
                 for j in 0..nloc {
-                    let mut d = -fr.mu * e_n * e[q] * self.bn[j];
-                    for p in 0..nt {
-                        let delta = if p == q { 1.0 } else { 0.0 };
-                        d += c * (delta - e[q] * e[p]) * self.bt[p][j];
-                    }
-                    k[i][j] += w * bq * d;
+                    k[i][j] += kt * bq * self.bt[q][j];
                 }
             }
         }

@@ -64,6 +64,8 @@ pub struct Assembler {
     /// Offset of each mesh cell's states (cells without element: empty
     /// range), `ncells + 1` entries.
     pub cell_state_offsets: Vec<usize>,
+    /// Extra free entries beyond the elements' (sorted, unique).
+    extra: Vec<(usize, usize)>,
     responses: Vec<Result<ElementResponse, ElementFailure>>,
 }
 
@@ -114,35 +116,18 @@ impl Assembler {
 
         // Patterns: free equations (all couplings of an element) and full
         // dofs (mass couples equal directions only).
-        let mut entries = Vec::new();
         let mut full_entries = Vec::new();
         for e in &elements {
             for &fa in &e.full {
                 for &fb in &e.full {
-                    let (ea, eb) = (numbering.eq[fa], numbering.eq[fb]);
-                    if ea != NONE && eb != NONE {
-                        entries.push((ea, eb));
-                    }
                     if fa % d == fb % d {
                         full_entries.push((fa, fb));
                     }
                 }
             }
         }
-        let pattern = Arc::new(CscPattern::from_entries(numbering.neq(), entries));
+        let pattern = free_pattern(&numbering, &mut elements, &[]);
         let full_pattern = Arc::new(CscPattern::from_entries(numbering.nfull(), full_entries));
-        for e in &mut elements {
-            let n = e.full.len();
-            e.pos = vec![NONE; n * n];
-            for a in 0..n {
-                for b in 0..n {
-                    let (ea, eb) = (numbering.eq[e.full[a]], numbering.eq[e.full[b]]);
-                    if ea != NONE && eb != NONE {
-                        e.pos[a * n + b] = pattern.position(ea, eb).expect("entry in pattern");
-                    }
-                }
-            }
-        }
         // Consistent mass, on the initial geometry (ρ₀ dV₀ is conserved).
         let masses: Vec<Result<nalgebra::DMatrix<f64>, ElementFailure>> = elements
             .par_iter()
@@ -177,8 +162,40 @@ impl Assembler {
             mass_full,
             nstates,
             cell_state_offsets,
+            extra: Vec::new(),
             responses: Vec::new(),
         })
+    }
+
+    /// Makes the free pattern hold the elements' entries plus exactly
+    /// `extra` (free equation pairs, e.g. the couplings of a contact
+    /// pairing). Returns true when the pattern was rebuilt: the caller must
+    /// then reallocate its matrices on the new pattern (and the solver
+    /// recomputes its symbolic factorization). Rebuilding only when the
+    /// set changes keeps the symbolic factorization across steps whose
+    /// pairing couples the same dofs.
+    pub fn set_extra_entries(&mut self, extra: &[(usize, usize)]) -> bool {
+        let mut wanted: Vec<(usize, usize)> = extra.to_vec();
+        wanted.sort_unstable();
+        wanted.dedup();
+        if wanted == self.extra {
+            return false;
+        }
+        let old = self.pattern.clone();
+        let pattern = free_pattern(&self.numbering, &mut self.elements, &wanted);
+        let mut mass_free = vec![0.0; pattern.nnz()];
+        for j in 0..old.n {
+            for k in old.col_ptr[j]..old.col_ptr[j + 1] {
+                let p = pattern
+                    .position(old.row_idx[k], j)
+                    .expect("the new pattern holds the element entries");
+                mass_free[p] = self.mass_free[k];
+            }
+        }
+        self.extra = wanted;
+        self.pattern = pattern;
+        self.mass_free = mass_free;
+        true
     }
 
     /// Virgin Gauss-point states of every element.
@@ -272,4 +289,39 @@ impl Assembler {
     pub fn mass_mul(&self, x: &[f64], y: &mut [f64]) {
         self.mass_full.mul_vec(x, y);
     }
+}
+
+/// The pattern of the free equations: every coupling of an element plus
+/// `extra`; sets each element's entry positions in it.
+fn free_pattern(
+    numbering: &DofNumbering,
+    elements: &mut [ElementData],
+    extra: &[(usize, usize)],
+) -> Arc<CscPattern> {
+    let mut entries = Vec::new();
+    for e in elements.iter() {
+        for &fa in &e.full {
+            for &fb in &e.full {
+                let (ea, eb) = (numbering.eq[fa], numbering.eq[fb]);
+                if ea != NONE && eb != NONE {
+                    entries.push((ea, eb));
+                }
+            }
+        }
+    }
+    entries.extend_from_slice(extra);
+    let pattern = Arc::new(CscPattern::from_entries(numbering.neq(), entries));
+    for e in elements.iter_mut() {
+        let n = e.full.len();
+        e.pos = vec![NONE; n * n];
+        for a in 0..n {
+            for b in 0..n {
+                let (ea, eb) = (numbering.eq[e.full[a]], numbering.eq[e.full[b]]);
+                if ea != NONE && eb != NONE {
+                    e.pos[a * n + b] = pattern.position(ea, eb).expect("entry in pattern");
+                }
+            }
+        }
+    }
+    pattern
 }

@@ -3,8 +3,9 @@
 
 use std::time::Instant;
 
+use super::contact::DiscreteContact;
 use super::fields;
-use super::newton::{Engine, IterationRecord, State, StepReport};
+use super::newton::{ContactTerm, Engine, IterationRecord, State, StepReport};
 use crate::result::{EvolNoli, Step};
 use crate::time::list::{Action, Subdivision};
 
@@ -203,7 +204,14 @@ pub struct Stopped {
 
 /// Appends the state to the result if its instant is after the last
 /// stored one (an instant is never stored twice, which matters for reuse).
-pub fn archive(engine: &Engine, tl: &TimeLoop, result: &mut EvolNoli, state: &State) -> bool {
+/// `contact`, when given, adds its CONT_NOEU (of its committed state).
+pub fn archive(
+    engine: &Engine,
+    tl: &TimeLoop,
+    result: &mut EvolNoli,
+    state: &State,
+    contact: Option<&DiscreteContact>,
+) -> bool {
     if let Some(last) = result.steps.last() {
         if state.t <= last.inst {
             return false;
@@ -229,6 +237,9 @@ pub fn archive(engine: &Engine, tl: &TimeLoop, result: &mut EvolNoli, state: &St
         fields::nodal(asm, &tl.dof_names, &state.motion.a),
     );
     let (sief, vari) = fields::gauss(asm, tl.ncells, &state.points);
+    if let Some(c) = contact {
+        step.nodal.insert("CONT_NOEU".into(), c.cont_noeu());
+    }
     step.gauss.insert("SIEF_ELGA".into(), sief);
     step.gauss.insert("VARI_ELGA".into(), vari);
     result.steps.push(step);
@@ -250,6 +261,7 @@ fn header(tl: &TimeLoop) -> String {
 /// `tl.instants[0]` and already initialized), archiving into `result`.
 pub fn run(
     engine: &mut Engine,
+    mut contact: Option<&mut DiscreteContact>,
     tl: &TimeLoop,
     result: &mut EvolNoli,
     log: &mut dyn FnMut(&str),
@@ -258,7 +270,13 @@ pub fn run(
     let mut summary = RunSummary::default();
     let ndpn = engine.asm.numbering.ndpn;
     let offsets = engine.asm.cell_state_offsets.clone();
-    if archive(engine, tl, result, &engine.committed.clone()) {
+    if archive(
+        engine,
+        tl,
+        result,
+        &engine.committed.clone(),
+        contact.as_deref(),
+    ) {
         summary.archived += 1;
     }
     let bar = tl.progress.then(|| {
@@ -286,28 +304,35 @@ pub fn run(
         let suivi = &tl.suivi;
         let table = tl.newton_table;
         let mut rows: Vec<String> = Vec::new();
-        let outcome = engine.solve_step(dt, None, &mut |rec: &IterationRecord, st: &State| {
-            if table {
-                let mut line = format!(
-                    "      iter {:>2}  RESI_GLOB_RELA {:>10.3e}{}  RESI_GLOB_MAXI {:>10.3e}{}",
-                    rec.iteration,
-                    rec.resi_rela,
-                    if rec.swapped { "*" } else { " " },
-                    rec.resi_maxi,
-                    if rec.matrix_updated { "  matrix" } else { "" }
-                );
-                for s in suivi {
-                    line.push_str(&format!("  {:>14.6e}", s.evaluate(st, ndpn, &offsets)));
+        let outcome = engine.solve_step(
+            dt,
+            contact.as_deref_mut().map(|c| c as &mut dyn ContactTerm),
+            &mut |rec: &IterationRecord, st: &State| {
+                if table {
+                    let mut line = format!(
+                        "      iter {:>2}  RESI_GLOB_RELA {:>10.3e}{}  RESI_GLOB_MAXI {:>10.3e}{}",
+                        rec.iteration,
+                        rec.resi_rela,
+                        if rec.swapped { "*" } else { " " },
+                        rec.resi_maxi,
+                        if rec.matrix_updated { "  matrix" } else { "" }
+                    );
+                    for s in suivi {
+                        line.push_str(&format!("  {:>14.6e}", s.evaluate(st, ndpn, &offsets)));
+                    }
+                    rows.push(line);
                 }
-                rows.push(line);
-            }
-        });
+            },
+        );
         for r in &rows {
             log(r);
         }
         match outcome {
             Ok(rep) => {
                 engine.commit();
+                if let Some(c) = contact.as_deref_mut() {
+                    c.commit(dt);
+                }
                 summary.steps += 1;
                 summary.newton_iterations += rep.iterations;
                 log(&step_line(
@@ -329,7 +354,13 @@ pub fn run(
                 }
                 let last = pending.is_empty();
                 if (tl.archive.wants(summary.steps, t_end) || last)
-                    && archive(engine, tl, result, &engine.committed.clone())
+                    && archive(
+                        engine,
+                        tl,
+                        result,
+                        &engine.committed.clone(),
+                        contact.as_deref(),
+                    )
                 {
                     summary.archived += 1;
                     last_archived_t = Some(t_end);
@@ -362,7 +393,13 @@ pub fn run(
                     }
                     Err(why) => {
                         if last_archived_t != Some(engine.committed.t)
-                            && archive(engine, tl, result, &engine.committed.clone())
+                            && archive(
+                                engine,
+                                tl,
+                                result,
+                                &engine.committed.clone(),
+                                contact.as_deref(),
+                            )
                         {
                             summary.archived += 1;
                         }

@@ -11,6 +11,7 @@
 
 pub mod assembly;
 pub mod behaviour;
+pub mod contact;
 pub mod dofs;
 pub mod dyna;
 pub mod fields;
@@ -20,11 +21,12 @@ use indexmap::IndexMap;
 
 pub use assembly::{Assembler, CellFailure};
 pub use behaviour::{BehaviourError, BehaviourField, CellLaw, Occurrence};
+pub use contact::DiscreteContact;
 pub use dofs::DofNumbering;
 pub use dyna::{ArchivePolicy, Reduce, RunSummary, Stopped, Suivi, SuiviField, TimeLoop};
 pub use newton::{
-    ContactTerm, ConvergenceSettings, Engine, IterationRecord, NewtonSettings, State, StepFailure,
-    StepReport,
+    ContactIteration, ContactTerm, ConvergenceSettings, Engine, IterationRecord, NewtonSettings,
+    State, StepFailure, StepReport,
 };
 
 use crate::mesh::Mesh;

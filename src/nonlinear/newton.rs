@@ -73,26 +73,42 @@ pub struct State {
     pub fint: Vec<f64>,
 }
 
+/// What a contact term sees and fills at one Newton iteration.
+pub struct ContactIteration<'a> {
+    pub numbering: &'a DofNumbering,
+    /// Current displacements (full).
+    pub u: &'a [f64],
+    /// The residual (full): the term adds its forces (on the F_int side).
+    pub residual: &'a mut [f64],
+    /// The same forces alone (full, zeroed before the call): they enter
+    /// the RESI_GLOB_RELA denominator (semantics.md §8.5).
+    pub force: &'a mut [f64],
+    /// The iteration matrix (free equations) when it is reassembled; the
+    /// pattern holds [`ContactTerm::pattern_entries`].
+    pub matrix: Option<&'a mut SparseMatrix>,
+    /// The last RESI_GLOB_RELA of this step (+inf before the first one):
+    /// COEF_MATR_FROT applies while it is >= 1e-3.
+    pub resi_glob_rela: f64,
+}
+
 /// A contact (or any extra) term of the equilibrium. This is the single
 /// place where contact plugs into the Newton loop: it adds its forces to
 /// the residual and its stiffness to the iteration matrix at each
-/// iteration, and may veto convergence (e.g. while the active set moves).
+/// iteration, and may ask for more iterations after convergence (a new
+/// pairing: code_aster's geometric loop runs inside the Newton loop).
 pub trait ContactTerm {
-    /// Before the iterations of a step from `t` over `dt`.
-    fn begin_step(&mut self, t: f64, dt: f64);
-    /// Adds the contact forces at displacement `u` (full) to `residual`
-    /// (full) and, when given, the contact tangent to `matrix` (free
-    /// equations, the pattern must hold its entries).
-    fn add(
-        &mut self,
-        numbering: &DofNumbering,
-        u: &[f64],
-        residual: &mut [f64],
-        matrix: Option<&mut SparseMatrix>,
-    ) -> Result<(), String>;
-    /// After the convergence test of an iteration; `false` forces another
-    /// iteration even if the residual is small.
-    fn accept(&mut self) -> bool;
+    /// Before the iterations of a step from `t` over `dt`; `u_start` is
+    /// the committed displacement (full).
+    fn begin_step(&mut self, numbering: &DofNumbering, u_start: &[f64], t: f64, dt: f64);
+    /// The free-equation couplings the current pairing may fill (the
+    /// engine extends the pattern when they change).
+    fn pattern_entries(&self) -> &[(usize, usize)];
+    /// Adds the contact forces and, when asked, the contact tangent.
+    fn add(&mut self, it: ContactIteration) -> Result<(), String>;
+    /// Called when Newton has converged at displacement `u` (full):
+    /// `Ok(true)` accepts the step, `Ok(false)` means the term changed
+    /// (e.g. re-paired) and the iterations continue; `Err` fails the step.
+    fn accept(&mut self, numbering: &DofNumbering, u: &[f64]) -> Result<bool, String>;
 }
 
 /// One row of the Newton table.
@@ -186,6 +202,8 @@ pub struct Engine {
     /// Converged steps so far (REAC_INCR, the swap rule).
     pub steps_done: usize,
     resid: Vec<f64>,
+    /// Contact forces of the last iteration (full).
+    cforce: Vec<f64>,
     prev_term: Vec<f64>,
     work: Vec<f64>,
     rhs: Vec<f64>,
@@ -218,6 +236,7 @@ impl Engine {
             committed: initial,
             steps_done: 0,
             resid: vec![0.0; nfull],
+            cforce: vec![0.0; nfull],
             prev_term: vec![0.0; nfull],
             work: vec![0.0; nfull],
             rhs: vec![0.0; neq],
@@ -310,19 +329,33 @@ impl Engine {
             self.prev_term[f] = wp * (self.committed.fint[f] - self.fext[f]);
         }
         if let Some(c) = contact.as_deref_mut() {
-            c.begin_step(self.committed.t, dt);
+            c.begin_step(nb, &self.committed.motion.u, self.committed.t, dt);
         }
         let mut history = Vec::new();
         let swap = self.steps_done > 0;
+        let mut last_rela = f64::INFINITY;
+        let mut check_pattern = contact.is_some();
         for it in 0..=self.conv.iter_glob_maxi {
-            let reassemble = if it == 0 {
-                self.matrix_dt != Some(dt)
-                    || (self.newton.reac_incr > 0
-                        && self.steps_done.is_multiple_of(self.newton.reac_incr))
-            } else {
-                self.matrix_dt != Some(dt)
-                    || (self.newton.reac_iter > 0 && it % self.newton.reac_iter == 0)
-            };
+            let mut new_pattern = false;
+            if check_pattern {
+                check_pattern = false;
+                if let Some(c) = contact.as_deref() {
+                    if self.asm.set_extra_entries(c.pattern_entries()) {
+                        self.matrix = SparseMatrix::zeros(self.asm.pattern.clone());
+                        self.matrix_dt = None;
+                        new_pattern = true;
+                    }
+                }
+            }
+            let reassemble = new_pattern
+                || if it == 0 {
+                    self.matrix_dt != Some(dt)
+                        || (self.newton.reac_incr > 0
+                            && self.steps_done.is_multiple_of(self.newton.reac_incr))
+                } else {
+                    self.matrix_dt != Some(dt)
+                        || (self.newton.reac_iter > 0 && it % self.newton.reac_iter == 0)
+                };
             let tangent = if reassemble {
                 self.newton.matrix
             } else {
@@ -359,12 +392,15 @@ impl Engine {
                 };
             }
             if let Some(c) = contact.as_deref_mut() {
-                c.add(
-                    nb,
-                    &self.trial.motion.u,
-                    &mut self.resid,
-                    reassemble.then_some(&mut self.matrix),
-                )
+                self.cforce.iter_mut().for_each(|v| *v = 0.0);
+                c.add(ContactIteration {
+                    numbering: nb,
+                    u: &self.trial.motion.u,
+                    residual: &mut self.resid,
+                    force: &mut self.cforce,
+                    matrix: reassemble.then_some(&mut self.matrix),
+                    resi_glob_rela: last_rela,
+                })
                 .map_err(StepFailure::Contact)?;
             }
             if let Some(f) = self.resid.iter().position(|v| !v.is_finite()) {
@@ -376,6 +412,7 @@ impl Engine {
             }
             if it > 0 {
                 let rec = self.norms(dt, it, swap, reassemble);
+                last_rela = rec.resi_rela;
                 history.push(rec);
                 on_iteration(&rec, &self.trial);
                 let ok_rela = match self.conv.resi_glob_rela {
@@ -384,8 +421,24 @@ impl Engine {
                     Some(r) => rec.resi_rela <= r,
                 };
                 let ok_maxi = self.conv.resi_glob_maxi.is_none_or(|m| rec.resi_maxi <= m);
-                let contact_ok = contact.as_deref_mut().is_none_or(|c| c.accept());
-                let converged = ok_rela && ok_maxi && contact_ok;
+                let converged = ok_rela && ok_maxi;
+                if converged {
+                    if let Some(c) = contact.as_deref_mut() {
+                        let nb = &self.asm.numbering;
+                        if !c
+                            .accept(nb, &self.trial.motion.u)
+                            .map_err(StepFailure::Contact)?
+                        {
+                            if it == self.conv.iter_glob_maxi {
+                                return Err(StepFailure::NotConverged { history });
+                            }
+                            // A new pairing: the residual is re-evaluated
+                            // at the same displacement before any solve.
+                            check_pattern = true;
+                            continue;
+                        }
+                    }
+                }
                 if converged || (it == self.conv.iter_glob_maxi && !self.conv.arret) {
                     self.min_denominator = Some(
                         self.min_denominator
@@ -430,8 +483,9 @@ impl Engine {
     }
 
     /// RESI_GLOB_MAXI over the free dofs and RESI_GLOB_RELA with the
-    /// denominator of semantics.md §8.5: the largest of |λ_i − F_ext,i|
-    /// (λ the reaction, −R at imposed dofs, 0 elsewhere) and of the
+    /// denominator of semantics.md §8.5: the largest of |λ_i + c_i − F_ext,i|
+    /// (λ the reaction, −R at imposed dofs, 0 elsewhere; c the discrete
+    /// contact forces) and of the
     /// reference inertia |M v_{n+1}|_i/(β Δt).
     fn norms(&mut self, dt: f64, it: usize, swap_allowed: bool, updated: bool) -> IterationRecord {
         let nb = &self.asm.numbering;
@@ -440,11 +494,13 @@ impl Engine {
             maxi = maxi.max(self.resid[f].abs());
         }
         let mut denom: f64 = 0.0;
+        // λ_i + c_i − F_ext,i, with λ = −R at imposed dofs (R holds the
+        // contact forces c) and λ = 0 at free ones.
         for &f in &nb.free {
-            denom = denom.max(self.fext[f].abs());
+            denom = denom.max((self.cforce[f] - self.fext[f]).abs());
         }
         for &(f, _) in &nb.imposed {
-            denom = denom.max((-self.resid[f] - self.fext[f]).abs());
+            denom = denom.max((-self.resid[f] + self.cforce[f] - self.fext[f]).abs());
         }
         self.asm.mass_mul(&self.trial.motion.v, &mut self.work);
         let inv = 1.0 / (self.scheme.beta * dt);

@@ -1,0 +1,218 @@
+//! Discrete penalised contact with Coulomb friction in the Newton loop:
+//! the [`ContactTerm`] that drives the `contact` library (pairing,
+//! evaluation, CONT_NOEU) step after step (docs/contact.md §6).
+//!
+//! The geometric loop (REAC_GEOM, semantics.md §6.3) runs inside the
+//! Newton loop, as code_aster's discrete method does: the first pairing is
+//! made on the geometry at the start of the step, each further one after
+//! Newton has converged, and the iterations then continue with the new
+//! pairing at the same displacement (the same ITER_GLOB_MAXI counter).
+
+use super::dofs::{DofNumbering, NONE};
+use super::newton::{ContactIteration, ContactTerm};
+use crate::contact::{evaluate, pair, ContactDef, ContactState, IterationInput, Pairing, ReacGeom};
+use crate::mesh::Mesh;
+use crate::result::NodalField;
+
+/// The contact term of one DYNA_NON_LINE computation.
+pub struct DiscreteContact {
+    pub def: ContactDef,
+    mesh: Mesh,
+    ndpn: usize,
+    pairing: Option<Pairing>,
+    /// Pairings made in the current step (REAC_GEOM counters).
+    pairings_in_step: usize,
+    /// Displacements (per node) at the start of the step: the origin of
+    /// the friction slip.
+    u_start: Vec<[f64; 3]>,
+    /// Full displacement at the last pairing (REAC_GEOM='AUTOMATIQUE').
+    u_paired: Vec<f64>,
+    entries: Vec<(usize, usize)>,
+    /// State of the last evaluation (the trial step).
+    pub trial: ContactState,
+    /// State of the last committed step, percussion included.
+    pub committed: ContactState,
+    /// Pairings made in total (for the log and the tests).
+    pub pairings: usize,
+}
+
+fn per_node(ndpn: usize, u: &[f64]) -> Vec<[f64; 3]> {
+    u.chunks(ndpn)
+        .map(|c| {
+            let mut v = [0.0; 3];
+            v[..ndpn].copy_from_slice(c);
+            v
+        })
+        .collect()
+}
+
+impl DiscreteContact {
+    /// A contact term at the state `u0` (full): the first pairing is made
+    /// there, and its evaluation is the state of the initial instant (its
+    /// CONT_NOEU gives the initial gaps).
+    pub fn new(def: ContactDef, mesh: &Mesh, numbering: &DofNumbering, u0: &[f64]) -> Self {
+        let ndpn = numbering.ndpn;
+        let mut c = DiscreteContact {
+            def,
+            mesh: mesh.clone(),
+            ndpn,
+            pairing: None,
+            pairings_in_step: 0,
+            u_start: per_node(ndpn, u0),
+            u_paired: u0.to_vec(),
+            entries: Vec::new(),
+            trial: ContactState::default(),
+            committed: ContactState::default(),
+            pairings: 0,
+        };
+        c.repair(numbering, u0);
+        let u = c.u_start.clone();
+        let (_, st) = evaluate(
+            &c.def,
+            c.pairing.as_ref().expect("paired above"),
+            &IterationInput {
+                u: &u,
+                u_start: &u,
+                resi_glob_rela: f64::INFINITY,
+                symmetrise: true,
+            },
+            |_, _| None,
+        );
+        c.committed = st.clone();
+        c.trial = st;
+        c
+    }
+
+    /// Pairs on the geometry of `u` (full) and lists the couplings.
+    fn repair(&mut self, numbering: &DofNumbering, u: &[f64]) {
+        let un = per_node(self.ndpn, u);
+        let p = pair(&self.def, &self.mesh, &un);
+        let d = self.def.dim.min(self.ndpn);
+        let mut entries = Vec::new();
+        for l in &p.links {
+            let eqs: Vec<usize> = std::iter::once(l.slave)
+                .chain(l.master_nodes.iter().copied())
+                .flat_map(|n| (0..d).map(move |c| n * numbering.ndpn + c))
+                .map(|f| numbering.eq[f])
+                .filter(|&e| e != NONE)
+                .collect();
+            for &a in &eqs {
+                for &b in &eqs {
+                    entries.push((a, b));
+                }
+            }
+        }
+        entries.sort_unstable();
+        entries.dedup();
+        self.entries = entries;
+        self.pairing = Some(p);
+        self.u_paired.clear();
+        self.u_paired.extend_from_slice(u);
+        self.pairings_in_step += 1;
+        self.pairings += 1;
+    }
+
+    /// Accepts the trial state of a converged step of length `dt`: the
+    /// percussion is accumulated from the committed state.
+    pub fn commit(&mut self, dt: f64) {
+        let mut st = self.trial.clone();
+        st.accumulate_percussion(Some(&self.committed), dt);
+        self.committed = st;
+    }
+
+    /// CONT_NOEU of the committed state.
+    pub fn cont_noeu(&self) -> NodalField {
+        self.committed.cont_noeu(self.mesh.nnodes())
+    }
+}
+
+impl ContactTerm for DiscreteContact {
+    fn begin_step(&mut self, numbering: &DofNumbering, u_start: &[f64], _t: f64, _dt: f64) {
+        self.u_start = per_node(self.ndpn, u_start);
+        self.pairings_in_step = 0;
+        // REAC_GEOM='SANS' keeps the first pairing of the computation
+        // (semantics.md §14 leaves "once per step" open; docs/contact.md).
+        if self.def.reac_geom != ReacGeom::Sans || self.pairing.is_none() {
+            self.repair(numbering, u_start);
+        }
+    }
+
+    fn pattern_entries(&self) -> &[(usize, usize)] {
+        &self.entries
+    }
+
+    fn add(&mut self, it: ContactIteration) -> Result<(), String> {
+        let Some(pairing) = self.pairing.as_ref() else {
+            return Err("no pairing before the first iteration".into());
+        };
+        let nb = it.numbering;
+        let u = per_node(self.ndpn, it.u);
+        let (contrib, state) = evaluate(
+            &self.def,
+            pairing,
+            &IterationInput {
+                u: &u,
+                u_start: &self.u_start,
+                resi_glob_rela: it.resi_glob_rela,
+                symmetrise: true,
+            },
+            |n, c| {
+                let e = nb.eq[n * nb.ndpn + c];
+                (c < nb.ndpn && e != NONE).then_some(e)
+            },
+        );
+        for (n, v) in &contrib.nodal {
+            for (c, x) in v.iter().enumerate().take(self.ndpn) {
+                let f = n * self.ndpn + c;
+                it.residual[f] += x;
+                it.force[f] += x;
+            }
+        }
+        if let Some(m) = it.matrix {
+            for &(a, b, v) in &contrib.tangent {
+                let p = m.pattern.position(a, b).ok_or_else(|| {
+                    format!("the matrix pattern lacks the contact coupling ({a}, {b})")
+                })?;
+                m.values[p] += v;
+            }
+        }
+        self.trial = state;
+        Ok(())
+    }
+
+    fn accept(&mut self, numbering: &DofNumbering, u: &[f64]) -> Result<bool, String> {
+        match self.def.reac_geom {
+            ReacGeom::Sans => Ok(true),
+            ReacGeom::Controle { nb_iter_geom } => {
+                if self.pairings_in_step >= nb_iter_geom {
+                    Ok(true)
+                } else {
+                    self.repair(numbering, u);
+                    Ok(false)
+                }
+            }
+            ReacGeom::Automatique {
+                iter_geom_maxi,
+                resi_geom,
+            } => {
+                let mut du: f64 = 0.0;
+                let mut um: f64 = 0.0;
+                for (a, b) in u.iter().zip(&self.u_paired) {
+                    du = du.max((a - b).abs());
+                    um = um.max(a.abs());
+                }
+                if um == 0.0 || du / um < resi_geom {
+                    return Ok(true);
+                }
+                if self.pairings_in_step > iter_geom_maxi {
+                    return Err(format!(
+                        "the geometric loop (REAC_GEOM='AUTOMATIQUE') did not converge in ITER_GEOM_MAXI = {iter_geom_maxi} pairings: max|du| / max|u| = {:.3e} > RESI_GEOM = {resi_geom:e}",
+                        du / um
+                    ));
+                }
+                self.repair(numbering, u);
+                Ok(false)
+            }
+        }
+    }
+}
