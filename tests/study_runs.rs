@@ -17,6 +17,8 @@ fn mesh_commands_of_every_study_run() {
             &RunOptions {
                 comm: root.join(format!("comm/sdnv103{m}.comm")),
                 out_dir: Some(out.clone()),
+                // result files of IMPR_RESU go to this test's own directory
+                units: vec![(80, out.join("resu.rmed"))],
                 ..RunOptions::default()
             },
             &mut term,
@@ -87,6 +89,8 @@ fn a_stopped_run_keeps_its_results_on_disk() {
         &RunOptions {
             comm: root.join("tests/studies/stop_plain_list.comm"),
             out_dir: Some(out.clone()),
+            // result files of IMPR_RESU go to this test's own directory
+            units: vec![(80, out.join("resu.rmed"))],
             ..RunOptions::default()
         },
         &mut term,
