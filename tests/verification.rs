@@ -8,35 +8,18 @@
 use std::path::{Path, PathBuf};
 
 use aster::mesh::{Cell, CellType, Mesh};
-use aster::run::driver::{run_file, RunOptions};
+mod common;
 
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification")
 }
 
 fn run_study(name: &str) {
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("verif_{name}"));
-    let mut term = Vec::new();
-    let code = run_file(
-        &RunOptions {
-            comm: dir().join(format!("{name}.comm")),
-            out_dir: Some(out.clone()),
-            ..RunOptions::default()
-        },
-        &mut term,
+    let run = common::run_study(
+        &format!("tests/verification/{name}.comm"),
+        &format!("verif_{name}"),
     );
-    let term = String::from_utf8(term).unwrap();
-    let resu = std::fs::read_to_string(out.join(format!("{name}.resu"))).unwrap_or_default();
-    assert_eq!(code, 0, "{name}:\n{term}\n{resu}");
-    let lines: Vec<&str> = resu.lines().collect();
-    assert!(
-        lines.iter().any(|l| l.starts_with(" OK ")),
-        "{name}: no check ran:\n{resu}"
-    );
-    assert!(
-        !lines.iter().any(|l| l.starts_with("NOOK")),
-        "{name}:\n{resu}"
-    );
+    common::assert_all_ok(&run, &format!("{name}.resu"));
 }
 
 #[test]

@@ -1,0 +1,65 @@
+//! Running a command file from a test, as `aster run` does.
+//! (Each test binary uses a different subset of these helpers.)
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use aster::run::driver::{run_file, RunOptions};
+
+/// The outcome of a run: exit code, what the terminal showed, and the
+/// scratch directory holding .mess, .resu and the result files.
+pub struct Run {
+    pub code: i32,
+    pub term: String,
+    pub out: PathBuf,
+}
+
+impl Run {
+    /// The text of an output file of the run (empty if absent).
+    pub fn file(&self, name: &str) -> String {
+        std::fs::read_to_string(self.out.join(name)).unwrap_or_default()
+    }
+}
+
+/// Runs `comm` (relative to the crate root) with its .export, writing into a
+/// scratch directory named `tag`; IMPR_RESU's unit 80 also goes there, so
+/// that tests never write into the source tree or share a file.
+pub fn run_study(comm: &str, tag: &str) -> Run {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(tag);
+    let _ = std::fs::remove_dir_all(&out);
+    let mut term = Vec::new();
+    let code = run_file(
+        &RunOptions {
+            comm: root.join(comm),
+            out_dir: Some(out.clone()),
+            units: vec![(80, out.join("resu.rmed"))],
+            ..RunOptions::default()
+        },
+        &mut term,
+    );
+    Run {
+        code,
+        term: String::from_utf8(term).expect("UTF-8 output"),
+        out,
+    }
+}
+
+/// Asserts the run ended with exit 0, at least one OK and no NOOK or SKIP
+/// line in its .resu; returns the .resu.
+pub fn assert_all_ok(run: &Run, resu: &str) -> String {
+    let text = run.file(resu);
+    assert_eq!(run.code, 0, "{}:\n{}\n{text}", resu, run.term);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(
+        lines.iter().any(|l| l.starts_with(" OK ")),
+        "no check ran:\n{text}"
+    );
+    assert!(
+        !lines
+            .iter()
+            .any(|l| l.starts_with("NOOK") || l.starts_with("SKIP")),
+        "{text}"
+    );
+    text
+}
