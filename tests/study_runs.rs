@@ -1,7 +1,8 @@
 //! Running the ten SDNV103 studies: every command before the first one
 //! whose engine is not built yet runs (the mesh commands in particular);
-//! a study either ends with exit 0 or stops on a clear "not implemented
-//! yet" error, exit code 1, with the .mess and .resu files written.
+//! a study either ends with exit 0, or runs to FIN with some check NOOK,
+//! or stops on a clear "not implemented yet" error (exit code 1 for both),
+//! with the .mess and .resu files written.
 
 mod common;
 
@@ -28,8 +29,10 @@ fn mesh_commands_of_every_study_run() {
         }
         if run.code != 0 {
             assert_eq!(run.code, 1);
+            // A study the engine handles completely runs to FIN; a NOOK
+            // among its checks is then a result to settle, not a refusal.
             assert!(
-                run.term.contains("not implemented yet"),
+                run.term.contains("not implemented yet") || mess.contains("FIN done"),
                 "study {m} failed otherwise:\n{}",
                 run.term
             );

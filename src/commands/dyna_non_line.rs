@@ -18,7 +18,7 @@ use crate::nonlinear::{
 };
 use crate::result::{Access, EvolNoli};
 use crate::run::Study;
-use crate::time::list::{Action, Event, TimeList};
+use crate::time::list::{Action, Event, Subdivision, TimeList, TplusMode};
 use crate::time::Scheme;
 
 pub fn def() -> CommandDef {
@@ -812,17 +812,30 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             &format!("the ERREUR action {on_error:?} of the time list"),
         ));
     }
-    let ignored: Vec<String> = list
-        .rules
-        .iter()
-        .filter(|r| r.event != Event::Erreur)
-        .map(|r| format!("{:?}", r.event))
-        .collect();
+    let mut events = dyna::ContactEvents::default();
+    let mut ignored: Vec<String> = Vec::new();
+    for r in list.rules.iter().filter(|r| r.event != Event::Erreur) {
+        match (&r.event, &r.action) {
+            (
+                Event::Collision,
+                Action::Decoupe(Subdivision::AutoCollision {
+                    subd_inst,
+                    subd_duree,
+                }),
+            ) if contact_def.is_some() => events.collision = Some((*subd_inst, *subd_duree)),
+            (Event::Interpenetration { pene_maxi }, Action::AdaptCoefPena { coef_maxi })
+                if contact_def.is_some() =>
+            {
+                events.interpenetration = Some((*pene_maxi, *coef_maxi))
+            }
+            (e, a) => ignored.push(format!("{} with ACTION {a}", e.name())),
+        }
+    }
     if !ignored.is_empty() && contact_def.is_some() {
         return Err(args.not_implemented(
             "INCREMENT",
             &format!(
-                "the time list's events {} with CONTACT (COLLISION, INTERPENETRATION and the other non-ERREUR events); only ERREUR is handled",
+                "the time list's events {} with CONTACT (only ERREUR, COLLISION with SUBD_METHODE='AUTO' and INTERPENETRATION with ADAPT_COEF_PENA are handled)",
                 ignored.join(", ")
             ),
         ));
@@ -831,6 +844,27 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         notes.push(format!(
             "the time list's events {} concern contact; without CONTACT they are ignored",
             ignored.join(", ")
+        ));
+    }
+    let growth = list.auto.then(|| {
+        let pcent = list
+            .adaptation
+            .iter()
+            .find_map(|a| match a.mode {
+                TplusMode::Fixe { pcent_augm } => Some(pcent_augm),
+                _ => None,
+            })
+            .unwrap_or(100.0);
+        dyna::Growth {
+            factor: 1.0 + pcent / 100.0,
+            pas_maxi: list.pas_maxi,
+        }
+    });
+    if let Some(g) = &growth {
+        notes.push(format!(
+            "METHODE='AUTO': after each successful step the next one is {} times longer, up to the next instant of the list{} (the ADAPTATION thresholds are not evaluated)",
+            g.factor,
+            g.pas_maxi.map_or(String::new(), |m| format!(" and PAS_MAXI = {m:e}"))
         ));
     }
     if args.has("SOLVEUR") {
@@ -847,6 +881,8 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         progress,
         dof_names,
         ncells: md.mesh.ncells(),
+        events,
+        growth,
     };
     // With reuse= the result is still in the table: new steps are appended
     // to it (instants not after its last one are not stored again).

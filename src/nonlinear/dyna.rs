@@ -1,6 +1,7 @@
 //! The time loop of DYNA_NON_LINE: steps of the time list, step cutting on
 //! failure (DEFI_LIST_INST ECHEC), archiving, the step log and SUIVI_DDL.
 
+use std::collections::{HashMap, HashSet};
 use std::time::Instant;
 
 use super::contact::DiscreteContact;
@@ -165,6 +166,28 @@ impl Suivi {
     }
 }
 
+/// The contact events of the time list (DEFI_LIST_INST ECHEC) the loop
+/// watches after each converged step (semantics.md §7.2).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactEvents {
+    /// EVENEMENT='COLLISION', ACTION='DECOUPE', SUBD_METHODE='AUTO':
+    /// (SUBD_INST, SUBD_DUREE).
+    pub collision: Option<(f64, f64)>,
+    /// EVENEMENT='INTERPENETRATION', ACTION='ADAPT_COEF_PENA':
+    /// (PENE_MAXI, COEF_MAXI).
+    pub interpenetration: Option<(f64, f64)>,
+}
+
+/// METHODE='AUTO': how the step grows back after a success.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Growth {
+    /// The next step is `factor` times the last one (1 + PCENT_AUGM/100
+    /// of MODE_CALCUL_TPLUS='FIXE').
+    pub factor: f64,
+    /// PAS_MAXI, if given.
+    pub pas_maxi: Option<f64>,
+}
+
 /// What the time loop needs besides the engine.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TimeLoop {
@@ -182,6 +205,10 @@ pub struct TimeLoop {
     /// Dof names of the model (DX, DY[, DZ]).
     pub dof_names: Vec<String>,
     pub ncells: usize,
+    /// COLLISION / INTERPENETRATION (only with a contact term).
+    pub events: ContactEvents,
+    /// None: METHODE='MANUEL', the list is followed as given.
+    pub growth: Option<Growth>,
 }
 
 /// Totals of a run.
@@ -298,8 +325,30 @@ pub fn run(
         .map(|&t| (t, 1, true))
         .collect();
     let mut last_archived_t = result.steps.last().map(|s| s.inst);
+    // COLLISION: the end of the running collision of each (zone, slave
+    // node) link, and the end of the refinement window (the latest one).
+    let mut collisions: HashMap<(usize, usize), f64> = HashMap::new();
+    let mut refine_until: Option<f64> = None;
     while let Some((t_end, level, list_end)) = pending.pop() {
         let t0 = engine.committed.t;
+        if let (Some((subd_inst, _)), Some(until)) = (tl.events.collision, refine_until) {
+            // Inside a collision window every step is made of sub-steps
+            // of about SUBD_INST, up to the end of the window.
+            let eps = 1e-6 * subd_inst;
+            if until - t0 > eps {
+                let horizon = t_end.min(until);
+                let n = ((horizon - t0) / subd_inst).round().max(1.0) as usize;
+                let split = horizon < t_end - eps;
+                if n > 1 || split {
+                    if split {
+                        pending.push((t_end, level, list_end));
+                    }
+                    let ends = equal_steps(t0, horizon, n, level + 1, list_end && !split);
+                    pending.extend(ends.into_iter().rev());
+                    continue;
+                }
+            }
+        }
         let dt = t_end - t0;
         let suivi = &tl.suivi;
         let table = tl.newton_table;
@@ -327,6 +376,31 @@ pub fn run(
         for r in &rows {
             log(r);
         }
+        let outcome = match outcome {
+            Err(failure) => Err((failure.to_string(), failure.is_fatal())),
+            Ok(rep) => match contact.as_deref_mut() {
+                Some(c) => match check_events(
+                    c,
+                    &tl.events,
+                    &mut collisions,
+                    &mut refine_until,
+                    (t0, t_end, level, list_end),
+                ) {
+                    EventOutcome::Accept => Ok(rep),
+                    EventOutcome::Redo { note, steps } => {
+                        log(&format!(
+                            "  step from t = {t0:e} to {t_end:e} (dt = {dt:.3e}) converged in {} iterations, redone: {note}",
+                            rep.iterations
+                        ));
+                        summary.cuts += 1;
+                        pending.extend(steps.into_iter().rev());
+                        continue;
+                    }
+                    EventOutcome::Fail(why) => Err((why, false)),
+                },
+                None => Ok(rep),
+            },
+        };
         match outcome {
             Ok(rep) => {
                 engine.commit();
@@ -369,13 +443,15 @@ pub fn run(
                     pb.inc(1);
                     pb.set_message(format!("t = {t_end:.4e}"));
                 }
+                if let Some(g) = tl.growth {
+                    grow(&mut pending, t_end, dt, g);
+                }
             }
-            Err(failure) => {
-                let reason = failure.to_string();
+            Err((reason, fatal)) => {
                 log(&format!(
                     "  step failure from t = {t0:e} to {t_end:e} (dt = {dt:.3e}, level {level}): {reason}"
                 ));
-                let cut = if failure.is_fatal() {
+                let cut = if fatal {
                     Err("a mesh error cannot be cured by cutting the step".to_string())
                 } else {
                     cut_step(&tl.on_error, t0, t_end, level, list_end)
@@ -461,6 +537,136 @@ fn step_line(
         ));
     }
     line
+}
+
+/// `n` equal steps from `t0` to `t1` as pending targets (the last one
+/// exactly `t1`).
+fn equal_steps(
+    t0: f64,
+    t1: f64,
+    n: usize,
+    level: usize,
+    list_end: bool,
+) -> Vec<(f64, usize, bool)> {
+    let h = (t1 - t0) / n as f64;
+    (1..=n)
+        .map(|k| {
+            if k == n {
+                (t1, level, list_end)
+            } else {
+                (t0 + k as f64 * h, level, false)
+            }
+        })
+        .collect()
+}
+
+/// METHODE='AUTO': after a successful step of length `dt` ending at `t`,
+/// the pending sub-steps before the next instant of the list are replaced
+/// by one step of `factor`·dt (at most PAS_MAXI), never beyond that
+/// instant: the list's instants are the upper bounds of the steps, and the
+/// step reaches them again after a cut.
+fn grow(pending: &mut Vec<(f64, usize, bool)>, t: f64, dt: f64, g: Growth) {
+    let Some(&(t_list, level, _)) = pending.iter().rev().find(|p| p.2) else {
+        return;
+    };
+    while pending.last().is_some_and(|p| !p.2) {
+        pending.pop();
+    }
+    let mut step = dt * g.factor;
+    if let Some(m) = g.pas_maxi {
+        step = step.min(m);
+    }
+    // A remainder shorter than a thousandth of the step is not a step.
+    if t + step < t_list - 1e-3 * step {
+        pending.push((t + step, level, false));
+    }
+}
+
+/// What the contact events say about a converged step.
+enum EventOutcome {
+    Accept,
+    /// Roll the step back and compute `steps` (pending targets) instead.
+    Redo {
+        note: String,
+        steps: Vec<(f64, usize, bool)>,
+    },
+    /// A failure of the step (handled by the ERREUR rule).
+    Fail(String),
+}
+
+/// The INTERPENETRATION and COLLISION events after a converged step
+/// `(t0, t1, level, list_end)` (semantics.md §7.2). INTERPENETRATION is
+/// checked first: a step redone with a stiffer penalty may close other
+/// gaps. E_N stays doubled for the rest of the computation, as code_aster
+/// keeps the adapted coefficient.
+fn check_events(
+    c: &mut DiscreteContact,
+    ev: &ContactEvents,
+    collisions: &mut HashMap<(usize, usize), f64>,
+    refine_until: &mut Option<f64>,
+    (t0, t1, level, list_end): (f64, f64, usize, bool),
+) -> EventOutcome {
+    if let Some((pene_maxi, coef_maxi)) = ev.interpenetration {
+        let pen = c.trial.max_interpenetration();
+        if pen > pene_maxi {
+            let zones: HashSet<usize> = c
+                .trial
+                .links
+                .iter()
+                .filter(|l| l.gap <= 0.0 && -l.gap > pene_maxi)
+                .map(|l| l.zone)
+                .collect();
+            let mut changed = Vec::new();
+            for &z in &zones {
+                let zone = &mut c.def.zones[z];
+                if zone.e_n < coef_maxi {
+                    let old = zone.e_n;
+                    zone.e_n = (2.0 * old).min(coef_maxi);
+                    changed.push(format!("zone {} E_N {old:e} -> {:e}", z + 1, zone.e_n));
+                }
+            }
+            if changed.is_empty() {
+                return EventOutcome::Fail(format!(
+                    "INTERPENETRATION: the penetration {pen:.3e} exceeds PENE_MAXI = {pene_maxi:e} with E_N already at COEF_MAXI = {coef_maxi:e}"
+                ));
+            }
+            return EventOutcome::Redo {
+                note: format!(
+                    "INTERPENETRATION (penetration {pen:.3e} > PENE_MAXI = {pene_maxi:e}), ADAPT_COEF_PENA: {}",
+                    changed.join(", ")
+                ),
+                steps: vec![(t1, level, list_end)],
+            };
+        }
+    }
+    if let Some((subd_inst, subd_duree)) = ev.collision {
+        let eps = 1e-6 * subd_inst;
+        let started = crate::contact::collision_started(&c.committed, &c.trial);
+        let mut new = 0usize;
+        for (l, s) in c.trial.links.iter().zip(started) {
+            let key = (l.zone, l.slave);
+            let running = collisions.get(&key).is_some_and(|&end| end > t0 + eps);
+            if s && !running {
+                collisions.insert(key, t0 + subd_duree);
+                new += 1;
+            }
+        }
+        if new > 0 {
+            let until = t0 + subd_duree;
+            *refine_until = Some(refine_until.map_or(until, |u| u.max(until)));
+            let n = ((t1 - t0) / subd_inst).round().max(1.0) as usize;
+            if n > 1 {
+                return EventOutcome::Redo {
+                    note: format!(
+                        "COLLISION of {new} link(s), cut into {n} sub-steps of {:.3e} (SUBD_INST = {subd_inst:e}) until t = {until:e}",
+                        (t1 - t0) / n as f64
+                    ),
+                    steps: equal_steps(t0, t1, n, level + 1, list_end),
+                };
+            }
+        }
+    }
+    EventOutcome::Accept
 }
 
 /// The sub-steps replacing a failed step, or why it cannot be cut.
