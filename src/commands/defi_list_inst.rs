@@ -277,7 +277,19 @@ fn failure_rule(occ: &Args) -> Result<FailureRule, Diagnostic> {
 fn subdivision(occ: &Args, event: &Event) -> Result<Subdivision, Diagnostic> {
     let int = |k: &str, d: i64| occ.int(k).unwrap_or(d);
     let pas_mini = occ.real("SUBD_PAS_MINI").unwrap_or(0.0);
-    Ok(match occ.text("SUBD_METHODE").unwrap_or("MANUEL") {
+    // SUBD_METHODE defaults to 'AUTO' for COLLISION and 'MANUEL' otherwise
+    // (semantics.md 7.2), whatever default the catalogue filled in.
+    let default = if matches!(event, Event::Collision) {
+        "AUTO"
+    } else {
+        "MANUEL"
+    };
+    let methode = if occ.given("SUBD_METHODE") {
+        occ.text("SUBD_METHODE").unwrap_or(default)
+    } else {
+        default
+    };
+    Ok(match methode {
         "MANUEL" => Subdivision::Manuel {
             subd_pas: int("SUBD_PAS", 4).max(2) as usize,
             subd_niveau: int("SUBD_NIVEAU", 3).max(2) as usize,
