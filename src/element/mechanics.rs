@@ -42,7 +42,7 @@
 use std::fmt;
 use std::sync::OnceLock;
 
-use nalgebra::{DMatrix, DVector, Matrix3, SVector};
+use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 
 use super::quadrature::{families, rule, Fpg};
 use super::shape::{eval, ShapeEval, MAX_NODES};
@@ -262,7 +262,7 @@ pub fn internal_forces(
         }
     }
     // Per-dof virtual gradients G_α (or G⁰_α F⁻¹) and tangent partners M_α.
-    let mut g = [Matrix3::zeros(); MAX_DOFS];
+    let mut g = [VGrad::ZERO; MAX_DOFS];
     let mut m = [Matrix3::zeros(); MAX_DOFS];
 
     for (p, (shape, w)) in tab.shapes.iter().zip(&tab.weights).enumerate() {
@@ -296,17 +296,18 @@ pub fn internal_forces(
                 if want_k {
                     let dmat = out.tangent.ok_or_else(|| missing_tangent(law))?;
                     for k in 0..ndof {
+                        let gk = g[k].matrix();
                         // δ(Δε) = sym δG on the initial geometry; on the
                         // moving one the gradient of Δu also changes:
                         // δL = G − L G, and dv and G change (last terms).
                         let dl = if kin == Kinematics::PetitReac {
-                            g[k] - grad_du * g[k]
+                            gk - grad_du * gk
                         } else {
-                            g[k]
+                            gk
                         };
                         m[k] = stress_to_tensor(&(dmat * tensor_to_strain(&dl)));
                         if kin == Kinematics::PetitReac {
-                            m[k] += s * g[k].trace() - s * g[k].transpose();
+                            m[k] += s * gk.trace() - s * gk.transpose();
                         }
                     }
                 }
@@ -342,18 +343,17 @@ pub fn internal_forces(
                     })
                     .map_err(|failure| ElementFailure::Law { point: p, failure })?;
                 let tau = out.kirchhoff;
-                if want_k {
-                    let c = out.dtau_df.ok_or_else(|| missing_tangent(law))?;
-                    for k in 0..ndof {
-                        // δτ = ∂τ/∂F : G⁰_β (row 3i+j, column 3k+l).
-                        let v = SVector::<f64, 9>::from_fn(|r, _| g[k][(r / 3, r % 3)]);
-                        let dtau = c * v;
-                        let spatial = g[k] * f_inv;
-                        m[k] = Matrix3::from_fn(|i, j| dtau[3 * i + j]) - tau * spatial.transpose();
-                    }
-                }
+                let c = if want_k {
+                    Some(out.dtau_df.ok_or_else(|| missing_tangent(law))?)
+                } else {
+                    None
+                };
                 for k in 0..ndof {
-                    g[k] *= f_inv;
+                    let sp = g[k].times(&f_inv, geom.axis);
+                    if let Some(c) = &c {
+                        m[k] = g[k].tangent_partner(&sp, c, &tau);
+                    }
+                    g[k] = sp;
                 }
                 (
                     tau,
@@ -366,12 +366,13 @@ pub fn internal_forces(
             _ => unreachable!("check_law rejects other pairs"),
         };
         for k in 0..ndof {
-            forces[k] += geom.dv * s.dot(&g[k]);
+            forces[k] += geom.dv * g[k].dot(&s);
         }
         if let Some(kmat) = stiffness.as_mut() {
-            for a in 0..ndof {
-                for b in 0..ndof {
-                    kmat[(a, b)] += geom.dv * g[a].dot(&m[b]);
+            for b in 0..ndof {
+                let mb = &m[b];
+                for a in 0..ndof {
+                    kmat[(a, b)] += geom.dv * g[a].dot(mb);
                 }
             }
         }
@@ -541,17 +542,111 @@ struct PointGeometry {
     dv: f64,
 }
 
-impl PointGeometry {
-    /// ∇(N_a e_i): e_i ⊗ ∇N_a, plus N_a/r in θθ for the radial dof.
-    fn virtual_gradient(&self, a: usize, i: usize) -> Matrix3<f64> {
+/// A virtual gradient e_i ⊗ row + hoop·e_θ ⊗ e_θ: one row of a 3×3
+/// matrix plus, in AXIS, the θθ term. Keeping that structure instead of a
+/// dense 3×3 divides the cost of the element tangent (ndof² contractions
+/// per Gauss point) by three; it is preserved by G ↦ G F⁻¹ because F is
+/// block-diagonal (rz | θ) in AXIS.
+#[derive(Clone, Copy, Debug)]
+struct VGrad {
+    i: usize,
+    row: [f64; 3],
+    hoop: f64,
+}
+
+impl VGrad {
+    const ZERO: VGrad = VGrad {
+        i: 0,
+        row: [0.0; 3],
+        hoop: 0.0,
+    };
+
+    fn matrix(&self) -> Matrix3<f64> {
         let mut g = Matrix3::zeros();
         for k in 0..3 {
-            g[(i, k)] = self.grad[a][k];
+            g[(self.i, k)] = self.row[k];
         }
-        if self.axis && i == 0 {
-            g[(2, 2)] = self.n[a] / self.r;
-        }
+        g[(2, 2)] += self.hoop;
         g
+    }
+
+    /// G : M
+    #[inline]
+    fn dot(&self, m: &Matrix3<f64>) -> f64 {
+        let i = self.i;
+        self.row[0] * m[(i, 0)]
+            + self.row[1] * m[(i, 1)]
+            + self.row[2] * m[(i, 2)]
+            + self.hoop * m[(2, 2)]
+    }
+
+    /// G F⁻¹ (AXIS: F⁻¹ has no θ coupling, so the hoop term only scales).
+    fn times(&self, f_inv: &Matrix3<f64>, axis: bool) -> VGrad {
+        let mut row = [0.0; 3];
+        for (l, r) in row.iter_mut().enumerate() {
+            *r = (0..3).map(|k| self.row[k] * f_inv[(k, l)]).sum();
+        }
+        let hoop = if axis {
+            self.hoop * f_inv[(2, 2)]
+        } else {
+            debug_assert!(self.hoop == 0.0);
+            0.0
+        };
+        VGrad {
+            i: self.i,
+            row,
+            hoop,
+        }
+    }
+
+    /// The SIMO_MIEHE tangent partner of `self` = G⁰ (initial virtual
+    /// gradient) with `sp` = G⁰F⁻¹: M = (∂τ/∂F : G⁰) − τ spᵀ, where
+    /// `c` holds ∂τ/∂F (row 3i+j, column 3k+l). Only the columns of `c`
+    /// that G⁰ selects are read.
+    fn tangent_partner(
+        &self,
+        sp: &VGrad,
+        c: &SMatrix<f64, 9, 9>,
+        tau: &Matrix3<f64>,
+    ) -> Matrix3<f64> {
+        let mut dtau = [0.0; 9];
+        for l in 0..3 {
+            let w = self.row[l];
+            if w != 0.0 {
+                let col = c.column(3 * self.i + l);
+                for (r, v) in dtau.iter_mut().enumerate() {
+                    *v += col[r] * w;
+                }
+            }
+        }
+        if self.hoop != 0.0 {
+            let col = c.column(8);
+            for (r, v) in dtau.iter_mut().enumerate() {
+                *v += col[r] * self.hoop;
+            }
+        }
+        let mut m = Matrix3::from_fn(|i, j| dtau[3 * i + j]);
+        for j in 0..3 {
+            m[(j, sp.i)] -=
+                tau[(j, 0)] * sp.row[0] + tau[(j, 1)] * sp.row[1] + tau[(j, 2)] * sp.row[2];
+            m[(j, 2)] -= tau[(j, 2)] * sp.hoop;
+        }
+        m
+    }
+}
+
+impl PointGeometry {
+    /// ∇(N_a e_i): e_i ⊗ ∇N_a, plus N_a/r in θθ for the radial dof.
+    fn virtual_gradient(&self, a: usize, i: usize) -> VGrad {
+        VGrad {
+            i,
+            row: self.grad[a],
+            hoop: if self.axis && i == 0 {
+                self.n[a] / self.r
+            } else {
+                0.0
+            },
+        }
     }
 
     /// Gradient of the interpolated field `v` (node-major, `d` per node).

@@ -183,15 +183,19 @@ impl SimoMiehe {
             kind => {
                 let with_return = plastic && kind == TangentKind::Consistent;
                 let mut d = Mat9::zeros();
+                // dF = e_k ⊗ e_l: dF A Fᵀ = e_k ⊗ (A Fᵀ)_{l·}, and
+                // F A dFᵀ is its transpose (A symmetric).
+                let aft = a * f.transpose();
                 for kk in 0..3 {
                     for ll in 0..3 {
-                        let mut df = Matrix3::zeros();
-                        df[(kk, ll)] = 1.0;
                         // F⁻ᵀ : dF, i.e. dJ/J.
                         let tr_df = f_inv[(ll, kk)];
-                        let dbe = (df * a * f.transpose() + f * a * df.transpose()
-                            - b * (2.0 / 3.0 * tr_df))
-                            * c;
+                        let mut dbe = b * (-2.0 / 3.0 * tr_df);
+                        for j in 0..3 {
+                            dbe[(kk, j)] += aft[(ll, j)];
+                            dbe[(j, kk)] += aft[(ll, j)];
+                        }
+                        let dbe = dbe * c;
                         let dtr = dbe.trace() / 3.0;
                         let ds_tr = (dbe - Matrix3::identity() * dtr) * mu;
                         let ds = if with_return {

@@ -23,6 +23,9 @@ use crate::mesh::Mesh;
 use crate::model::{CellRole, Model};
 use crate::solver::{CscPattern, SparseMatrix};
 
+/// Element count from which the element loop runs on the thread pool.
+pub const PARALLEL_MIN_ELEMENTS: usize = 256;
+
 /// One element of the model with its precomputed maps.
 #[derive(Debug, Clone)]
 pub struct ElementData {
@@ -233,29 +236,37 @@ impl Assembler {
         stiffness: Option<&mut SparseMatrix>,
     ) -> Result<(), CellFailure> {
         let laws = &self.laws;
-        self.elements
-            .par_iter()
-            .map(|e| {
-                let n = e.full.len();
-                let mut lu_n = [0.0; MAX_DOFS];
-                let mut lu = [0.0; MAX_DOFS];
-                for k in 0..n {
-                    lu_n[k] = u_n[e.full[k]];
-                    lu[k] = u[e.full[k]];
-                }
-                internal_forces(
-                    &e.spec,
-                    e.kin,
-                    &e.coords,
-                    &lu_n[..n],
-                    &lu[..n],
-                    &states_n[e.state_offset..e.state_offset + e.npg],
-                    laws[e.law].law_ref(),
-                    dt,
-                    tangent,
-                )
-            })
-            .collect_into_vec(&mut self.responses);
+        let integrate = |e: &ElementData| {
+            let n = e.full.len();
+            let mut lu_n = [0.0; MAX_DOFS];
+            let mut lu = [0.0; MAX_DOFS];
+            for k in 0..n {
+                lu_n[k] = u_n[e.full[k]];
+                lu[k] = u[e.full[k]];
+            }
+            internal_forces(
+                &e.spec,
+                e.kin,
+                &e.coords,
+                &lu_n[..n],
+                &lu[..n],
+                &states_n[e.state_offset..e.state_offset + e.npg],
+                laws[e.law].law_ref(),
+                dt,
+                tangent,
+            )
+        };
+        // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
+        // than the work they share (docs/performance.md).
+        if self.elements.len() >= PARALLEL_MIN_ELEMENTS {
+            self.elements
+                .par_iter()
+                .map(integrate)
+                .collect_into_vec(&mut self.responses);
+        } else {
+            self.responses.clear();
+            self.responses.extend(self.elements.iter().map(integrate));
+        }
         fint.iter_mut().for_each(|v| *v = 0.0);
         let mut stiffness = stiffness;
         if let Some(k) = stiffness.as_deref_mut() {

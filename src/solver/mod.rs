@@ -11,10 +11,14 @@
 
 use std::sync::Arc;
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::MatMut;
+use faer::{Conj, MatMut, Par, Side};
 
 /// A compressed-sparse-column pattern with sorted rows in each column.
 #[derive(Debug, Clone, PartialEq)]
@@ -22,7 +26,13 @@ pub struct CscPattern {
     pub n: usize,
     pub col_ptr: Vec<usize>,
     pub row_idx: Vec<usize>,
+    /// For entry k = (i, j), the position of (j, i), or [`NO_ENTRY`]:
+    /// symmetrising and the symmetry test are then one pass each.
+    transpose: Vec<usize>,
 }
+
+/// No transposed entry in the pattern.
+pub const NO_ENTRY: usize = usize::MAX;
 
 impl CscPattern {
     /// Builds the pattern of an `n x n` matrix from (row, col) entries
@@ -44,11 +54,22 @@ impl CscPattern {
             row_idx.extend(c);
             col_ptr.push(row_idx.len());
         }
-        CscPattern {
+        let mut p = CscPattern {
             n,
             col_ptr,
             row_idx,
-        }
+            transpose: Vec::new(),
+        };
+        p.transpose = (0..p.n)
+            .flat_map(|j| (p.col_ptr[j]..p.col_ptr[j + 1]).map(move |k| (k, j)))
+            .map(|(k, j)| p.position(j, p.row_idx[k]).unwrap_or(NO_ENTRY))
+            .collect();
+        p
+    }
+
+    /// See the `transpose` field.
+    pub fn transpose_map(&self) -> &[usize] {
+        &self.transpose
     }
 
     pub fn nnz(&self) -> usize {
@@ -116,20 +137,29 @@ impl SparseMatrix {
         }
     }
 
+    /// |A_ij − A_ji| ≤ rel·(|A_ij| + |A_ji|) for every entry.
+    pub fn is_symmetric_within(&self, rel: f64) -> bool {
+        let t = self.pattern.transpose_map();
+        self.values.iter().enumerate().all(|(k, &v)| match t[k] {
+            NO_ENTRY => v == 0.0,
+            kt => {
+                let w = self.values[kt];
+                (v - w).abs() <= rel * (v.abs() + w.abs())
+            }
+        })
+    }
+
     /// Replaces A by (A + A^T)/2 in place (MATR_RIGI_SYME='OUI'); the
     /// pattern of a finite-element matrix is structurally symmetric.
     pub fn symmetrize(&mut self) {
         let p = self.pattern.clone();
-        for j in 0..p.n {
-            for k in p.col_ptr[j]..p.col_ptr[j + 1] {
-                let i = p.row_idx[k];
-                if i < j {
-                    if let Some(kt) = p.position(j, i) {
-                        let m = 0.5 * (self.values[k] + self.values[kt]);
-                        self.values[k] = m;
-                        self.values[kt] = m;
-                    }
-                }
+        for (k, &kt) in p.transpose.iter().enumerate() {
+            // Each pair once, from its upper entry (k before kt in the
+            // column-major order means row < column).
+            if kt != NO_ENTRY && kt > k {
+                let m = 0.5 * (self.values[k] + self.values[kt]);
+                self.values[k] = m;
+                self.values[kt] = m;
             }
         }
     }
@@ -167,21 +197,128 @@ pub trait LinearSolver {
     fn solve(&self, b: &mut [f64]) -> Result<(), SolverError>;
 }
 
-/// Sparse direct LU with partial pivoting (faer), reusing the symbolic
-/// factorization as long as the pattern is the same object.
+/// Sparse direct solver (faer, sequential), reusing the symbolic
+/// factorization and every work array as long as the pattern is the same.
+///
+/// A symmetric matrix (discrete contact makes code_aster symmetrise the
+/// stiffness, and K + M/(βΔt²) is then positive definite in practice) is
+/// factorized by Cholesky LLᵀ (faer picks simplicial or supernodal),
+/// about half the work of LU; if a
+/// pivot is not positive the same matrix is factorized by LU with partial
+/// pivoting instead, so an indefinite or singular matrix is handled (and
+/// reported) exactly as before. A non-symmetric matrix goes to LU directly.
+///
+/// Sequential on purpose: the matrices of these studies have a few
+/// thousand unknowns at most, where faer's thread pool costs more in
+/// wake-ups than the factorization itself (measured, docs/performance.md).
 #[derive(Default)]
 pub struct DirectLu {
-    symbolic: Option<(Arc<CscPattern>, SymbolicLu<usize>)>,
-    numeric: Option<Lu<usize, f64>>,
+    pattern: Option<Arc<CscPattern>>,
+    llt: Option<LltFactor>,
+    lu: Option<LuFactor>,
+    /// Which factor holds the current factorization.
+    current: Option<Kind>,
+    mem: Option<(MemBuffer, usize)>,
     /// How many symbolic factorizations were computed (for benchmarks and
     /// the test that reuse happens).
     pub symbolic_count: usize,
     pub numeric_count: usize,
+    /// Factorizations that went to LU because Cholesky met a
+    /// non-positive pivot (or the matrix was not symmetric).
+    pub lu_count: usize,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kind {
+    Llt,
+    Lu,
+}
+
+struct LltFactor {
+    symbolic: SymbolicCholesky<usize>,
+    values: Vec<f64>,
+}
+
+struct LuFactor {
+    symbolic: SymbolicLu<usize>,
+    numeric: NumericLu<usize, f64>,
 }
 
 impl DirectLu {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A work buffer of at least `req`, kept across calls.
+    fn stack(mem: &mut Option<(MemBuffer, usize)>, req: StackReq) -> &mut MemStack {
+        let bytes = req.unaligned_bytes_required();
+        if !mem.as_ref().is_some_and(|(_, have)| *have >= bytes) {
+            *mem = Some((MemBuffer::new(req), bytes));
+        }
+        MemStack::new(&mut mem.as_mut().expect("allocated above").0)
+    }
+
+    fn factorize_llt(&mut self, a: &SparseMatrix) -> Result<bool, SolverError> {
+        if self.llt.is_none() {
+            let symbolic = factorize_symbolic_cholesky(
+                a.pattern.symbolic(),
+                Side::Lower,
+                SymmetricOrdering::Amd,
+                Default::default(),
+            )
+            .map_err(|e| SolverError::Singular(format!("symbolic factorization: {e:?}")))?;
+            let values = vec![0.0; symbolic.len_val()];
+            self.llt = Some(LltFactor { symbolic, values });
+            self.symbolic_count += 1;
+        }
+        let f = self.llt.as_mut().expect("set above");
+        let req = f
+            .symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+            .or(f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let stack = Self::stack(&mut self.mem, req);
+        let ok = f
+            .symbolic
+            .factorize_numeric_llt(
+                &mut f.values,
+                a.faer(),
+                Side::Lower,
+                LltRegularization::default(),
+                Par::Seq,
+                stack,
+                Default::default(),
+            )
+            .is_ok();
+        Ok(ok)
+    }
+
+    fn factorize_lu(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        if self.lu.is_none() {
+            let symbolic = factorize_symbolic_lu(a.pattern.symbolic(), Default::default())
+                .map_err(|e| SolverError::Singular(format!("symbolic factorization: {e:?}")))?;
+            self.lu = Some(LuFactor {
+                symbolic,
+                numeric: NumericLu::new(),
+            });
+            self.symbolic_count += 1;
+        }
+        let f = self.lu.as_mut().expect("set above");
+        let req = f
+            .symbolic
+            .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+            .or(f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let stack = Self::stack(&mut self.mem, req);
+        f.symbolic
+            .factorize_numeric_lu(
+                &mut f.numeric,
+                a.faer(),
+                Par::Seq,
+                stack,
+                Default::default(),
+            )
+            .map_err(|e| SolverError::Singular(format!("numeric factorization: {e:?}")))?;
+        self.lu_count += 1;
+        Ok(())
     }
 }
 
@@ -192,38 +329,57 @@ impl LinearSolver for DirectLu {
                 "the matrix holds a non-finite value ({v})"
             )));
         }
-        let reuse = matches!(&self.symbolic, Some((p, _)) if Arc::ptr_eq(p, &a.pattern) || **p == *a.pattern);
-        if !reuse {
-            let sym = SymbolicLu::try_new(a.pattern.symbolic())
-                .map_err(|e| SolverError::Singular(format!("symbolic factorization: {e:?}")))?;
-            self.symbolic = Some((a.pattern.clone(), sym));
-            self.symbolic_count += 1;
+        let same =
+            matches!(&self.pattern, Some(p) if Arc::ptr_eq(p, &a.pattern) || **p == *a.pattern);
+        if !same {
+            self.pattern = Some(a.pattern.clone());
+            self.llt = None;
+            self.lu = None;
         }
-        let sym = self
-            .symbolic
-            .as_ref()
-            .map(|(_, s)| s.clone())
-            .expect("set above");
-        let lu = Lu::try_new_with_symbolic(sym, a.faer())
-            .map_err(|e| SolverError::Singular(format!("numeric factorization: {e:?}")))?;
-        self.numeric = Some(lu);
+        self.current = None;
         self.numeric_count += 1;
+        // Symmetric up to round-off (the contact tangent is summed in a
+        // different order for (i, j) and (j, i)): Cholesky reads the lower
+        // triangle, a relative perturbation of 1e-12 at most.
+        if a.is_symmetric_within(1e-12) && self.factorize_llt(a)? {
+            self.current = Some(Kind::Llt);
+            return Ok(());
+        }
+        self.factorize_lu(a)?;
+        self.current = Some(Kind::Lu);
         Ok(())
     }
 
     fn solve(&self, b: &mut [f64]) -> Result<(), SolverError> {
-        let lu = self
-            .numeric
-            .as_ref()
+        let kind = self
+            .current
             .ok_or_else(|| SolverError::Usage("solve called before factorize".into()))?;
-        let n = self.symbolic.as_ref().map(|(p, _)| p.n).unwrap_or(0);
+        let n = self.pattern.as_ref().map(|p| p.n).unwrap_or(0);
         if b.len() != n {
             return Err(SolverError::Usage(format!(
                 "right-hand side of length {} for a matrix of order {n}",
                 b.len()
             )));
         }
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(b, n, 1));
+        // `solve` takes &self, so its (small, O(n)) work buffer is local.
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+        match kind {
+            Kind::Llt => {
+                let f = self.llt.as_ref().expect("current is Llt");
+                let req = f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
+                let mut mem = MemBuffer::new(req);
+                let llt = LltRef::new(&f.symbolic, &f.values);
+                llt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+            }
+            Kind::Lu => {
+                let f = self.lu.as_ref().expect("current is Lu");
+                let req = f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
+                let mut mem = MemBuffer::new(req);
+                // Both halves live in the same LuFactor, filled together.
+                let lu = LuRef::new_unchecked(&f.symbolic, &f.numeric);
+                lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+            }
+        }
         // A zero pivot does not stop faer: it shows up as inf/NaN here
         // (and NaN compares false, so check explicitly).
         if let Some(i) = b.iter().position(|v| !v.is_finite()) {
@@ -334,6 +490,35 @@ mod tests {
         let mut s = DirectLu::new();
         let r = s.factorize(&m).and_then(|_| s.solve(&mut [1.0, 1.0]));
         assert!(matches!(r, Err(SolverError::Singular(_))), "{r:?}");
+    }
+
+    #[test]
+    fn symmetric_positive_matrix_uses_cholesky_and_indefinite_falls_back_to_lu() {
+        let spd = vec![
+            vec![4.0, -1.0, 0.0],
+            vec![-1.0, 4.0, -1.0],
+            vec![0.0, -1.0, 4.0],
+        ];
+        let indefinite = vec![
+            vec![1.0, 2.0, 0.0],
+            vec![2.0, 1.0, 0.0],
+            vec![0.0, 0.0, -3.0],
+        ];
+        let b = [1.0, -2.0, 0.5];
+        let mut s = DirectLu::new();
+        for (a, lu_after) in [(&spd, 0), (&indefinite, 1)] {
+            let m = build(a);
+            s.factorize(&m).unwrap();
+            assert_eq!(s.lu_count, lu_after);
+            let mut x = b.to_vec();
+            s.solve(&mut x).unwrap();
+            let xd = dense_solve(a, &b);
+            for (u, v) in x.iter().zip(&xd) {
+                assert!((u - v).abs() < 1e-12, "{x:?} vs {xd:?}");
+            }
+        }
+        // Both matrices share a pattern: one symbolic Cholesky, one LU.
+        assert_eq!(s.symbolic_count, 2);
     }
 
     #[test]
