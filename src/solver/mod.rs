@@ -237,6 +237,8 @@ enum Kind {
 struct LltFactor {
     symbolic: SymbolicCholesky<usize>,
     values: Vec<f64>,
+    /// The matrix factorized, for one step of iterative refinement.
+    matrix: Option<SparseMatrix>,
 }
 
 struct LuFactor {
@@ -268,7 +270,11 @@ impl DirectLu {
             )
             .map_err(|e| SolverError::Singular(format!("symbolic factorization: {e:?}")))?;
             let values = vec![0.0; symbolic.len_val()];
-            self.llt = Some(LltFactor { symbolic, values });
+            self.llt = Some(LltFactor {
+                symbolic,
+                values,
+                matrix: None,
+            });
             self.symbolic_count += 1;
         }
         let f = self.llt.as_mut().expect("set above");
@@ -289,6 +295,14 @@ impl DirectLu {
                 Default::default(),
             )
             .is_ok();
+        if ok {
+            match &mut f.matrix {
+                Some(m) if Arc::ptr_eq(&m.pattern, &a.pattern) => {
+                    m.values.copy_from_slice(&a.values)
+                }
+                m => *m = Some(a.clone()),
+            }
+        }
         Ok(ok)
     }
 
@@ -369,7 +383,24 @@ impl LinearSolver for DirectLu {
                 let req = f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
                 let mut mem = MemBuffer::new(req);
                 let llt = LltRef::new(&f.symbolic, &f.values);
+                let b0 = rhs.as_ref().col(0).iter().copied().collect::<Vec<f64>>();
                 llt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+                // One step of iterative refinement against the full matrix:
+                // without pivoting, the penalty rows (E_N ~ 1e10 next to
+                // mass terms ~ 1e3) leave Cholesky's solution a few digits
+                // short of LU's, enough to stall Newton near 1e-8.
+                if let Some(m) = &f.matrix {
+                    let mut r = vec![0.0; n];
+                    m.mul_vec(b, &mut r);
+                    for (ri, bi) in r.iter_mut().zip(&b0) {
+                        *ri = bi - *ri;
+                    }
+                    let dr = MatMut::from_column_major_slice_mut(&mut r, n, 1);
+                    llt.solve_in_place_with_conj(Conj::No, dr, Par::Seq, MemStack::new(&mut mem));
+                    for (x, d) in b.iter_mut().zip(&r) {
+                        *x += d;
+                    }
+                }
             }
             Kind::Lu => {
                 let f = self.lu.as_ref().expect("current is Lu");
@@ -499,10 +530,11 @@ mod tests {
             vec![-1.0, 4.0, -1.0],
             vec![0.0, -1.0, 4.0],
         ];
+        // Same pattern as `spd`; the second pivot of LLᵀ is 1 − 4 < 0.
         let indefinite = vec![
             vec![1.0, 2.0, 0.0],
-            vec![2.0, 1.0, 0.0],
-            vec![0.0, 0.0, -3.0],
+            vec![2.0, 1.0, -1.0],
+            vec![0.0, -1.0, -3.0],
         ];
         let b = [1.0, -2.0, 0.5];
         let mut s = DirectLu::new();
@@ -517,7 +549,7 @@ mod tests {
                 assert!((u - v).abs() < 1e-12, "{x:?} vs {xd:?}");
             }
         }
-        // Both matrices share a pattern: one symbolic Cholesky, one LU.
+        // One pattern: one symbolic Cholesky, then one symbolic LU.
         assert_eq!(s.symbolic_count, 2);
     }
 
