@@ -14,6 +14,7 @@
 // chains would hide the mathematics.
 #![allow(clippy::needless_range_loop)]
 
+pub mod bench;
 pub mod catalog;
 pub mod commands;
 pub mod concepts;

@@ -54,6 +54,37 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Run a study several times and report where the time goes.
+    ///
+    /// Each run executes the whole study in this process, as `aster run`
+    /// does (same .export and --unit resolution), with every output file
+    /// written to a temporary directory. Prints the wall time of each run,
+    /// then the median, min and max wall time, the median time per phase
+    /// (element integration and assembly, law integration, factorization
+    /// and solve, contact, output), Newton iterations, steps, step cuts,
+    /// contact pairings and the peak memory. Exit code: that of the first
+    /// failing run, if any.
+    Bench {
+        /// The command file (.comm).
+        file: PathBuf,
+        /// How many times to run the study.
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
+        runs: u64,
+        /// Also write the report as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Map a logical unit to a file, e.g. `--unit 20=med/sdnv103b.mmed`.
+        #[arg(long = "unit", value_name = "N=PATH", value_parser = parse_unit)]
+        units: Vec<(i64, PathBuf)>,
+        /// A code_aster .export file (default: `<study>.export` next to the study).
+        #[arg(long)]
+        export: Option<PathBuf>,
+        /// Threads of the element loops (default: rayon's, i.e. the CPU
+        /// count or RAYON_NUM_THREADS). With 1, the element and law times
+        /// split exactly.
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+        threads: Option<u64>,
+    },
     /// Print what a MED mesh file holds: counts per cell type, groups with
     /// their sizes, bounding box.
     Info {
@@ -184,6 +215,28 @@ fn main() -> ExitCode {
                 export,
                 out_dir: out,
                 verbose: !quiet,
+            },
+            &mut stdout,
+        ),
+        Command::Bench {
+            file,
+            runs,
+            json,
+            units,
+            export,
+            threads,
+        } => aster::bench::harness::bench(
+            &aster::bench::harness::BenchOptions {
+                run: RunOptions {
+                    comm: file,
+                    units,
+                    export,
+                    out_dir: None,
+                    verbose: false,
+                },
+                runs: runs as usize,
+                json,
+                threads: threads.map(|t| t as usize),
             },
             &mut stdout,
         ),

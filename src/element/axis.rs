@@ -175,6 +175,7 @@ pub fn internal_forces(
         let b = b_matrix(gp);
         let de4 = b * du;
         let de = Vec6::new(de4[0], de4[1], de4[2], de4[3], 0.0, 0.0);
+        let law_span = crate::bench::span(crate::bench::Phase::LawIntegration);
         let out = law
             .integrate(&SmallStrainInput {
                 stress: st.stress,
@@ -184,6 +185,7 @@ pub fn internal_forces(
                 tangent,
             })
             .map_err(|failure| ElementFailure::Law { point: g, failure })?;
+        drop(law_span);
         let s4 = SVector::<f64, 4>::new(out.stress[0], out.stress[1], out.stress[2], out.stress[3]);
         forces += b.transpose() * s4 * gp.weight;
         if let (Some(k), Some(d)) = (stiffness.as_mut(), out.tangent) {

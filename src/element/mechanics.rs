@@ -283,6 +283,7 @@ pub fn internal_forces(
         let (s, new_state) = match (kin, law) {
             (Kinematics::Petit | Kinematics::PetitReac, LawRef::Small(l)) => {
                 let grad_du = geom.gradient(&du[..ndof], d);
+                let law_span = crate::bench::span(crate::bench::Phase::LawIntegration);
                 let out = l
                     .integrate(&SmallStrainInput {
                         stress: st.stress,
@@ -292,6 +293,7 @@ pub fn internal_forces(
                         tangent,
                     })
                     .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                drop(law_span);
                 let s = stress_to_tensor(&out.stress);
                 if want_k {
                     let dmat = out.tangent.ok_or_else(|| missing_tangent(law))?;
@@ -333,6 +335,7 @@ pub fn internal_forces(
                     point: p,
                     message: "singular deformation gradient".into(),
                 })?;
+                let law_span = crate::bench::span(crate::bench::Phase::LawIntegration);
                 let out = l
                     .integrate(&FiniteStrainInput {
                         f_n,
@@ -342,6 +345,7 @@ pub fn internal_forces(
                         tangent,
                     })
                     .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                drop(law_span);
                 let tau = out.kirchhoff;
                 let c = if want_k {
                     Some(out.dtau_df.ok_or_else(|| missing_tangent(law))?)

@@ -235,6 +235,7 @@ impl Assembler {
         fint: &mut [f64],
         stiffness: Option<&mut SparseMatrix>,
     ) -> Result<(), CellFailure> {
+        let _elements = crate::bench::span(crate::bench::Phase::ElementAssembly);
         let laws = &self.laws;
         let integrate = |e: &ElementData| {
             let n = e.full.len();

@@ -110,6 +110,7 @@ impl DiscreteContact {
         self.u_paired.extend_from_slice(u);
         self.pairings_in_step += 1;
         self.pairings += 1;
+        crate::bench::count(crate::bench::Counter::Pairings, 1);
     }
 
     /// Accepts the trial state of a converged step of length `dt`: the
@@ -128,6 +129,7 @@ impl DiscreteContact {
 
 impl ContactTerm for DiscreteContact {
     fn begin_step(&mut self, numbering: &DofNumbering, u_start: &[f64], _t: f64, _dt: f64) {
+        let _contact = crate::bench::span(crate::bench::Phase::Contact);
         self.u_start = per_node(self.ndpn, u_start);
         self.pairings_in_step = 0;
         // REAC_GEOM='SANS' keeps the first pairing of the computation
@@ -142,6 +144,7 @@ impl ContactTerm for DiscreteContact {
     }
 
     fn add(&mut self, it: ContactIteration) -> Result<(), String> {
+        let _contact = crate::bench::span(crate::bench::Phase::Contact);
         let Some(pairing) = self.pairing.as_ref() else {
             return Err("no pairing before the first iteration".into());
         };
@@ -181,6 +184,7 @@ impl ContactTerm for DiscreteContact {
     }
 
     fn accept(&mut self, numbering: &DofNumbering, u: &[f64]) -> Result<bool, String> {
+        let _contact = crate::bench::span(crate::bench::Phase::Contact);
         match self.def.reac_geom {
             ReacGeom::Sans => Ok(true),
             ReacGeom::Controle { nb_iter_geom } => {

@@ -489,6 +489,7 @@ pub fn run(
                             result.steps.last().map_or(t0, |s| s.inst)
                         );
                         log(&message);
+                        crate::bench::count_time_loop(&summary);
                         return Err(Stopped { message, summary });
                     }
                 }
@@ -508,6 +509,7 @@ pub fn run(
         summary.seconds,
         summary.seconds / summary.steps.max(1) as f64
     ));
+    crate::bench::count_time_loop(&summary);
     Ok(summary)
 }
 

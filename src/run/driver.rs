@@ -11,7 +11,7 @@ use crate::catalog::checker::{check_program, CheckedProgram};
 use crate::commands::{self, CommandDef};
 use crate::diag::{Diagnostic, Severity, Source};
 use crate::lang::parser::parse;
-use crate::run::export::parse_export;
+use crate::run::export::{parse_export, ExportFile};
 use crate::run::Study;
 
 pub const EXIT_OK: i32 = 0;
@@ -110,6 +110,31 @@ pub struct RunOptions {
     pub verbose: bool,
 }
 
+/// The `F` lines of the study's .export: `opts.export`, else
+/// `<study>.export` next to the study if there is one (else none).
+/// `aster run` and `aster bench` resolve units through this one function so
+/// that a study benchmarks exactly as it runs. The error is the rendered
+/// message (a usage error).
+pub fn export_files(opts: &RunOptions) -> Result<Vec<ExportFile>, String> {
+    let stem = opts
+        .comm
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "study".into());
+    let study_dir = opts.comm.parent().unwrap_or(Path::new(""));
+    let export = opts
+        .export
+        .clone()
+        .or_else(|| Some(study_dir.join(format!("{stem}.export"))).filter(|p| p.is_file()));
+    let Some(e) = export else {
+        return Ok(Vec::new());
+    };
+    let text = std::fs::read_to_string(&e)
+        .map_err(|err| format!("error: cannot read export file '{}': {err}\n", e.display()))?;
+    let base = e.parent().map(Path::to_path_buf).unwrap_or_default();
+    parse_export(&text, &base, &e.display().to_string()).map_err(|d| d.render(None))
+}
+
 /// `aster run FILE`: check then execute; writes FILE.mess and FILE.resu.
 pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
     let src = match read_source(&opts.comm) {
@@ -146,33 +171,15 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
     };
 
     // Logical units: the .export first, then --unit.
-    let export = opts
-        .export
-        .clone()
-        .or_else(|| Some(study_dir.join(format!("{stem}.export"))).filter(|p| p.is_file()));
-    if let Some(e) = &export {
-        let text = match std::fs::read_to_string(e) {
-            Ok(t) => t,
-            Err(err) => {
-                let _ = writeln!(
-                    out,
-                    "error: cannot read export file '{}': {err}",
-                    e.display()
-                );
-                return EXIT_USAGE;
+    match export_files(opts) {
+        Ok(files) => {
+            for f in files {
+                study.units.map.insert(f.unit, f.path);
             }
-        };
-        let base = e.parent().map(Path::to_path_buf).unwrap_or_default();
-        match parse_export(&text, &base, &e.display().to_string()) {
-            Ok(files) => {
-                for f in files {
-                    study.units.map.insert(f.unit, f.path);
-                }
-            }
-            Err(d) => {
-                let _ = write!(out, "{}", d.render(None));
-                return EXIT_USAGE;
-            }
+        }
+        Err(message) => {
+            let _ = write!(out, "{message}");
+            return EXIT_USAGE;
         }
     }
     for (u, p) in &opts.units {
@@ -291,6 +298,7 @@ fn save_results(study: &Study) -> Vec<String> {
 
 /// Writes .mess, .resu and the text of other logical units.
 fn write_outputs(study: &Study) -> Result<(), String> {
+    let _output = crate::bench::span(crate::bench::Phase::Output);
     let w = |p: PathBuf, text: &str| {
         std::fs::write(&p, text).map_err(|e| format!("cannot write '{}': {e}", p.display()))
     };

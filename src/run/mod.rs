@@ -7,6 +7,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use crate::bench::{self, Phase};
 use crate::catalog::checker::CheckedProgram;
 use crate::commands::CommandDef;
 use crate::concepts::{Concept, ConceptData, Concepts};
@@ -96,6 +97,7 @@ impl Study {
                 c.name,
             ));
             let started = std::time::Instant::now();
+            let _output = bench::span_if(c.name.starts_with("IMPR_"), Phase::Output);
             let data = (def.exec)(self, &c.args, target)?;
             self.log(format!(
                 "#      {} done in {:.3} s",
