@@ -191,7 +191,7 @@ fn gravity_of(
     let g = occ.real("GRAVITE").unwrap_or(0.0);
     let d = occ.reals("DIRECTION");
     let norm = d.iter().map(|c| c * c).sum::<f64>().sqrt();
-    if d.len() != 3 || !(norm > f64::MIN_POSITIVE) || !norm.is_finite() {
+    if d.len() != 3 || !norm.is_finite() || norm <= f64::MIN_POSITIVE {
         return Err(occ.error(
             "DIRECTION",
             "DIRECTION must be a non-zero vector of 3 finite components",
