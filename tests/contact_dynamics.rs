@@ -123,6 +123,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
         &[&MechLoad {
             model: "MO".into(),
             imposed: vec![],
+            gravity: None,
         }],
     )
     .unwrap();

@@ -589,6 +589,57 @@ fn ddl_impo_errors() {
     );
 }
 
+/// PESANTEUR: DIRECTION is normalised (code_aster's `capesa`), GROUP_MA
+/// restricts the cells, no GROUP_MA means every cell; a load may hold
+/// only PESANTEUR.
+#[test]
+fn pesanteur_on_the_quarter() {
+    let comm = quarter_3d(
+        "PES = AFFE_CHAR_MECA(MODELE=MO, PESANTEUR=_F(GRAVITE=9810., DIRECTION=(0., 3., -4.)))\n\
+         PES2 = AFFE_CHAR_MECA(MODELE=MO, PESANTEUR=_F(GRAVITE=1., DIRECTION=(0., 0., -1.),\n\
+         GROUP_MA='VOL_RIG'), DDL_IMPO=_F(GROUP_MA='VOL_RIG', DZ=0.))",
+    );
+    let (s, err) = run("sdnv103h", &comm);
+    assert!(err.is_none(), "{err:?}");
+    let g = load(&s, "PES").gravity.clone().unwrap();
+    assert_eq!(g.g, 9810.0);
+    assert_eq!(g.direction, [0.0, 0.6, -0.8]);
+    assert_eq!(g.cells, None);
+    assert!(load(&s, "PES").imposed.is_empty());
+    let g2 = load(&s, "PES2").gravity.clone().unwrap();
+    let m = mesh(&s, "MAIL");
+    assert_eq!(g2.cells.as_deref(), Some(&m.cell_groups["VOL_RIG"][..]));
+    assert_eq!(load(&s, "PES2").imposed.len(), 8);
+}
+
+#[test]
+fn pesanteur_errors() {
+    // A zero direction (code_aster's fatal CHARGES2_53).
+    let comm = quarter_3d(
+        "PES = AFFE_CHAR_MECA(MODELE=MO, PESANTEUR=_F(GRAVITE=9810.,\n DIRECTION=(0., 0., 0.)))",
+    );
+    let (_, err) = run("sdnv103h", &comm);
+    assert_error(
+        &comm,
+        err,
+        "AFFE_CHAR_MECA/PESANTEUR/DIRECTION",
+        &["non-zero vector"],
+        "DIRECTION=",
+    );
+    // Only skin cells: no volume to carry a weight.
+    let comm = quarter_3d(
+        "PES = AFFE_CHAR_MECA(MODELE=MO, PESANTEUR=_F(GRAVITE=9810., DIRECTION=(0., 0., -1.),\n GROUP_MA='RIGID'))",
+    );
+    let (_, err) = run("sdnv103h", &comm);
+    assert_error(
+        &comm,
+        err,
+        "AFFE_CHAR_MECA/PESANTEUR/GROUP_MA",
+        &["no volume element"],
+        "GROUP_MA='RIGID'",
+    );
+}
+
 // ---------------------------------------------------------------------------
 // CREA_CHAMP
 

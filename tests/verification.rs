@@ -14,12 +14,45 @@ fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification")
 }
 
-fn run_study(name: &str) {
+/// Runs the study, asserts every check OK, returns its .resu.
+fn run_study(name: &str) -> String {
     let run = common::run_study(
         &format!("tests/verification/{name}.comm"),
         &format!("verif_{name}"),
     );
-    common::assert_all_ok(&run, &format!("{name}.resu"));
+    common::assert_all_ok(&run, &format!("{name}.resu"))
+}
+
+/// The rows of the table `name` as IMPR_TABLE printed it in `resu`
+/// (column name -> cell text), in order.
+fn printed_table(resu: &str, name: &str) -> Vec<std::collections::HashMap<String, String>> {
+    let mut lines = resu.lines();
+    let tag = format!("CONCEPT {name} ");
+    lines
+        .by_ref()
+        .find(|l| l.starts_with('#') && l.contains(&tag))
+        .unwrap_or_else(|| panic!("no table {name} printed"));
+    let header: Vec<String> = lines
+        .by_ref()
+        .find(|l| !l.starts_with('#'))
+        .unwrap()
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    lines
+        .take_while(|l| !l.trim().is_empty())
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split_whitespace().map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+fn num(row: &std::collections::HashMap<String, String>, col: &str) -> f64 {
+    row[col].parse().unwrap()
 }
 
 #[test]
@@ -37,6 +70,61 @@ fn elastic_wave_in_a_rod() {
 #[test]
 fn taylor_bar_on_a_frictionless_wall() {
     run_study("taylor_wall");
+}
+
+/// Coulomb friction of a block on a plane (contact_friction.comm, whose
+/// TEST_TABLE/TEST_RESU check the sums over the contact nodes and the
+/// motion), plus node by node from the printed tables (6 significant
+/// digits, hence the 1e-5 relative tolerances): while sliding every node
+/// carries exactly |RTGX| = 0.25 RN against the slip (+x), RTGY = 0; while
+/// sticking every node is below the bound, and all carry the same
+/// friction (the rigid block slips by the same amount under each node and
+/// the stick force is E_T times that slip).
+#[test]
+fn block_on_a_plane_with_coulomb_friction() {
+    let resu = run_study("contact_friction");
+    let slide = printed_table(&resu, "T_SLIDE");
+    assert_eq!(slide.len(), 9);
+    for r in &slide {
+        let rn = num(r, "RN");
+        assert_eq!(num(r, "CONT"), 2.0, "{r:?}");
+        assert!(rn > 0.0);
+        assert!((num(r, "RTGX") + 0.25 * rn).abs() <= 1e-5 * rn, "{r:?}");
+        assert!(num(r, "RTGY").abs() <= 1e-9 * rn, "{r:?}");
+    }
+    let stick = printed_table(&resu, "T_STICK");
+    assert_eq!(stick.len(), 9);
+    let rta0 = num(&stick[0], "RTAX");
+    for r in &stick {
+        let rn = num(r, "RN");
+        assert_eq!(num(r, "CONT"), 1.0, "{r:?}");
+        assert!(num(r, "RTAX").abs() <= 0.25 * rn, "{r:?}");
+        assert!((num(r, "RTAX") - rta0).abs() <= 1e-5 * rta0.abs(), "{r:?}");
+    }
+}
+
+/// E_N = 1e4 then 1e5 N/mm under the block's weight
+/// (contact_penalty.comm checks Σ RN = m g and Σ JEU = −m g / E_N): node
+/// by node −JEU = RN / E_N, and the summed penetration is 10 times
+/// smaller with 10 E_N.
+#[test]
+fn penetration_is_inversely_proportional_to_e_n() {
+    let resu = run_study("contact_penalty");
+    let mut sums = Vec::new();
+    for (tab, e_n) in [("TAB1", 1e4), ("TAB2", 1e5)] {
+        let rows = printed_table(&resu, tab);
+        assert_eq!(rows.len(), 9);
+        let mut sum = 0.0;
+        for r in &rows {
+            let (jeu, rn) = (num(r, "JEU"), num(r, "RN"));
+            assert!(jeu < 0.0, "{r:?}");
+            assert!((-jeu * e_n - rn).abs() <= 1e-5 * rn, "{tab} {r:?}");
+            sum -= jeu;
+        }
+        sums.push(sum);
+    }
+    let ratio = sums[0] / sums[1];
+    assert!((ratio - 10.0).abs() <= 1e-4, "ratio {ratio}");
 }
 
 #[test]
@@ -122,6 +210,104 @@ fn patch_mesh_is_committed() {
         aster::medio::write_mesh(&file, &mesh).unwrap();
     }
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("patch_regen.mmed");
+    aster::medio::write_mesh(&tmp, &mesh).unwrap();
+    let committed = aster::medio::read_mesh(&file, None).unwrap();
+    assert_eq!(committed, aster::medio::read_mesh(&tmp, None).unwrap());
+}
+
+/// A 2 × 2 × 1 HEXA8 block of [0, 2] × [0, 2] × [0, 1] standing on a
+/// separate foundation slab, one HEXA8 of [−10, 12] × [−10, 12] × [−1, 0]
+/// (to be fixed: its top face is the rigid master). Cell groups: BLOC (the
+/// block's hexahedra), ESCL (the 4 bottom faces of the block, z = 0), SOCLE
+/// (the slab), FOND (its top face, one QUAD4 whose node order makes t1 × t2
+/// point up, out of the slab, as ORIE_PEAU would leave it); node groups:
+/// HAUT_C (the block's top centre (1, 1, 1)) and BAS_C (its bottom centre
+/// (1, 1, 0)).
+fn block_mesh() -> Mesh {
+    let id = |i: usize, j: usize, k: usize| k * 9 + j * 3 + i;
+    let mut coords = Vec::new();
+    for k in 0..2 {
+        for j in 0..3 {
+            for i in 0..3 {
+                coords.push([i as f64, j as f64, k as f64]);
+            }
+        }
+    }
+    let mut cells = Vec::new();
+    for j in 0..2 {
+        for i in 0..2 {
+            // MED order: the bottom face turns clockwise seen from the top
+            let bottom = [
+                id(i, j, 0),
+                id(i, j + 1, 0),
+                id(i + 1, j + 1, 0),
+                id(i + 1, j, 0),
+            ];
+            let mut nodes = bottom.to_vec();
+            nodes.extend(bottom.iter().map(|n| n + 9));
+            cells.push(Cell {
+                kind: CellType::Hexa8,
+                nodes,
+            });
+        }
+    }
+    // bottom faces, oriented outward from the block (−z)
+    for j in 0..2 {
+        for i in 0..2 {
+            cells.push(Cell {
+                kind: CellType::Quad4,
+                nodes: vec![
+                    id(i, j, 0),
+                    id(i, j + 1, 0),
+                    id(i + 1, j + 1, 0),
+                    id(i + 1, j, 0),
+                ],
+            });
+        }
+    }
+    // the slab: bottom (z = −1) then top (z = 0) corners, each turning
+    // clockwise seen from above (MED order)
+    let f0 = coords.len();
+    for z in [-1.0, 0.0] {
+        for p in [[-10.0, -10.0], [-10.0, 12.0], [12.0, 12.0], [12.0, -10.0]] {
+            coords.push([p[0], p[1], z]);
+        }
+    }
+    cells.push(Cell {
+        kind: CellType::Hexa8,
+        nodes: (f0..f0 + 8).collect(),
+    });
+    // its top face, counterclockwise seen from above: normal +z
+    cells.push(Cell {
+        kind: CellType::Quad4,
+        nodes: vec![f0 + 4, f0 + 7, f0 + 6, f0 + 5],
+    });
+    let mut mesh = Mesh {
+        name: "BLOC".into(),
+        dim: 3,
+        coords,
+        cells,
+        ..Mesh::default()
+    };
+    mesh.cell_groups.insert("BLOC".into(), vec![0, 1, 2, 3]);
+    mesh.cell_groups.insert("ESCL".into(), vec![4, 5, 6, 7]);
+    mesh.cell_groups.insert("SOCLE".into(), vec![8]);
+    mesh.cell_groups.insert("FOND".into(), vec![9]);
+    mesh.node_groups.insert("HAUT_C".into(), vec![id(1, 1, 1)]);
+    mesh.node_groups.insert("BAS_C".into(), vec![id(1, 1, 0)]);
+    mesh
+}
+
+/// The committed block mesh is the one built above (regenerate it with
+/// `UPDATE_MESHES=1 cargo test --test verification block_mesh`).
+#[test]
+fn block_mesh_is_committed() {
+    let file = dir().join("block.mmed");
+    let mesh = block_mesh();
+    if std::env::var_os("UPDATE_MESHES").is_some() {
+        aster::medio::write_mesh(&file, &mesh).unwrap();
+    }
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("block_regen.mmed");
     aster::medio::write_mesh(&tmp, &mesh).unwrap();
     let committed = aster::medio::read_mesh(&file, None).unwrap();
     assert_eq!(committed, aster::medio::read_mesh(&tmp, None).unwrap());

@@ -1,13 +1,14 @@
 //! AFFE_CHAR_MECA: mechanical loads and boundary conditions.
 
 use super::blocks::*;
-use super::model_args::{mesh_of_model, model_of, select_nodes, selection_label};
+use super::model_args::{mesh_of_model, model_of, select_cells, select_nodes, selection_label};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
-use crate::model::{Dof, ImposedDof, MechLoad};
+use crate::diag::Diagnostic;
+use crate::model::{CellRole, Dof, Gravity, ImposedDof, MechLoad};
 use crate::run::Study;
 
 pub fn def() -> CommandDef {
@@ -47,6 +48,24 @@ pub fn def() -> CommandDef {
                 ])
                 .doc("imposed dofs (dualised by Lagrange multipliers); GROUP_MA means all nodes of those cells")
                 .kw(),
+            fact(
+                "PESANTEUR",
+                vec![
+                    group_ma(),
+                    maille(),
+                    real("GRAVITE")
+                        .required()
+                        .doc("magnitude g of the acceleration of gravity (mm/s^2 in the N-mm-t system)")
+                        .kw(),
+                    real("DIRECTION")
+                        .required()
+                        .count(3, 3)
+                        .doc("direction of gravity (3 components, normalised; the third is unused in AXIS)")
+                        .kw(),
+                ],
+            )
+            .doc("gravity: body force RHO*GRAVITE*DIRECTION/|DIRECTION| per unit volume on the volume elements of GROUP_MA (all of them without GROUP_MA); a dead load, constant in time")
+            .kw(),
             oui_non("VERI_NORM", "OUI")
                 .doc("check the orientation of skin cells carrying loads")
                 .kw(),
@@ -56,7 +75,7 @@ pub fn def() -> CommandDef {
             info(),
         ],
     )
-    .rules(vec![au_moins_un(&["DDL_IMPO"])])
+    .rules(vec![au_moins_un(&["DDL_IMPO", "PESANTEUR"])])
     .doc("Defines mechanical boundary conditions on a model.");
     CommandDef { spec, exec }
 }
@@ -140,6 +159,10 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 .join(" ")
         ));
     }
+    let gravity = match args.fact("PESANTEUR") {
+        Some(occ) => Some(gravity_of(occ, mesh, &model, &mut lines)?),
+        None => None,
+    };
     study.log(format!(
         "    load {} on model {model_name}: {} imposed dofs",
         result.unwrap_or("(unnamed)"),
@@ -151,5 +174,64 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     Ok(Some(ConceptData::MechLoad(Box::new(MechLoad {
         model: model_name,
         imposed,
+        gravity,
     }))))
+}
+
+/// PESANTEUR: GRAVITE and DIRECTION normalised as code_aster's `capesa`
+/// does (a zero DIRECTION is its fatal CHARGES2_53); GROUP_MA restricts
+/// the cells, its cells that are not volume elements of the model are
+/// skipped when the forces are built (they have no mass).
+fn gravity_of(
+    occ: &Args,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    lines: &mut Vec<String>,
+) -> Result<Gravity, Diagnostic> {
+    let g = occ.real("GRAVITE").unwrap_or(0.0);
+    let d = occ.reals("DIRECTION");
+    let norm = d.iter().map(|c| c * c).sum::<f64>().sqrt();
+    if d.len() != 3 || !norm.is_finite() || norm <= f64::MIN_POSITIVE {
+        return Err(occ.error(
+            "DIRECTION",
+            "DIRECTION must be a non-zero vector of 3 finite components",
+        ));
+    }
+    if !g.is_finite() {
+        return Err(occ.error("GRAVITE", "GRAVITE must be finite"));
+    }
+    let direction = [d[0] / norm, d[1] / norm, d[2] / norm];
+    let cells = if occ.has("GROUP_MA") || occ.has("MAILLE") {
+        Some(select_cells(mesh, occ)?)
+    } else {
+        None
+    };
+    let nvol = match &cells {
+        Some(c) => c
+            .iter()
+            .filter(|&&c| matches!(model.cells.get(c), Some(CellRole::Element(_))))
+            .count(),
+        None => model.element_cells().count(),
+    };
+    if nvol == 0 {
+        return Err(occ.error(
+            if cells.is_some() { "GROUP_MA" } else { "" },
+            "PESANTEUR applies to no volume element of the model",
+        ));
+    }
+    if !model.has_dof(Dof::Dz) && direction[2] != 0.0 {
+        lines.push(format!(
+            "<A> <AFFE_CHAR_MECA> PESANTEUR: the model has no DZ; the third component of the normalised DIRECTION ({:e}) is ignored",
+            direction[2]
+        ));
+    }
+    lines.push(format!(
+        "      PESANTEUR: g = {g:e} along ({:e}, {:e}, {:e}) on {nvol} volume elements",
+        direction[0], direction[1], direction[2]
+    ));
+    Ok(Gravity {
+        g,
+        direction,
+        cells,
+    })
 }

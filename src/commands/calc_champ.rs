@@ -95,8 +95,9 @@ pub fn def() -> CommandDef {
 /// and the stored DEPL, which returns the stored stress and integrates it
 /// on the element's own configuration (current geometry for PETIT_REAC,
 /// P = τF⁻ᵀ on the initial one for SIMO_MIEHE). REAC_NODA = FORC_NODA −
-/// F_ext + M·ACCE; DDL_IMPO loads have no F_ext, so at free nodes it is
-/// the dynamic residual (≈ 0) and at supports the support reaction.
+/// F_ext + M·ACCE, F_ext being the PESANTEUR of the result's loads (the
+/// only load with an F_ext), so at free nodes it is the dynamic residual
+/// (≈ 0, without contact forces) and at supports the support reaction.
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let name = args.concept("RESULTAT").unwrap_or("").to_string();
     let mut evol = match study.concepts.data(&name) {
@@ -217,7 +218,14 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         selected = evol.steps.iter().map(|s| s.nume_ordre).collect();
     }
     let nfull = asm.numbering.nfull();
-    let fext = vec![0.0; nfull];
+    let fext = crate::element::body_force::gravity_forces(
+        &md.mesh,
+        &md.model,
+        &md.matfield,
+        &md.materials,
+        &refs,
+    )
+    .map_err(|m| args.error("RESULTAT", m))?;
     let mut fint = vec![0.0; nfull];
     let mut ma = vec![0.0; nfull];
     let mut scratch = asm.initial_states();

@@ -903,6 +903,15 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         state.points = p;
     }
     let mut engine = Engine::new(asm, scheme, newton, conv, state);
+    // PESANTEUR: a dead load, so the engine's constant F_ext holds it.
+    engine.fext = crate::element::body_force::gravity_forces(
+        &md.mesh,
+        &md.model,
+        &md.matfield,
+        &md.materials,
+        &load_refs,
+    )
+    .map_err(|m| args.error("EXCIT", m))?;
     for n in &notes {
         study.log(format!("  {n}"));
     }

@@ -8,6 +8,7 @@
 //! compared with code_aster listings point by point.
 
 pub mod axis;
+pub mod body_force;
 pub mod mechanics;
 pub mod quadrature;
 pub mod shape;

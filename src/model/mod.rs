@@ -129,4 +129,17 @@ pub struct ImposedDof {
 pub struct MechLoad {
     pub model: String,
     pub imposed: Vec<ImposedDof>,
+    /// PESANTEUR, if given (at most once per load, as in code_aster).
+    pub gravity: Option<Gravity>,
+}
+
+/// PESANTEUR: the body force ρ·g·d per unit volume of the element cells
+/// `cells` (every element cell of the model when `None`). code_aster
+/// normalises DIRECTION (`capesa`), so `direction` is a unit vector and
+/// `g` carries the magnitude.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gravity {
+    pub g: f64,
+    pub direction: [f64; 3],
+    pub cells: Option<Vec<usize>>,
 }

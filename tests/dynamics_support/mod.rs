@@ -181,6 +181,7 @@ pub fn study(
         ConceptData::MechLoad(Box::new(MechLoad {
             model: "MO".into(),
             imposed,
+            gravity: None,
         })),
     );
     if let Some(v) = vite {

@@ -1,0 +1,287 @@
+//! Body forces of AFFE_CHAR_MECA/PESANTEUR: the nodal forces
+//! f_a = ∫ ρ b N_a dV of a volume element under a uniform acceleration
+//! field b = g·d, and their assembly into the external force vector.
+//!
+//! The integral uses the element's **mass** Gauss family, the one of the
+//! consistent mass M: then f = M·(b at every node) to round-off, so that a
+//! free body under gravity accelerates at exactly g, and the total force is
+//! exactly (mass of the element)·b on any geometry the mass integrates.
+//! In AXIS the integral is weighted by r without 2π (per radian), like the
+//! mass and the internal forces.
+
+use indexmap::IndexMap;
+
+use super::mechanics::ElementFailure;
+use super::quadrature::rule;
+use super::shape::eval;
+use super::spec::{ElementSpec, Formulation};
+use crate::mesh::Mesh;
+use crate::model::{CellRole, Gravity, Material, MaterialField, MechLoad, Model};
+
+/// The nodal forces ∫ ρ b N_a dV of one element (node-major, 2 or 3
+/// components per node as the formulation's dofs; in AXIS b's third
+/// component is not used), on the configuration `coords`.
+pub fn element_body_force(
+    spec: &ElementSpec,
+    coords: &[[f64; 3]],
+    rho: f64,
+    b: [f64; 3],
+) -> Result<Vec<f64>, ElementFailure> {
+    let nn = spec.nnodes();
+    let d = spec.formulation.dofs_per_node();
+    if coords.len() != nn {
+        return Err(ElementFailure::BadInput {
+            message: format!(
+                "{}: {} node coordinates given for {nn} nodes",
+                spec.name,
+                coords.len()
+            ),
+        });
+    }
+    if !(rho.is_finite() && rho >= 0.0) || b.iter().any(|v| !v.is_finite()) {
+        return Err(ElementFailure::BadInput {
+            message: format!(
+                "{}: density RHO = {rho} and acceleration {b:?} must be finite, RHO >= 0",
+                spec.name
+            ),
+        });
+    }
+    let q = rule(spec.cell, spec.mass).ok_or_else(|| ElementFailure::BadInput {
+        message: format!(
+            "{}: {} has no Gauss family {}",
+            spec.name,
+            spec.cell.aster_name(),
+            spec.mass.name()
+        ),
+    })?;
+    let mut out = vec![0.0; nn * d];
+    for (p, (xi, w)) in q.points.iter().zip(&q.weights).enumerate() {
+        let s = eval(spec.cell, *xi);
+        let dv = w * measure(spec.formulation, s.n(), s.dn(), coords)
+            .map_err(|message| ElementFailure::BadGeometry { point: p, message })?;
+        for (a, &na) in s.n().iter().enumerate() {
+            for i in 0..d {
+                out[a * d + i] += rho * b[i] * na * dv;
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// det J at a point (× r in AXIS): the volume (per radian) per unit
+/// reference measure.
+fn measure(f: Formulation, n: &[f64], dn: &[[f64; 3]], x: &[[f64; 3]]) -> Result<f64, String> {
+    match f {
+        Formulation::Solid3d => {
+            let mut j = [[0.0; 3]; 3];
+            for (a, g) in dn.iter().enumerate() {
+                for k in 0..3 {
+                    for l in 0..3 {
+                        j[k][l] += x[a][k] * g[l];
+                    }
+                }
+            }
+            let det = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
+                - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
+                + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+            if det.is_nan() || det <= 0.0 {
+                return Err(format!("non-positive Jacobian {det}"));
+            }
+            Ok(det)
+        }
+        Formulation::Axis => {
+            let mut j = [[0.0; 2]; 2];
+            let mut r = 0.0;
+            for (a, g) in dn.iter().enumerate() {
+                r += n[a] * x[a][0];
+                for k in 0..2 {
+                    for l in 0..2 {
+                        j[k][l] += x[a][k] * g[l];
+                    }
+                }
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            if det.is_nan() || det <= 0.0 {
+                return Err(format!("non-positive Jacobian {det}"));
+            }
+            if r.is_nan() || r <= 0.0 {
+                return Err(format!("Gauss point at radius {r} <= 0"));
+            }
+            Ok(det * r)
+        }
+    }
+}
+
+/// The external forces of the PESANTEUR of `loads` (full vector, dof
+/// `node·ndpn + component`, as the engine's numbering), on the initial
+/// geometry: a dead load (FIXE_CSTE), constant in time. Each load's
+/// gravity acts on its cells that are volume elements of the model (skin
+/// cells of a GROUP_MA carry no mass); the loads add up.
+pub fn gravity_forces(
+    mesh: &Mesh,
+    model: &Model,
+    matfield: &MaterialField,
+    materials: &IndexMap<String, Material>,
+    loads: &[&MechLoad],
+) -> Result<Vec<f64>, String> {
+    let d = model.ndof_per_node();
+    let mut out = vec![0.0; mesh.nnodes() * d];
+    for g in loads.iter().filter_map(|l| l.gravity.as_ref()) {
+        let b = acceleration(g);
+        let cells: Vec<usize> = match &g.cells {
+            Some(c) => c.clone(),
+            None => (0..model.cells.len()).collect(),
+        };
+        for c in cells {
+            let Some(CellRole::Element(spec)) = model.cells.get(c) else {
+                continue;
+            };
+            let rho = matfield
+                .cell_material
+                .get(c)
+                .and_then(|m| m.as_ref())
+                .and_then(|m| materials.get(m))
+                .and_then(|m| m.get("ELAS", "RHO"))
+                .ok_or_else(|| {
+                    format!(
+                        "PESANTEUR: cell {} has no density (ELAS/RHO of its material)",
+                        c + 1
+                    )
+                })?;
+            let nodes = &mesh.cells[c].nodes;
+            let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+            let f = element_body_force(spec, &coords, rho, b)
+                .map_err(|e| format!("PESANTEUR: cell {}: {e}", c + 1))?;
+            for (a, &n) in nodes.iter().enumerate() {
+                for i in 0..d {
+                    out[n * d + i] += f[a * d + i];
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// b = g·d.
+fn acceleration(g: &Gravity) -> [f64; 3] {
+    g.direction.map(|c| g.g * c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::{element_spec, mass};
+    use crate::mesh::CellType;
+
+    /// f = M·(b at every node) (the consistent mass, same Gauss family),
+    /// and Σ_a f_a = ρ·V·b with the volume V computed by hand.
+    fn check(spec: ElementSpec, coords: &[[f64; 3]], rho: f64, b: [f64; 3], volume: f64) {
+        let d = spec.formulation.dofs_per_node();
+        let f = element_body_force(&spec, coords, rho, b).unwrap();
+        let m = mass(&spec, coords, rho).unwrap();
+        let ones: Vec<f64> = (0..spec.ndofs()).map(|k| b[k % d]).collect();
+        // round-off scale: the total force
+        let tol = 1e-12 * rho * volume * b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for r in 0..spec.ndofs() {
+            let mb: f64 = (0..spec.ndofs()).map(|c| m[(r, c)] * ones[c]).sum();
+            assert!((f[r] - mb).abs() <= tol, "{r}: {} vs {mb}", f[r]);
+        }
+        for i in 0..d {
+            let total: f64 = (0..spec.nnodes()).map(|a| f[a * d + i]).sum();
+            let exact = rho * volume * b[i];
+            assert!(
+                (total - exact).abs() <= tol,
+                "component {i}: {total} vs {exact}"
+            );
+        }
+    }
+
+    /// A HEXA8 made of the unit cube under the affine map x ↦ A x + c: a
+    /// skewed parallelepiped whose volume is det A.
+    #[test]
+    fn hexa8_total_gravity_is_mass_times_g() {
+        let a = [[1.2, 0.3, -0.1], [0.2, 0.9, 0.25], [-0.15, 0.1, 1.4]];
+        let det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+            - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+            + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+        // MED order: the bottom face turns clockwise seen from the top.
+        let cube = [
+            [0., 0., 0.],
+            [0., 1., 0.],
+            [1., 1., 0.],
+            [1., 0., 0.],
+            [0., 0., 1.],
+            [0., 1., 1.],
+            [1., 1., 1.],
+            [1., 0., 1.],
+        ];
+        let coords: Vec<[f64; 3]> = cube
+            .iter()
+            .map(|p| {
+                let mut x = [3.0, -1.0, 2.0];
+                for k in 0..3 {
+                    for l in 0..3 {
+                        x[k] += a[k][l] * p[l];
+                    }
+                }
+                x
+            })
+            .collect();
+        let spec = element_spec("3D", CellType::Hexa8).unwrap();
+        check(spec, &coords, 7.8e-9, [0.3e4, -2.0e4, -9.81e3], det);
+    }
+
+    /// A non-affine HEXA8: the 2×1×1 cuboid with the vertex (2, 1, 1)
+    /// raised by h. The map is z = Z (1 + h X Y / 2), det J = 1 + h X Y / 2,
+    /// so V = 2 + h/2; the 2×2×2 mass family integrates it exactly.
+    #[test]
+    fn distorted_hexa8_total_gravity_is_mass_times_g() {
+        let mut x = [
+            [0., 0., 0.],
+            [0., 1., 0.],
+            [2., 1., 0.],
+            [2., 0., 0.],
+            [0., 0., 1.],
+            [0., 1., 1.],
+            [2., 1., 1.],
+            [2., 0., 1.],
+        ];
+        let h = 0.6;
+        x[6][2] += h;
+        let volume = 2.0 + h / 2.0;
+        let spec = element_spec("3D", CellType::Hexa8).unwrap();
+        check(spec, &x, 2.5e-9, [0.0, 1e4, -3e4], volume);
+    }
+
+    /// An AXIS QUAD8 ring of section [1, 3] × [0, 2] with a skewed top
+    /// edge: per radian, the volume is ∫∫ r dr dz computed exactly for a
+    /// trapezoid (z from 0 to 2 + s·(r − 1)).
+    #[test]
+    fn axis_quad8_total_gravity_is_mass_times_g_per_radian() {
+        let s = 0.2;
+        let top = |r: f64| 2.0 + s * (r - 1.0);
+        let v = [
+            [1.0, 0.0, 0.0],
+            [3.0, 0.0, 0.0],
+            [3.0, top(3.0), 0.0],
+            [1.0, top(1.0), 0.0],
+        ];
+        let mut coords = v.to_vec();
+        for k in 0..4 {
+            let (p, q) = (v[k], v[(k + 1) % 4]);
+            coords.push([(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, 0.0]);
+        }
+        // ∫_1^3 r (2 + s (r − 1)) dr = [r²] + s ([r³/3] − [r²/2])
+        let volume = (9.0 - 1.0) + s * ((27.0 - 1.0) / 3.0 - (9.0 - 1.0) / 2.0);
+        let spec = element_spec("AXIS", CellType::Quad8).unwrap();
+        check(spec, &coords, 8.93e-9, [0.0, -9.81e3, 0.0], volume);
+    }
+
+    #[test]
+    fn inverted_cell_is_an_error_not_a_panic() {
+        let spec = element_spec("AXIS", CellType::Quad4).unwrap();
+        let coords = [[1., 0., 0.], [1., 1., 0.], [2., 1., 0.], [2., 0., 0.]];
+        let e = element_body_force(&spec, &coords, 1.0, [0., -1., 0.]).unwrap_err();
+        assert!(e.to_string().contains("Jacobian"), "{e}");
+    }
+}
