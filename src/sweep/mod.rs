@@ -110,7 +110,14 @@ impl Runner {
     pub fn predict(&self, spec: &CaseSpec) -> Option<f64> {
         let n = estimated_unknowns(spec.n1, spec.n2);
         let per_step = match power_law(&self.costs) {
-            Some((a, b)) => a * n.powf(b.max(1.0)),
+            // The slope clamped to [1, 3]: a sparse direct solve is no
+            // cheaper than linear and, in 2D, no worse than cubic; noise
+            // on small runs must not predict absurd costs.
+            // Through the latest run, with the fitted (clamped) slope.
+            Some((_, b)) => {
+                let (x, y) = self.costs.last()?;
+                y * (n / x).powf(b.clamp(1.0, 3.0))
+            }
             None => {
                 let &(n0, c0) = self.costs.last()?;
                 c0 * n / n0
@@ -124,7 +131,7 @@ impl Runner {
         if self.timed_out {
             let r = CaseResult::skipped(
                 spec,
-                "not run: an earlier run exceeded the budget and still holds a core".into(),
+                "an earlier run exceeded the budget and still holds a core".into(),
             );
             log(&format!("  {:<48} skipped (after a timeout)", spec.slug()));
             return r;
@@ -139,7 +146,7 @@ impl Runner {
                 return CaseResult::skipped(
                     spec,
                     format!(
-                        "not run: predicted {p:.0} s from the runs so far, over the {:.0} s budget",
+                        "predicted {p:.0} s from the runs so far, over the {:.0} s budget",
                         self.budget
                     ),
                 );
@@ -318,6 +325,15 @@ fn fmt_opt(v: Option<f64>, digits: usize) -> String {
         None => "—".into(),
         Some(x) if x.is_nan() => "NaN".into(),
         Some(x) => format!("{x:.digits$}"),
+    }
+}
+
+/// Wall time, blank for a run that was not started.
+fn fmt_wall(r: &CaseResult) -> String {
+    if r.wall > 0.0 {
+        format!("{:.1}", r.wall)
+    } else {
+        "—".into()
     }
 }
 
@@ -560,10 +576,17 @@ fn convergence(
     );
     md.push_str("| n1 x n2 | dt (us) | unknowns | steps | Newton its | cuts | wall (s) | B1 DX | A2 DY | err vs finest | err vs reference (DX, DY) | outcome |\n");
     md.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for r in &results {
+    // Runs went cheapest first; the table reads by mesh, then step.
+    let mut shown: Vec<&CaseResult> = results.iter().collect();
+    shown.sort_by(|a, b| {
+        (a.spec.n1, a.spec.n2)
+            .cmp(&(b.spec.n1, b.spec.n2))
+            .then(dt_of(&b.spec).total_cmp(&dt_of(&a.spec)))
+    });
+    for r in shown {
         let _ = writeln!(
             md,
-            "| {} x {} | {} | {} | {} | {} | {} | {:.1} | {} | {} | {} | {}, {} | {} |",
+            "| {} x {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {}, {} | {} |",
             r.spec.n1,
             r.spec.n2,
             dt_of(&r.spec) * 1e6,
@@ -571,7 +594,7 @@ fn convergence(
             fmt_count(r.steps),
             fmt_count(r.newton_iterations),
             fmt_count(r.cuts),
-            r.wall,
+            fmt_wall(r),
             fmt_opt(r.b1_dx, 4),
             fmt_opt(r.a2_dy, 4),
             if r.usable() {
@@ -596,12 +619,27 @@ fn convergence(
             Ok(x) => format!("{:.4} (p = {:.2})", x.value, x.order),
             Err(e) => format!("n/a: {e}"),
         };
-        let bar: Option<f64> = match (&an.mesh[q], &an.dt[q]) {
-            (Ok(a), Ok(b)) => Some(a.error_bar + b.error_bar),
-            (Ok(a), Err(_)) => Some(a.error_bar),
-            (Err(_), Ok(b)) => Some(b.error_bar),
-            _ => None,
+        // Richardson's bar where it applies, else the spread of the three
+        // finest solutions (a cruder bar, flagged as such).
+        let part = |r: &Result<richardson::Richardson, richardson::NotApplicable>| match r {
+            Ok(x) => Some((x.error_bar, true)),
+            Err(richardson::NotApplicable::NotMonotone { spread })
+            | Err(richardson::NotApplicable::OrderOutOfRange { spread, .. }) => {
+                Some((*spread, false))
+            }
+            Err(richardson::NotApplicable::TooFew(_)) => None,
         };
+        let parts: Vec<(f64, bool)> = [part(&an.mesh[q]), part(&an.dt[q])]
+            .into_iter()
+            .flatten()
+            .collect();
+        let bar = (!parts.is_empty()).then(|| {
+            (
+                parts.iter().map(|p| p.0).sum::<f64>(),
+                parts.iter().all(|p| p.1),
+                parts.len(),
+            )
+        });
         let _ = writeln!(
             md,
             "| {} | {} | {} | {} | {} | {} |",
@@ -610,8 +648,16 @@ fn convergence(
             show(&an.mesh[q]),
             show(&an.dt[q]),
             match (finest_vals[q], bar) {
-                (Some(v), Some(b)) => format!("**{v:.3} ± {b:.3}**"),
-                (Some(v), None) => format!("{v:.3} (no error bar)"),
+                (Some(v), Some((b, rich, n))) => format!(
+                    "**{v:.3} ± {b:.3}**{}{}",
+                    if rich {
+                        ""
+                    } else {
+                        " (spread where Richardson does not apply)"
+                    },
+                    if n < 2 { " (one direction only)" } else { "" }
+                ),
+                (Some(v), None) => format!("{v:.3} (no error bar: too few runs)"),
                 _ => "—".into(),
             },
             refs[q]
@@ -907,13 +953,13 @@ fn stability(
         let o = oscillation(&r.a1_vy);
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.spec.scheme.label(),
             cell(&r.what_happened()),
             fmt_count(r.steps),
             fmt_count(r.newton_iterations),
             fmt_count(r.cuts),
-            r.wall,
+            fmt_wall(r),
             fmt_opt(r.b1_dx, 4),
             fmt_opt(r.a2_dy, 4),
             fmt_opt(o.map(|o| o.rms), 0),
@@ -1004,7 +1050,7 @@ fn hard_cases(
         let o = oscillation(&r.a1_vy);
         let _ = writeln!(
             md,
-            "| {family} | {:.0e} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.1} |",
+            "| {family} | {:.0e} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             c.e_n,
             c.time.label(),
             c.scheme.label(),
@@ -1015,7 +1061,7 @@ fn hard_cases(
             fmt_opt(r.b1_dx, 4),
             fmt_opt(r.a2_dy, 4),
             fmt_opt(o.map(|o| o.max_dev), 0),
-            r.wall,
+            fmt_wall(r),
         );
     }
     let p = image_prefix(opts);
@@ -1052,6 +1098,31 @@ mod tests {
         let mut nan = s.clone();
         nan[400].1 = f64::NAN;
         assert_eq!(oscillation(&nan), None);
+    }
+
+    /// Costs linear in N (1e-4 s per unknown and step): a 40 x 160 case
+    /// (39202 estimated unknowns, 42 steps of 2 us) is predicted at
+    /// 164.6 s, so a 100 s budget skips it without running it.
+    #[test]
+    fn runner_skips_a_case_predicted_over_the_budget() {
+        let mut r = Runner::new(std::env::temp_dir().join("aster-never-used"), 100.0);
+        r.costs = vec![(100.0, 0.01), (1000.0, 0.1)];
+        let big = CaseSpec {
+            n1: 40,
+            n2: 160,
+            time: TimeList::Uniform { dt: 2e-6 },
+            ..CaseSpec::b()
+        };
+        assert_eq!(estimated_unknowns(40, 160), 39202.0);
+        let p = r.predict(&big).unwrap();
+        assert!((p - 39202.0 * 1e-4 * 42.0).abs() < 1e-6, "{p}");
+        let res = r.run(&big, &mut |_| {});
+        assert!(
+            matches!(&res.outcome, case::Outcome::Skipped(w) if w.contains("predicted 165 s")),
+            "{:?}",
+            res.outcome
+        );
+        assert!(!r.work.exists());
     }
 
     #[test]

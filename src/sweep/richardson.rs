@@ -108,7 +108,14 @@ pub fn power_law(points: &[(f64, f64)]) -> Option<(f64, f64)> {
         .map(|(x, y)| (x.ln(), y.ln()))
         .collect();
     let n = logs.len() as f64;
-    if logs.len() < 2 {
+    let (lo, hi) = logs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+            (l.min(p.0), h.max(p.0))
+        });
+    // Equal x (one mesh size run several times) leave the slope undefined;
+    // rounding would otherwise make a tiny sxx and a meaningless slope.
+    if logs.len() < 2 || hi - lo < 1e-9 * hi.abs().max(1.0) {
         return None;
     }
     let mx = logs.iter().map(|p| p.0).sum::<f64>() / n;
@@ -167,5 +174,10 @@ mod tests {
         let (a, b) = power_law(&pts).unwrap();
         assert!((a - 2.0).abs() < 1e-9 && (b - 1.3).abs() < 1e-12);
         assert_eq!(power_law(&[(1.0, 1.0)]), None);
+        // Three runs of one size: no slope (not a huge one from rounding).
+        assert_eq!(
+            power_law(&[(661.0, 0.3), (661.0, 0.35), (661.0, 0.41)]),
+            None
+        );
     }
 }
