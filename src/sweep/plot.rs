@@ -133,13 +133,16 @@ fn tick_label(v: f64, log: bool) -> String {
     }
 }
 
+/// A series with its colour index and its points in axis space.
+type Placed<'a> = (usize, &'a Series, Vec<(f64, f64)>);
+
 /// Draws `fig` into a PNG of `size` pixels.
 pub fn draw(fig: &Figure, path: &Path, size: (u32, u32)) -> Result<(), String> {
     ensure_font()?;
     let err = |e: &dyn std::fmt::Display| format!("plot '{}': {e}", path.display());
     // Data in axis space; non-finite (and non-positive on log axes) points
     // are left out of the plot, never drawn as garbage.
-    let series: Vec<(usize, &Series, Vec<(f64, f64)>)> = fig
+    let series: Vec<Placed> = fig
         .series
         .iter()
         .enumerate()

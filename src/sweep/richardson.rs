@@ -169,7 +169,7 @@ mod tests {
     fn power_law_fits_an_exact_law() {
         let pts: Vec<(f64, f64)> = [10.0, 100.0, 1000.0]
             .iter()
-            .map(|&x| (x, 2.0 * x.powf(1.3)))
+            .map(|&x: &f64| (x, 2.0 * x.powf(1.3)))
             .collect();
         let (a, b) = power_law(&pts).unwrap();
         assert!((a - 2.0).abs() < 1e-9 && (b - 1.3).abs() < 1e-12);
