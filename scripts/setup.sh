@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Installs what aster needs to build on a fresh Debian machine: the HDF5 C
-# library (MED files are HDF5) and pkg-config to find it. Idempotent: does
-# nothing when they are already there.
+# library (MED files are HDF5) and pkg-config to find it, and the DejaVu
+# fonts that `aster sweep` loads at run time to write the text of its PNG
+# plots. Idempotent: does nothing when they are already there.
 set -euo pipefail
 need=()
 pkg-config --exists hdf5 2>/dev/null || need+=(libhdf5-dev)
 command -v pkg-config >/dev/null 2>&1 || need+=(pkg-config)
+[ -f /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf ] || need+=(fonts-dejavu-core)
 if [ ${#need[@]} -gt 0 ]; then
   echo "setup: installing ${need[*]}" >&2
   SUDO=""

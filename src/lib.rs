@@ -31,4 +31,5 @@ pub mod post;
 pub mod result;
 pub mod run;
 pub mod solver;
+pub mod sweep;
 pub mod time;

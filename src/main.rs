@@ -99,6 +99,34 @@ enum Command {
         #[command(subcommand)]
         what: MeshCommand,
     },
+    /// Run a study of SDNV103 modelling B (docs/performance.md).
+    ///
+    /// convergence: meshes 2x8 to 40x160 and steps of 2 to 0.25 us, with
+    /// Richardson estimates; stability: VY of A1 for four time schemes;
+    /// hard-cases: penalties 1e5..1e14, steps of 2 and 4 us, undamped
+    /// Newmark. Writes a Markdown table, CSVs and PNG plots into --out and
+    /// splices the table into the document (docs/performance.md).
+    Sweep {
+        #[arg(value_parser = ["convergence", "stability", "hard-cases"])]
+        what: String,
+        /// Directory for the tables, CSVs and plots.
+        #[arg(long, value_name = "DIR", default_value = "docs/performance")]
+        out: PathBuf,
+        /// The small version (2x8 and 5x20 meshes, steps of 2 and 1 us; 2x8 for the others).
+        #[arg(long)]
+        quick: bool,
+        /// Longest run allowed, in seconds: a case predicted or measured to take
+        /// longer is reported as skipped.
+        #[arg(long, value_name = "SECONDS", default_value_t = 900.0)]
+        budget: f64,
+        /// The Markdown document whose `<!-- sweep:NAME -->` section is
+        /// replaced (default: performance.md next to --out, if it exists).
+        #[arg(long, value_name = "FILE")]
+        doc: Option<PathBuf>,
+        /// Keep the cases' meshes, command files and logs in this directory.
+        #[arg(long, value_name = "DIR")]
+        work: Option<PathBuf>,
+    },
     /// Print reference documentation generated from the catalogue.
     Doc {
         /// What to print: `commands` (every command and keyword, Markdown).
@@ -181,6 +209,49 @@ fn taylor(
     }
     print!("{}", aster::medio::mesh_info(&mesh));
     0
+}
+
+fn sweep(
+    what: &str,
+    out: PathBuf,
+    quick: bool,
+    budget: f64,
+    doc: Option<PathBuf>,
+    work: Option<PathBuf>,
+) -> i32 {
+    use aster::sweep::{run_sweep, SweepKind, SweepOptions};
+    let kind = match what {
+        "convergence" => SweepKind::Convergence,
+        "stability" => SweepKind::Stability,
+        _ => SweepKind::HardCases,
+    };
+    if !(budget > 0.0 && budget.is_finite()) {
+        eprintln!("error: --budget must be a positive number of seconds");
+        return EXIT_USAGE;
+    }
+    let doc = doc.or_else(|| {
+        let d = out.parent()?.join("performance.md");
+        d.is_file().then_some(d)
+    });
+    let opts = SweepOptions {
+        out,
+        quick,
+        budget,
+        doc,
+        work,
+    };
+    match run_sweep(kind, &opts, &mut |l| eprintln!("{l}")) {
+        Ok(r) => {
+            for f in &r.files {
+                println!("{}", f.display());
+            }
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            1
+        }
+    }
 }
 
 fn parse_unit(s: &str) -> Result<(i64, PathBuf), String> {
@@ -266,6 +337,14 @@ fn main() -> ExitCode {
                     output,
                 },
         } => taylor(kind, modelling, [n1, n2, n3], linear, &output),
+        Command::Sweep {
+            what,
+            out,
+            quick,
+            budget,
+            doc,
+            work,
+        } => sweep(&what, out, quick, budget, doc, work),
         Command::Doc { what } => match what.as_str() {
             "commands" => {
                 print!("{}", aster::catalog::doc::commands_markdown());
