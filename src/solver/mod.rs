@@ -254,7 +254,7 @@ impl DirectLu {
     /// A work buffer of at least `req`, kept across calls.
     fn stack(mem: &mut Option<(MemBuffer, usize)>, req: StackReq) -> &mut MemStack {
         let bytes = req.unaligned_bytes_required();
-        if !mem.as_ref().is_some_and(|(_, have)| *have >= bytes) {
+        if mem.as_ref().is_none_or(|(_, have)| *have < bytes) {
             *mem = Some((MemBuffer::new(req), bytes));
         }
         MemStack::new(&mut mem.as_mut().expect("allocated above").0)
