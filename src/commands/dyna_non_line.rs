@@ -868,7 +868,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         ));
     }
     if args.has("SOLVEUR") {
-        notes.push("SOLVEUR: every METHODE maps to one sparse direct LU (faer); the settings are accepted and ignored".into());
+        notes.push("SOLVEUR: every METHODE maps to one sparse direct solver (faer: Cholesky for a symmetric matrix, LU otherwise); the settings are accepted and ignored".into());
     }
     let info = args.int("INFO").unwrap_or(1);
     let progress = study.verbose && std::io::IsTerminal::is_terminal(&std::io::stderr());
