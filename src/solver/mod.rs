@@ -378,6 +378,8 @@ impl LinearSolver for DirectLu {
             )));
         }
         // `solve` takes &self, so its (small, O(n)) work buffer is local.
+        // The right-hand side, kept for the refinement of a Cholesky solve.
+        let b0 = (kind == Kind::Llt).then(|| b.to_vec());
         let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
         match kind {
             Kind::Llt => {
@@ -385,16 +387,15 @@ impl LinearSolver for DirectLu {
                 let req = f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
                 let mut mem = MemBuffer::new(req);
                 let llt = LltRef::new(&f.symbolic, &f.values);
-                let b0 = rhs.as_ref().col(0).iter().copied().collect::<Vec<f64>>();
                 llt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
                 // One step of iterative refinement against the full matrix:
                 // without pivoting, the penalty rows (E_N ~ 1e10 next to
                 // mass terms ~ 1e3) leave Cholesky's solution a few digits
                 // short of LU's, enough to stall Newton near 1e-8.
-                if let Some(m) = &f.matrix {
+                if let (Some(m), Some(b0)) = (&f.matrix, &b0) {
                     let mut r = vec![0.0; n];
                     m.mul_vec(b, &mut r);
-                    for (ri, bi) in r.iter_mut().zip(&b0) {
+                    for (ri, bi) in r.iter_mut().zip(b0) {
                         *ri = bi - *ri;
                     }
                     let dr = MatMut::from_column_major_slice_mut(&mut r, n, 1);
