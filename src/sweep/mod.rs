@@ -735,18 +735,19 @@ fn convergence(
         annotations: Vec::new(),
         y_range: None,
     };
-    for (fig, name) in [
-        (&err_fig, "convergence_error_vs_wall.png"),
-        (&cost_fig, "convergence_wall_per_step.png"),
-    ] {
-        let p = opts.out.join(name);
-        match plot::draw(fig, &p, (900, 620)) {
-            Ok(()) => files.push(p),
-            Err(e) => {
-                plots_ok = false;
-                log(&format!("warning: {e}"));
-            }
-        }
+    if draw_figures(
+        &[
+            (&err_fig, "convergence_error_vs_wall.png"),
+            (&cost_fig, "convergence_wall_per_step.png"),
+        ],
+        &opts.out,
+        (900, 620),
+        &mut files,
+        log,
+    )
+    .is_some()
+    {
+        plots_ok = false;
     }
     let rel_out = image_prefix(opts);
     let _ = writeln!(
@@ -927,20 +928,19 @@ fn stability(
         y_range: (zoom > 0.0).then_some((-1.2 * zoom, 1.2 * zoom)),
         ..fig.clone()
     };
-    let mut plot_note = String::new();
-    for (f, name) in [
-        (&fig, "stability_a1_vy.png"),
-        (&zoom_fig, "stability_a1_vy_zoom.png"),
-    ] {
-        let png = opts.out.join(name);
-        match plot::draw(f, &png, (1000, 620)) {
-            Ok(()) => files.push(png),
-            Err(e) => {
-                log(&format!("warning: {e}"));
-                plot_note = format!(" (the plots could not be drawn: {e})");
-            }
-        }
-    }
+    let plot_note = draw_figures(
+        &[
+            (&fig, "stability_a1_vy.png"),
+            (&zoom_fig, "stability_a1_vy_zoom.png"),
+        ],
+        &opts.out,
+        (1000, 620),
+        &mut files,
+        log,
+    )
+    .map_or(String::new(), |e| {
+        format!(" (the plots could not be drawn: {e})")
+    });
     let mut md = String::new();
     let _ = writeln!(
         md,
@@ -1071,6 +1071,30 @@ fn hard_cases(
         markdown: md,
         files,
     })
+}
+
+/// Draws each figure into `out/name`, adding the files drawn to `files`;
+/// a figure that cannot be drawn is logged as a warning, not a failure of
+/// the sweep. Returns the last error, if any.
+fn draw_figures(
+    figs: &[(&Figure, &str)],
+    out: &Path,
+    size: (u32, u32),
+    files: &mut Vec<PathBuf>,
+    log: &mut dyn FnMut(&str),
+) -> Option<String> {
+    let mut last = None;
+    for (fig, name) in figs {
+        let png = out.join(name);
+        match plot::draw(fig, &png, size) {
+            Ok(()) => files.push(png),
+            Err(e) => {
+                log(&format!("warning: {e}"));
+                last = Some(e);
+            }
+        }
+    }
+    last
 }
 
 #[cfg(test)]
