@@ -112,6 +112,10 @@ pub struct CaseSpec {
     /// Normal contact penalty DEFI_CONTACT/ZONE/E_N.
     pub e_n: f64,
     pub scheme: Scheme,
+    /// DEFI_LIST_INST/ECHEC/SUBD_NIVEAU of the ERREUR event (cuts by 4):
+    /// B leaves code_aster's default 3, which allows sub-steps down to
+    /// dt/16 only; the convergence sweep raises it (docs/performance.md).
+    pub subd_niveau: u32,
 }
 
 impl CaseSpec {
@@ -123,6 +127,7 @@ impl CaseSpec {
             time: TimeList::B,
             e_n: 1e10,
             scheme: Scheme::B,
+            subd_niveau: 3,
         }
     }
 
@@ -138,7 +143,12 @@ impl CaseSpec {
                 format!("hht{alpha}{}", if modi_equi { "oui" } else { "non" })
             }
         };
-        format!("b_{}x{}_{t}_en{:e}_{s}", self.n1, self.n2, self.e_n).replace(['.', '-'], "p")
+        let cut = if self.subd_niveau == 3 {
+            String::new()
+        } else {
+            format!("_subd{}", self.subd_niveau)
+        };
+        format!("b_{}x{}_{t}_en{:e}_{s}{cut}", self.n1, self.n2, self.e_n).replace(['.', '-'], "p")
     }
 
     /// The command file of the case; `mesh_note` names the mesh in its
@@ -182,6 +192,7 @@ impl CaseSpec {
             .replace("@ARCH_DEBUT@", &arch_debut)
             .replace("@ARCH_NOMBRE@", &arch_n.max(1).to_string())
             .replace("@SCHEMA_TEMPS@", &self.scheme.keywords())
+            .replace("@SUBD_NIVEAU@", &self.subd_niveau.to_string())
     }
 
     /// Writes `<slug>.comm` and `<slug>.mmed` into `dir`; returns the
