@@ -633,6 +633,7 @@ mod tests {
         .comm_text();
         assert!(text.contains("_F(JUSQU_A=8.E-5, NOMBRE=40)"), "{text}");
         assert!(text.contains("DEBUT=2e-6"), "{text}");
+        assert!(text.contains("SUBD_NIVEAU=3,"), "{text}");
         assert!(!text.contains('@'), "{text}");
     }
 }
