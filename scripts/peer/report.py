@@ -111,7 +111,8 @@ def main():
     print(f"{'reference':<10}{fmt(REF['B1 DX'])}{fmt(REF['A2 DY'])}{80.0:>11.3f}")
     print(f"{'aster':<10}{fmt(av['B1 DX'])}{fmt(av['A2 DY'])}{80.0:>11.3f}{ta:>9.2f}"
           f"{163:>7}{'':>6}  exit {a.aster_rc}"
-          + (" (TEST_RESU NOOK: other mesh)" if a.aster_rc == 1 else ""))
+          + (" (TEST_RESU NOOK: its values are those of the study as it is,"
+             " with friction on the 5 x 20 mesh)" if a.aster_rc == 1 else ""))
     status = "finished" if ccx_done else (
         "timeout" if a.ccx_rc == 124 else f"stopped (exit {a.ccx_rc})")
     at = f"{reached * 1e6:>11.3f}" if reached is not None else f"{'-':>11}"
