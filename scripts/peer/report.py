@@ -94,6 +94,7 @@ def main():
     ap.add_argument("--ccx-rc", type=int, required=True)
     ap.add_argument("--ccx-time", nargs=2, type=float, required=True)
     ap.add_argument("--ccx-timeout", type=float, required=True)
+    ap.add_argument("--model", default="", help="one line on the contact model of both")
     a = ap.parse_args()
     ta = a.aster_time[1] - a.aster_time[0]
     tc = a.ccx_time[1] - a.ccx_time[0]
@@ -103,12 +104,15 @@ def main():
     ccx_done = finished and reached is not None and abs(reached - T_END) < 1e-9
 
     print()
+    if a.model:
+        print(f"contact: {a.model}")
     print(f"{'code':<10}{'B1 DX':>10}{'A2 DY':>10}{'at t (us)':>11}{'wall s':>9}"
           f"{'incr.':>7}{'cuts':>6}  status")
     print(f"{'reference':<10}{fmt(REF['B1 DX'])}{fmt(REF['A2 DY'])}{80.0:>11.3f}")
     print(f"{'aster':<10}{fmt(av['B1 DX'])}{fmt(av['A2 DY'])}{80.0:>11.3f}{ta:>9.2f}"
           f"{163:>7}{'':>6}  exit {a.aster_rc}"
-          + (" (TEST_RESU NOOK: other mesh)" if a.aster_rc == 1 else ""))
+          + (" (TEST_RESU NOOK: its values are those of the study as it is,"
+             " with friction on the 5 x 20 mesh)" if a.aster_rc == 1 else ""))
     status = "finished" if ccx_done else (
         "timeout" if a.ccx_rc == 124 else f"stopped (exit {a.ccx_rc})")
     at = f"{reached * 1e6:>11.3f}" if reached is not None else f"{'-':>11}"
