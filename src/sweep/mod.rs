@@ -505,12 +505,23 @@ pub fn analyse_convergence(results: &[CaseResult]) -> ConvergenceAnalysis {
         .copied()
         .find(|&dt| meshes_at(dt) >= 3)
         .or_else(|| dts.first().copied());
-    let mesh_series = |q: usize| -> Vec<(f64, f64)> {
+    // (x, quantity q) over the usable runs that `keep` selects.
+    let series = |keep: &dyn Fn(&CaseResult) -> bool,
+                  x: fn(&CaseResult) -> f64,
+                  q: usize|
+     -> Vec<(f64, f64)> {
         usable
             .iter()
-            .filter(|(_, r)| Some(dt_of(&r.spec)) == mesh_dt)
-            .map(|(_, r)| (1.0 / r.spec.n1 as f64, value(r, q)))
+            .filter(|(_, r)| keep(r))
+            .map(|(_, r)| (x(r), value(r, q)))
             .collect()
+    };
+    let mesh_series = |q: usize| {
+        series(
+            &|r| Some(dt_of(&r.spec)) == mesh_dt,
+            |r| 1.0 / r.spec.n1 as f64,
+            q,
+        )
     };
     let mut ns: Vec<(usize, usize)> = usable.iter().map(|(_, r)| (r.spec.n1, r.spec.n2)).collect();
     ns.sort();
@@ -527,12 +538,12 @@ pub fn analyse_convergence(results: &[CaseResult]) -> ConvergenceAnalysis {
         .copied()
         .find(|&m| dts_at(m) >= 3)
         .or_else(|| ns.last().copied());
-    let dt_series = |q: usize| -> Vec<(f64, f64)> {
-        usable
-            .iter()
-            .filter(|(_, r)| Some((r.spec.n1, r.spec.n2)) == dt_mesh)
-            .map(|(_, r)| (dt_of(&r.spec) * 1e6, value(r, q)))
-            .collect()
+    let dt_series = |q: usize| {
+        series(
+            &|r| Some((r.spec.n1, r.spec.n2)) == dt_mesh,
+            |r| dt_of(&r.spec) * 1e6,
+            q,
+        )
     };
     let costs: Vec<(f64, f64)> = results
         .iter()
@@ -1109,6 +1120,59 @@ fn draw_figures(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Synthetic runs following exact power laws, f = f0 + C h^2 along the
+    /// meshes at the finest step and g = g0 + D dt along the steps on the
+    /// finest mesh: the analysis picks those two series (and not the
+    /// others, which are offset) and recovers f0, g0 and the orders.
+    #[test]
+    fn convergence_analysis_picks_the_series_and_extrapolates() {
+        let run = |n1: usize, dt: f64, dx: f64, dy: f64| {
+            let mut r = CaseResult::skipped(
+                &CaseSpec {
+                    n1,
+                    n2: 4 * n1,
+                    time: TimeList::Uniform { dt },
+                    ..CaseSpec::b()
+                },
+                String::new(),
+            );
+            r.outcome = case::Outcome::Completed;
+            (r.b1_dx, r.a2_dy) = (Some(dx), Some(dy));
+            r
+        };
+        let mut results = Vec::new();
+        for n1 in [2, 5, 10] {
+            let h = 1.0 / n1 as f64;
+            for dt in [1e-6, 5e-7, 2.5e-7] {
+                let us = dt * 1e6;
+                // Mesh law at the finest step, step law on the finest mesh;
+                // an offset elsewhere that must not enter either series.
+                let off = if dt == 2.5e-7 || n1 == 10 { 0.0 } else { 0.3 };
+                let step = if n1 == 10 { us - 0.25 } else { 0.0 };
+                let dx = 3.0 + 2.0 * h * h + 0.5 * step;
+                let dy = -12.0 - h * h - 0.2 * step;
+                results.push(run(n1, dt, dx + off, dy - off));
+            }
+        }
+        let an = analyse_convergence(&results);
+        let fin = &results[an.finest.unwrap()];
+        assert_eq!((fin.spec.n1, dt_of(&fin.spec)), (10, 2.5e-7));
+        assert_eq!(an.mesh_dt, Some(2.5e-7));
+        assert_eq!(an.dt_mesh, Some((10, 40)));
+        let close = |r: &Result<richardson::Richardson, richardson::NotApplicable>,
+                     value: f64,
+                     order: f64| {
+            let r = r.as_ref().unwrap();
+            assert!((r.value - value).abs() < 1e-9, "{r:?} vs {value}");
+            assert!((r.order - order).abs() < 1e-6, "{r:?} vs order {order}");
+        };
+        close(&an.mesh[0], 3.0, 2.0);
+        close(&an.mesh[1], -12.0, 2.0);
+        // On 10 x 40: 3.02 + 0.5 (dt - 0.25) -> 2.895; -12.01 - 0.2 (dt - 0.25) -> -11.96.
+        close(&an.dt[0], 2.895, 1.0);
+        close(&an.dt[1], -11.96, 1.0);
+    }
 
     /// A sine of 1 mm/s amplitude and 2 us period on a constant: the
     /// centred 5 us mean of sin(wt) is sin(wt) sin(wW/2)/(wW/2), here
