@@ -365,13 +365,18 @@ fn unil_zone(
     k: usize,
 ) -> Result<String, Diagnostic> {
     let in_model = model.node_mask(mesh);
-    let nodes = select_nodes(mesh, zone, &[])?;
-    if let Some(n) = nodes.iter().find(|&&n| !in_model[n]) {
+    // Nodes without degrees of freedom are dropped (code_aster's elimun);
+    // a zone left empty is an error.
+    let nodes: Vec<usize> = select_nodes(mesh, zone, &[])?
+        .into_iter()
+        .filter(|&n| in_model[n])
+        .collect();
+    if nodes.is_empty() {
         return Err(zone.error(
             "",
             format!(
-                "node {} of the zone belongs to no cell of the model {model_name}: it carries no degree of freedom",
-                n + 1
+                "zone {} keeps no node carrying degrees of freedom of the model {model_name} (UNILATER_48)",
+                k + 1
             ),
         ));
     }

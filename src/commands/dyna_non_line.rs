@@ -728,6 +728,19 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             "MASS_DIAG='OUI' is only allowed with explicit schemes",
         ));
     }
+    let unilateral = args.concept("CONTACT").is_some_and(|name| {
+        matches!(study.concepts.data(name), Some(ConceptData::Contact(c)) if c.text("FORMULATION") == Some("LIAISON_UNIL"))
+    });
+    if unilateral {
+        if let Some(st) = args.fact("SCHEMA_TEMPS") {
+            if let Some(sch @ ("DIFF_CENT" | "TCHAMWA")) = st.text("SCHEMA") {
+                return Err(st.error(
+                    "SCHEMA",
+                    format!("LIAISON_UNIL is incompatible with the explicit scheme SCHEMA='{sch}' (MECANONLINE5_23)"),
+                ));
+            }
+        }
+    }
     let scheme = scheme_of(args)?;
     let mut notes: Vec<String> = Vec::new();
     let model_name = args.concept("MODELE").unwrap_or("").to_string();
@@ -762,6 +775,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     .map_err(|e| prepare_error(args, e))?;
     notes.extend(alarms);
     let mut newton = newton_of(args)?;
+    let mut unil_def = None;
     let contact_def = match args.concept("CONTACT") {
         Some(name) => {
             let Some(ConceptData::Contact(cargs)) = study.concepts.data(name) else {
@@ -780,6 +794,42 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                     ));
                 }
             }
+            if unilateral {
+                let def = crate::commands::liaison_unil::unil_def(study, cargs, &md.mesh, &md.model)?;
+                let o = args.fact("NEWTON").unwrap_or(args);
+                match def.algo {
+                    crate::contact::unilateral::UnilAlgo::ActiveSet => {
+                        if !newton.symmetrize {
+                            notes.push("LIAISON_UNIL 'CONTRAINTE': the stiffness is symmetrised (MATR_RIGI_SYME='OUI' implied, as code_aster)".into());
+                        }
+                        newton.symmetrize = true;
+                    }
+                    crate::contact::unilateral::UnilAlgo::Penalty => {
+                        if newton.reac_incr == 0 {
+                            return Err(o.error(
+                                "REAC_INCR",
+                                "REAC_INCR=0 is forbidden with penalised LIAISON_UNIL: the penalty matrix changes at every iteration (CONTACT_88)",
+                            ));
+                        }
+                        if newton.reac_incr != 1 || newton.reac_iter != 1 {
+                            notes.push("alarm: penalised LIAISON_UNIL reassembles the matrix at every prediction and correction, whatever REAC_INCR and REAC_ITER say (MECANONLINE5_5)".into());
+                            newton.reac_incr = 1;
+                            newton.reac_iter = 1;
+                        }
+                    }
+                }
+                notes.push(format!(
+                    "LIAISON_UNIL: {} link(s) in {} zone(s), ALGO_CONT='{}'",
+                    def.links.len(),
+                    def.zones.len(),
+                    match def.algo {
+                        crate::contact::unilateral::UnilAlgo::ActiveSet => "CONTRAINTE",
+                        crate::contact::unilateral::UnilAlgo::Penalty => "PENALISATION",
+                    }
+                ));
+                unil_def = Some(def);
+                None
+            } else {
             let def = crate::contact::ContactDef::from_args(cargs, &md.mesh)?;
             if newton.reac_incr == 0 {
                 let o = args.fact("NEWTON").unwrap_or(args);
@@ -793,6 +843,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             }
             newton.symmetrize = true;
             Some(def)
+            }
         }
         None => None,
     };
@@ -951,7 +1002,43 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             &engine.committed.motion.u,
         )
     });
-    match dyna::run(&mut engine, contact.as_mut(), &tl, &mut evol, &mut log) {
+    let mut unil = match unil_def {
+        Some(def) => {
+            let term = nonlinear::UnilateralContact::new(def, &engine.asm.numbering);
+            // Coefficients that cannot be evaluated, or conditions on
+            // imposed dofs, are refused before the first step.
+            let nb = &engine.asm.numbering;
+            term.def
+                .rows(tl.instants[0], nb.ndpn, |f| {
+                    (nb.eq[f] != nonlinear::dofs::NONE).then(|| nb.eq[f])
+                })
+                .map_err(|m| args.error("CONTACT", m))?;
+            Some(term)
+        }
+        None => None,
+    };
+    let outcome = dyna::run(
+        &mut engine,
+        contact.as_mut(),
+        unil.as_mut(),
+        &tl,
+        &mut evol,
+        &mut log,
+    );
+    if let Some(u) = &unil {
+        let s = u.stats;
+        match u.def.algo {
+            crate::contact::unilateral::UnilAlgo::ActiveSet => log(&format!(
+                "  LIAISON_UNIL: {} active-set calls, {} passes (at most {} in one call); {} link(s) active at the last step",
+                s.calls, s.passes, s.max_passes, s.active
+            )),
+            crate::contact::unilateral::UnilAlgo::Penalty => log(&format!(
+                "  LIAISON_UNIL: {} link(s) penetrating at the last step",
+                s.active
+            )),
+        }
+    }
+    match outcome {
         Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
         Err(stopped) => {
             if let Some(name) = result {

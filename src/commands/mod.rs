@@ -33,6 +33,7 @@ pub mod fin;
 pub mod impr_fonction;
 pub mod impr_resu;
 pub mod impr_table;
+pub mod liaison_unil;
 pub mod lire_maillage;
 pub mod mesh_args;
 pub mod model_args;

@@ -409,10 +409,15 @@ pub fn step_nodal<'r>(
         args.error(
             key,
             format!(
-                "result {result_name} has no nodal field {nom_cham} at NUME_ORDRE {} (INST {}){}",
+                "result {result_name} has no nodal field {nom_cham} at NUME_ORDRE {} (INST {}){}{}",
                 step.nume_ordre,
                 crate::post::test_report::py_repr(step.inst),
-                fields_held(step)
+                fields_held(step),
+                if nom_cham == "CONT_NOEU" {
+                    " (LIAISON_UNIL produces no CONT_NOEU, as in code_aster: the reactions are REAC_NODA of CALC_CHAMP)"
+                } else {
+                    ""
+                }
             ),
         )
     })

@@ -22,6 +22,7 @@
 pub mod cont_noeu;
 pub mod discrete;
 pub mod pairing;
+pub mod unilateral;
 
 pub use cont_noeu::{collision_started, ContactState, LinkState, LinkStatus, CONT_NOEU_COMPONENTS};
 pub use discrete::{evaluate, Contribution, IterationInput, RESI_COEF_MATR_FROT};

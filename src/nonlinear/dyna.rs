@@ -7,6 +7,7 @@ use std::time::Instant;
 use super::contact::DiscreteContact;
 use super::fields;
 use super::newton::{ContactTerm, Engine, IterationRecord, State, StepReport};
+use super::unilateral::UnilateralContact;
 use crate::result::{EvolNoli, Step};
 use crate::time::list::{Action, Subdivision};
 
@@ -286,9 +287,12 @@ fn header(tl: &TimeLoop) -> String {
 
 /// Runs the time loop from the engine's committed state (which must be at
 /// `tl.instants[0]` and already initialized), archiving into `result`.
+/// `contact` is the discrete contact, `unil` the LIAISON_UNIL conditions
+/// (at most one of them: DEFI_CONTACT gives one formulation).
 pub fn run(
     engine: &mut Engine,
     mut contact: Option<&mut DiscreteContact>,
+    mut unil: Option<&mut UnilateralContact>,
     tl: &TimeLoop,
     result: &mut EvolNoli,
     log: &mut dyn FnMut(&str),
@@ -353,9 +357,15 @@ pub fn run(
         let suivi = &tl.suivi;
         let table = tl.newton_table;
         let mut rows: Vec<String> = Vec::new();
+        let term: Option<&mut dyn ContactTerm> = match (contact.as_deref_mut(), unil.as_deref_mut())
+        {
+            (Some(c), _) => Some(c),
+            (None, Some(u)) => Some(u),
+            (None, None) => None,
+        };
         let outcome = engine.solve_step(
             dt,
-            contact.as_deref_mut().map(|c| c as &mut dyn ContactTerm),
+            term,
             &mut |rec: &IterationRecord, st: &State| {
                 if table {
                     let mut line = format!(
@@ -406,6 +416,9 @@ pub fn run(
                 engine.commit();
                 if let Some(c) = contact.as_deref_mut() {
                     c.commit(dt);
+                }
+                if let Some(u) = unil.as_deref_mut() {
+                    u.commit();
                 }
                 summary.steps += 1;
                 summary.newton_iterations += rep.iterations;

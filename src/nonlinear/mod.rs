@@ -16,6 +16,7 @@ pub mod dofs;
 pub mod dyna;
 pub mod fields;
 pub mod newton;
+pub mod unilateral;
 
 use indexmap::IndexMap;
 
@@ -24,8 +25,9 @@ pub use behaviour::{BehaviourError, BehaviourField, CellLaw, Occurrence};
 pub use contact::DiscreteContact;
 pub use dofs::DofNumbering;
 pub use dyna::{ArchivePolicy, Reduce, RunSummary, Stopped, Suivi, SuiviField, TimeLoop};
+pub use unilateral::{UnilStats, UnilateralContact};
 pub use newton::{
-    ContactIteration, ContactTerm, ConvergenceSettings, Engine, IterationRecord, NewtonSettings,
+    ContactIteration, ContactTerm, IncrementCorrection, ConvergenceSettings, Engine, IterationRecord, NewtonSettings,
     State, StepFailure, StepReport,
 };
 

@@ -89,6 +89,28 @@ pub struct ContactIteration<'a> {
     /// The last RESI_GLOB_RELA of this step (+inf before the first one):
     /// COEF_MATR_FROT applies while it is >= 1e-3.
     pub resi_glob_rela: f64,
+    /// Forces (full, zeroed before the call) that the term also added to
+    /// `residual` but that must stay out of the next right-hand side: the
+    /// active-set multipliers are totals recomputed at every solve
+    /// (liaison-unil.md §3).
+    pub rhs_excluded: &'a mut [f64],
+    /// Newton iteration (0: the prediction, before any solve of the step).
+    pub iteration: usize,
+}
+
+/// What a term sees after each linear solve, before the fields are
+/// updated: it may replace the increment (the active set of LIAISON_UNIL
+/// does, code_aster's `nmunil` in `nmdepl`).
+pub struct IncrementCorrection<'a> {
+    pub numbering: &'a DofNumbering,
+    /// Displacement before the increment (full).
+    pub u: &'a [f64],
+    /// The increment on the equations, as solved; the term may change it.
+    pub delta: &'a mut [f64],
+    /// The factorised iteration matrix (more solves with it are cheap).
+    pub solver: &'a dyn LinearSolver,
+    /// Newton iteration of the solve (0: the prediction).
+    pub iteration: usize,
 }
 
 /// A contact (or any extra) term of the equilibrium. This is the single
@@ -109,6 +131,11 @@ pub trait ContactTerm {
     /// `Ok(true)` accepts the step, `Ok(false)` means the term changed
     /// (e.g. re-paired) and the iterations continue; `Err` fails the step.
     fn accept(&mut self, numbering: &DofNumbering, u: &[f64]) -> Result<bool, String>;
+    /// After each linear solve: may replace the increment. The default
+    /// keeps it.
+    fn correct(&mut self, _c: IncrementCorrection) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// One row of the Newton table.
@@ -204,6 +231,8 @@ pub struct Engine {
     resid: Vec<f64>,
     /// Contact forces of the last iteration (full).
     cforce: Vec<f64>,
+    /// Of those, the part kept out of the right-hand side (full).
+    excluded: Vec<f64>,
     prev_term: Vec<f64>,
     work: Vec<f64>,
     rhs: Vec<f64>,
@@ -237,6 +266,7 @@ impl Engine {
             steps_done: 0,
             resid: vec![0.0; nfull],
             cforce: vec![0.0; nfull],
+            excluded: vec![0.0; nfull],
             prev_term: vec![0.0; nfull],
             work: vec![0.0; nfull],
             rhs: vec![0.0; neq],
@@ -393,6 +423,7 @@ impl Engine {
             }
             if let Some(c) = contact.as_deref_mut() {
                 self.cforce.iter_mut().for_each(|v| *v = 0.0);
+                self.excluded.iter_mut().for_each(|v| *v = 0.0);
                 c.add(ContactIteration {
                     numbering: nb,
                     u: &self.trial.motion.u,
@@ -400,6 +431,8 @@ impl Engine {
                     force: &mut self.cforce,
                     matrix: reassemble.then_some(&mut self.matrix),
                     resi_glob_rela: last_rela,
+                    rhs_excluded: &mut self.excluded,
+                    iteration: it,
                 })
                 .map_err(StepFailure::Contact)?;
             }
@@ -468,11 +501,21 @@ impl Engine {
             }
             let nb = &self.asm.numbering;
             for (e, &f) in nb.free.iter().enumerate() {
-                self.rhs[e] = -self.resid[f];
+                self.rhs[e] = -(self.resid[f] - self.excluded[f]);
             }
             self.lu
                 .solve(&mut self.rhs)
                 .map_err(|e| StepFailure::Singular(e.to_string()))?;
+            if let Some(c) = contact.as_deref_mut() {
+                c.correct(IncrementCorrection {
+                    numbering: nb,
+                    u: &self.trial.motion.u,
+                    delta: &mut self.rhs,
+                    solver: &self.lu,
+                    iteration: it,
+                })
+                .map_err(StepFailure::Contact)?;
+            }
             self.du.iter_mut().for_each(|v| *v = 0.0);
             for (e, &f) in nb.free.iter().enumerate() {
                 self.du[f] = self.rhs[e];

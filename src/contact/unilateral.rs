@@ -1,0 +1,520 @@
+//! Unilateral linear conditions (`DEFI_CONTACT` with
+//! `FORMULATION='LIAISON_UNIL'`): one inequality Σ_k a_k(t) u_k ≤ c(t, X)
+//! per (zone, node), no pairing, fixed coefficients
+//! (shared/docs/notes/liaison-unil.md, semantics.md §6.5).
+//!
+//! This module is pure algebra on the equations of the linear system: the
+//! definition ([`UnilDef`]), its evaluation at an instant ([`Row`]), the
+//! primal active-set method of code_aster's `algocu` ([`active_set`]) and
+//! the penalised force ([`penalty`]). The Newton loop drives them through
+//! `nonlinear::unilateral`.
+
+use crate::post::function::Function;
+
+/// `ALGO_CONT` of the zones (the same in every zone).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum UnilAlgo {
+    /// `'CONTRAINTE'`: exact conditions by the active set on the Schur
+    /// complement.
+    ActiveSet,
+    /// `'PENALISATION'`: force COEF_PENA × violation and its tangent.
+    Penalty,
+}
+
+/// One `ZONE` occurrence, resolved on the mesh and the model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnilZone {
+    /// Nodes of the zone, ascending, duplicates and SANS_GROUP_NO removed.
+    pub nodes: Vec<usize>,
+    /// (component index in the node's dofs, COEF_MULT), NOM_CMP order.
+    pub components: Vec<(usize, Function)>,
+    pub coef_impo: Function,
+    /// COEF_PENA (PENALISATION only).
+    pub coef_pena: Option<f64>,
+}
+
+/// One link: a (zone, node) pair. A node in two zones gives two
+/// independent links, as in code_aster.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnilLink {
+    pub zone: usize,
+    pub node: usize,
+    /// Initial coordinates of the node (COEF_IMPO may depend on them).
+    pub coords: [f64; 3],
+}
+
+/// A checked LIAISON_UNIL definition.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnilDef {
+    pub algo: UnilAlgo,
+    pub zones: Vec<UnilZone>,
+    /// Zones in keyword order, nodes ascending in each.
+    pub links: Vec<UnilLink>,
+}
+
+/// Link i at one instant: A_i on the equations and c_i.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// (equation, coefficient).
+    pub entries: Vec<(usize, f64)>,
+    pub c: f64,
+}
+
+impl Row {
+    pub fn dot(&self, x: &[f64]) -> f64 {
+        self.entries.iter().map(|&(e, a)| a * x[e]).sum()
+    }
+
+    /// y += s Aᵀ.
+    pub fn add_transpose(&self, s: f64, y: &mut [f64]) {
+        for &(e, a) in &self.entries {
+            y[e] += s * a;
+        }
+    }
+}
+
+/// COEF_MULT takes INST only (code_aster evaluates it with that single
+/// parameter: a function of X fails).
+pub fn eval_coef_mult(f: &Function, inst: f64) -> Result<f64, String> {
+    match f.para.as_str() {
+        "TOUTPARA" | "INST" => f.eval(inst),
+        other => Err(format!(
+            "COEF_MULT is evaluated with the parameter INST only; the function of {other} cannot be evaluated"
+        )),
+    }
+}
+
+/// COEF_IMPO takes INST and the initial X, Y, Z of the node.
+pub fn eval_coef_impo(f: &Function, inst: f64, x: [f64; 3]) -> Result<f64, String> {
+    let v = match f.para.as_str() {
+        "TOUTPARA" | "INST" => inst,
+        "X" => x[0],
+        "Y" => x[1],
+        "Z" => x[2],
+        other => {
+            return Err(format!(
+                "COEF_IMPO is evaluated with INST, X, Y, Z; the function of {other} cannot be evaluated"
+            ))
+        }
+    };
+    f.eval(v)
+}
+
+impl UnilDef {
+    /// The rows of every link at instant `t`, on the equations `eq` (full
+    /// dof → equation, `None` for a dof without equation) of a numbering
+    /// with `ndpn` components per node.
+    pub fn rows(
+        &self,
+        t: f64,
+        ndpn: usize,
+        eq: impl Fn(usize) -> Option<usize>,
+    ) -> Result<Vec<Row>, String> {
+        self.links
+            .iter()
+            .map(|l| {
+                let z = &self.zones[l.zone];
+                let mut entries = Vec::with_capacity(z.components.len());
+                for (k, f) in &z.components {
+                    let a = eval_coef_mult(f, t)?;
+                    let full = l.node * ndpn + k;
+                    let Some(e) = eq(full) else {
+                        return Err(format!(
+                            "the unilateral condition at node {} acts on a component imposed by DDL_IMPO (or outside the model): not supported",
+                            l.node + 1
+                        ));
+                    };
+                    entries.push((e, a));
+                }
+                let c = eval_coef_impo(&z.coef_impo, t, l.coords)?;
+                Ok(Row { entries, c })
+            })
+            .collect()
+    }
+}
+
+/// Why the active set failed (code_aster's codes 1 and 2, events
+/// ERRE_CTD1 / ERRE_CTD2: the step may be cut).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ActiveSetFailure {
+    /// More than 2L + 1 passes without convergence (MECANONLINE9_5).
+    Cycling { passes: usize, links: usize },
+    /// The Schur complement of the active links is singular (MECANONLINE9_6).
+    Singular { link: usize },
+    /// A solve with the iteration matrix failed.
+    Solve(String),
+}
+
+impl std::fmt::Display for ActiveSetFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ActiveSetFailure::Cycling { passes, links } => write!(
+                f,
+                "the active-set method of LIAISON_UNIL did not converge in {passes} passes (limit 2 x {links} links + 1): the active set cycles (failure in the discrete contact treatment, MECANONLINE9_5)"
+            ),
+            ActiveSetFailure::Singular { link } => write!(
+                f,
+                "the contact matrix of LIAISON_UNIL is singular at link {} (redundant or blocked conditions, MECANONLINE9_6)",
+                link + 1
+            ),
+            ActiveSetFailure::Solve(m) => write!(f, "LIAISON_UNIL: solve with the iteration matrix: {m}"),
+        }
+    }
+}
+
+/// What a converged active-set call found.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ActiveSetResult {
+    /// Non-converging passes (code_aster's counter at convergence).
+    pub passes: usize,
+    /// Active links in the order of J and their multipliers (≥ 0).
+    pub active: Vec<usize>,
+    pub mu: Vec<f64>,
+}
+
+/// Absolute threshold of the step-length test (code_aster's r8prem).
+const EPS: f64 = f64::EPSILON;
+
+/// code_aster's `algocu`: given the unconstrained increment δ⁰ = C⁻¹r
+/// (`delta` on entry) and the pseudo-gaps `gaps` = c − A u, finds the
+/// increment δ and multipliers μ ≥ 0 with C δ + Aᵀμ = r, g − Aδ ≥ 0,
+/// μ·(g − Aδ) = 0, by the primal active-set method on the Schur
+/// complement A_J C⁻¹ A_Jᵀ (notation of liaison-unil.md §4). `solve`
+/// solves with the factorised C in place (one factorisation, one solve per
+/// link that enters the set). `zero_set` marks links once dropped for a
+/// zero row of the Schur complement: they are kept out of the step-length
+/// test for the rest of the run, as code_aster never resets that set.
+///
+/// On success `delta` holds δ and `gaps` the gaps at u + δ.
+pub fn active_set(
+    rows: &[Row],
+    gaps: &mut [f64],
+    delta: &mut [f64],
+    solve: &mut dyn FnMut(&mut [f64]) -> Result<(), String>,
+    zero_set: &mut [bool],
+) -> Result<ActiveSetResult, ActiveSetFailure> {
+    let nl = rows.len();
+    let n = delta.len();
+    let d0 = delta.to_vec();
+    let a_d0: Vec<f64> = rows.iter().map(|r| r.dot(&d0)).collect();
+    // Initial set: the links δ⁰ violates (strictly), increasing order.
+    let mut set: Vec<usize> = (0..nl).filter(|&i| gaps[i] - a_d0[i] < 0.0).collect();
+    let mut columns: Vec<Option<Vec<f64>>> = vec![None; nl];
+    let mut v = vec![0.0; n];
+    let mut d = vec![0.0; n];
+    let mut mu: Vec<f64> = Vec::new();
+    let mut h_max: f64 = 0.0;
+    // Rows of the Schur complement from this position of J on are new.
+    let mut first_new = 0usize;
+    let mut passes = 0usize;
+    loop {
+        let mut dropped = false;
+        if set.is_empty() {
+            mu.clear();
+            for k in 0..n {
+                d[k] = d0[k] - v[k];
+            }
+        } else {
+            for &j in &set {
+                if columns[j].is_none() {
+                    let mut w = vec![0.0; n];
+                    rows[j].add_transpose(1.0, &mut w);
+                    solve(&mut w).map_err(ActiveSetFailure::Solve)?;
+                    columns[j] = Some(w);
+                }
+            }
+            let m = set.len();
+            // S = A_J C⁻¹ A_Jᵀ (code_aster factorises H = −S).
+            let mut s = vec![0.0; m * m];
+            for l in 0..m {
+                for c in 0..=l {
+                    let w = columns[set[c]].as_ref().expect("computed above");
+                    let h = rows[set[l]].dot(w);
+                    s[l * m + c] = h;
+                    s[c * m + l] = h;
+                    if l >= first_new {
+                        h_max = h_max.max(h.abs());
+                    }
+                }
+            }
+            // Zero-row test on the new rows: the first row negligible
+            // against the largest entry leaves J for the zero set.
+            for l in first_new..m {
+                if (0..=l).all(|c| s[l * m + c].abs() < 1e-8 * h_max) {
+                    let link = set.remove(l);
+                    zero_set[link] = true;
+                    first_new = l;
+                    dropped = true;
+                    break;
+                }
+            }
+            if !dropped {
+                first_new = m;
+                let rhs: Vec<f64> = set.iter().map(|&j| a_d0[j] - gaps[j]).collect();
+                mu = ldlt_solve(&mut s, m, &rhs).map_err(|l| ActiveSetFailure::Singular {
+                    link: set[l],
+                })?;
+                for k in 0..n {
+                    d[k] = d0[k] - v[k];
+                }
+                for (p, &j) in set.iter().enumerate() {
+                    let w = columns[j].as_ref().expect("computed above");
+                    for k in 0..n {
+                        d[k] -= mu[p] * w[k];
+                    }
+                }
+            }
+        }
+        if !dropped {
+            // Step length: the first inactive link the direction reaches.
+            let mut rho = 1.0;
+            let mut entering = None;
+            if set.len() < nl {
+                let mut best = f64::INFINITY;
+                for i in 0..nl {
+                    if zero_set[i] || set.contains(&i) {
+                        continue;
+                    }
+                    let alpha = rows[i].dot(&d);
+                    if alpha > EPS {
+                        let ratio = (gaps[i] - rows[i].dot(&v)) / alpha;
+                        if ratio < best {
+                            best = ratio;
+                            entering = Some(i);
+                        }
+                    }
+                }
+                if entering.is_some() {
+                    rho = best;
+                }
+            }
+            let step = rho.min(1.0);
+            for k in 0..n {
+                v[k] += step * d[k];
+            }
+            if rho < 1.0 {
+                set.push(entering.expect("rho < 1 has a minimiser"));
+            } else if set.is_empty() {
+                break;
+            } else {
+                let (p, &m) = mu
+                    .iter()
+                    .enumerate()
+                    .min_by(|a, b| a.1.total_cmp(b.1))
+                    .expect("J is not empty");
+                if m >= 0.0 {
+                    break;
+                }
+                set.remove(p);
+                mu.remove(p);
+                first_new = first_new.min(p);
+            }
+        }
+        passes += 1;
+        if passes > 2 * nl + 1 {
+            return Err(ActiveSetFailure::Cycling { passes, links: nl });
+        }
+    }
+    for (i, r) in rows.iter().enumerate() {
+        gaps[i] -= r.dot(&v);
+    }
+    delta.copy_from_slice(&v);
+    Ok(ActiveSetResult {
+        passes,
+        active: set,
+        mu,
+    })
+}
+
+/// Solves S x = b by LDLᵀ without pivoting (S symmetric, row-major, m×m,
+/// overwritten). A pivot below 1/r8gaem or a row that loses 8 digits
+/// (original diagonal / pivot ≥ 1e8) is singular, as code_aster's `tldlg3`
+/// decides; the error is the position of that row.
+fn ldlt_solve(s: &mut [f64], m: usize, b: &[f64]) -> Result<Vec<f64>, usize> {
+    let diag: Vec<f64> = (0..m).map(|i| s[i * m + i]).collect();
+    for j in 0..m {
+        for k in 0..j {
+            let ljk = s[j * m + k];
+            s[j * m + j] -= ljk * ljk * s[k * m + k];
+        }
+        let p = s[j * m + j];
+        if p.abs() < 1.0 / f64::MAX || (diag[j] / p).abs() >= 1e8 || !p.is_finite() {
+            return Err(j);
+        }
+        for i in j + 1..m {
+            let mut x = s[i * m + j];
+            for k in 0..j {
+                x -= s[i * m + k] * s[j * m + k] * s[k * m + k];
+            }
+            s[i * m + j] = x / p;
+        }
+    }
+    let mut x = b.to_vec();
+    for i in 0..m {
+        for k in 0..i {
+            x[i] -= s[i * m + k] * x[k];
+        }
+    }
+    for i in 0..m {
+        x[i] /= s[i * m + i];
+    }
+    for i in (0..m).rev() {
+        for k in i + 1..m {
+            x[i] -= s[k * m + i] * x[k];
+        }
+    }
+    Ok(x)
+}
+
+/// The penalised force of link i at displacement gaps g_i = c_i − A_i u:
+/// λ_i = −E_i g_i when g_i < ε (active), 0 otherwise (code_aster's
+/// `algocup`, absolute threshold ε = r8prem).
+pub fn penalty(gap: f64, e: f64) -> Option<f64> {
+    (gap < EPS).then(|| -e * gap)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Dense 2×2 SPD solver for the algebraic cases of liaison-unil.md §9.1.
+    fn solver(c: [[f64; 2]; 2]) -> impl FnMut(&mut [f64]) -> Result<(), String> {
+        move |b: &mut [f64]| {
+            let det = c[0][0] * c[1][1] - c[0][1] * c[1][0];
+            let x0 = (c[1][1] * b[0] - c[0][1] * b[1]) / det;
+            let x1 = (c[0][0] * b[1] - c[1][0] * b[0]) / det;
+            b[0] = x0;
+            b[1] = x1;
+            Ok(())
+        }
+    }
+
+    fn floors() -> Vec<Row> {
+        vec![
+            Row {
+                entries: vec![(0, -1.0)],
+                c: 0.0,
+            },
+            Row {
+                entries: vec![(1, -1.0)],
+                c: 0.0,
+            },
+        ]
+    }
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-12 * (1.0 + b.abs())
+    }
+
+    /// §9.1 (a): link 2 enters through a step length ρ = 0.2 < 1.
+    #[test]
+    fn addition_through_step_length() {
+        let c = [[2.0, 1.0], [1.0, 2.0]];
+        let mut solve = solver(c);
+        let mut delta = vec![-3.0, -1.0];
+        solve(&mut delta).unwrap();
+        assert!(close(delta[0], -5.0 / 3.0) && close(delta[1], 1.0 / 3.0));
+        let mut gaps = vec![0.0, 0.1];
+        let mut zero = vec![false; 2];
+        let r = active_set(&floors(), &mut gaps, &mut delta, &mut solve, &mut zero).unwrap();
+        assert_eq!(r.active, vec![0, 1]);
+        assert!(close(r.mu[0], 2.9) && close(r.mu[1], 0.8), "{r:?}");
+        assert!(close(delta[0], 0.0) && close(delta[1], -0.1), "{delta:?}");
+        assert!(gaps.iter().all(|g| g.abs() < 1e-14));
+        assert_eq!(r.passes, 1);
+    }
+
+    /// §9.1 (b): link 2 leaves because its multiplier is negative.
+    #[test]
+    fn removal_through_negative_multiplier() {
+        let c = [[2.0, -1.0], [-1.0, 1.0]];
+        let mut solve = solver(c);
+        let mut delta = vec![-3.0, 0.0];
+        solve(&mut delta).unwrap();
+        assert!(close(delta[0], -3.0) && close(delta[1], -3.0));
+        let mut gaps = vec![1.0, 2.0];
+        let mut zero = vec![false; 2];
+        let r = active_set(&floors(), &mut gaps, &mut delta, &mut solve, &mut zero).unwrap();
+        assert_eq!(r.active, vec![0]);
+        assert!(close(r.mu[0], 2.0));
+        assert!(close(delta[0], -1.0) && close(delta[1], -1.0), "{delta:?}");
+        assert!(close(gaps[0], 0.0) && close(gaps[1], 1.0));
+        assert_eq!(r.passes, 1);
+    }
+
+    /// Two identical active links make the Schur complement singular.
+    #[test]
+    fn duplicate_links_are_singular() {
+        let rows = vec![
+            Row {
+                entries: vec![(0, -1.0)],
+                c: 0.0,
+            },
+            Row {
+                entries: vec![(0, -1.0)],
+                c: 0.0,
+            },
+        ];
+        let mut solve = solver([[1.0, 0.0], [0.0, 1.0]]);
+        let mut delta = vec![-1.0, 0.0];
+        let mut gaps = vec![0.0, 0.0];
+        let mut zero = vec![false; 2];
+        let r = active_set(&rows, &mut gaps, &mut delta, &mut solve, &mut zero);
+        assert_eq!(r, Err(ActiveSetFailure::Singular { link: 1 }));
+    }
+
+    /// No violated link: δ⁰ is returned untouched in zero passes.
+    #[test]
+    fn free_increment_is_kept() {
+        let mut solve = solver([[1.0, 0.0], [0.0, 1.0]]);
+        let mut delta = vec![0.5, 0.25];
+        let mut gaps = vec![0.0, 0.0];
+        let mut zero = vec![false; 2];
+        let r = active_set(&floors(), &mut gaps, &mut delta, &mut solve, &mut zero).unwrap();
+        assert_eq!((r.passes, r.active.len()), (0, 0));
+        assert_eq!(delta, vec![0.5, 0.25]);
+        assert_eq!(gaps, vec![0.5, 0.25]);
+    }
+
+    /// The cycling guard. With a symmetric positive definite C the method
+    /// is a primal active set of a strictly convex QP and terminates; an
+    /// indefinite C (never produced by the elements here, hence this
+    /// algebraic case) makes the only link's multiplier negative whenever
+    /// it is active, while the step length brings it back each time: the
+    /// (2L + 2)-th pass is the failure, with code_aster's message.
+    #[test]
+    fn cycling_stops_at_the_pass_limit() {
+        let mut solve = solver([[-1.0, 0.5], [0.5, 2.0]]);
+        let mut delta = vec![-1.0, -1.0];
+        let mut gaps = vec![0.0];
+        let mut zero = vec![false];
+        let rows = vec![floors().remove(0)];
+        let r = active_set(&rows, &mut gaps, &mut delta, &mut solve, &mut zero);
+        assert_eq!(
+            r,
+            Err(ActiveSetFailure::Cycling {
+                passes: 4,
+                links: 1
+            })
+        );
+        let msg = r.unwrap_err().to_string();
+        assert!(msg.contains("did not converge in 4 passes") && msg.contains("MECANONLINE9_5"));
+        // The increment and the gaps are left as they were.
+        assert_eq!((delta, gaps), (vec![-1.0, -1.0], vec![0.0]));
+    }
+
+    #[test]
+    fn penalty_force_is_active_only_on_violation() {
+        assert_eq!(penalty(1e-3, 1e6), None);
+        assert_eq!(penalty(-1e-3, 1e6), Some(1e3));
+    }
+
+    #[test]
+    fn coefficient_parameters() {
+        let fx = Function::new("X", "TOUTRESU", vec![0.0, 1.0], vec![0.0, 2.0]).unwrap();
+        assert!(eval_coef_mult(&fx, 0.5).is_err());
+        assert_eq!(eval_coef_impo(&fx, 9.0, [0.5, 0.0, 0.0]).unwrap(), 1.0);
+        let k = Function::constant(-1.0, "TOUTRESU");
+        assert_eq!(eval_coef_mult(&k, 3.0).unwrap(), -1.0);
+    }
+}

@@ -1,0 +1,206 @@
+//! LIAISON_UNIL in the Newton loop: the [`ContactTerm`] that applies the
+//! unilateral conditions of `contact::unilateral` step after step, as
+//! code_aster's `nmunil`/`algocu`/`algocup` do (liaison-unil.md §3-§5).
+//!
+//! Active set (`'CONTRAINTE'`): after every linear solve, the prediction
+//! included, the unconstrained increment δ⁰ is replaced by the increment
+//! of the active-set problem C δ + Aᵀμ = r, g − Aδ ≥ 0, μ ≥ 0, with r the
+//! right-hand side *without* the unilateral force, so that μ is the total
+//! multiplier, recomputed from scratch at each iteration. The gaps are
+//! taken at iteration 0 from the displacement at the start of the
+//! iterations, then updated by each corrected increment. The force Aᵀμ
+//! enters the convergence residual and the RESI_GLOB_RELA denominator.
+//!
+//! Penalty (`'PENALISATION'`): at each correction the force E·max(0, −g)
+//! and the tangent E AᵀA are taken at the current iterate; the prediction
+//! uses the force of the last iteration of the previous step and no
+//! penalty matrix.
+
+use super::dofs::{DofNumbering, NONE};
+use super::newton::{ContactIteration, ContactTerm, IncrementCorrection};
+use crate::contact::unilateral::{active_set, penalty, Row, UnilAlgo, UnilDef};
+
+/// Counters of a computation.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct UnilStats {
+    /// Active-set calls (one per linear solve).
+    pub calls: usize,
+    /// Passes of those calls (converging passes included).
+    pub passes: usize,
+    /// The most passes of one call.
+    pub max_passes: usize,
+    /// Links active (or penetrating) at the last converged step.
+    pub active: usize,
+}
+
+/// The unilateral term of one DYNA_NON_LINE computation.
+pub struct UnilateralContact {
+    pub def: UnilDef,
+    ndpn: usize,
+    rows: Vec<Row>,
+    /// Why the coefficients could not be evaluated at this step's end.
+    row_error: Option<String>,
+    /// Pseudo-gaps c − A u of the active set (None before iteration 0).
+    gaps: Option<Vec<f64>>,
+    /// Aᵀμ (active set) or Σ λ Aᵀ (penalty) of the last iteration, full.
+    force: Vec<f64>,
+    /// The penalty force of the last converged step (the prediction's).
+    committed_force: Vec<f64>,
+    /// Links never to be tested again by the step length (zero rows).
+    zero_set: Vec<bool>,
+    active_now: usize,
+    pub stats: UnilStats,
+}
+
+impl UnilateralContact {
+    pub fn new(def: UnilDef, numbering: &DofNumbering) -> Self {
+        let nl = def.links.len();
+        let n = numbering.nfull();
+        UnilateralContact {
+            def,
+            ndpn: numbering.ndpn,
+            rows: Vec::new(),
+            row_error: None,
+            gaps: None,
+            force: vec![0.0; n],
+            committed_force: vec![0.0; n],
+            zero_set: vec![false; nl],
+            active_now: 0,
+            stats: UnilStats::default(),
+        }
+    }
+
+    /// Accepts the last step: its force is the next prediction's.
+    pub fn commit(&mut self) {
+        self.committed_force.clone_from(&self.force);
+        self.stats.active = self.active_now;
+    }
+
+    /// The unilateral force of the last iteration (full, on the
+    /// internal-force side: the reaction on the structure is its opposite).
+    pub fn force(&self) -> &[f64] {
+        &self.force
+    }
+
+    fn full_force(&mut self, numbering: &DofNumbering, weights: &[(usize, f64)]) {
+        self.force.iter_mut().for_each(|v| *v = 0.0);
+        let mut eqf = vec![0.0; numbering.neq()];
+        for &(i, s) in weights {
+            self.rows[i].add_transpose(s, &mut eqf);
+        }
+        for (e, &f) in numbering.free.iter().enumerate() {
+            self.force[f] = eqf[e];
+        }
+    }
+}
+
+impl ContactTerm for UnilateralContact {
+    fn begin_step(&mut self, numbering: &DofNumbering, _u_start: &[f64], t: f64, dt: f64) {
+        // Coefficients frozen at the end of the step for the whole step.
+        let eq = |f: usize| (numbering.eq[f] != NONE).then(|| numbering.eq[f]);
+        match self.def.rows(t + dt, self.ndpn, eq) {
+            Ok(r) => {
+                self.rows = r;
+                self.row_error = None;
+            }
+            Err(e) => {
+                self.rows.clear();
+                self.row_error = Some(format!("LIAISON_UNIL at INST = {:e}: {e}", t + dt));
+            }
+        }
+        self.gaps = None;
+    }
+
+    fn pattern_entries(&self) -> &[(usize, usize)] {
+        // A link couples the components of one node, already coupled by
+        // any element holding it.
+        &[]
+    }
+
+    fn add(&mut self, it: ContactIteration) -> Result<(), String> {
+        if let Some(e) = &self.row_error {
+            return Err(e.clone());
+        }
+        match self.def.algo {
+            UnilAlgo::ActiveSet => {
+                if it.iteration == 0 {
+                    return Ok(());
+                }
+                for (f, &v) in self.force.iter().enumerate() {
+                    if v != 0.0 {
+                        it.residual[f] += v;
+                        it.force[f] += v;
+                        it.rhs_excluded[f] += v;
+                    }
+                }
+            }
+            UnilAlgo::Penalty => {
+                if it.iteration == 0 {
+                    self.force.clone_from(&self.committed_force);
+                } else {
+                    let nb = it.numbering;
+                    let mut ueq = vec![0.0; nb.neq()];
+                    for (e, &f) in nb.free.iter().enumerate() {
+                        ueq[e] = it.u[f];
+                    }
+                    let mut weights = Vec::new();
+                    let mut matrix = it.matrix;
+                    for (i, row) in self.rows.iter().enumerate() {
+                        let z = self.def.links[i].zone;
+                        let e = self.def.zones[z].coef_pena.unwrap_or(0.0);
+                        let gap = row.c - row.dot(&ueq);
+                        if let Some(lambda) = penalty(gap, e) {
+                            weights.push((i, lambda));
+                            if let Some(m) = matrix.as_deref_mut() {
+                                for &(a, ca) in &row.entries {
+                                    for &(b, cb) in &row.entries {
+                                        m.add(a, b, e * ca * cb);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    self.active_now = weights.len();
+                    self.full_force(nb, &weights);
+                }
+                for (f, &v) in self.force.iter().enumerate() {
+                    if v != 0.0 {
+                        it.residual[f] += v;
+                        it.force[f] += v;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn accept(&mut self, _numbering: &DofNumbering, _u: &[f64]) -> Result<bool, String> {
+        Ok(true)
+    }
+
+    fn correct(&mut self, c: IncrementCorrection) -> Result<(), String> {
+        if self.def.algo != UnilAlgo::ActiveSet {
+            return Ok(());
+        }
+        let nb = c.numbering;
+        let rows = &self.rows;
+        let gaps = self.gaps.get_or_insert_with(|| {
+            let mut ueq = vec![0.0; nb.neq()];
+            for (e, &f) in nb.free.iter().enumerate() {
+                ueq[e] = c.u[f];
+            }
+            rows.iter().map(|r| r.c - r.dot(&ueq)).collect()
+        });
+        let solver = c.solver;
+        let mut solve = |b: &mut [f64]| solver.solve(b).map_err(|e| e.to_string());
+        let r = active_set(rows, gaps, c.delta, &mut solve, &mut self.zero_set)
+            .map_err(|e| e.to_string())?;
+        self.stats.calls += 1;
+        self.stats.passes += r.passes + 1;
+        self.stats.max_passes = self.stats.max_passes.max(r.passes + 1);
+        self.active_now = r.active.len();
+        let weights: Vec<(usize, f64)> = r.active.iter().copied().zip(r.mu).collect();
+        self.full_force(nb, &weights);
+        Ok(())
+    }
+}
