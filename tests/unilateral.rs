@@ -31,7 +31,12 @@ LI2 = DEFI_LIST_INST(DEFI_LIST=_F(LIST_INST=L_INST), ECHEC=_F(EVENEMENT='ERREUR'
 ";
 
 fn insert_function(st: &mut Study, name: &str, f: Function) {
-    insert(st, name, ConceptType::Fonction, ConceptData::Function(Box::new(f)));
+    insert(
+        st,
+        name,
+        ConceptType::Fonction,
+        ConceptData::Function(Box::new(f)),
+    );
 }
 
 /// h0 − w·INST, linear on both sides.
@@ -64,7 +69,12 @@ RESU = CALC_CHAMP(reuse=RESU, RESULTAT=RESU, FORCE=('REAC_NODA',))"
         .map_err(|d| d.render(None))?
         .unwrap();
     insert(st, "UNIL", ConceptType::CharContact, data);
-    exec(st, "DYNA_NON_LINE", &args_of(&text, "DYNA_NON_LINE", 0), "RESU")?;
+    exec(
+        st,
+        "DYNA_NON_LINE",
+        &args_of(&text, "DYNA_NON_LINE", 0),
+        "RESU",
+    )?;
     exec(st, "CALC_CHAMP", &args_of(&text, "CALC_CHAMP", 0), "RESU")
 }
 
@@ -140,7 +150,11 @@ fn single_mass_impact_gives_the_exact_multiplier() {
     assert_eq!(val(r, 1, "DEPL", a1, "DY"), 0.0);
     assert!(rel(val(r, 1, "VITE", a1, "DY"), v) < 1e-9);
     let mu = val(r, 1, "REAC_NODA", a1, "DY");
-    assert!(rel(mu, 4.0 * m * v / dt) < 1e-9, "{mu} vs {}", 4.0 * m * v / dt);
+    assert!(
+        rel(mu, 4.0 * m * v / dt) < 1e-9,
+        "{mu} vs {}",
+        4.0 * m * v / dt
+    );
     assert!(rel(val(r, 2, "DEPL", a1, "DY"), 2.0 * v * dt) < 1e-8);
     assert!(rel(val(r, 2, "VITE", a1, "DY"), 3.0 * v) < 1e-8);
     assert!(val(r, 2, "REAC_NODA", a1, "DY").abs() < 1e-9 * m * v / dt);
@@ -174,7 +188,10 @@ fn spring_pushed_by_a_moving_floor_exact_and_penalised() {
     let mut k = None;
     for s in 1..=last {
         let t = r.steps[s].inst;
-        let (u, mu) = (val(r, s, "DEPL", a1, "DY"), val(r, s, "REAC_NODA", a1, "DY"));
+        let (u, mu) = (
+            val(r, s, "DEPL", a1, "DY"),
+            val(r, s, "REAC_NODA", a1, "DY"),
+        );
         let f = w * t - h0;
         if f <= 0.0 {
             assert!(mu.abs() < 1e-9, "t {t}: free node, reaction {mu}");
@@ -199,7 +216,11 @@ fn spring_pushed_by_a_moving_floor_exact_and_penalised() {
         let r = result(&st, "RESU");
         let mu = val(r, last, "REAC_NODA", a1, "DY");
         let err = (mu_exact - mu) / mu_exact;
-        assert!(rel(err, k / (k + e)) < 1e-4, "E = {e:e}: error {err} vs {}", k / (k + e));
+        assert!(
+            rel(err, k / (k + e)) < 1e-4,
+            "E = {e:e}: error {err} vs {}",
+            k / (k + e)
+        );
         errors.push(err);
     }
     for p in errors.windows(2) {
@@ -282,12 +303,18 @@ fn moving_floor_patch_satisfies_every_condition() {
             let mu = val(r, s, "REAC_NODA", n, "DY");
             assert!(gap >= -1e-12, "t {t} node {i}: gap {gap}");
             assert!(mu >= -tol, "t {t} node {i}: reaction {mu}");
-            assert!(mu <= tol || gap.abs() <= 1e-12, "t {t} node {i}: μ {mu} with gap {gap}");
+            assert!(
+                mu <= tol || gap.abs() <= 1e-12,
+                "t {t} node {i}: μ {mu} with gap {gap}"
+            );
             pattern.push(mu > tol);
         }
         patterns.insert(pattern);
     }
-    assert!(patterns.len() >= 2, "the contact pattern never changed: {patterns:?}");
+    assert!(
+        patterns.len() >= 2,
+        "the contact pattern never changed: {patterns:?}"
+    );
     // Some nodes whose floor has risen above their initial position are
     // nevertheless free: the pushed neighbours lifted them off their floor.
     let last = r.steps.len() - 1;
@@ -299,7 +326,10 @@ fn moving_floor_patch_satisfies_every_condition() {
             w * t - offsets[i] > 0.0 && gap > 1e-6 && val(r, last, "REAC_NODA", n, "DY") <= tol
         })
         .count();
-    assert!(lifted >= 1 && lifted < 5, "{lifted} nodes lifted by their neighbours");
+    assert!(
+        (1..5).contains(&lifted),
+        "{lifted} nodes lifted by their neighbours"
+    );
     let line = st
         .mess
         .lines()
@@ -323,7 +353,13 @@ fn failed_active_set_cuts_the_step_then_stops() {
     let (v, dt) = (1000.0, 1e-6);
     let (mut st, _, _) = single_node(1e-9, 8.93e-9, -v, linspace(0.0, 2.0 * dt, 2));
     insert_function(&mut st, "CI", Function::constant(0.0, "TOUTRESU"));
-    exec(&mut st, "DEFI_LIST_INST", &args_of(FUNCTIONS, "DEFI_LIST_INST", 1), "LI2").unwrap();
+    exec(
+        &mut st,
+        "DEFI_LIST_INST",
+        &args_of(FUNCTIONS, "DEFI_LIST_INST", 1),
+        "LI2",
+    )
+    .unwrap();
     let err = run(
         &mut st,
         &format!("{ONE_NODE}, {ONE_NODE}"),
@@ -333,7 +369,10 @@ fn failed_active_set_cuts_the_step_then_stops() {
     .map(|_| ())
     .map_err(|e| e.to_string());
     let e = err.expect_err("two identical links must fail");
-    assert!(e.contains("singular") && e.contains("MECANONLINE9_6"), "{e}");
+    assert!(
+        e.contains("singular") && e.contains("MECANONLINE9_6"),
+        "{e}"
+    );
     let cuts = st.mess.matches("the step is cut into 2").count();
     assert_eq!(cuts, 2, "{}", st.mess);
 }
@@ -437,9 +476,17 @@ fn no_cont_noeu_for_unilateral_conditions() {
     let full = format!(
         "{FUNCTIONS}\nUNIL = DEFI_CONTACT(MODELE=MO, FORMULATION='LIAISON_UNIL', ZONE=({ONE_NODE}))\nRESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, CONTACT=UNIL, COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), INCREMENT=_F(LIST_INST=L_INST), SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))\n{text}"
     );
-    let err = exec(&mut st, "POST_RELEVE_T", &args_of(&full, "POST_RELEVE_T", 0), "T")
-        .expect_err("CONT_NOEU must be refused");
-    assert!(err.contains("LIAISON_UNIL") && err.contains("REAC_NODA"), "{err}");
+    let err = exec(
+        &mut st,
+        "POST_RELEVE_T",
+        &args_of(&full, "POST_RELEVE_T", 0),
+        "T",
+    )
+    .expect_err("CONT_NOEU must be refused");
+    assert!(
+        err.contains("LIAISON_UNIL") && err.contains("REAC_NODA"),
+        "{err}"
+    );
 }
 
 /// Incompatibilities stated by code_aster are clear errors.

@@ -795,7 +795,8 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 }
             }
             if unilateral {
-                let def = crate::commands::liaison_unil::unil_def(study, cargs, &md.mesh, &md.model)?;
+                let def =
+                    crate::commands::liaison_unil::unil_def(study, cargs, &md.mesh, &md.model)?;
                 let o = args.fact("NEWTON").unwrap_or(args);
                 match def.algo {
                     crate::contact::unilateral::UnilAlgo::ActiveSet => {
@@ -830,19 +831,19 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 unil_def = Some(def);
                 None
             } else {
-            let def = crate::contact::ContactDef::from_args(cargs, &md.mesh)?;
-            if newton.reac_incr == 0 {
-                let o = args.fact("NEWTON").unwrap_or(args);
-                return Err(o.error(
+                let def = crate::contact::ContactDef::from_args(cargs, &md.mesh)?;
+                if newton.reac_incr == 0 {
+                    let o = args.fact("NEWTON").unwrap_or(args);
+                    return Err(o.error(
                     "REAC_INCR",
                     "REAC_INCR=0 is forbidden with penalised discrete contact or friction: the contact stiffness changes with the pairing (CONTACT_88)",
                 ));
-            }
-            if !newton.symmetrize {
-                notes.push("discrete contact: the stiffness is symmetrised (MATR_RIGI_SYME='OUI' implied, as code_aster)".into());
-            }
-            newton.symmetrize = true;
-            Some(def)
+                }
+                if !newton.symmetrize {
+                    notes.push("discrete contact: the stiffness is symmetrised (MATR_RIGI_SYME='OUI' implied, as code_aster)".into());
+                }
+                newton.symmetrize = true;
+                Some(def)
             }
         }
         None => None,

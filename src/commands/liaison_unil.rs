@@ -98,7 +98,10 @@ pub fn unil_def(
         let coef_pena = match this {
             UnilAlgo::Penalty => {
                 let e = z.real("COEF_PENA").ok_or_else(|| {
-                    z.error("COEF_PENA", "COEF_PENA is compulsory with ALGO_CONT='PENALISATION'")
+                    z.error(
+                        "COEF_PENA",
+                        "COEF_PENA is compulsory with ALGO_CONT='PENALISATION'",
+                    )
                 })?;
                 if !(e.is_finite() && e > 0.0) {
                     return Err(z.error("COEF_PENA", format!("COEF_PENA must be > 0, got {e:e}")));

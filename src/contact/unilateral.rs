@@ -239,21 +239,19 @@ pub fn active_set(
             }
             // Zero-row test on the new rows: the first row negligible
             // against the largest entry leaves J for the zero set.
-            for l in first_new..m {
-                if (0..=l).all(|c| s[l * m + c].abs() < 1e-8 * h_max) {
-                    let link = set.remove(l);
-                    zero_set[link] = true;
-                    first_new = l;
-                    dropped = true;
-                    break;
-                }
+            if let Some(l) =
+                (first_new..m).find(|&l| (0..=l).all(|c| s[l * m + c].abs() < 1e-8 * h_max))
+            {
+                let link = set.remove(l);
+                zero_set[link] = true;
+                first_new = l;
+                dropped = true;
             }
             if !dropped {
                 first_new = m;
                 let rhs: Vec<f64> = set.iter().map(|&j| a_d0[j] - gaps[j]).collect();
-                mu = ldlt_solve(&mut s, m, &rhs).map_err(|l| ActiveSetFailure::Singular {
-                    link: set[l],
-                })?;
+                mu = ldlt_solve(&mut s, m, &rhs)
+                    .map_err(|l| ActiveSetFailure::Singular { link: set[l] })?;
                 for k in 0..n {
                     d[k] = d0[k] - v[k];
                 }

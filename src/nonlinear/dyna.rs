@@ -363,26 +363,22 @@ pub fn run(
             (None, Some(u)) => Some(u),
             (None, None) => None,
         };
-        let outcome = engine.solve_step(
-            dt,
-            term,
-            &mut |rec: &IterationRecord, st: &State| {
-                if table {
-                    let mut line = format!(
-                        "      iter {:>2}  RESI_GLOB_RELA {:>10.3e}{}  RESI_GLOB_MAXI {:>10.3e}{}",
-                        rec.iteration,
-                        rec.resi_rela,
-                        if rec.swapped { "*" } else { " " },
-                        rec.resi_maxi,
-                        if rec.matrix_updated { "  matrix" } else { "" }
-                    );
-                    for s in suivi {
-                        line.push_str(&format!("  {:>14.6e}", s.evaluate(st, ndpn, &offsets)));
-                    }
-                    rows.push(line);
+        let outcome = engine.solve_step(dt, term, &mut |rec: &IterationRecord, st: &State| {
+            if table {
+                let mut line = format!(
+                    "      iter {:>2}  RESI_GLOB_RELA {:>10.3e}{}  RESI_GLOB_MAXI {:>10.3e}{}",
+                    rec.iteration,
+                    rec.resi_rela,
+                    if rec.swapped { "*" } else { " " },
+                    rec.resi_maxi,
+                    if rec.matrix_updated { "  matrix" } else { "" }
+                );
+                for s in suivi {
+                    line.push_str(&format!("  {:>14.6e}", s.evaluate(st, ndpn, &offsets)));
                 }
-            },
-        );
+                rows.push(line);
+            }
+        });
         for r in &rows {
             log(r);
         }

@@ -25,11 +25,11 @@ pub use behaviour::{BehaviourError, BehaviourField, CellLaw, Occurrence};
 pub use contact::DiscreteContact;
 pub use dofs::DofNumbering;
 pub use dyna::{ArchivePolicy, Reduce, RunSummary, Stopped, Suivi, SuiviField, TimeLoop};
-pub use unilateral::{UnilStats, UnilateralContact};
 pub use newton::{
-    ContactIteration, ContactTerm, IncrementCorrection, ConvergenceSettings, Engine, IterationRecord, NewtonSettings,
-    State, StepFailure, StepReport,
+    ContactIteration, ContactTerm, ConvergenceSettings, Engine, IncrementCorrection,
+    IterationRecord, NewtonSettings, State, StepFailure, StepReport,
 };
+pub use unilateral::{UnilStats, UnilateralContact};
 
 use crate::mesh::Mesh;
 use crate::model::{Material, MaterialField, MechLoad, Model};
