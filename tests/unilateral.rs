@@ -503,3 +503,53 @@ fn explicit_schemes_are_refused() {
     .expect_err("explicit scheme with LIAISON_UNIL");
     assert!(err.contains("MECANONLINE5_23"), "{err}");
 }
+
+/// DEFI_FONCTION gives COEF_IMPO as a function of INST: the floor of the
+/// spring test defined in the command language gives the node exactly on
+/// it; a bad VALE (odd count, decreasing abscissas) is a clear error.
+#[test]
+fn defi_fonction_gives_an_inst_dependent_floor() {
+    let text = "F1 = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0.5, 1., -0.5), PROL_GAUCHE='LINEAIRE', PROL_DROITE='LINEAIRE')
+F2 = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0.5, 1.))
+F3 = DEFI_FONCTION(NOM_PARA='X', VALE=(1., 0.5, 0., 1.))";
+    let (mut st, a1, _) = single_node(1e5, 1e-15, 0.0, linspace(0.0, 2.0, 20));
+    exec(
+        &mut st,
+        "DEFI_FONCTION",
+        &args_of(text, "DEFI_FONCTION", 0),
+        "F1",
+    )
+    .unwrap();
+    let f = match st.concepts.data("F1") {
+        Some(ConceptData::Function(f)) => (**f).clone(),
+        _ => panic!("F1 is not a function"),
+    };
+    assert_eq!(f.eval(1.5).unwrap(), -1.0);
+    insert_function(&mut st, "CI", f);
+    run(
+        &mut st,
+        ONE_NODE,
+        "SCHEMA='NEWMARK', BETA=0.25, GAMMA=0.5, FORMULATION='DEPLACEMENT'",
+        "INCREMENT=_F(LIST_INST=L_INST)",
+    )
+    .unwrap();
+    let r = result(&st, "RESU");
+    let last = r.steps.len() - 1;
+    assert!((val(r, last, "DEPL", a1, "DY") - 1.5).abs() < 1e-12);
+    let e = exec(
+        &mut st,
+        "DEFI_FONCTION",
+        &args_of(text, "DEFI_FONCTION", 1),
+        "F2",
+    )
+    .expect_err("odd VALE");
+    assert!(e.contains("even count"), "{e}");
+    let e = exec(
+        &mut st,
+        "DEFI_FONCTION",
+        &args_of(text, "DEFI_FONCTION", 2),
+        "F3",
+    )
+    .expect_err("decreasing abscissas");
+    assert!(e.contains("strictly increasing"), "{e}");
+}

@@ -24,6 +24,7 @@ pub mod crea_maillage;
 pub mod debut;
 pub mod defi_constante;
 pub mod defi_contact;
+pub mod defi_fonction;
 pub mod defi_group;
 pub mod defi_list_inst;
 pub mod defi_list_reel;
@@ -74,6 +75,7 @@ pub fn all() -> Vec<CommandDef> {
         debut::def(),
         defi_constante::def(),
         defi_contact::def(),
+        defi_fonction::def(),
         defi_group::def(),
         defi_list_inst::def(),
         defi_list_reel::def(),
