@@ -83,7 +83,7 @@ fn exec(_study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     }
     let (key, xs, ys) = if args.has("VALE") {
         let v = args.reals("VALE");
-        if v.len() % 2 != 0 {
+        if !v.len().is_multiple_of(2) {
             return Err(args.error(
                 "VALE",
                 format!(
