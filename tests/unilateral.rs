@@ -553,3 +553,39 @@ F3 = DEFI_FONCTION(NOM_PARA='X', VALE=(1., 0.5, 0., 1.))";
     .expect_err("decreasing abscissas");
     assert!(e.contains("strictly increasing"), "{e}");
 }
+
+/// Definition errors are located and say what is wrong: lengths of
+/// NOM_CMP and COEF_MULT (UNILATER_42), different ALGO_CONT (CONTACT3_4),
+/// a COEF_MULT of X (code_aster evaluates it with INST only), a condition
+/// on a component that DDL_IMPO imposes.
+#[test]
+fn definition_errors_are_clear() {
+    let schema = "SCHEMA='NEWMARK', BETA=0.25, GAMMA=0.5, FORMULATION='DEPLACEMENT'";
+    let inc = "INCREMENT=_F(LIST_INST=L_INST)";
+    let cases: [(&str, &str); 4] = [
+        (
+            "_F(GROUP_NO='A1', NOM_CMP=('DX', 'DY'), COEF_MULT=CM1, COEF_IMPO=CI)",
+            "same length",
+        ),
+        (
+            "_F(GROUP_NO='A1', NOM_CMP='DY', COEF_MULT=CM1, COEF_IMPO=CI), _F(GROUP_NO='A1', NOM_CMP='DY', COEF_MULT=CM1, COEF_IMPO=CI, ALGO_CONT='PENALISATION', COEF_PENA=1.E6)",
+            "same ALGO_CONT",
+        ),
+        (
+            "_F(GROUP_NO='A1', NOM_CMP='DY', COEF_MULT=CI2, COEF_IMPO=CI)",
+            "COEF_MULT is evaluated with the parameter INST only",
+        ),
+        (
+            "_F(GROUP_NO='A1', NOM_CMP='DX', COEF_MULT=CM1, COEF_IMPO=CI)",
+            "imposed by DDL_IMPO",
+        ),
+    ];
+    for (zones, want) in cases {
+        let (mut st, _, _) = single_node(1e-9, 8.93e-9, -1000.0, linspace(0.0, 1e-6, 1));
+        insert_function(&mut st, "CI", Function::constant(0.0, "TOUTRESU"));
+        let fx = Function::new("X", "TOUTRESU", vec![0.0, 1.0], vec![-1.0, -1.0]).unwrap();
+        insert_function(&mut st, "CI2", fx);
+        let e = run(&mut st, zones, schema, inc).expect_err(want);
+        assert!(e.contains(want), "{want}: {e}");
+    }
+}
