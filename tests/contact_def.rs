@@ -309,3 +309,41 @@ fn far_slave_nodes_stay_unpaired() {
     assert!(p.links.is_empty());
     assert_eq!(p.unpaired.len(), 5);
 }
+
+/// With ALGO_CONT='PENALISATION' every node of the slave cells is a slave
+/// node, the mid-side nodes of the QUAD8 (and TRIA6) faces of SZZ
+/// included, each with its own link: code_aster ties QUAD8 mid nodes to
+/// their edge only in the active-set discrete method (`quadco` turns the
+/// treatment off for CONT_PENA; docs/contact.md §2). Modelling H: SZZ
+/// holds QUAD8 and TRIA6 faces.
+#[test]
+fn penalised_contact_keeps_quad8_mid_nodes() {
+    use aster::mesh::CellType;
+    let m = mesh('H');
+    let def = ContactDef::from_args(&defi_contact("3D", SDNV103B), &m).unwrap();
+    let szz = &m.cell_groups["SZZ"];
+    assert!(szz.iter().any(|&c| m.cells[c].kind == CellType::Quad8));
+    let mut all = m.nodes_of_cells(szz);
+    all.sort_unstable();
+    all.dedup();
+    let mut mid: Vec<usize> = szz
+        .iter()
+        .flat_map(|&c| {
+            let cell = &m.cells[c];
+            cell.nodes[cell.kind.nvertices()..].to_vec()
+        })
+        .collect();
+    mid.sort_unstable();
+    mid.dedup();
+    assert!(!mid.is_empty());
+    let mut slaves = def.zones[0].slave_nodes.clone();
+    slaves.sort_unstable();
+    assert_eq!(slaves, all);
+    let p = pair(&def, &m, &vec![[0.0; 3]; m.nnodes()]);
+    for n in mid {
+        assert!(
+            p.links.iter().any(|l| l.slave == n),
+            "mid node {n} unlinked"
+        );
+    }
+}

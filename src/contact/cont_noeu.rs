@@ -157,6 +157,30 @@ impl ContactState {
             .fold(0.0, f64::max)
     }
 
+    /// `CONT_NOEU` before any step: the 30 components on every slave node,
+    /// all 0, absent elsewhere. code_aster creates its contact field this
+    /// way when the computation starts (`cfmxr0`) and fills it only in the
+    /// post-treatment of a converged step (`cfresu`), so the initial
+    /// instant (NUME_ORDRE 0) stores zeros, not the initial gaps: a
+    /// minimum of JEU over a computation (SDNV103 I) includes that 0.
+    pub fn cont_noeu_initial(&self, mesh_nnodes: usize) -> NodalField {
+        let mut f = NodalField::absent(
+            CONT_NOEU_COMPONENTS.iter().map(|s| s.to_string()).collect(),
+            mesh_nnodes,
+        );
+        let slaves = self
+            .links
+            .iter()
+            .map(|l| l.slave)
+            .chain(self.unpaired.iter().map(|&(_, n)| n));
+        for n in slaves {
+            for c in 0..CONT_NOEU_COMPONENTS.len() {
+                f.set(n, c, 0.0);
+            }
+        }
+        f
+    }
+
     /// `CONT_NOEU`: the 30 components on every slave node, absent
     /// elsewhere. As code_aster's discrete post-treatment:
     /// - every slave node starts with all components 0;

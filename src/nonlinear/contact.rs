@@ -34,6 +34,9 @@ pub struct DiscreteContact {
     pub committed: ContactState,
     /// Pairings made in total (for the log and the tests).
     pub pairings: usize,
+    /// Converged steps committed so far: before the first one CONT_NOEU
+    /// is code_aster's initial field (zeros on the slave nodes).
+    pub steps_committed: usize,
 }
 
 fn per_node(ndpn: usize, u: &[f64]) -> Vec<[f64; 3]> {
@@ -64,6 +67,7 @@ impl DiscreteContact {
             trial: ContactState::default(),
             committed: ContactState::default(),
             pairings: 0,
+            steps_committed: 0,
         };
         c.repair(numbering, u0);
         let u = c.u_start.clone();
@@ -119,11 +123,18 @@ impl DiscreteContact {
         let mut st = self.trial.clone();
         st.accumulate_percussion(Some(&self.committed), dt);
         self.committed = st;
+        self.steps_committed += 1;
     }
 
-    /// CONT_NOEU of the committed state.
+    /// CONT_NOEU of the committed state; at the initial instant (no step
+    /// committed yet) all its components are 0 on the slave nodes, as in
+    /// code_aster (`ContactState::cont_noeu_initial`).
     pub fn cont_noeu(&self) -> NodalField {
-        self.committed.cont_noeu(self.mesh.nnodes())
+        if self.steps_committed == 0 {
+            self.committed.cont_noeu_initial(self.mesh.nnodes())
+        } else {
+            self.committed.cont_noeu(self.mesh.nnodes())
+        }
     }
 }
 
