@@ -1,16 +1,24 @@
 //! Every study of comm/ that runs to FIN is run whole here, with every check
 //! OK (no NOOK, no SKIP), and its POST_RELEVE_T tables (as IMPR_TABLE
 //! prints them) are snapshotted so that any change in the numbers shows up
-//! in review. A study that stops on a `not implemented yet` error is listed
-//! in [`NOT_RUNNING_YET`]; a test checks that it still stops there, so that
-//! whoever makes it run moves it from that list to the `studies!` block.
+//! in review. The exceptions are listed here, in two lists: the studies
+//! that stop on a `not implemented yet` error ([`NOT_RUNNING_YET`], a test
+//! checks that they still stop there) and those that reach FIN with checks
+//! failing honestly, documented ([`FIN_WITH_NOOK`]). Whoever makes a study
+//! run with every check OK moves its letter to the `studies!` block.
 
 mod common;
 
 /// The studies that stop today on a `not implemented yet` error (the
 /// engine lacks a feature they use). Making one run: remove it from this
 /// list and add its line to the `studies!` block below.
-const NOT_RUNNING_YET: &[&str] = &["a", "e", "f", "g", "j", "k"];
+const NOT_RUNNING_YET: &[&str] = &["a", "f", "g", "j"];
+
+/// The studies that run to FIN with some check NOOK, for reasons their
+/// docs give (E, K: docs/contact.md §9). Their tables and verdicts are
+/// snapshotted by tests/sdnv103_unil_runs.rs, so a verdict that changes
+/// shows up there; once every check is OK, move the letter to `studies!`.
+const FIN_WITH_NOOK: &[&str] = &["e", "k"];
 
 fn run(m: &str) -> String {
     let run = common::run_study(&format!("comm/sdnv103{m}.comm"), &format!("sdnv103{m}_run"));
@@ -49,8 +57,7 @@ studies! {
     sdnv103i_tables => "i",
 }
 
-/// Every command file of comm/ is either run above or listed as not
-/// running yet, never both.
+/// Every command file of comm/ is in exactly one of the three lists.
 #[test]
 fn every_comm_study_is_run_or_listed() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("comm");
@@ -65,14 +72,16 @@ fn every_comm_study_is_run_or_listed() {
         .collect();
     found.sort();
     for m in &found {
-        let run = RUNNING.contains(&m.as_str());
-        let not = NOT_RUNNING_YET.contains(&m.as_str());
-        assert!(
-            run ^ not,
-            "comm/sdnv103{m}.comm must be in exactly one of studies! (runs) and NOT_RUNNING_YET (running: {run}, listed: {not})"
+        let lists = [RUNNING, NOT_RUNNING_YET, FIN_WITH_NOOK]
+            .iter()
+            .filter(|l| l.contains(&m.as_str()))
+            .count();
+        assert_eq!(
+            lists, 1,
+            "comm/sdnv103{m}.comm must be in exactly one of studies!, NOT_RUNNING_YET and FIN_WITH_NOOK"
         );
     }
-    for m in RUNNING.iter().chain(NOT_RUNNING_YET) {
+    for m in RUNNING.iter().chain(NOT_RUNNING_YET).chain(FIN_WITH_NOOK) {
         assert!(found.iter().any(|f| f == m), "no comm/sdnv103{m}.comm");
     }
 }
