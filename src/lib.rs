@@ -27,6 +27,7 @@ pub mod medio;
 pub mod mesh;
 pub mod model;
 pub mod nonlinear;
+pub mod plot;
 pub mod post;
 pub mod result;
 pub mod run;

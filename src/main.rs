@@ -94,6 +94,44 @@ enum Command {
         #[arg(long)]
         mesh: Option<String>,
     },
+    /// Draw a MED result file: the deformed mesh coloured by a field, or
+    /// curves over time.
+    ///
+    /// Without --history: the mesh at instant --inst (default: the last),
+    /// moved by --deform times the displacement DEPL (default 1, the true
+    /// shape), cells filled by --field (default: V1 of VARI_ELGA, the
+    /// cumulated plastic strain, where the file has it, else the norm of
+    /// DEPL), over the initial shape in grey, with a colour bar. A 3D mesh
+    /// is drawn by its skin seen in --plane (default xz: for the quarter
+    /// bar, its symmetry plane). With --history: curves over time of
+    /// nodal fields at one-node groups. Errors list what the file holds.
+    /// See docs/post.md.
+    Plot {
+        /// The MED result file (.rmed, .med), written by IMPR_RESU, code_aster or SALOME.
+        file: PathBuf,
+        /// Instant drawn (default: the last of the field).
+        #[arg(long, value_name = "T")]
+        inst: Option<f64>,
+        /// Field and component, e.g. VARI_ELGA:V1, DEPL:DY, DEPL:NORM.
+        #[arg(long, value_name = "NAME:COMPONENT")]
+        field: Option<String>,
+        /// Displacement magnification (0: initial shape).
+        #[arg(long, value_name = "SCALE")]
+        deform: Option<f64>,
+        /// Plane of the picture of a 3D mesh.
+        #[arg(long, value_parser = ["xy", "xz", "yz"])]
+        plane: Option<String>,
+        /// A curve over time, e.g. A1:DEPL:DY (repeat for several curves).
+        #[arg(long, value_name = "GROUP_NO:FIELD:COMPONENT")]
+        history: Vec<String>,
+        /// The mesh of the file (default: the first).
+        #[arg(long)]
+        mesh: Option<String>,
+        /// The PNG written (default: next to the result, <name>.png or
+        /// <name>_history.png).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Generate meshes.
     Mesh {
         #[command(subcommand)]
@@ -254,6 +292,120 @@ fn sweep(
     }
 }
 
+/// Options of `aster plot`, as given.
+struct PlotArgs {
+    file: PathBuf,
+    inst: Option<f64>,
+    field: Option<String>,
+    deform: Option<f64>,
+    plane: Option<String>,
+    history: Vec<String>,
+    mesh: Option<String>,
+    output: Option<PathBuf>,
+}
+
+fn plot(a: PlotArgs) -> i32 {
+    use aster::plot::{draw_history, draw_result, HistorySpec, PictureOptions, Plane, ResultData};
+    let field = match a.field.as_deref().map(|f| {
+        f.split_once(':')
+            .map(|(n, c)| (n.trim().to_string(), c.trim().to_string()))
+            .filter(|(n, c)| !n.is_empty() && !c.is_empty())
+    }) {
+        None => None,
+        Some(Some(f)) => Some(f),
+        Some(None) => {
+            eprintln!("error: --field expects NAME:COMPONENT, e.g. VARI_ELGA:V1 or DEPL:NORM");
+            return EXIT_USAGE;
+        }
+    };
+    let specs: Vec<HistorySpec> = match a.history.iter().map(|s| HistorySpec::parse(s)).collect() {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    if let Some(d) = a.deform {
+        if !d.is_finite() {
+            eprintln!("error: --deform must be a finite number");
+            return EXIT_USAGE;
+        }
+    }
+    if !specs.is_empty()
+        && (field.is_some() || a.inst.is_some() || a.deform.is_some() || a.plane.is_some())
+    {
+        eprintln!("error: --history draws curves over time; --field, --inst, --deform and --plane are for the picture of one instant");
+        return EXIT_USAGE;
+    }
+    if !a.file.is_file() {
+        eprintln!("error: {}: no such file", a.file.display());
+        return 1;
+    }
+    let start = std::time::Instant::now();
+    let data = match ResultData::read(&a.file, a.mesh.as_deref()) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 1;
+        }
+    };
+    let default_out = |suffix: &str| {
+        let stem = a
+            .file
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .unwrap_or_else(|| "result".into());
+        a.file.with_file_name(format!("{stem}{suffix}.png"))
+    };
+    if !specs.is_empty() {
+        let out = a.output.clone().unwrap_or_else(|| default_out("_history"));
+        return match draw_history(&data, &specs, &out) {
+            Ok(n) => {
+                println!(
+                    "{}: {} curves, {n} points ({:.2} s)",
+                    out.display(),
+                    specs.len(),
+                    start.elapsed().as_secs_f64()
+                );
+                0
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                1
+            }
+        };
+    }
+    let out = a.output.clone().unwrap_or_else(|| default_out(""));
+    let opts = PictureOptions {
+        field,
+        inst: a.inst,
+        deform: a.deform,
+        plane: a.plane.as_deref().and_then(Plane::parse),
+        ..PictureOptions::default()
+    };
+    match draw_result(&data, &opts, &out) {
+        Ok(r) => {
+            println!(
+                "{}: {} {} at t = {:e}, values {:e} .. {:e}, {} polygons, displacement x {} ({:.2} s)",
+                out.display(),
+                r.field,
+                r.component,
+                r.time,
+                r.range.0,
+                r.range.1,
+                r.faces,
+                r.deform,
+                start.elapsed().as_secs_f64()
+            );
+            0
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            1
+        }
+    }
+}
+
 fn parse_unit(s: &str) -> Result<(i64, PathBuf), String> {
     let (u, p) = s
         .split_once('=')
@@ -325,6 +477,25 @@ fn main() -> ExitCode {
                 }
             }
         },
+        Command::Plot {
+            file,
+            inst,
+            field,
+            deform,
+            plane,
+            history,
+            mesh,
+            output,
+        } => plot(PlotArgs {
+            file,
+            inst,
+            field,
+            deform,
+            plane,
+            history,
+            mesh,
+            output,
+        }),
         Command::Mesh {
             what:
                 MeshCommand::Taylor {

@@ -8,8 +8,10 @@
 //! (`MED_NO_PROFILE_INTERNAL` = every entity) holds `CO`, the values
 //! component-major. Gauss-point fields (SIEF_ELGA, VARI_ELGA) are
 //! `MAI.<TYP>` groups with `@GAU` naming a localization in `/GAUSS` and
-//! `@NGA` points per cell: the step walk below already sees them and skips
-//! them; adding them means a third [`Support`] kind plus the `/GAUSS` tree.
+//! `@NGA` points per cell. [`read_elem_fields`] skips them;
+//! [`read_cell_mean_fields`] reads them, and per-element-node values
+//! (`NOE.<TYP>`, ELNO), as their mean over each cell, which needs no
+//! `/GAUSS` tree: a picture coloured per cell is all it serves.
 
 use std::path::Path;
 
@@ -63,20 +65,26 @@ enum Support<'a> {
     Nodes(usize),
     /// Cells, grouped as stored: per type, the mesh indices of its cells.
     Cells(&'a [(CellType, Vec<usize>)]),
+    /// Cells as above, and blocks with several values per cell (Gauss
+    /// points, element nodes) reduced to their mean per cell.
+    CellMeans(&'a [(CellType, Vec<usize>)]),
 }
 
 impl Support<'_> {
     fn count(&self) -> usize {
         match self {
             Support::Nodes(n) => *n,
-            Support::Cells(b) => b.iter().map(|(_, ids)| ids.len()).sum(),
+            Support::Cells(b) | Support::CellMeans(b) => b.iter().map(|(_, ids)| ids.len()).sum(),
         }
     }
     fn what(&self) -> &'static str {
         match self {
             Support::Nodes(_) => "nodes",
-            Support::Cells(_) => "cells",
+            Support::Cells(_) | Support::CellMeans(_) => "cells",
         }
+    }
+    fn averages(&self) -> bool {
+        matches!(self, Support::CellMeans(_))
     }
 }
 
@@ -212,7 +220,7 @@ fn write_field(
                 let ids: Vec<usize> = (0..*n).collect();
                 write_block(ctx, &sg, "NOE", &ids, &s.values, nco)?;
             }
-            Support::Cells(blocks) => {
+            Support::Cells(blocks) | Support::CellMeans(blocks) => {
                 for (t, ids) in blocks.iter() {
                     write_block(
                         ctx,
@@ -289,6 +297,32 @@ pub fn read_elem_fields(path: &Path, mesh_name: Option<&str>) -> Result<Vec<Elem
     let blocks = write::type_blocks(&mesh);
     Ok(
         read_fields(ctx, &file, &mesh.name, &Support::Cells(&blocks))?
+            .into_iter()
+            .map(|(name, components, steps)| ElemField {
+                name,
+                components,
+                steps,
+            })
+            .collect(),
+    )
+}
+
+/// Every field with values on cells, one value per cell and component:
+/// cell-constant fields as they are, Gauss-point fields (SIEF_ELGA,
+/// VARI_ELGA as code_aster writes them) and per-element-node fields as
+/// the mean over each cell's points (NaN values left out of the mean).
+/// That is what a picture coloured per cell shows; the Gauss point
+/// positions (`/GAUSS`) are not needed for it and not read.
+pub fn read_cell_mean_fields(
+    path: &Path,
+    mesh_name: Option<&str>,
+) -> Result<Vec<ElemField>, MedError> {
+    let ctx = Ctx { path };
+    let file = h5util::open_read(path)?;
+    let mesh = read_mesh_from(ctx, &file, mesh_name)?;
+    let blocks = write::type_blocks(&mesh);
+    Ok(
+        read_fields(ctx, &file, &mesh.name, &Support::CellMeans(&blocks))?
             .into_iter()
             .map(|(name, components, steps)| ElemField {
                 name,
@@ -393,12 +427,17 @@ fn read_step_values(
             }
             Ok(Some(values))
         }
-        Support::Cells(blocks) => {
+        Support::Cells(blocks) | Support::CellMeans(blocks) => {
             let mut values = vec![f64::NAN; n * nco];
             let mut any = false;
             for ename in h5util::child_groups(ctx, sg, sw)? {
-                let Some(tname) = ename.strip_prefix("MAI.") else {
-                    continue;
+                let tname = match ename.strip_prefix("MAI.") {
+                    Some(t) => t,
+                    None if support.averages() => match ename.strip_prefix("NOE.") {
+                        Some(t) => t,
+                        None => continue,
+                    },
+                    None => continue,
                 };
                 let ew = format!("{sw} {ename}");
                 let t = CellType::from_med_name(tname)
@@ -421,8 +460,9 @@ fn read_step_values(
 }
 
 /// Reads one entity block into `values` at entities `ids`. Returns false
-/// for blocks of another kind (Gauss points, several values per entity),
-/// which are left for a future reader.
+/// for blocks of another kind (Gauss points, several values per entity)
+/// unless `support` averages them: MED stores those component-major, then
+/// entity by entity, the points of one entity together.
 fn read_block(
     ctx: Ctx,
     eg: &Group,
@@ -437,7 +477,7 @@ fn read_block(
     } else {
         String::new()
     };
-    if !gau.trim().is_empty() {
+    if !gau.trim().is_empty() && !support.averages() {
         return Ok(false);
     }
     let pfl = h5util::str_attr(ctx, eg, "PFL", ew)?;
@@ -451,9 +491,13 @@ fn read_block(
         .group(NO_PROFILE)
         .map_err(|_| ctx.inconsistent(format!("{ew}: no '{NO_PROFILE}' group")))?;
     let nga = h5util::opt_int_attr(ctx, &pg, "NGA", ew)?.unwrap_or(1);
-    if nga != 1 {
+    if nga != 1 && !support.averages() {
         return Ok(false);
     }
+    if !(1..=1000).contains(&nga) {
+        return Err(ctx.inconsistent(format!("{ew}: @NGA = {nga} values per entity")));
+    }
+    let nga = nga as usize;
     let nbr = h5util::int_attr(ctx, &pg, "NBR", ew)?;
     if nbr != ids.len() as i64 {
         return Err(ctx.inconsistent(format!(
@@ -466,9 +510,9 @@ fn read_block(
         .dataset("CO")
         .map_err(|_| ctx.inconsistent(format!("{ew}: no CO dataset")))?;
     let co = h5util::read_f64s(ctx, &co, &format!("{ew}/CO"))?;
-    if co.len() != ids.len() * nco {
+    if co.len() != ids.len() * nga * nco {
         return Err(ctx.inconsistent(format!(
-            "{ew}/CO has {} values, expected {} entities x {nco} components",
+            "{ew}/CO has {} values, expected {} entities x {nga} points x {nco} components",
             co.len(),
             ids.len()
         )));
@@ -476,7 +520,16 @@ fn read_block(
     let m = ids.len();
     for k in 0..nco {
         for (j, &i) in ids.iter().enumerate() {
-            values[i * nco + k] = co[k * m + j];
+            let at = (k * m + j) * nga;
+            let (sum, count) = co[at..at + nga]
+                .iter()
+                .filter(|v| !v.is_nan())
+                .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+            values[i * nco + k] = if count > 0 {
+                sum / count as f64
+            } else {
+                f64::NAN
+            };
         }
     }
     Ok(true)

@@ -21,8 +21,8 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 pub use field::{
-    read_elem_fields, read_nodal_fields, write_result, write_result_fields, ElemField, FieldStep,
-    NodalField,
+    read_cell_mean_fields, read_elem_fields, read_nodal_fields, write_result, write_result_fields,
+    ElemField, FieldStep, NodalField,
 };
 pub use info::mesh_info;
 pub use read::{mesh_names, read_mesh};

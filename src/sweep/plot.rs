@@ -13,7 +13,9 @@ use std::sync::OnceLock;
 
 use plotters::prelude::*;
 
-const FONT: &str = "sans-serif";
+/// The family name under which [`ensure_font`] registers the font; every
+/// PNG of aster (sweeps, `aster plot`) draws its text with it.
+pub const FONT: &str = "sans-serif";
 const FONT_CANDIDATES: &[&str] = &[
     "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
     "/usr/share/fonts/TTF/DejaVuSans.ttf",
@@ -112,7 +114,9 @@ fn axis_value(v: f64, log: bool) -> Option<f64> {
     }
 }
 
-fn tick_label(v: f64, log: bool) -> String {
+/// A tick or colour-bar label: three significant digits, powers of ten on
+/// log axes.
+pub fn tick_label(v: f64, log: bool) -> String {
     let x = if log { 10f64.powf(v) } else { v };
     if log && (v - v.round()).abs() < 1e-9 {
         return format!("1e{}", v.round() as i64);
