@@ -119,6 +119,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             cells: None,
             relation: "ELAS".into(),
             deformation: "PETIT".into(),
+            controls: Default::default(),
         }],
         &[&MechLoad {
             model: "MO".into(),

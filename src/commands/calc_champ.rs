@@ -169,6 +169,7 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
                     cells: Some(vec![c]),
                     relation: rel.clone(),
                     deformation: def.clone(),
+                    controls: Default::default(),
                 }),
             }
         }

@@ -13,8 +13,8 @@ use crate::law::TangentKind;
 use crate::mesh::Mesh;
 use crate::model::{Material, MaterialField, MechLoad, Model};
 use crate::nonlinear::{
-    self, dyna, fields, ArchivePolicy, Assembler, ConvergenceSettings, Engine, NewtonSettings,
-    Occurrence, PrepareError, Reduce, Suivi, SuiviField, TimeLoop,
+    self, dyna, fields, ArchivePolicy, Assembler, Controls, ConvergenceSettings, Engine,
+    NewtonSettings, Occurrence, PrepareError, Reduce, Suivi, SuiviField, TimeLoop,
 };
 use crate::result::{Access, EvolNoli};
 use crate::run::Study;
@@ -297,6 +297,11 @@ pub(crate) fn occurrences(mesh: &Mesh, args: &Args) -> Result<Vec<Occurrence>, D
                 cells: location_cells(mesh, o)?,
                 relation: o.text("RELATION").unwrap_or("ELAS").to_string(),
                 deformation: o.text("DEFORMATION").unwrap_or("PETIT").to_string(),
+                controls: Controls {
+                    algo_inte: o.text("ALGO_INTE").map(str::to_string),
+                    iter_inte_maxi: o.int("ITER_INTE_MAXI"),
+                    resi_inte_rela: o.real("RESI_INTE_RELA"),
+                },
             })
         })
         .collect()

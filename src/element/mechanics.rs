@@ -47,6 +47,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 use super::quadrature::{families, rule, Fpg};
 use super::shape::{eval, ShapeEval, MAX_NODES};
 use super::spec::{ElementSpec, Formulation};
+use crate::law::gdef_log::FiniteStrainBehaviour;
 use crate::law::simo_miehe::{FiniteStrainInput, SimoMiehe};
 use crate::law::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
 use crate::law::{
@@ -64,16 +65,18 @@ pub enum Kinematics {
     Petit,
     PetitReac,
     SimoMiehe,
+    GdefLog,
 }
 
 impl Kinematics {
-    /// `None` for GDEF_LOG and GROT_GDEP, which are not implemented.
+    /// `None` for GROT_GDEP, which is not implemented.
     pub fn from_strain_measure(m: StrainMeasure) -> Option<Kinematics> {
         match m {
             StrainMeasure::Petit => Some(Kinematics::Petit),
             StrainMeasure::PetitReac => Some(Kinematics::PetitReac),
             StrainMeasure::SimoMiehe => Some(Kinematics::SimoMiehe),
-            StrainMeasure::GdefLog | StrainMeasure::GrotGdep => None,
+            StrainMeasure::GdefLog => Some(Kinematics::GdefLog),
+            StrainMeasure::GrotGdep => None,
         }
     }
     pub fn strain_measure(self) -> StrainMeasure {
@@ -81,6 +84,7 @@ impl Kinematics {
             Kinematics::Petit => StrainMeasure::Petit,
             Kinematics::PetitReac => StrainMeasure::PetitReac,
             Kinematics::SimoMiehe => StrainMeasure::SimoMiehe,
+            Kinematics::GdefLog => StrainMeasure::GdefLog,
         }
     }
 }
@@ -93,6 +97,8 @@ impl Kinematics {
 pub enum LawRef<'a> {
     Small(&'a dyn SmallStrainBehaviour),
     SimoMiehe(&'a SimoMiehe),
+    /// A small-strain law in GDEF_LOG (same contract as SIMO_MIEHE).
+    GdefLog(&'a dyn FiniteStrainBehaviour),
 }
 
 impl LawRef<'_> {
@@ -101,12 +107,14 @@ impl LawRef<'_> {
         match self {
             LawRef::Small(l) => l.initial_internal(),
             LawRef::SimoMiehe(l) => l.initial_internal(),
+            LawRef::GdefLog(l) => l.initial_internal(),
         }
     }
     fn name(&self) -> &'static str {
         match self {
             LawRef::Small(l) => l.metadata().name,
             LawRef::SimoMiehe(l) => l.metadata().name,
+            LawRef::GdefLog(l) => l.metadata().name,
         }
     }
 }
@@ -321,7 +329,10 @@ pub fn internal_forces(
                     },
                 )
             }
-            (Kinematics::SimoMiehe, LawRef::SimoMiehe(l)) => {
+            (
+                Kinematics::SimoMiehe | Kinematics::GdefLog,
+                LawRef::SimoMiehe(_) | LawRef::GdefLog(_),
+            ) => {
                 let f_n = Matrix3::identity() + geom.gradient(&u_n[..ndof], d);
                 let f = Matrix3::identity() + geom.gradient(&u[..ndof], d);
                 let (j_n, j) = (f_n.determinant(), f.determinant());
@@ -336,15 +347,19 @@ pub fn internal_forces(
                     message: "singular deformation gradient".into(),
                 })?;
                 let law_span = crate::bench::span(crate::bench::Phase::LawIntegration);
-                let out = l
-                    .integrate(&FiniteStrainInput {
-                        f_n,
-                        f_np1: f,
-                        internal: st.internal.as_slice(),
-                        dt,
-                        tangent,
-                    })
-                    .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                let input = FiniteStrainInput {
+                    f_n,
+                    f_np1: f,
+                    internal: st.internal.as_slice(),
+                    dt,
+                    tangent,
+                };
+                let out = match law {
+                    LawRef::SimoMiehe(l) => l.integrate(&input),
+                    LawRef::GdefLog(l) => l.integrate(&input),
+                    LawRef::Small(_) => unreachable!("check_law rejects small laws here"),
+                }
+                .map_err(|failure| ElementFailure::Law { point: p, failure })?;
                 drop(law_span);
                 let tau = out.kirchhoff;
                 let c = if want_k {
@@ -434,6 +449,7 @@ fn check_law(kin: Kinematics, law: LawRef) -> Result<(), ElementFailure> {
             l.metadata().accepts(kin.strain_measure())
         }
         (Kinematics::SimoMiehe, LawRef::SimoMiehe(_)) => true,
+        (Kinematics::GdefLog, LawRef::GdefLog(l)) => l.metadata().accepts(StrainMeasure::GdefLog),
         _ => false,
     };
     if ok {

@@ -15,6 +15,9 @@
 //! Conventions (Voigt order, engineering shears) are in [`voigt`].
 
 pub mod elas;
+pub mod gdef_log;
+pub mod john_cook;
+pub mod root1d;
 pub mod simo_miehe;
 pub mod vmis_isot_line;
 pub mod voigt;

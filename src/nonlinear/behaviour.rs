@@ -13,6 +13,9 @@ use indexmap::IndexMap;
 
 use crate::element::{Kinematics, LawRef};
 use crate::law::elas::Elas;
+use crate::law::gdef_log::{GdefLog, IsotLineLog, JohnCookLog};
+use crate::law::john_cook::{EcroCookParams, LocalControls, VmisJohnCook};
+use crate::law::root1d::RootMethod;
 use crate::law::simo_miehe::SimoMiehe;
 use crate::law::vmis_isot_line::VmisIsotLine;
 use crate::law::{EcroLineParams, ElasParams, StrainMeasure};
@@ -26,6 +29,9 @@ pub enum CellLaw {
     Elas(Elas),
     VmisIsotLine(VmisIsotLine),
     SimoMiehe(SimoMiehe),
+    JohnCook(VmisJohnCook),
+    IsotLineLog(IsotLineLog),
+    JohnCookLog(JohnCookLog),
 }
 
 impl CellLaw {
@@ -34,6 +40,9 @@ impl CellLaw {
             CellLaw::Elas(l) => LawRef::Small(l),
             CellLaw::VmisIsotLine(l) => LawRef::Small(l),
             CellLaw::SimoMiehe(l) => LawRef::SimoMiehe(l),
+            CellLaw::JohnCook(l) => LawRef::Small(l),
+            CellLaw::IsotLineLog(l) => LawRef::GdefLog(l),
+            CellLaw::JohnCookLog(l) => LawRef::GdefLog(l),
         }
     }
     /// Number of internal variables (the length of VARI_ELGA for the cell).
@@ -49,6 +58,17 @@ pub struct Occurrence {
     pub cells: Option<Vec<usize>>,
     pub relation: String,
     pub deformation: String,
+    /// ALGO_INTE, ITER_INTE_MAXI, RESI_INTE_RELA (laws that iterate).
+    pub controls: Controls,
+}
+
+/// The local-integration keywords of an occurrence as given (`None` when
+/// absent), checked against the law when the field is built.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Controls {
+    pub algo_inte: Option<String>,
+    pub iter_inte_maxi: Option<i64>,
+    pub resi_inte_rela: Option<f64>,
 }
 
 /// The behaviour of one model cell.
@@ -118,7 +138,8 @@ pub fn build(
         laws: Vec::new(),
         alarms: Vec::new(),
     };
-    let mut law_index: IndexMap<(String, String, Kinematics), usize> = IndexMap::new();
+    let mut law_index: IndexMap<(String, String, Kinematics, Option<usize>), usize> =
+        IndexMap::new();
     let mut uncovered = 0usize;
     for (cell, role) in model.cells.iter().enumerate() {
         if !matches!(role, CellRole::Element(_)) {
@@ -157,11 +178,15 @@ pub fn build(
                 format!("the material {mat_name} of the CHAM_MATER has no data"),
             )
         })?;
-        let key = (mat_name.to_string(), relation.to_string(), kinematics);
+        let key = (mat_name.to_string(), relation.to_string(), kinematics, occ);
         let law = match law_index.get(&key) {
             Some(&i) => i,
             None => {
-                let l = make_law(mat_name, mat, relation, kinematics, occ)?;
+                let controls = match occ {
+                    Some(k) => local_controls(relation, &occurrences[k].controls, occ)?,
+                    None => LocalControls::default(),
+                };
+                let l = make_law(mat_name, mat, relation, kinematics, controls, occ)?;
                 out.laws.push(l);
                 law_index.insert(key, out.laws.len() - 1);
                 out.laws.len() - 1
@@ -201,18 +226,7 @@ fn kinematics_of(
         )
     })?;
     match relation {
-        "ELAS" | "VMIS_ISOT_LINE" => {}
-        "VMIS_JOHN_COOK" => {
-            return Err(BehaviourError {
-                not_implemented: true,
-                ..err(
-                    occ,
-                    "RELATION",
-                    "not implemented yet: DYNA_NON_LINE/COMPORTEMENT/RELATION='VMIS_JOHN_COOK'"
-                        .into(),
-                )
-            })
-        }
+        "ELAS" | "VMIS_ISOT_LINE" | "VMIS_JOHN_COOK" => {}
         other => return Err(err(occ, "RELATION", format!("unknown RELATION '{other}'"))),
     }
     if relation == "ELAS" && matches!(measure, StrainMeasure::SimoMiehe | StrainMeasure::GdefLog) {
@@ -222,6 +236,13 @@ fn kinematics_of(
             format!(
                 "RELATION='ELAS' does not accept DEFORMATION='{deformation}' (allowed: PETIT, PETIT_REAC, GROT_GDEP), as in code_aster"
             ),
+        ));
+    }
+    if relation == "VMIS_JOHN_COOK" && measure == StrainMeasure::SimoMiehe {
+        return Err(err(
+            occ,
+            "DEFORMATION",
+            "RELATION='VMIS_JOHN_COOK' does not accept DEFORMATION='SIMO_MIEHE' (allowed: PETIT, PETIT_REAC, GROT_GDEP, GDEF_LOG), as in code_aster: use GDEF_LOG for finite strains".into(),
         ));
     }
     Kinematics::from_strain_measure(measure).ok_or_else(|| BehaviourError {
@@ -234,11 +255,64 @@ fn kinematics_of(
     })
 }
 
+/// ALGO_INTE, ITER_INTE_MAXI and RESI_INTE_RELA checked against the law:
+/// the scalar methods belong to VMIS_JOHN_COOK; the closed-form laws
+/// accept only ANALYTIQUE (code_aster's law declarations).
+fn local_controls(
+    relation: &str,
+    c: &Controls,
+    occ: Option<usize>,
+) -> Result<LocalControls, BehaviourError> {
+    let mut out = LocalControls::default();
+    if let Some(a) = &c.algo_inte {
+        let allowed: &[&str] = if relation == "VMIS_JOHN_COOK" {
+            &["BRENT", "DEKKER", "SECANTE"]
+        } else {
+            &["ANALYTIQUE"]
+        };
+        if !allowed.contains(&a.as_str()) {
+            return Err(err(
+                occ,
+                "ALGO_INTE",
+                format!(
+                    "RELATION='{relation}' does not accept ALGO_INTE='{a}' (valid: {})",
+                    allowed.join(", ")
+                ),
+            ));
+        }
+        if let Some(m) = RootMethod::from_aster_name(a) {
+            out.method = m;
+        }
+    }
+    if let Some(n) = c.iter_inte_maxi {
+        if n < 1 {
+            return Err(err(
+                occ,
+                "ITER_INTE_MAXI",
+                format!("ITER_INTE_MAXI must be >= 1, got {n}"),
+            ));
+        }
+        out.iter_maxi = n as usize;
+    }
+    if let Some(r) = c.resi_inte_rela {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(err(
+                occ,
+                "RESI_INTE_RELA",
+                format!("RESI_INTE_RELA must be > 0, got {r}"),
+            ));
+        }
+        out.resi_rela = r;
+    }
+    Ok(out)
+}
+
 fn make_law(
     name: &str,
     mat: &Material,
     relation: &str,
     kin: Kinematics,
+    controls: LocalControls,
     occ: Option<usize>,
 ) -> Result<CellLaw, BehaviourError> {
     let need = |block: &str, p: &str| {
@@ -266,6 +340,25 @@ fn make_law(
     if relation == "ELAS" {
         return Ok(CellLaw::Elas(Elas::new(elas)));
     }
+    if relation == "VMIS_JOHN_COOK" {
+        let opt = |p: &str, default: f64| mat.get("ECRO_COOK", p).unwrap_or(default);
+        let ecro = EcroCookParams::new(
+            need("ECRO_COOK", "A")?,
+            need("ECRO_COOK", "B")?,
+            opt("C", 0.0),
+            need("ECRO_COOK", "N_PUIS")?,
+            opt("M_PUIS", 0.0),
+            opt("EPSP0", 1.0),
+            opt("TROOM", -1.0),
+            opt("TMELT", 1.0),
+        )
+        .map_err(bad)?;
+        let law = VmisJohnCook::new(elas, ecro, controls);
+        return Ok(match kin {
+            Kinematics::GdefLog => CellLaw::JohnCookLog(GdefLog::new(law)),
+            _ => CellLaw::JohnCook(law),
+        });
+    }
     let ecro = EcroLineParams::new(
         &elas,
         need("ECRO_LINE", "SY")?,
@@ -274,6 +367,7 @@ fn make_law(
     .map_err(bad)?;
     Ok(match kin {
         Kinematics::SimoMiehe => CellLaw::SimoMiehe(SimoMiehe::new(elas, ecro)),
+        Kinematics::GdefLog => CellLaw::IsotLineLog(GdefLog::new(VmisIsotLine::new(elas, ecro))),
         _ => CellLaw::VmisIsotLine(VmisIsotLine::new(elas, ecro)),
     })
 }

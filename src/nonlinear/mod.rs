@@ -21,7 +21,7 @@ pub mod unilateral;
 use indexmap::IndexMap;
 
 pub use assembly::{Assembler, CellFailure};
-pub use behaviour::{BehaviourError, BehaviourField, CellLaw, Occurrence};
+pub use behaviour::{BehaviourError, BehaviourField, CellLaw, Controls, Occurrence};
 pub use contact::DiscreteContact;
 pub use dofs::DofNumbering;
 pub use dyna::{ArchivePolicy, Reduce, RunSummary, Stopped, Suivi, SuiviField, TimeLoop};
