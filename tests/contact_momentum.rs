@@ -104,6 +104,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             cells: None,
             relation: "VMIS_ISOT_LINE".into(),
             deformation: "SIMO_MIEHE".into(),
+            controls: Default::default(),
         }],
         &[&MechLoad {
             model: "MO".into(),
