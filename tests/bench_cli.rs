@@ -312,6 +312,8 @@ fn bench_reports_phases_that_fit_in_the_wall_time_and_the_run_counters() {
 
     let text = std::fs::read_to_string(&json_path).unwrap();
     let j = Parser::parse(&text).unwrap_or_else(|e| panic!("{e}:\n{text}"));
+    assert_eq!(j.get("checks_failed"), &Json::Bool(false));
+    assert!(!stdout.contains("CHECKS FAILED"), "{stdout}");
     assert_eq!(j.get("runs").num(), 2.0);
     assert_eq!(j.get("threads").num(), 1.0);
     let walls: Vec<f64> = j
@@ -407,4 +409,43 @@ fn bench_fails_when_the_study_fails() {
     assert_eq!(out.status.code(), Some(1), "{stdout}");
     assert!(stdout.contains("run 1 failed"), "{stdout}");
     assert!(!stdout.contains("wall time: median"), "{stdout}");
+}
+
+/// A study that runs to its end but whose checks fail (here the landing
+/// study with its free-flight reference moved by 50 %, so that the check
+/// fails honestly) is still measured: the table is printed, a line says
+/// the checks failed, the JSON says so, and the exit code is `aster run`'s.
+#[test]
+fn bench_measures_a_study_whose_checks_fail_and_says_so() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let study_dir = root.join("tests/verification");
+    let text = std::fs::read_to_string(study_dir.join("contact_landing.comm")).unwrap();
+    let wrong = text.replace("VALE_REFE=2.E-3", "VALE_REFE=3.E-3");
+    assert_ne!(wrong, text);
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench_cli_nook");
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = tmp.join("landing_nook.comm");
+    std::fs::write(&comm, wrong).unwrap();
+    let json_path = tmp.join("bench.json");
+    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .args(["bench", comm.to_str().unwrap(), "--runs", "2"])
+        .arg("--export")
+        .arg(study_dir.join("contact_landing.export"))
+        .arg("--json")
+        .arg(&json_path)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("wall time: median"), "{stdout}");
+    assert!(stdout.contains("Newton iterations"), "{stdout}");
+    assert!(stdout.contains("(checks failed: 1 NOOK)"), "{stdout}");
+    assert!(
+        stdout.contains("CHECKS FAILED: 1 NOOK test (runs 1, 2)"),
+        "{stdout}"
+    );
+    let j = Parser::parse(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+    assert_eq!(j.get("checks_failed"), &Json::Bool(true));
+    assert_eq!(j.get("nook").num(), 1.0);
 }

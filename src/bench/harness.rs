@@ -47,7 +47,9 @@ struct Row {
 }
 
 /// `aster bench`: returns the exit code (that of the first failing run,
-/// if any).
+/// if any). A run that reaches the end of the study but has NOOK checks is
+/// still measured: the table is printed, followed by a line saying the
+/// checks failed, and the exit code is that of `aster run` (1).
 pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
     if opts.runs == 0 {
         let _ = writeln!(out, "error: --runs must be at least 1");
@@ -114,23 +116,39 @@ pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
     );
     let mut samples = Vec::with_capacity(opts.runs);
     let mut peak_reset = true;
+    // (run number, NOOK count, exit code) of the runs whose checks failed.
+    let mut nook_runs: Vec<(usize, usize, i32)> = Vec::new();
     for i in 0..opts.runs {
         peak_reset &= reset_peak_memory();
         let mut log = Vec::new();
         GLOBAL.reset();
         GLOBAL.set_enabled(true);
         let t0 = Instant::now();
-        let code = pool.install(|| driver::run_file(&run_opts, &mut log));
+        let outcome = pool.install(|| driver::run_file_outcome(&run_opts, &mut log));
         let wall = t0.elapsed().as_secs_f64();
         GLOBAL.set_enabled(false);
         let profile = GLOBAL.snapshot();
-        if code != EXIT_OK {
+        let code = outcome.code;
+        let checks_only = outcome.completed && outcome.nook > 0;
+        if code != EXIT_OK && !checks_only {
             let _ = out.write_all(&log);
             let _ = writeln!(out, "run {} failed (exit code {code})", i + 1);
             let _ = std::fs::remove_dir_all(&tmp);
             return code;
         }
-        let _ = writeln!(out, "  run {:>2}: {wall:>9.3} s", i + 1);
+        if checks_only {
+            nook_runs.push((i + 1, outcome.nook, code));
+        }
+        let _ = writeln!(
+            out,
+            "  run {:>2}: {wall:>9.3} s{}",
+            i + 1,
+            if checks_only {
+                format!(" (checks failed: {} NOOK)", outcome.nook)
+            } else {
+                String::new()
+            }
+        );
         let _ = out.flush();
         samples.push(RunSample {
             wall,
@@ -143,6 +161,7 @@ pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
     let report = Report {
         study,
         threads,
+        nook: nook_runs.iter().map(|r| r.1).collect(),
         peak_reset,
         rows: rows(&samples),
         samples,
@@ -154,6 +173,18 @@ pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
             return EXIT_USAGE;
         }
         let _ = writeln!(out, "JSON report written to {}", path.display());
+    }
+    if let Some(&(_, nook, code)) = nook_runs.first() {
+        let runs: Vec<String> = nook_runs.iter().map(|r| r.0.to_string()).collect();
+        let _ = writeln!(
+            out,
+            "CHECKS FAILED: {nook} NOOK test{} (run{} {}); the study ran to its end and the \
+times above are measured, but its results do not pass its checks",
+            if nook == 1 { "" } else { "s" },
+            if runs.len() == 1 { "" } else { "s" },
+            runs.join(", ")
+        );
+        return code;
     }
     EXIT_OK
 }
@@ -220,6 +251,8 @@ fn rows(samples: &[RunSample]) -> Vec<Row> {
 struct Report {
     study: String,
     threads: usize,
+    /// NOOK counts of the runs whose checks failed (empty: all passed).
+    nook: Vec<usize>,
     /// VmHWM could be reset before every run (else it is the process peak).
     peak_reset: bool,
     samples: Vec<RunSample>,
@@ -389,7 +422,8 @@ wall time of element integration and assembly"
             "{{\n  \"study\": {},\n  \"aster_version\": {},\n  \"runs\": {},\n  \"threads\": {},\n  \
 \"wall_s\": {{\"median\": {}, \"min\": {}, \"max\": {}, \"per_run\": {}}},\n  \
 \"phases\": {{\n{}\n  }},\n  \"counters\": {{\n{}\n  }},\n  \"counters_per_run\": {{\n{}\n  }},\n  \
-\"peak_memory\": {{\"bytes\": {}, \"per_run_bytes\": [{}], \"scope\": {}}},\n  \"notes\": [{}]\n}}\n",
+\"peak_memory\": {{\"bytes\": {}, \"per_run_bytes\": [{}], \"scope\": {}}},\n  \
+\"checks_failed\": {},\n  \"nook\": {},\n  \"notes\": [{}]\n}}\n",
             json::string(&self.study),
             json::string(env!("CARGO_PKG_VERSION")),
             self.samples.len(),
@@ -404,6 +438,8 @@ wall time of element integration and assembly"
             peak.map_or("null".into(), |b| b.to_string()),
             peaks.join(", "),
             json::string(self.peak_scope()),
+            !self.nook.is_empty(),
+            self.nook.iter().max().copied().unwrap_or(0),
             notes.join(", ")
         )
     }

@@ -135,13 +135,38 @@ pub fn export_files(opts: &RunOptions) -> Result<Vec<ExportFile>, String> {
     parse_export(&text, &base, &e.display().to_string()).map_err(|d| d.render(None))
 }
 
+/// How a run ended, beyond its exit code: `aster bench` still measures a
+/// study that ran to its end but whose checks failed (a study on another
+/// mesh, or a code_aster file whose VALE_CALC are code_aster's), while a
+/// study that stopped on an error has no complete timing to report.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunOutcome {
+    /// The exit code `aster run` returns.
+    pub code: i32,
+    /// Every command ran (the study reached its end without an error).
+    pub completed: bool,
+    /// Number of NOOK checks.
+    pub nook: usize,
+}
+
 /// `aster run FILE`: check then execute; writes FILE.mess and FILE.resu.
 pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
+    run_file_outcome(opts, out).code
+}
+
+/// [`run_file`], telling also whether the study ran to its end and how
+/// many of its checks failed.
+pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
+    let failed = |code| RunOutcome {
+        code,
+        completed: false,
+        nook: 0,
+    };
     let src = match read_source(&opts.comm) {
         Ok(s) => s,
         Err((code, d)) => {
             let _ = write!(out, "{}", d.render(None));
-            return code;
+            return failed(code);
         }
     };
     let stem = opts
@@ -161,7 +186,7 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
             "error: cannot create output directory '{}': {e}",
             out_dir.display()
         );
-        return EXIT_USAGE;
+        return failed(EXIT_USAGE);
     }
     let mut study = Study {
         out_dir: out_dir.clone(),
@@ -179,7 +204,7 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
         }
         Err(message) => {
             let _ = write!(out, "{message}");
-            return EXIT_USAGE;
+            return failed(EXIT_USAGE);
         }
     }
     for (u, p) in &opts.units {
@@ -191,6 +216,7 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
     let checked = parse_and_check(&src, &registry, &mut messages);
     let _ = write!(out, "{messages}");
     study.mess.push_str(&messages);
+    let mut completed = false;
     let code = match checked {
         None => EXIT_STUDY,
         Some(program) => {
@@ -204,6 +230,7 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
             }
             match study.execute(&program, &registry, &src) {
                 Ok(()) => {
+                    completed = true;
                     if study.tests.nook > 0 {
                         EXIT_STUDY
                     } else {
@@ -226,7 +253,7 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
     };
     if let Err(e) = write_outputs(&study) {
         let _ = writeln!(out, "error: {e}");
-        return EXIT_STUDY;
+        return failed(EXIT_STUDY);
     }
     let t = study.tests;
     if t.ok + t.nook + t.skip > 0 {
@@ -239,7 +266,11 @@ pub fn run_file(opts: &RunOptions, out: &mut dyn Write) -> i32 {
         if code == EXIT_OK { "done" } else { "FAILED" },
         out_dir.join(format!("{stem}.mess")).display()
     );
-    code
+    RunOutcome {
+        code,
+        completed,
+        nook: t.nook,
+    }
 }
 
 /// After a failure, writes every transient result computed so far (its
