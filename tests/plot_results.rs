@@ -366,6 +366,102 @@ fn a_result_written_by_salome_draws_its_displacement() {
     assert!(r.faces == 4, "the 4 QU8 are drawn, the SE3 edges not");
 }
 
+/// Adds to a result file a Gauss-point field as code_aster writes one
+/// (`MAI.QU4` block with a localization, 4 points per cell, values
+/// component-major, then cell by cell, the points of a cell together):
+/// SIXX, SIYY = 10 k + cell + 0.1 point, so the cell means are
+/// 10 k + cell + 0.15.
+fn add_gauss_field(path: &Path) {
+    use hdf5::types::VarLenAscii;
+    let file = hdf5::File::open_rw(path).unwrap();
+    let s = |loc: &hdf5::Location, name: &str, v: &str| {
+        loc.new_attr::<VarLenAscii>()
+            .create(name)
+            .unwrap()
+            .write_scalar(&VarLenAscii::from_ascii(v).unwrap())
+            .unwrap();
+    };
+    let i = |loc: &hdf5::Location, name: &str, v: i64| {
+        loc.new_attr::<i64>()
+            .create(name)
+            .unwrap()
+            .write_scalar(&v)
+            .unwrap();
+    };
+    let f = file
+        .group("CHA")
+        .unwrap()
+        .create_group("RESU____SIEF_ELGA")
+        .unwrap();
+    s(&f, "MAI", "ROW");
+    i(&f, "TYP", 6);
+    i(&f, "NCO", 2);
+    s(&f, "NOM", &format!("{:<16}{:<16}", "SIXX", "SIYY"));
+    s(&f, "UNI", &" ".repeat(32));
+    s(&f, "UNT", "");
+    let st = f
+        .create_group("0000000000000000000100000000000000000001")
+        .unwrap();
+    i(&st, "NDT", 1);
+    i(&st, "NOR", -1);
+    st.new_attr::<f64>()
+        .create("PDT")
+        .unwrap()
+        .write_scalar(&1e-5)
+        .unwrap();
+    i(&st, "RDT", -1);
+    i(&st, "ROR", -1);
+    let b = st.create_group("MAI.QU4").unwrap();
+    s(&b, "GAU", "ROW_QU4_FPG4");
+    s(&b, "PFL", "MED_NO_PROFILE_INTERNAL");
+    let pg = b.create_group("MED_NO_PROFILE_INTERNAL").unwrap();
+    i(&pg, "NBR", 3);
+    i(&pg, "NGA", 4);
+    s(&pg, "GAU", "ROW_QU4_FPG4");
+    let mut co = Vec::new();
+    for k in 0..2 {
+        for c in 0..3 {
+            for g in 0..4 {
+                co.push(10.0 * f64::from(k) + f64::from(c) + 0.1 * f64::from(g));
+            }
+        }
+    }
+    pg.new_dataset_builder()
+        .with_data(&co)
+        .create("CO")
+        .unwrap();
+}
+
+#[test]
+fn gauss_point_fields_are_drawn_as_their_mean_per_cell() {
+    let _turn = turn();
+    let rmed = tmp("row_gauss.rmed");
+    write_row_result(&rmed);
+    add_gauss_field(&rmed);
+    // The cell-constant reader leaves Gauss fields out; the mean reader
+    // gives one value per cell.
+    let plain = aster::medio::read_elem_fields(&rmed, None).unwrap();
+    assert!(plain.iter().all(|f| !f.name.ends_with("SIEF_ELGA")));
+    let data = ResultData::read(&rmed, None).unwrap();
+    let sief = data
+        .cells
+        .iter()
+        .find(|f| f.name.ends_with("SIEF_ELGA"))
+        .unwrap();
+    assert_eq!(sief.components, vec!["SIXX", "SIYY"]);
+    let want = [0.15, 10.15, 1.15, 11.15, 2.15, 12.15];
+    for (got, want) in sief.steps[0].values.iter().zip(want) {
+        assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+    }
+    let png = tmp("row_gauss.png");
+    let opts = PictureOptions {
+        field: Some(("SIEF_ELGA".into(), "SIYY".into())),
+        ..PictureOptions::default()
+    };
+    let r = draw_result(&data, &opts, &png).unwrap();
+    assert!((r.range.0 - 10.15).abs() < 1e-12 && (r.range.1 - 12.15).abs() < 1e-12);
+}
+
 fn aster(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_aster"))
         .args(args)
