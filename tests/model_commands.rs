@@ -361,24 +361,70 @@ fn three_d_si_then_three_d_is_full_3d() {
     );
 }
 
-/// 3D_SI on the HEXA8 block would be MECA_HEXS8, which aster lacks: the
-/// run stops, naming the element and the block's group.
+/// 3D then 3D_SI on everything (modelling A's AFFE): the HEXA8 block
+/// becomes MECA_HEXS8 (one RIGI point), the HEXA20 MECA_HEXS20, the
+/// PENTA15 keep their full 3D element; AFFE_MODELE raises MODELE1_7.
 #[test]
-fn three_d_si_on_hexa8_is_not_implemented() {
+fn three_d_then_three_d_si_gives_hexs8_on_the_block() {
     let comm = quarter(
         "MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=(\
          _F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'),\n\
          _F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D_SI')))",
     );
     let (s, err) = run("sdnv103h", &comm);
+    assert!(err.is_none(), "{err:?}");
+    let (mo, mesh) = (model(&s, "MO"), mesh(&s, "MAIL"));
+    assert_eq!(
+        elements_of(mo, mesh, CellType::Hexa8),
+        vec![("MECA_HEXS8", Fpg::Fpg1)]
+    );
+    assert_eq!(
+        elements_of(mo, mesh, CellType::Hexa20),
+        vec![("MECA_HEXS20", Fpg::Fpg8); 4]
+    );
+    assert_eq!(
+        elements_of(mo, mesh, CellType::Penta15),
+        vec![("MECA_PENTA15", Fpg::Fpg21); 4]
+    );
+    assert!(s.mess.contains("<MODELE1_7>"), "{}", s.mess);
+}
+
+/// Modelling H's command file with the block under 3D_SI and its
+/// COMPORTEMENT on VOL_RIG replaced by `block`.
+fn h_with_hexs8_block(block: &str) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let h = std::fs::read_to_string(root.join("comm/sdnv103h.comm")).unwrap();
+    let h = h.replace(
+        "AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'),)",
+        "AFFE=(_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'),\n\
+         _F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D_SI'),),)",
+    );
+    assert!(h.contains("MODELISATION='3D_SI'"));
+    h.replacen("_F(RELATION='ELAS', DEFORMATION='PETIT',", block, 1)
+}
+
+/// The limits of MECA_HEXS8 (te0407): RELATION='ELAS' in PETIT without
+/// an initial state is COMP_ELAS (ELEMENTSSI_3), and finite strains are
+/// refused (ELEMENTSSI_1); both stop DYNA_NON_LINE before any step, at
+/// the COMPORTEMENT occurrence that gives the block its law.
+#[test]
+fn hexs8_limits_are_located_errors() {
+    let comm = h_with_hexs8_block("_F(RELATION='ELAS', DEFORMATION='PETIT',");
+    let (_, err) = run("sdnv103h", &comm);
     assert_error(
         &comm,
         err,
-        "not implemented yet: AFFE_MODELE/AFFE/MODELISATION",
-        &["MECA_HEXS8", "1 HEXA8 cell(s) of group(s) VOL_RIG"],
-        "MODELISATION='3D_SI'",
+        "DYNA_NON_LINE/COMPORTEMENT/RELATION",
+        &["MECA_HEXS8", "ELEMENTSSI_3", "PETIT_REAC"],
+        "_F(RELATION='ELAS', DEFORMATION='PETIT',",
     );
-    assert!(s.concepts.get("MO").is_none());
+    let comm = h_with_hexs8_block("_F(RELATION='VMIS_ISOT_LINE', DEFORMATION='SIMO_MIEHE',");
+    let (_, err) = run("sdnv103h", &comm);
+    let e = err.expect("SIMO_MIEHE on HEXS8 must stop");
+    assert!(
+        e.contains("DYNA_NON_LINE/COMPORTEMENT/DEFORMATION") && e.contains("ELEMENTSSI_1"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -60,6 +60,13 @@ fn free_flight() {
     run_study("free_flight");
 }
 
+/// The A and J quarter meshes (HEXS20/PENTA15 and HEXS8/PENTA6, block in
+/// HEXS8) in free flight: every node keeps V0, DZ = V0 (t - t0).
+#[test]
+fn free_flight_3d() {
+    run_study("free_flight_3d");
+}
+
 #[test]
 fn elastic_wave_in_a_rod() {
     run_study("wave_rod");

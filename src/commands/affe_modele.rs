@@ -220,6 +220,17 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 .into(),
         );
     }
+    if roles
+        .iter()
+        .any(|r| matches!(r, CellRole::Element(s) if s.is_hexs8()))
+    {
+        alarms.push(
+            "<A> <AFFE_MODELE> <MODELE1_7> the model contains MECA_HEXS8 elements (3D_SI on HEXA8, \
+             one point with hourglass stabilisation): they are reliable on parallelepipeds only \
+             and may give wrong results on general shapes"
+                .into(),
+        );
+    }
     if args.text("VERI_JACOBIEN") == Some("OUI") {
         let bad: Vec<usize> = roles
             .iter()

@@ -769,6 +769,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let loads = loads_of(study, args, "EXCIT", &load_names)?;
     let occs = occurrences(&md.mesh, args)?;
     let load_refs: Vec<&MechLoad> = loads.iter().collect();
+    let initial_state = args
+        .fact("ETAT_INIT")
+        .is_some_and(|o| o.given("SIGM") || o.given("EVOL_NOLI"));
+    nonlinear::behaviour::check_hexs8(&md.model, &occs, initial_state)
+        .map_err(|e| prepare_error(args, PrepareError::Behaviour(e)))?;
     let (asm, alarms) = nonlinear::discretize(
         &md.mesh,
         &md.model,

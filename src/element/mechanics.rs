@@ -202,6 +202,9 @@ pub struct ElementResponse {
 /// Virgin states (zero stress, the law's initial internal variables) for
 /// the RIGI points of `spec`.
 pub fn initial_states(spec: &ElementSpec, law: LawRef) -> Vec<PointState> {
+    if spec.is_hexs8() {
+        return super::hexs8::initial_states(law);
+    }
     let n = tabulated(spec.cell, spec.rigi).map_or(0, |t| t.weights.len());
     vec![
         PointState {
@@ -212,8 +215,18 @@ pub fn initial_states(spec: &ElementSpec, law: LawRef) -> Vec<PointState> {
     ]
 }
 
-/// Number of RIGI Gauss points of `spec` (length of the state arrays).
+/// Number of state rows of `spec` (length of its state arrays): its RIGI
+/// Gauss points, plus the 12 rows of hourglass stresses of HEXS8.
 pub fn rigi_points(spec: &ElementSpec) -> usize {
+    if spec.is_hexs8() {
+        return super::hexs8::STATE_ROWS;
+    }
+    tabulated(spec.cell, spec.rigi).map_or(0, |t| t.weights.len())
+}
+
+/// Number of Gauss points of `spec` in SIEF_ELGA/VARI_ELGA (1 for HEXS8,
+/// whose extra state rows appear as components FSTAB1..72).
+pub fn output_points(spec: &ElementSpec) -> usize {
     tabulated(spec.cell, spec.rigi).map_or(0, |t| t.weights.len())
 }
 
@@ -238,6 +251,11 @@ pub fn internal_forces(
     dt: f64,
     tangent: TangentKind,
 ) -> Result<ElementResponse, ElementFailure> {
+    if spec.is_hexs8() {
+        return super::hexs8::internal_forces(
+            spec, kin, coords, u_n, u, states_n, law, dt, tangent,
+        );
+    }
     let tab = table(spec, spec.rigi)?;
     let nn = spec.nnodes();
     let d = spec.formulation.dofs_per_node();

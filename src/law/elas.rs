@@ -45,6 +45,10 @@ impl SmallStrainBehaviour for Elas {
         &METADATA
     }
 
+    fn elastic_params(&self) -> Option<crate::law::ElasParams> {
+        Some(self.params)
+    }
+
     fn integrate(&self, input: &SmallStrainInput) -> Result<SmallStrainOutput, IntegrationFailure> {
         check_small_strain_input(&METADATA, input)?;
         Ok(SmallStrainOutput {

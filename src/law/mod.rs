@@ -208,6 +208,11 @@ pub trait SmallStrainBehaviour: Send + Sync {
         InternalVars::zeros(self.metadata().internal_variables.len())
     }
     fn integrate(&self, input: &SmallStrainInput) -> Result<SmallStrainOutput, IntegrationFailure>;
+    /// The law's elastic constants, for elements that need them beside
+    /// the tangent (the ASQBI hourglass projection of HEXS8 reads ν).
+    fn elastic_params(&self) -> Option<ElasParams> {
+        None
+    }
 }
 
 /// A material parameter that DEFI_MATERIAU would refuse; `keyword` is the

@@ -63,6 +63,10 @@ impl SmallStrainBehaviour for VmisIsotLine {
         &METADATA
     }
 
+    fn elastic_params(&self) -> Option<crate::law::ElasParams> {
+        Some(self.elas)
+    }
+
     fn integrate(&self, input: &SmallStrainInput) -> Result<SmallStrainOutput, IntegrationFailure> {
         check_small_strain_input(&METADATA, input)?;
         let p_n = input.internal[0];

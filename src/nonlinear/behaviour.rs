@@ -371,3 +371,76 @@ fn make_law(
         _ => CellLaw::VmisIsotLine(VmisIsotLine::new(elas, ecro)),
     })
 }
+
+/// code_aster's limits of MECA_HEXS8 (te0407, shared/docs/notes/hexs8.md
+/// §12), checked before anything is computed so that the message names
+/// the COMPORTEMENT occurrence: a law of type COMP_ELAS is refused
+/// (ELEMENTSSI_3; RELATION='ELAS' is of that type unless
+/// DEFORMATION='PETIT_REAC' or an initial state is given), and so is any
+/// strain measure but PETIT and PETIT_REAC (ELEMENTSSI_1).
+/// `initial_state` is true when ETAT_INIT gives SIGM or EVOL_NOLI.
+pub fn check_hexs8(
+    model: &Model,
+    occurrences: &[Occurrence],
+    initial_state: bool,
+) -> Result<(), BehaviourError> {
+    let ncells = model.cells.len();
+    let mut chosen: Vec<Option<usize>> = vec![None; ncells];
+    for (k, occ) in occurrences.iter().enumerate() {
+        match &occ.cells {
+            None => chosen.iter_mut().for_each(|c| *c = Some(k)),
+            Some(cells) => {
+                for &c in cells.iter().filter(|&&c| c < ncells) {
+                    chosen[c] = Some(k);
+                }
+            }
+        }
+    }
+    for (cell, role) in model.cells.iter().enumerate() {
+        let CellRole::Element(spec) = role else {
+            continue;
+        };
+        if !spec.is_hexs8() {
+            continue;
+        }
+        let occ = chosen[cell];
+        let (relation, deformation) = match occ {
+            Some(k) => (
+                occurrences[k].relation.as_str(),
+                occurrences[k].deformation.as_str(),
+            ),
+            None => ("ELAS", "PETIT"),
+        };
+        if relation == "ELAS" && deformation != "PETIT_REAC" && !initial_state {
+            return Err(err(
+                occ,
+                "RELATION",
+                format!(
+                    "cell {}: the element MECA_HEXS8 (3D_SI on HEXA8) refuses RELATION='ELAS' with \
+                     DEFORMATION='{deformation}' (ELEMENTSSI_3): a law written in the reference \
+                     configuration cannot drive its incremental hourglass stresses; use \
+                     DEFORMATION='PETIT_REAC', an initial state (ETAT_INIT), or an incremental law \
+                     such as VMIS_ISOT_LINE with a large SY{}",
+                    cell + 1,
+                    if occ.is_none() {
+                        " (this cell is not covered by COMPORTEMENT and got ELAS/PETIT by default)"
+                    } else {
+                        ""
+                    }
+                ),
+            ));
+        }
+        if !matches!(deformation, "PETIT" | "PETIT_REAC") {
+            return Err(err(
+                occ,
+                "DEFORMATION",
+                format!(
+                    "cell {}: the element MECA_HEXS8 (3D_SI on HEXA8) accepts only \
+                     DEFORMATION='PETIT' or 'PETIT_REAC', not '{deformation}' (ELEMENTSSI_1)",
+                    cell + 1
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -2,7 +2,7 @@
 //! the result's fields (DEPL, VITE, ACCE, SIEF_ELGA, VARI_ELGA).
 
 use super::assembly::Assembler;
-use crate::element::{Formulation, PointState};
+use crate::element::{hexs8, Formulation, PointState};
 use crate::law::InternalVars;
 use crate::result::{GaussField, NodalField};
 
@@ -43,7 +43,9 @@ pub fn from_nodal(asm: &Assembler, names: &[String], field: &NodalField) -> Vec<
     out
 }
 
-/// SIEF_ELGA component names: 4 in AXIS, 6 in 3D (semantics.md §10).
+/// SIEF_ELGA component names: 4 in AXIS, 6 in 3D (semantics.md §10),
+/// plus FSTAB1..FSTAB72 when the model has HEXS8 elements (their
+/// hourglass stresses; other cells read 0 there).
 pub fn sief_components(asm: &Assembler) -> Vec<String> {
     let axis = asm
         .elements
@@ -51,18 +53,28 @@ pub fn sief_components(asm: &Assembler) -> Vec<String> {
         .is_some_and(|e| e.spec.formulation == Formulation::Axis);
     let all = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
     let n = if axis { 4 } else { 6 };
-    all[..n].iter().map(|s| s.to_string()).collect()
+    let mut out: Vec<String> = all[..n].iter().map(|s| s.to_string()).collect();
+    if has_hexs8(asm) {
+        out.extend((1..=hexs8::NQ).map(|k| format!("FSTAB{k}")));
+    }
+    out
+}
+
+fn has_hexs8(asm: &Assembler) -> bool {
+    asm.elements.iter().any(|e| e.spec.is_hexs8())
 }
 
 /// SIEF_ELGA and VARI_ELGA of the Gauss-point states. VARI_ELGA has as
 /// many components as the largest law; cells of a law with fewer
-/// variables are padded with 0.
+/// variables are padded with 0. A HEXS8 cell shows one point: its centre
+/// stress followed by its 72 hourglass stresses.
 pub fn gauss(asm: &Assembler, ncells: usize, points: &[PointState]) -> (GaussField, GaussField) {
     let sief_cmp = sief_components(asm);
     let nvari = asm.nvari_of_cell(ncells);
     let nv = nvari.iter().copied().max().unwrap_or(0);
     let vari_cmp: Vec<String> = (1..=nv).map(|k| format!("V{k}")).collect();
     let ns = sief_cmp.len();
+    let nstress = ns.min(6);
     let mut sief = GaussField {
         components: sief_cmp,
         offsets: Vec::with_capacity(ncells + 1),
@@ -73,12 +85,25 @@ pub fn gauss(asm: &Assembler, ncells: usize, points: &[PointState]) -> (GaussFie
         offsets: Vec::with_capacity(ncells + 1),
         values: Vec::with_capacity(points.len() * nv),
     };
+    let mut hexs8_cell = vec![false; ncells];
+    for e in &asm.elements {
+        hexs8_cell[e.cell] = e.spec.is_hexs8();
+    }
     for c in 0..ncells {
         sief.offsets.push(sief.values.len());
         vari.offsets.push(vari.values.len());
         let (a, b) = (asm.cell_state_offsets[c], asm.cell_state_offsets[c + 1]);
-        for p in &points[a..b] {
-            sief.values.extend_from_slice(&p.stress.as_slice()[..ns]);
+        let rows = &points[a..b];
+        let shown = if hexs8_cell[c] { &rows[..1] } else { rows };
+        for p in shown {
+            sief.values
+                .extend_from_slice(&p.stress.as_slice()[..nstress]);
+            if hexs8_cell[c] {
+                sief.values
+                    .extend_from_slice(&hexs8::hourglass_stresses(rows));
+            } else {
+                sief.values.extend(std::iter::repeat_n(0.0, ns - nstress));
+            }
             let iv = p.internal.as_slice();
             vari.values
                 .extend((0..nv).map(|k| iv.get(k).copied().unwrap_or(0.0)));
@@ -90,7 +115,8 @@ pub fn gauss(asm: &Assembler, ncells: usize, points: &[PointState]) -> (GaussFie
 }
 
 /// Gauss-point states from stored SIEF_ELGA and VARI_ELGA (a continued
-/// computation must restart from exactly the stored state).
+/// computation must restart from exactly the stored state, HEXS8's
+/// hourglass stresses included).
 pub fn states_from_gauss(
     asm: &Assembler,
     sief: &GaussField,
@@ -103,25 +129,43 @@ pub fn states_from_gauss(
     if sief.offsets.len() != ncells + 1 || vari.offsets.len() != ncells + 1 {
         return Err("SIEF_ELGA/VARI_ELGA of the initial state are on another mesh".into());
     }
+    let fstab = sief.components.iter().position(|c| c == "FSTAB1");
+    let nstress = fstab.unwrap_or(ns);
     for e in &asm.elements {
         let nvar = out[e.state_offset].internal.as_slice().len();
-        if sief.npg(e.cell) != e.npg || vari.npg(e.cell) != e.npg || nv < nvar || ns > 6 {
+        let npg = crate::element::output_points(&e.spec);
+        let hex = e.spec.is_hexs8();
+        if sief.npg(e.cell) != npg
+            || vari.npg(e.cell) != npg
+            || nv < nvar
+            || nstress > 6
+            || (hex && (fstab != Some(6) || ns != 6 + hexs8::NQ))
+        {
             return Err(format!(
-                "cell {}: the stored SIEF_ELGA/VARI_ELGA do not match the element {} ({} points, {} variables)",
+                "cell {}: the stored SIEF_ELGA/VARI_ELGA do not match the element {} ({} points, {} variables{})",
                 e.cell + 1,
                 e.spec.name,
-                e.npg,
-                nvar
+                npg,
+                nvar,
+                if hex { ", 78 stress components" } else { "" }
             ));
         }
         let (s, v) = (sief.cell(e.cell), vari.cell(e.cell));
-        for p in 0..e.npg {
+        for p in 0..npg {
             let st = &mut out[e.state_offset + p];
-            for k in 0..ns {
+            for k in 0..nstress {
                 st.stress[k] = s[p * ns + k];
             }
             st.internal = InternalVars::from_slice(&v[p * nv..p * nv + nvar])
                 .ok_or_else(|| format!("cell {}: bad internal variables", e.cell + 1))?;
+        }
+        if hex {
+            let internal = out[e.state_offset].internal;
+            for k in 0..hexs8::NQ {
+                let row = &mut out[e.state_offset + 1 + k / 6];
+                row.stress[k % 6] = s[6 + k];
+                row.internal = internal;
+            }
         }
     }
     Ok(out)

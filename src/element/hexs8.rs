@@ -1,0 +1,668 @@
+//! MECA_HEXS8, the element of `MODELISATION='3D_SI'` on HEXA8: a one-point
+//! hexahedron whose twelve hourglass modes are stabilised by assumed
+//! strains in the style of Belytschko & Bindeman, "Assumed strain
+//! stabilization of the eight node hexahedral element", CMAME 105 (1993)
+//! 225-260, as code_aster builds it (shared/docs/notes/hexs8.md, the
+//! formula-level reading of te0407/nmas3d/calcdq/cast3d).
+//!
+//! # Why one law call and 72 extra numbers
+//! The law is integrated once per element, at the centre. Alone that
+//! leaves 12 zero-energy (hourglass) modes; the assumed hourglass strains
+//! ε̃_g = B_N,g u, integrated on the 2×2×2 points, give them a stiffness.
+//! Their stress is not recomputed from the strain: generalised hourglass
+//! stresses Q (6 components × 4 modes × 3 gradient directions = 72) are
+//! carried from step to step and updated with the law's current tangent,
+//! Q⁺ = Q⁻ + D·E(q(Δu)), so the hourglass stiffness softens with the
+//! material. ADS (deviatoric) projection for every law but ELAS, ASQBI
+//! (bending-exact, needs ν) for ELAS, as code_aster chooses by law name.
+//!
+//! # State layout
+//! The engine's per-element state has [`STATE_ROWS`] rows: row 0 is the
+//! centre point (σ, internal variables), rows 1..=12 hold Q six at a time
+//! (flat index k = 12·i + 3·α + j, i the stress component, α the mode, j
+//! the gradient direction; row 1 + k/6, component k%6), with a copy of
+//! the centre's internal variables so that reductions over rows stay
+//! right. Q thus travels with the state through step rejection,
+//! archiving and ETAT_INIT continuation; SIEF_ELGA shows it as one point
+//! of 78 components (SIXX..SIYZ, FSTAB1..FSTAB72) as in code_aster.
+//!
+//! # Two variants ([`Variant`])
+//! The default, [`Variant::Published`], is the method of the paper:
+//! centre strain from the mean gradient b̄ with weight V, hourglass
+//! gradients from the centre Jacobian (true index order, weight J₀ per
+//! point, so they are orthogonal to the constant strains and the patch
+//! test passes on distorted meshes), the law's tangent applied in Voigt
+//! form (shear μ), force and stiffness exact derivatives of each other.
+//! [`Variant::CodeAster`] reproduces the departures listed in the note
+//! (§13): point gradient at the centre, K_c weighted 8J₀ but the centre
+//! force V, per-point Jacobians with the transposed index order, the
+//! Mandel tangent on engineering hourglass strains (shear 2μ), the cross
+//! terms in the force, B0_M in the stiffness cross terms and the lower
+//! triangle mirrored. It is selected for a whole run with the
+//! environment variable `ASTER_HEXS8=CODE_ASTER`, to measure what the
+//! departures change (docs/laws-elements.md).
+//!
+//! # Tangent
+//! The stiffness is the material one (∂f/∂u at fixed geometry): for
+//! PETIT_REAC the change of the working geometry with u is not
+//! differentiated, as in code_aster; Newton then converges linearly in the
+//! geometric part, which is small over one step.
+
+use std::sync::OnceLock;
+
+use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
+
+use super::mechanics::{ElementFailure, ElementResponse, Kinematics, LawRef, PointState};
+use super::quadrature::{rule, Fpg};
+use super::shape::{eval, reference_nodes, ShapeEval};
+use super::spec::ElementSpec;
+use crate::law::{Mat6, SmallStrainInput, TangentKind, Vec6};
+use crate::mesh::CellType;
+
+/// Rows of engine state per element: the centre point and 12 rows of Q.
+pub const STATE_ROWS: usize = 13;
+/// Number of generalised hourglass stresses (FSTAB1..FSTAB72).
+pub const NQ: usize = 72;
+/// code_aster's element name.
+pub const NAME: &str = "MECA_HEXS8";
+
+type B = SMatrix<f64, 6, 24>;
+type K24 = SMatrix<f64, 24, 24>;
+
+/// Which formulation of the stabilisation (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variant {
+    /// Belytschko & Bindeman (1993), consistent.
+    Published,
+    /// code_aster 15.x te0407/nmas3d with its departures (note §13).
+    CodeAster,
+}
+
+impl Variant {
+    /// The variant of this process: `ASTER_HEXS8=CODE_ASTER` selects
+    /// [`Variant::CodeAster`]; anything else (or nothing) the published one.
+    pub fn current() -> Variant {
+        static V: OnceLock<Variant> = OnceLock::new();
+        *V.get_or_init(|| match std::env::var("ASTER_HEXS8") {
+            Ok(v) if v.eq_ignore_ascii_case("CODE_ASTER") => Variant::CodeAster,
+            _ => Variant::Published,
+        })
+    }
+}
+
+/// The hourglass strain projection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Projection {
+    /// Assumed deviatoric strain (every law but ELAS).
+    Ads,
+    /// Assumed strain quintessential bending incompatible (ELAS), with ν.
+    Asqbi { nu: f64 },
+}
+
+/// How to compute the element (the defaults are [`Options::current`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    pub variant: Variant,
+    /// False drops the hourglass part: the bare one-point element, whose
+    /// 12 hourglass modes have no stiffness (for the spectrum test).
+    pub stabilise: bool,
+    /// Forces a projection instead of the law-name rule.
+    pub projection: Option<Projection>,
+}
+
+impl Options {
+    pub fn current() -> Options {
+        Options {
+            variant: Variant::current(),
+            stabilise: true,
+            projection: None,
+        }
+    }
+}
+
+/// Virgin state rows of one element.
+pub fn initial_states(law: LawRef) -> Vec<PointState> {
+    vec![
+        PointState {
+            stress: Vec6::zeros(),
+            internal: law.initial_internal(),
+        };
+        STATE_ROWS
+    ]
+}
+
+/// Q (72 numbers, flat index 12·i + 3·α + j) from the state rows.
+pub fn hourglass_stresses(states: &[PointState]) -> [f64; NQ] {
+    let mut q = [0.0; NQ];
+    for (k, v) in q.iter_mut().enumerate() {
+        *v = states[1 + k / 6].stress[k % 6];
+    }
+    q
+}
+
+/// The engine entry point: [`internal_forces_with`] with [`Options::current`].
+#[allow(clippy::too_many_arguments)]
+pub fn internal_forces(
+    spec: &ElementSpec,
+    kin: Kinematics,
+    coords: &[[f64; 3]],
+    u_n: &[f64],
+    u: &[f64],
+    states_n: &[PointState],
+    law: LawRef,
+    dt: f64,
+    tangent: TangentKind,
+) -> Result<ElementResponse, ElementFailure> {
+    internal_forces_with(
+        Options::current(),
+        spec,
+        kin,
+        coords,
+        u_n,
+        u,
+        states_n,
+        law,
+        dt,
+        tangent,
+    )
+}
+
+/// Internal forces, tangent (unless [`TangentKind::None`]) and new state
+/// rows for the step u_n → u. Same contract as
+/// [`super::mechanics::internal_forces`].
+#[allow(clippy::too_many_arguments)]
+pub fn internal_forces_with(
+    opts: Options,
+    spec: &ElementSpec,
+    kin: Kinematics,
+    coords: &[[f64; 3]],
+    u_n: &[f64],
+    u: &[f64],
+    states_n: &[PointState],
+    law: LawRef,
+    dt: f64,
+    tangent: TangentKind,
+) -> Result<ElementResponse, ElementFailure> {
+    let bad = |message: String| ElementFailure::BadInput { message };
+    if spec.cell != CellType::Hexa8 {
+        return Err(bad(format!(
+            "{NAME} needs a HEXA8 cell, got {}",
+            spec.cell.aster_name()
+        )));
+    }
+    if coords.len() != 8 || u_n.len() != 24 || u.len() != 24 {
+        return Err(bad(format!(
+            "{NAME}: 8 nodes and 24 dofs expected, got {} nodes, {} and {} dofs",
+            coords.len(),
+            u_n.len(),
+            u.len()
+        )));
+    }
+    if coords
+        .iter()
+        .flatten()
+        .chain(u_n)
+        .chain(u)
+        .any(|v| !v.is_finite())
+    {
+        return Err(bad(format!(
+            "{NAME}: non-finite coordinate or displacement"
+        )));
+    }
+    if states_n.len() != STATE_ROWS {
+        return Err(ElementFailure::StateCount {
+            expected: STATE_ROWS,
+            got: states_n.len(),
+        });
+    }
+    let LawRef::Small(l) = law else {
+        return Err(bad(format!(
+            "{NAME} accepts only DEFORMATION='PETIT' or 'PETIT_REAC' (ELEMENTSSI_1)"
+        )));
+    };
+    if !matches!(kin, Kinematics::Petit | Kinematics::PetitReac) {
+        return Err(bad(format!(
+            "{NAME} accepts only DEFORMATION='PETIT' or 'PETIT_REAC', not '{}' (ELEMENTSSI_1)",
+            kin.strain_measure().aster_name()
+        )));
+    }
+    let projection = match opts.projection {
+        Some(p) => p,
+        None if l.metadata().name == "ELAS" => {
+            let nu = l
+                .elastic_params()
+                .ok_or_else(|| bad(format!("{NAME}: law ELAS without NU (ELEMENTS4_72)")))?
+                .nu;
+            Projection::Asqbi { nu }
+        }
+        None => Projection::Ads,
+    };
+
+    let mut x = [[0.0; 3]; 8];
+    let mut du = [0.0; 24];
+    for a in 0..8 {
+        for i in 0..3 {
+            x[a][i] = coords[a][i]
+                + if kin == Kinematics::PetitReac {
+                    u[3 * a + i]
+                } else {
+                    0.0
+                };
+        }
+    }
+    for k in 0..24 {
+        du[k] = u[k] - u_n[k];
+    }
+    let geom = Geometry::new(&x, opts.variant).map_err(|(point, message)| {
+        if kin == Kinematics::PetitReac {
+            ElementFailure::Inverted { point, message }
+        } else {
+            ElementFailure::BadGeometry { point, message }
+        }
+    })?;
+
+    // The law, once, at the centre. RAPH_MECA is promoted to FULL_MECA:
+    // the Q update needs a tangent.
+    let deps = geom.b0 * nalgebra::SVector::<f64, 24>::from_column_slice(&du);
+    let st0 = &states_n[0];
+    let law_tangent = if tangent == TangentKind::None {
+        TangentKind::Consistent
+    } else {
+        tangent
+    };
+    let out = {
+        let _span = crate::bench::span(crate::bench::Phase::LawIntegration);
+        l.integrate(&SmallStrainInput {
+            stress: st0.stress,
+            internal: st0.internal.as_slice(),
+            strain_increment: deps,
+            dt,
+            tangent: law_tangent,
+        })
+        .map_err(|failure| ElementFailure::Law { point: 0, failure })?
+    };
+    let dv = out
+        .tangent
+        .ok_or_else(|| bad(format!("law {} returned no tangent", l.metadata().name)))?;
+    let sigma = out.stress;
+
+    // The tangent the hourglass part uses: Voigt (published) or Mandel
+    // applied to engineering strains (code_aster, note §13.3).
+    let p_inv = Mat6::from_diagonal(&Vec6::new(
+        1.0,
+        1.0,
+        1.0,
+        std::f64::consts::SQRT_2,
+        std::f64::consts::SQRT_2,
+        std::f64::consts::SQRT_2,
+    ));
+    let dh = match opts.variant {
+        Variant::Published => dv,
+        Variant::CodeAster => p_inv * dv * p_inv,
+    };
+
+    let mut forces = SMatrix::<f64, 24, 1>::zeros();
+    let mut kmat = K24::zeros();
+    let want_k = tangent != TangentKind::None;
+    // Centre part.
+    forces += geom.b0.transpose() * (sigma * geom.vol);
+    if want_k {
+        kmat += geom.b0.transpose() * dv * geom.b0 * geom.w0;
+    }
+
+    let mut q_new = hourglass_stresses(states_n);
+    if opts.stabilise {
+        let e = e_vectors(projection);
+        // q_α = γ_α · Δu (3-vector per mode), then ΔQ_{·,α,j} = D E^{αj}(q_α).
+        let mut qa = [[0.0; 3]; 4];
+        for (al, q) in qa.iter_mut().enumerate() {
+            for (a, g) in geom.gamma[al].iter().enumerate() {
+                for i in 0..3 {
+                    q[i] += g * du[3 * a + i];
+                }
+            }
+        }
+        for al in 0..4 {
+            for j in 0..3 {
+                let mut ej = Vec6::zeros();
+                for l in 0..3 {
+                    ej += e[al][j][l] * qa[al][l];
+                }
+                let dq = dh * ej;
+                for i in 0..6 {
+                    q_new[12 * i + 3 * al + j] += dq[i];
+                }
+            }
+        }
+        let p = Mat6::from_diagonal(&Vec6::new(
+            1.0,
+            1.0,
+            1.0,
+            std::f64::consts::FRAC_1_SQRT_2,
+            std::f64::consts::FRAC_1_SQRT_2,
+            std::f64::consts::FRAC_1_SQRT_2,
+        ));
+        for g in 0..8 {
+            let bn = geom.bn(g, &e);
+            let mut s = Vec6::zeros();
+            for al in 0..4 {
+                for j in 0..3 {
+                    let c = geom.c[g][al][j];
+                    for i in 0..6 {
+                        s[i] += c * q_new[12 * i + 3 * al + j];
+                    }
+                }
+            }
+            let w = geom.wg[g];
+            match opts.variant {
+                Variant::Published => {
+                    forces += bn.transpose() * (s * w);
+                    if want_k {
+                        kmat += bn.transpose() * dh * bn * w;
+                    }
+                }
+                Variant::CodeAster => {
+                    forces += bn.transpose() * ((sigma + s) * w) + geom.b0.transpose() * (s * w);
+                    if want_k {
+                        let b0m = p * geom.b0;
+                        kmat += (bn.transpose() * dh * bn
+                            + bn.transpose() * dh * b0m
+                            + b0m.transpose() * dh * bn)
+                            * w;
+                    }
+                }
+            }
+        }
+        if want_k && opts.variant == Variant::CodeAster {
+            // cast3d fills the lower triangle only and mirrors it.
+            for r in 0..24 {
+                for c in r + 1..24 {
+                    kmat[(r, c)] = kmat[(c, r)];
+                }
+            }
+        }
+    }
+
+    let mut states = Vec::with_capacity(STATE_ROWS);
+    states.push(PointState {
+        stress: sigma,
+        internal: out.internal,
+    });
+    for r in 0..12 {
+        let mut s = Vec6::zeros();
+        for c in 0..6 {
+            s[c] = q_new[6 * r + c];
+        }
+        states.push(PointState {
+            stress: s,
+            internal: out.internal,
+        });
+    }
+    Ok(ElementResponse {
+        forces: DVector::from_column_slice(forces.as_slice()),
+        stiffness: want_k.then(|| DMatrix::from_column_slice(24, 24, kmat.as_slice())),
+        states,
+    })
+}
+
+/// E^{αj}(e_l) for every mode α, gradient direction j and displacement
+/// direction l (note §4.7): normal part n^{αj}_i δ_jl, shear parts by the
+/// mode's inclusion rules, the same for both projections.
+fn e_vectors(projection: Projection) -> [[[Vec6; 3]; 3]; 4] {
+    let third = 1.0 / 3.0;
+    let normals: [[[f64; 3]; 3]; 4] = match projection {
+        Projection::Ads => {
+            let n = [
+                [2.0 * third, -third, -third],
+                [-third, 2.0 * third, -third],
+                [-third, -third, 2.0 * third],
+            ];
+            [n; 4]
+        }
+        Projection::Asqbi { nu } => {
+            let nb = nu / (1.0 - nu);
+            [
+                [[1.0, -nu, -nu], [0.0, 1.0, -nb], [0.0, -nb, 1.0]],
+                [[1.0, 0.0, -nb], [-nu, 1.0, -nu], [-nb, 0.0, 1.0]],
+                [[1.0, -nb, 0.0], [-nb, 1.0, 0.0], [-nu, -nu, 1.0]],
+                [[1.0, -nu, -nu], [-nu, 1.0, -nu], [-nu, -nu, 1.0]],
+            ]
+        }
+    };
+    // Shear component (3: xy, 4: xz, 5: yz) of the pair of directions, and
+    // whether mode α feeds it: γxy has no ξη mode, γxz no ξζ, γyz no ηζ.
+    let shear = |a: usize, b: usize| match (a.min(b), a.max(b)) {
+        (0, 1) => 3,
+        (0, 2) => 4,
+        _ => 5,
+    };
+    let feeds = |al: usize, comp: usize| match comp {
+        3 => al == 0 || al == 1,
+        4 => al == 0 || al == 2,
+        _ => al == 1 || al == 2,
+    };
+    let mut out = [[[Vec6::zeros(); 3]; 3]; 4];
+    for al in 0..4 {
+        for j in 0..3 {
+            for l in 0..3 {
+                let v = &mut out[al][j][l];
+                if l == j {
+                    for i in 0..3 {
+                        v[i] = normals[al][j][i];
+                    }
+                } else {
+                    let comp = shear(j, l);
+                    if feeds(al, comp) {
+                        v[comp] = 1.0;
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The 8 reference points of FPG8 and their shape functions.
+struct Reference {
+    centre: ShapeEval,
+    points: Vec<[f64; 3]>,
+    weights: Vec<f64>,
+    shapes: Vec<ShapeEval>,
+    /// h_α at the nodes (MED order): ηζ, ξζ, ξη, ξηζ.
+    h: [[f64; 8]; 4],
+}
+
+fn reference() -> &'static Reference {
+    static R: OnceLock<Reference> = OnceLock::new();
+    R.get_or_init(|| {
+        let q = rule(CellType::Hexa8, Fpg::Fpg8).expect("HEXA8 has FPG8");
+        let nodes = reference_nodes(CellType::Hexa8);
+        let mut h = [[0.0; 8]; 4];
+        for (a, p) in nodes.iter().enumerate() {
+            h[0][a] = p[1] * p[2];
+            h[1][a] = p[0] * p[2];
+            h[2][a] = p[0] * p[1];
+            h[3][a] = p[0] * p[1] * p[2];
+        }
+        Reference {
+            centre: eval(CellType::Hexa8, [0.0; 3]),
+            shapes: q.points.iter().map(|p| eval(CellType::Hexa8, *p)).collect(),
+            points: q.points,
+            weights: q.weights,
+            h,
+        }
+    })
+}
+
+/// ∂h_α/∂ξ at ξ.
+fn dh_dxi(p: &[f64; 3]) -> [[f64; 3]; 4] {
+    let (xi, eta, zeta) = (p[0], p[1], p[2]);
+    [
+        [0.0, zeta, eta],
+        [zeta, 0.0, xi],
+        [eta, xi, 0.0],
+        [eta * zeta, xi * zeta, xi * eta],
+    ]
+}
+
+/// Jacobian determinant and inverse (inv[(l, k)] = ∂ξ_l/∂x_k).
+fn jacobian(s: &ShapeEval, x: &[[f64; 3]; 8]) -> Result<(f64, Matrix3<f64>), String> {
+    let dn = s.dn();
+    let mut j = Matrix3::<f64>::zeros();
+    for a in 0..8 {
+        for k in 0..3 {
+            for l in 0..3 {
+                j[(k, l)] += x[a][k] * dn[a][l];
+            }
+        }
+    }
+    let det = j.determinant();
+    if det.is_nan() || det <= 0.0 {
+        return Err(format!("non-positive Jacobian {det}"));
+    }
+    let inv = j
+        .try_inverse()
+        .ok_or_else(|| "singular Jacobian".to_string())?;
+    Ok((det, inv))
+}
+
+fn gradient(s: &ShapeEval, inv: &Matrix3<f64>) -> [[f64; 3]; 8] {
+    let dn = s.dn();
+    let mut g = [[0.0; 3]; 8];
+    for a in 0..8 {
+        for k in 0..3 {
+            g[a][k] = (0..3).map(|l| inv[(l, k)] * dn[a][l]).sum();
+        }
+    }
+    g
+}
+
+/// The element's geometric operators on one configuration.
+struct Geometry {
+    /// Engineering strain operator of the centre (b̄ or the point
+    /// gradient at ξ = 0).
+    b0: B,
+    /// Weight of the centre stiffness (V or 8J₀).
+    w0: f64,
+    /// Volume V (weight of the centre force).
+    vol: f64,
+    /// γ_α (per node).
+    gamma: [[f64; 8]; 4],
+    /// c_αj(g): hourglass-function gradients at the 8 points.
+    c: [[[f64; 3]; 4]; 8],
+    /// Weights of the hourglass integration.
+    wg: [f64; 8],
+}
+
+impl Geometry {
+    fn new(x: &[[f64; 3]; 8], variant: Variant) -> Result<Geometry, (usize, String)> {
+        let r = reference();
+        let (j0, inv0) = jacobian(&r.centre, x).map_err(|m| (0, format!("at the centre: {m}")))?;
+        let grad0 = gradient(&r.centre, &inv0);
+        let mut vol = 0.0;
+        let mut bbar = [[0.0; 3]; 8];
+        let mut jg = [0.0; 8];
+        let mut invg = [Matrix3::zeros(); 8];
+        for g in 0..8 {
+            let (det, inv) = jacobian(&r.shapes[g], x).map_err(|m| (g, m))?;
+            let w = r.weights[g] * det;
+            let gr = gradient(&r.shapes[g], &inv);
+            for a in 0..8 {
+                for k in 0..3 {
+                    bbar[a][k] += w * gr[a][k];
+                }
+            }
+            vol += w;
+            jg[g] = w;
+            invg[g] = inv;
+        }
+        for b in bbar.iter_mut().flatten() {
+            *b /= vol;
+        }
+        // γ_αI = (h_αI − Σ_j (Σ_J h_αJ x_Jj) b̄_jI) / 8
+        let mut gamma = [[0.0; 8]; 4];
+        for al in 0..4 {
+            let mut hx = [0.0; 3];
+            for a in 0..8 {
+                for j in 0..3 {
+                    hx[j] += r.h[al][a] * x[a][j];
+                }
+            }
+            for a in 0..8 {
+                gamma[al][a] = (r.h[al][a] - (0..3).map(|j| hx[j] * bbar[a][j]).sum::<f64>()) / 8.0;
+            }
+        }
+        let mut c = [[[0.0; 3]; 4]; 8];
+        let mut wg = [0.0; 8];
+        for g in 0..8 {
+            let dh = dh_dxi(&r.points[g]);
+            for al in 0..4 {
+                for j in 0..3 {
+                    c[g][al][j] = match variant {
+                        // true gradient with the centre Jacobian
+                        Variant::Published => (0..3).map(|k| dh[al][k] * inv0[(k, j)]).sum(),
+                        // nmas3d: the point's inverse Jacobian, transposed
+                        Variant::CodeAster => (0..3).map(|k| dh[al][k] * invg[g][(j, k)]).sum(),
+                    };
+                }
+            }
+            wg[g] = match variant {
+                Variant::Published => r.weights[g] * j0,
+                Variant::CodeAster => jg[g],
+            };
+        }
+        let (centre, w0) = match variant {
+            Variant::Published => (bbar, vol),
+            Variant::CodeAster => (grad0, 8.0 * j0),
+        };
+        Ok(Geometry {
+            b0: strain_operator(&centre),
+            w0,
+            vol,
+            gamma,
+            c,
+            wg,
+        })
+    }
+
+    /// B_N,g, the 6×24 engineering hourglass strain operator at point g.
+    fn bn(&self, g: usize, e: &[[[Vec6; 3]; 3]; 4]) -> B {
+        let mut b = B::zeros();
+        for al in 0..4 {
+            for j in 0..3 {
+                let c = self.c[g][al][j];
+                if c == 0.0 {
+                    continue;
+                }
+                for a in 0..8 {
+                    let w = c * self.gamma[al][a];
+                    for l in 0..3 {
+                        let col = 3 * a + l;
+                        for i in 0..6 {
+                            b[(i, col)] += w * e[al][j][l][i];
+                        }
+                    }
+                }
+            }
+        }
+        b
+    }
+}
+
+/// Engineering strain operator of a gradient table (xx, yy, zz, γxy, γxz, γyz).
+fn strain_operator(grad: &[[f64; 3]; 8]) -> B {
+    let mut b = B::zeros();
+    for (a, g) in grad.iter().enumerate() {
+        let (cx, cy, cz) = (3 * a, 3 * a + 1, 3 * a + 2);
+        b[(0, cx)] = g[0];
+        b[(1, cy)] = g[1];
+        b[(2, cz)] = g[2];
+        b[(3, cx)] = g[1];
+        b[(3, cy)] = g[0];
+        b[(4, cx)] = g[2];
+        b[(4, cz)] = g[0];
+        b[(5, cy)] = g[2];
+        b[(5, cz)] = g[1];
+    }
+    b
+}
