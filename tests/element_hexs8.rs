@@ -35,6 +35,11 @@ fn hexs8() -> ElementSpec {
     element_spec("3D_SI", CellType::Hexa8).unwrap()
 }
 
+/// One element evaluation: (coords, u, states) -> (f, K, new states).
+type ElementOut = (DVector<f64>, DMatrix<f64>, Vec<PointState>);
+trait Run: Fn(&[[f64; 3]], &[f64], &[PointState]) -> ElementOut {}
+impl<T: Fn(&[[f64; 3]], &[f64], &[PointState]) -> ElementOut> Run for T {}
+
 fn opts(variant: Variant) -> Options {
     Options {
         variant,
@@ -105,11 +110,7 @@ fn assemble(
     spec: &ElementSpec,
     law: LawRef,
     u: &[f64],
-    run: &dyn Fn(
-        &[[f64; 3]],
-        &[f64],
-        &[PointState],
-    ) -> (DVector<f64>, DMatrix<f64>, Vec<PointState>),
+    run: &dyn Run,
 ) -> (DVector<f64>, DMatrix<f64>, Vec<Vec<PointState>>) {
     let n = 3 * grid.coords.len();
     let mut f = DVector::zeros(n);
@@ -147,11 +148,7 @@ fn solve_linear(
     law: LawRef,
     imposed: &[(usize, f64)],
     fext: &DVector<f64>,
-    run: &dyn Fn(
-        &[[f64; 3]],
-        &[f64],
-        &[PointState],
-    ) -> (DVector<f64>, DMatrix<f64>, Vec<PointState>),
+    run: &dyn Run,
 ) -> Vec<f64> {
     let n = 3 * grid.coords.len();
     let mut u = vec![0.0; n];
@@ -171,12 +168,7 @@ fn solve_linear(
     u
 }
 
-fn runner<'a>(
-    spec: &'a ElementSpec,
-    law: LawRef<'a>,
-    o: Options,
-) -> impl Fn(&[[f64; 3]], &[f64], &[PointState]) -> (DVector<f64>, DMatrix<f64>, Vec<PointState>) + 'a
-{
+fn runner<'a>(spec: &'a ElementSpec, law: LawRef<'a>, o: Options) -> impl Run + 'a {
     move |x, u, st| {
         let zero = vec![0.0; u.len()];
         let r = if spec.is_hexs8() {
