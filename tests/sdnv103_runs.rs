@@ -12,7 +12,7 @@ mod common;
 /// The studies that stop today on a `not implemented yet` error (the
 /// engine lacks a feature they use). Making one run: remove it from this
 /// list and add its line to the `studies!` block below.
-const NOT_RUNNING_YET: &[&str] = &["f", "g"];
+const NOT_RUNNING_YET: &[&str] = &["f"];
 
 /// The studies that run to FIN with some check NOOK, for reasons their
 /// docs give (E, K: docs/contact.md §9). Their tables and verdicts are
@@ -20,8 +20,10 @@ const NOT_RUNNING_YET: &[&str] = &["f", "g"];
 /// shows up there; once every check is OK, move the letter to `studies!`.
 /// A: B1 reopens after the impact (JEU > 0 at 2.5e-7) while the mid-edge
 /// nodes of its QUAD8 contact face are not tied as code_aster ties them
-/// (docs/studies.md, A).
-const FIN_WITH_NOOK: &[&str] = &["a", "e", "k"];
+/// (docs/studies.md, A). G reaches FIN (exit 0) since HEXS8 and
+/// VMIS_JOHN_COOK/GDEF_LOG exist, with its non-regression values not
+/// recorded yet (SKIP); whoever records them moves it to `studies!`.
+const FIN_WITH_NOOK: &[&str] = &["a", "e", "g", "k"];
 
 fn run(m: &str) -> String {
     let run = common::run_study(&format!("comm/sdnv103{m}.comm"), &format!("sdnv103{m}_run"));
