@@ -198,3 +198,34 @@ fn collision_and_interpenetration() {
     // PENE_MAXI = 1e-5 of sdnv103i would fire here.
     assert!(closed.max_interpenetration() > 1e-5);
 }
+
+/// The field of the initial instant (NUME_ORDRE 0): every component 0 on
+/// the slave node, paired or not and whatever its gap, absent on the other
+/// nodes (code_aster's `cfmxr0`; the minimum of JEU in SDNV103 I relies on
+/// it).
+#[test]
+fn initial_field_is_zero_on_slave_nodes() {
+    let (m, d) = setup(true);
+    let p = pair(&d, &m, &[[0.0; 3]; 4]);
+    for slave in [[0.0, 0.3, 0.0], [0.0, -0.01, 0.0]] {
+        let s = state_at(&d, &p, slave);
+        assert_ne!(s.links[0].gap, 0.0);
+        let f = s.cont_noeu_initial(4);
+        for name in CONT_NOEU_COMPONENTS {
+            assert_eq!(f.get(2, name), Some(0.0), "{name}");
+            for other in [0, 1, 3] {
+                assert_eq!(f.get(other, name), None, "{name} on {other}");
+            }
+        }
+        // The field of a converged step carries the gap.
+        assert_eq!(s.cont_noeu(4).get(2, "JEU"), Some(s.links[0].gap));
+    }
+    // An unpaired slave node is 0 too (not −1) before the first step.
+    let far = ContactState {
+        dim: 2,
+        links: vec![],
+        unpaired: vec![(0, 2)],
+    };
+    let f = far.cont_noeu_initial(4);
+    assert_eq!(f.get(2, "CONT"), Some(0.0));
+}
