@@ -18,9 +18,12 @@ const NOT_RUNNING_YET: &[&str] = &["f"];
 /// docs give (E, K: docs/contact.md §9). Their tables and verdicts are
 /// snapshotted by tests/sdnv103_unil_runs.rs, so a verdict that changes
 /// shows up there; once every check is OK, move the letter to `studies!`.
-/// A: B1 reopens after the impact (JEU > 0 at 2.5e-7) while the mid-edge
-/// nodes of its QUAD8 contact face are not tied as code_aster ties them
-/// (docs/studies.md, A). G reaches FIN (exit 0) since HEXS8 and
+/// A: B1 reopens after the impact (JEU > 0 at 2.5e-7) against the file's
+/// analytic check JEU = 0; code_aster's own sdnv103a records that JEU as
+/// VALE_CALC=0. alone, which code_aster skips, so nothing shows B1 closed
+/// there in code_aster either. The QUAD8 mid-edge nodes are ordinary slave
+/// nodes with ALGO_CONT='PENALISATION', as in code_aster, which ties them
+/// only in the active-set method (docs/contact.md §2, `quadco`). G reaches FIN (exit 0) since HEXS8 and
 /// VMIS_JOHN_COOK/GDEF_LOG exist, with its non-regression values not
 /// recorded yet (SKIP); whoever records them moves it to `studies!`.
 const FIN_WITH_NOOK: &[&str] = &["a", "e", "g", "k"];
