@@ -260,7 +260,8 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             &u,
             &points,
             &mut scratch,
-            1.0,
+            // Zero time: the stored state is evaluated, not advanced.
+            0.0,
             TangentKind::None,
             &mut fint,
             None,

@@ -276,7 +276,12 @@ impl SmallStrainBehaviour for VmisJohnCook {
         let (r_chk, _) = self.check_threshold(v);
         let mut internal = InternalVars::zeros(METADATA.internal_variables.len());
         let elastic_d = one_one() * k + deviatoric_projector() * (2.0 * mu);
-        if q_tr - r_chk <= 0.0 {
+        // Δt = 0 is an evaluation of the state, not a step: the limit of
+        // the update as Δt → 0 is elastic (the rate factor, hence R, grows
+        // without bound for any Δp > 0), which is what is returned. code_aster
+        // gives NaN there (note A.3); the zero-increment evaluations of a
+        // restart and of CALC_CHAMP FORC_NODA rely on this.
+        if q_tr - r_chk <= 0.0 || dt == 0.0 {
             let iv = internal.as_mut_slice();
             iv[0] = p_n;
             iv[3] = dt;
@@ -289,12 +294,6 @@ impl SmallStrainBehaviour for VmisJohnCook {
                 },
                 regime: Regime::Elastic,
             });
-        }
-        if dt.is_nan() || dt <= 0.0 {
-            return Err(IntegrationFailure::invalid(
-                METADATA.name,
-                format!("a plastic step needs a time step > 0 (got {dt}): the plastic strain rate is undefined"),
-            ));
         }
         let (dp, iterations) = self.solve_dp(p_n, q_tr, r_chk, dt)?;
         let (r, rp) = self.flow_stress(p_n, dp, dt);

@@ -292,7 +292,10 @@ impl Engine {
                 &c.motion.u,
                 &c.points,
                 &mut self.trial.points,
-                1.0,
+                // Zero time: an evaluation of the stored state, in which a
+                // rate-dependent law cannot flow (VMIS_JOHN_COOK: the
+                // limit of infinite rate is elastic).
+                0.0,
                 TangentKind::None,
                 &mut c.fint,
                 None,
