@@ -30,6 +30,7 @@ fn setup(friction: bool) -> (Mesh, ContactDef) {
         dim: 2,
         friction,
         reac_geom: ReacGeom::Sans,
+        continuous: None,
         zones: vec![ContactZone {
             master_group: "MAIT".into(),
             slave_group: "ESCL".into(),

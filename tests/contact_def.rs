@@ -169,18 +169,25 @@ fn wrong_cell_dimension_is_refused() {
 
 #[test]
 fn unimplemented_formulations_and_options_are_refused() {
-    let e = error_of(
-        "AXIS",
-        'D',
-        "FORMULATION='CONTINUE', ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
-    );
-    assert!(
-        e.message
-            .starts_with("not implemented yet: DEFI_CONTACT/FORMULATION"),
-        "{}",
-        e.message
-    );
-    assert!(e.message.contains("CONTINUE"));
+    // The continuous formulation: only nodal points and the augmented
+    // Lagrangian are built.
+    for (kw, what) in [
+        ("INTEGRATION='GAUSS'", "INTEGRATION"),
+        ("ALGO_CONT='PENALISATION', COEF_PENA_CONT=1.E5", "ALGO_CONT"),
+    ] {
+        let e = error_of(
+            "AXIS",
+            'D',
+            &format!(
+                "FORMULATION='CONTINUE', ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', {kw})"
+            ),
+        );
+        assert!(
+            e.message.starts_with("not implemented yet") && e.message.contains(what),
+            "{}",
+            e.message
+        );
+    }
     let m = mesh('D');
     let text = "FORMULATION='LIAISON_UNIL', ZONE=_F(GROUP_NO='A1', NOM_CMP='DY', \
                 COEF_MULT=F1, COEF_IMPO=F1)";
@@ -346,4 +353,27 @@ fn penalised_contact_keeps_quad8_mid_nodes() {
             "mid node {n} unlinked"
         );
     }
+}
+
+/// SDNV103 F's definition: the continuous keywords with their defaults.
+#[test]
+fn continuous_definition_of_f() {
+    use aster::contact::continuous::{ContactInit, Resolution};
+    let m = mesh('D');
+    let args = defi_contact(
+        "AXIS",
+        "FORMULATION='CONTINUE', FROTTEMENT='COULOMB', ALGO_RESO_CONT='NEWTON', \
+         ALGO_RESO_FROT='NEWTON', ALGO_RESO_GEOM='NEWTON', \
+         ZONE=_F(APPARIEMENT='MAIT_ESCL', GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', COULOMB=0.25)",
+    );
+    let d = ContactDef::from_args(&args, &m).expect("F's definition");
+    let c = d.continuous.as_ref().expect("continuous");
+    assert_eq!(c.algo_reso_geom, Resolution::Newton);
+    assert_eq!(c.resi_frot, 1e-4);
+    let z = &c.zones[0];
+    assert_eq!((z.coef_cont, z.coef_frot, z.mu), (100.0, 100.0, Some(0.25)));
+    assert_eq!(z.contact_init, ContactInit::Interpenetre);
+    assert_eq!(z.seuil_init, None);
+    assert_eq!(z.slave_cells.len(), m.cell_groups["SZZ"].len());
+    assert_eq!(d.zones[0].slave_nodes.len(), 5);
 }

@@ -33,6 +33,7 @@ fn def(mesh: &Mesh, e_n: f64, friction: Option<Coulomb>) -> ContactDef {
         dim: mesh.dim,
         friction: friction.is_some(),
         reac_geom: ReacGeom::Sans,
+        continuous: None,
         zones: vec![ContactZone {
             master_group: "MAIT".into(),
             slave_group: "ESCL".into(),

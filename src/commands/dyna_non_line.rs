@@ -849,10 +849,17 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                     "REAC_INCR=0 is forbidden with penalised discrete contact or friction: the contact stiffness changes with the pairing (CONTACT_88)",
                 ));
                 }
-                if !newton.symmetrize {
-                    notes.push("discrete contact: the stiffness is symmetrised (MATR_RIGI_SYME='OUI' implied, as code_aster)".into());
+                if def.continuous.is_none() {
+                    if !newton.symmetrize {
+                        notes.push("discrete contact: the stiffness is symmetrised (MATR_RIGI_SYME='OUI' implied, as code_aster)".into());
+                    }
+                    newton.symmetrize = true;
+                } else if newton.symmetrize {
+                    return Err(args.not_implemented(
+                        "NEWTON",
+                        "MATR_RIGI_SYME='OUI' with continuous contact (its multipliers make the system a saddle point, solved unsymmetrised by LU)",
+                    ));
                 }
-                newton.symmetrize = true;
                 Some(def)
             }
         }
@@ -1005,14 +1012,23 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         mess.push_str(line);
         mess.push('\n');
     };
-    let mut contact = contact_def.map(|def| {
-        nonlinear::DiscreteContact::new(
-            def,
-            &md.mesh,
-            &engine.asm.numbering,
-            &engine.committed.motion.u,
-        )
-    });
+    let axis = md
+        .model
+        .element_cells()
+        .any(|(_, s)| s.formulation == crate::element::spec::Formulation::Axis);
+    let mut contact = match contact_def {
+        None => None,
+        Some(def) => Some(
+            nonlinear::DiscreteContact::build(
+                def,
+                &md.mesh,
+                &engine.asm.numbering,
+                &engine.committed.motion.u,
+                axis,
+            )
+            .map_err(|m| args.error("CONTACT", m))?,
+        ),
+    };
     let mut unil = match unil_def {
         Some(def) => {
             let term = nonlinear::UnilateralContact::new(def, &engine.asm.numbering);

@@ -20,6 +20,7 @@
 //! silently ignored.
 
 pub mod cont_noeu;
+pub mod continuous;
 pub mod discrete;
 pub mod pairing;
 pub mod unilateral;
@@ -95,6 +96,10 @@ pub struct ContactDef {
     pub friction: bool,
     pub reac_geom: ReacGeom,
     pub zones: Vec<ContactZone>,
+    /// FORMULATION='CONTINUE': the continuous keywords (the zones above
+    /// then carry only the groups, the pairing options and the slave
+    /// nodes; `e_n` and `friction` are unused).
+    pub continuous: Option<continuous::ContinuousDef>,
 }
 
 impl ContactDef {
@@ -103,13 +108,7 @@ impl ContactDef {
     pub fn from_args(args: &Args, mesh: &Mesh) -> Result<ContactDef, Diagnostic> {
         let formulation = args.text("FORMULATION").unwrap_or("DISCRETE");
         match formulation {
-            "DISCRETE" => {}
-            "CONTINUE" => {
-                return Err(args.not_implemented(
-                    "FORMULATION",
-                    "the continuous formulation (FORMULATION='CONTINUE'); only 'DISCRETE' penalised contact is available",
-                ))
-            }
+            "DISCRETE" | "CONTINUE" => {}
             "LIAISON_UNIL" => {
                 return Err(args.not_implemented(
                     "FORMULATION",
@@ -141,15 +140,37 @@ impl ContactDef {
         if zones.is_empty() {
             return Err(args.error("ZONE", "at least one ZONE is required"));
         }
+        let continuous = formulation == "CONTINUE";
+        let czones = if continuous {
+            if mesh.dim != 2 {
+                return Err(args.not_implemented(
+                    "FORMULATION",
+                    "the continuous formulation in 3D (FORMULATION='CONTINUE' is available on 2D models)",
+                ));
+            }
+            Some(
+                zones
+                    .iter()
+                    .map(|z| continuous_zone(z, mesh, friction))
+                    .collect::<Result<Vec<_>, _>>()?,
+            )
+        } else {
+            None
+        };
         let zones = zones
             .iter()
-            .map(|z| zone(z, mesh, friction))
+            .map(|z| zone(z, mesh, friction, continuous))
             .collect::<Result<Vec<_>, _>>()?;
+        let continuous = match czones {
+            None => None,
+            Some(czones) => Some(continuous_def(args, czones)?),
+        };
         Ok(ContactDef {
             dim: mesh.dim,
             friction,
             reac_geom,
             zones,
+            continuous,
         })
     }
 
@@ -222,7 +243,154 @@ fn cell_group<'m>(
     }
 }
 
-fn zone(z: &Args, mesh: &Mesh, friction: bool) -> Result<ContactZone, Diagnostic> {
+/// The top-level keywords of the continuous formulation.
+fn continuous_def(
+    args: &Args,
+    zones: Vec<continuous::ContinuousZone>,
+) -> Result<continuous::ContinuousDef, Diagnostic> {
+    use continuous::Resolution;
+    let reso = |key: &str| -> Result<Resolution, Diagnostic> {
+        match args.text(key).unwrap_or("NEWTON") {
+            "NEWTON" => Ok(Resolution::Newton),
+            "POINT_FIXE" => Ok(Resolution::PointFixe),
+            other => Err(args.error(key, format!("{key}='{other}' is not supported"))),
+        }
+    };
+    let algo_reso_cont = reso("ALGO_RESO_CONT")?;
+    let algo_reso_frot = reso("ALGO_RESO_FROT")?;
+    let algo_reso_geom = reso("ALGO_RESO_GEOM")?;
+    if algo_reso_cont == Resolution::PointFixe {
+        return Err(args.not_implemented(
+            "ALGO_RESO_CONT",
+            "the contact fixed point (ALGO_RESO_CONT='POINT_FIXE'); the statuses are updated inside Newton (NEWTON)",
+        ));
+    }
+    if algo_reso_frot == Resolution::PointFixe && args.text("FROTTEMENT") == Some("COULOMB") {
+        return Err(args.not_implemented(
+            "ALGO_RESO_FROT",
+            "the friction fixed point (ALGO_RESO_FROT='POINT_FIXE'); friction is solved inside Newton (NEWTON)",
+        ));
+    }
+    let resi_geom = args.real("RESI_GEOM").unwrap_or(match algo_reso_geom {
+        Resolution::Newton => 1e-6,
+        Resolution::PointFixe => 1e-2,
+    });
+    let resi_frot = args.real("RESI_FROT").unwrap_or(1e-4);
+    for (key, v) in [("RESI_GEOM", resi_geom), ("RESI_FROT", resi_frot)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(args.error(key, format!("{key} must be > 0, got {v:e}")));
+        }
+    }
+    Ok(continuous::ContinuousDef {
+        algo_reso_cont,
+        algo_reso_frot,
+        algo_reso_geom,
+        resi_geom,
+        resi_frot,
+        zones,
+    })
+}
+
+/// The continuous keywords of one ZONE; what is not built is refused.
+fn continuous_zone(
+    z: &Args,
+    mesh: &Mesh,
+    friction: bool,
+) -> Result<continuous::ContinuousZone, Diagnostic> {
+    use continuous::ContactInit;
+    match z.text("ALGO_CONT").unwrap_or("STANDARD") {
+        "STANDARD" => {}
+        other => {
+            return Err(z.not_implemented(
+                "ALGO_CONT",
+                &format!("ALGO_CONT='{other}' in the continuous formulation; only the augmented Lagrangian (ALGO_CONT='STANDARD') is available"),
+            ))
+        }
+    }
+    if let Some(a) = z.text("ALGO_FROT") {
+        if a != "STANDARD" {
+            return Err(z.not_implemented(
+                "ALGO_FROT",
+                &format!("ALGO_FROT='{a}' in the continuous formulation; only ALGO_FROT='STANDARD' is available"),
+            ));
+        }
+    }
+    if let Some(i) = z.text("INTEGRATION") {
+        if i != "AUTO" {
+            return Err(z.not_implemented(
+                "INTEGRATION",
+                &format!("INTEGRATION='{i}'; only the nodal contact points of INTEGRATION='AUTO' are available"),
+            ));
+        }
+    }
+    if let Some(a) = z.text("ADAPTATION") {
+        if a != "CYCLAGE" && a != "NON" {
+            return Err(z.not_implemented(
+                "ADAPTATION",
+                &format!("ADAPTATION='{a}' (automatic coefficients); only 'CYCLAGE' (without effect here, docs/contact.md) and 'NON' are available"),
+            ));
+        }
+    }
+    for (key, ok) in [
+        ("GLISSIERE", "NON"),
+        ("GRAND_GLIS", "NON"),
+        ("LISSAGE", "NON"),
+    ] {
+        if let Some(v) = z.text(key) {
+            if v != ok {
+                return Err(z.not_implemented(key, &format!("{key}='{v}'")));
+            }
+        }
+    }
+    if z.has("SANS_GROUP_NO_FR") {
+        return Err(z.not_implemented("SANS_GROUP_NO_FR", "nodes without friction"));
+    }
+    let positive = |key: &str, default: f64| -> Result<f64, Diagnostic> {
+        let v = z.real(key).unwrap_or(default);
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(z.error(key, format!("{key} must be > 0, got {v:e}")))
+        }
+    };
+    let coef_cont = positive("COEF_CONT", 100.0)?;
+    let coef_frot = positive("COEF_FROT", 100.0)?;
+    let mu = if friction {
+        let mu = z
+            .real("COULOMB")
+            .ok_or_else(|| z.error("COULOMB", "COULOMB is required with FROTTEMENT='COULOMB'"))?;
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(z.error("COULOMB", format!("COULOMB must be >= 0, got {mu:e}")));
+        }
+        Some(mu)
+    } else {
+        None
+    };
+    let contact_init = match z.text("CONTACT_INIT").unwrap_or("INTERPENETRE") {
+        "OUI" => ContactInit::Oui,
+        "NON" => ContactInit::Non,
+        _ => ContactInit::Interpenetre,
+    };
+    let name = z
+        .text("GROUP_MA_ESCL")
+        .ok_or_else(|| z.error("GROUP_MA_ESCL", "GROUP_MA_ESCL is required"))?;
+    let slave_cells = cell_group(z, "GROUP_MA_ESCL", name, mesh)?.to_vec();
+    Ok(continuous::ContinuousZone {
+        slave_cells,
+        coef_cont,
+        coef_frot,
+        mu,
+        seuil_init: z.real("SEUIL_INIT"),
+        contact_init,
+    })
+}
+
+fn zone(
+    z: &Args,
+    mesh: &Mesh,
+    friction: bool,
+    continuous: bool,
+) -> Result<ContactZone, Diagnostic> {
     // Keywords whose meaning aster does not implement: refuse, never ignore.
     for key in ["MAILLE_MAIT", "MAILLE_ESCL", "SANS_NOEUD", "SANS_MAILLE"] {
         if z.given(key) {
@@ -257,6 +425,9 @@ fn zone(z: &Args, mesh: &Mesh, friction: bool) -> Result<ContactZone, Diagnostic
         }
     }
     let algo = z.text("ALGO_CONT").unwrap_or("CONTRAINTE");
+    if continuous {
+        return zone_groups(z, mesh, 0.0, None);
+    }
     if friction && algo != "PENALISATION" {
         return Err(z
             .error(
@@ -307,7 +478,16 @@ fn zone(z: &Args, mesh: &Mesh, friction: bool) -> Result<ContactZone, Diagnostic
     } else {
         None
     };
+    zone_groups(z, mesh, e_n, coulomb)
+}
 
+/// The groups, slave nodes and pairing options of a zone.
+fn zone_groups(
+    z: &Args,
+    mesh: &Mesh,
+    e_n: f64,
+    coulomb: Option<Coulomb>,
+) -> Result<ContactZone, Diagnostic> {
     let skin_dim = mesh.dim - 1;
     let allowed = if skin_dim == 1 {
         "SEG2/SEG3"

@@ -172,7 +172,9 @@ impl Assembler {
 
     /// Makes the free pattern hold the elements' entries plus exactly
     /// `extra` (free equation pairs, e.g. the couplings of a contact
-    /// pairing). Returns true when the pattern was rebuilt: the caller must
+    /// pairing). Indices at or beyond `neq` are extra unknowns of a
+    /// contact term (Lagrange multipliers numbered after the equations):
+    /// the pattern then grows to the largest index + 1. Returns true when the pattern was rebuilt: the caller must
     /// then reallocate its matrices on the new pattern (and the solver
     /// recomputes its symbolic factorization). Rebuilding only when the
     /// set changes keeps the symbolic factorization across steps whose
@@ -311,6 +313,10 @@ fn free_pattern(
     extra: &[(usize, usize)],
 ) -> Arc<CscPattern> {
     let mut entries = Vec::new();
+    let n = extra
+        .iter()
+        .map(|&(a, b)| a.max(b) + 1)
+        .fold(numbering.neq(), usize::max);
     for e in elements.iter() {
         for &fa in &e.full {
             for &fb in &e.full {
@@ -322,7 +328,7 @@ fn free_pattern(
         }
     }
     entries.extend_from_slice(extra);
-    let pattern = Arc::new(CscPattern::from_entries(numbering.neq(), entries));
+    let pattern = Arc::new(CscPattern::from_entries(n, entries));
     for e in elements.iter_mut() {
         let n = e.full.len();
         e.pos = vec![NONE; n * n];

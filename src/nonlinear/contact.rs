@@ -8,14 +8,20 @@
 //! Newton has converged, and the iterations then continue with the new
 //! pairing at the same displacement (the same ITER_GLOB_MAXI counter).
 
+use super::continuous::ContinuousContact;
 use super::dofs::{DofNumbering, NONE};
 use super::newton::{ContactIteration, ContactTerm};
 use crate::contact::{evaluate, pair, ContactDef, ContactState, IterationInput, Pairing, ReacGeom};
 use crate::mesh::Mesh;
 use crate::result::NodalField;
 
-/// The contact term of one DYNA_NON_LINE computation.
+/// The contact term of one DYNA_NON_LINE computation: the discrete
+/// penalised method, or, when `continuous` is set, the continuous
+/// formulation (`nonlinear::continuous`), which this type then delegates
+/// to so that the time loop and its events handle both the same way.
 pub struct DiscreteContact {
+    /// FORMULATION='CONTINUE': the term that does the work.
+    pub continuous: Option<ContinuousContact>,
     pub def: ContactDef,
     mesh: Mesh,
     ndpn: usize,
@@ -56,6 +62,7 @@ impl DiscreteContact {
     pub fn new(def: ContactDef, mesh: &Mesh, numbering: &DofNumbering, u0: &[f64]) -> Self {
         let ndpn = numbering.ndpn;
         let mut c = DiscreteContact {
+            continuous: None,
             def,
             mesh: mesh.clone(),
             ndpn,
@@ -85,6 +92,45 @@ impl DiscreteContact {
         c.committed = st.clone();
         c.trial = st;
         c
+    }
+
+    /// The contact term of `def`, continuous when `def.continuous` is set
+    /// (`axis`: AXIS model, the continuous points' weights carry r).
+    /// Errors: what the continuous formulation does not implement.
+    pub fn build(
+        def: ContactDef,
+        mesh: &Mesh,
+        numbering: &DofNumbering,
+        u0: &[f64],
+        axis: bool,
+    ) -> Result<Self, String> {
+        let Some(cdef) = def.continuous.clone() else {
+            return Ok(Self::new(def, mesh, numbering, u0));
+        };
+        let cc = ContinuousContact::new(def.clone(), cdef, mesh, numbering, u0, axis)?;
+        Ok(DiscreteContact {
+            trial: cc.trial.clone(),
+            committed: cc.committed.clone(),
+            continuous: Some(cc),
+            def,
+            mesh: mesh.clone(),
+            ndpn: numbering.ndpn,
+            pairing: None,
+            pairings_in_step: 0,
+            u_start: Vec::new(),
+            u_paired: Vec::new(),
+            entries: Vec::new(),
+            pairings: 0,
+            steps_committed: 0,
+        })
+    }
+
+    /// Adds the contact multipliers (LAGS_C, LAGS_F1) of the committed
+    /// step to a DEPL field (continuous formulation only).
+    pub fn extend_depl(&self, depl: &mut NodalField) {
+        if let Some(c) = &self.continuous {
+            c.extend_depl(depl);
+        }
     }
 
     /// Pairs on the geometry of `u` (full) and lists the couplings.
@@ -120,6 +166,12 @@ impl DiscreteContact {
     /// Accepts the trial state of a converged step of length `dt`: the
     /// percussion is accumulated from the committed state.
     pub fn commit(&mut self, dt: f64) {
+        if let Some(c) = self.continuous.as_mut() {
+            c.commit(dt);
+            self.committed = c.committed.clone();
+            self.steps_committed += 1;
+            return;
+        }
         let mut st = self.trial.clone();
         st.accumulate_percussion(Some(&self.committed), dt);
         self.committed = st;
@@ -132,6 +184,8 @@ impl DiscreteContact {
     pub fn cont_noeu(&self) -> NodalField {
         if self.steps_committed == 0 {
             self.committed.cont_noeu_initial(self.mesh.nnodes())
+        } else if let Some(c) = &self.continuous {
+            c.cont_noeu()
         } else {
             self.committed.cont_noeu(self.mesh.nnodes())
         }
@@ -140,6 +194,10 @@ impl DiscreteContact {
 
 impl ContactTerm for DiscreteContact {
     fn begin_step(&mut self, numbering: &DofNumbering, u_start: &[f64], _t: f64, _dt: f64) {
+        if let Some(c) = self.continuous.as_mut() {
+            c.begin_step(u_start);
+            return;
+        }
         let _contact = crate::bench::span(crate::bench::Phase::Contact);
         self.u_start = per_node(self.ndpn, u_start);
         self.pairings_in_step = 0;
@@ -151,10 +209,18 @@ impl ContactTerm for DiscreteContact {
     }
 
     fn pattern_entries(&self) -> &[(usize, usize)] {
+        if let Some(c) = &self.continuous {
+            return c.pattern_entries();
+        }
         &self.entries
     }
 
     fn add(&mut self, it: ContactIteration) -> Result<(), String> {
+        if let Some(c) = self.continuous.as_mut() {
+            c.add(it)?;
+            self.trial = c.trial.clone();
+            return Ok(());
+        }
         let _contact = crate::bench::span(crate::bench::Phase::Contact);
         let Some(pairing) = self.pairing.as_ref() else {
             return Err("no pairing before the first iteration".into());
@@ -195,6 +261,9 @@ impl ContactTerm for DiscreteContact {
     }
 
     fn accept(&mut self, numbering: &DofNumbering, u: &[f64]) -> Result<bool, String> {
+        if let Some(c) = self.continuous.as_mut() {
+            return c.accept(u);
+        }
         let _contact = crate::bench::span(crate::bench::Phase::Contact);
         match self.def.reac_geom {
             ReacGeom::Sans => Ok(true),
@@ -229,5 +298,29 @@ impl ContactTerm for DiscreteContact {
                 Ok(false)
             }
         }
+    }
+
+    fn extra_unknowns(&self) -> usize {
+        self.continuous
+            .as_ref()
+            .map_or(0, ContinuousContact::extra_unknowns)
+    }
+
+    fn extra_residual(&self) -> &[f64] {
+        self.continuous
+            .as_ref()
+            .map_or(&[], ContinuousContact::extra_residual)
+    }
+
+    fn apply_extra(&mut self, dx: &[f64]) {
+        if let Some(c) = self.continuous.as_mut() {
+            c.apply_extra(dx);
+        }
+    }
+
+    fn settled(&self) -> bool {
+        self.continuous
+            .as_ref()
+            .is_none_or(ContinuousContact::settled)
     }
 }

@@ -267,6 +267,9 @@ pub fn archive(
     let (sief, vari) = fields::gauss(asm, tl.ncells, &state.points);
     if let Some(c) = contact {
         step.nodal.insert("CONT_NOEU".into(), c.cont_noeu());
+        if let Some(depl) = step.nodal.get_mut("DEPL") {
+            c.extend_depl(depl);
+        }
     }
     step.gauss.insert("SIEF_ELGA".into(), sief);
     step.gauss.insert("VARI_ELGA".into(), vari);

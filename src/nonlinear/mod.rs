@@ -12,6 +12,7 @@
 pub mod assembly;
 pub mod behaviour;
 pub mod contact;
+pub mod continuous;
 pub mod dofs;
 pub mod dyna;
 pub mod fields;

@@ -136,6 +136,23 @@ pub trait ContactTerm {
     fn correct(&mut self, _c: IncrementCorrection) -> Result<(), String> {
         Ok(())
     }
+    /// Unknowns of the term besides the displacements (the Lagrange
+    /// multipliers of continuous contact), numbered after the free
+    /// equations: equation `neq + k` is the term's k-th. None by default.
+    fn extra_unknowns(&self) -> usize {
+        0
+    }
+    /// The residual of the extra equations at the last [`ContactTerm::add`].
+    fn extra_residual(&self) -> &[f64] {
+        &[]
+    }
+    /// Applies the solved correction of the extra unknowns.
+    fn apply_extra(&mut self, _dx: &[f64]) {}
+    /// The term's own convergence criteria (continuous contact: no status
+    /// changed at the last iteration): while false, Newton goes on.
+    fn settled(&self) -> bool {
+        true
+    }
 }
 
 /// One row of the Newton table.
@@ -364,6 +381,9 @@ impl Engine {
         if let Some(c) = contact.as_deref_mut() {
             c.begin_step(nb, &self.committed.motion.u, self.committed.t, dt);
         }
+        let neq = nb.neq();
+        let nx = contact.as_deref().map_or(0, |c| c.extra_unknowns());
+        self.rhs.resize(neq + nx, 0.0);
         let mut history = Vec::new();
         let swap = self.steps_done > 0;
         let mut last_rela = f64::INFINITY;
@@ -439,6 +459,13 @@ impl Engine {
                 })
                 .map_err(StepFailure::Contact)?;
             }
+            if let Some(c) = contact.as_deref() {
+                if c.extra_residual().iter().any(|v| !v.is_finite()) {
+                    return Err(StepFailure::NonFinite(
+                        "the residual of the contact multipliers is not finite".into(),
+                    ));
+                }
+            }
             if let Some(f) = self.resid.iter().position(|v| !v.is_finite()) {
                 return Err(StepFailure::NonFinite(format!(
                     "the residual is not finite at node {} ({})",
@@ -457,7 +484,8 @@ impl Engine {
                     Some(r) => rec.resi_rela <= r,
                 };
                 let ok_maxi = self.conv.resi_glob_maxi.is_none_or(|m| rec.resi_maxi <= m);
-                let converged = ok_rela && ok_maxi;
+                let converged =
+                    ok_rela && ok_maxi && contact.as_deref().is_none_or(|c| c.settled());
                 if converged {
                     if let Some(c) = contact.as_deref_mut() {
                         let nb = &self.asm.numbering;
@@ -506,6 +534,11 @@ impl Engine {
             for (e, &f) in nb.free.iter().enumerate() {
                 self.rhs[e] = -(self.resid[f] - self.excluded[f]);
             }
+            if let Some(c) = contact.as_deref() {
+                for (r, x) in self.rhs[neq..].iter_mut().zip(c.extra_residual()) {
+                    *r = -x;
+                }
+            }
             self.lu
                 .solve(&mut self.rhs)
                 .map_err(|e| StepFailure::Singular(e.to_string()))?;
@@ -518,6 +551,7 @@ impl Engine {
                     iteration: it,
                 })
                 .map_err(StepFailure::Contact)?;
+                c.apply_extra(&self.rhs[neq..]);
             }
             self.du.iter_mut().for_each(|v| *v = 0.0);
             for (e, &f) in nb.free.iter().enumerate() {

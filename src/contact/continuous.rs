@@ -1,0 +1,439 @@
+//! Continuous contact (`FORMULATION='CONTINUE'`, `ALGO_CONT='STANDARD'`):
+//! the augmented-Lagrangian contact and Coulomb friction of code_aster's
+//! continuous method at one contact point, as pure functions
+//! (docs/contact.md §9, shared/docs/notes/contact-continue.md §4-§6).
+//!
+//! The unknowns of a point are the displacements of its slave node and
+//! of the master nodes of its projection, the contact pressure λ
+//! (`LAGS_C`, ≤ 0 in compression, a nominal pressure) and in 2D the
+//! friction semi-multiplier Λ (`LAGS_F1`, |Λ| < 1 stick, = 1 slip). With
+//! `INTEGRATION='AUTO'` on SEG2/SEG3 slave cells the points are the slave
+//! nodes, so a point couples only its own node's multipliers; the points
+//! of one node in two cells see the same λ, d and slip and are merged
+//! here into one point whose weight is the sum of theirs.
+//!
+//! Everything is expressed on the jump [u] = u_slave − Σ_j M_j u_j: the
+//! residual of a slave dof is the point's force vector `f`, the one of
+//! master node j is −M_j f, and the derivatives scale the same way.
+
+use super::{dot, sub};
+use crate::mesh::{CellType, Mesh};
+
+/// `ALGO_RESO_CONT` / `ALGO_RESO_FROT` / `ALGO_RESO_GEOM`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Resolution {
+    /// Inside the Newton iterations (generalised Newton).
+    Newton,
+    /// Fixed-point loops around Newton.
+    PointFixe,
+}
+
+/// `CONTACT_INIT`: the contact status of the points at the first step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactInit {
+    /// In contact when the gap is closed up to 1e-6 of the smallest edge.
+    Interpenetre,
+    Oui,
+    Non,
+}
+
+/// The continuous parameters of one `ZONE`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContinuousZone {
+    /// Slave cells (SEG2/SEG3): their nodes are the contact points.
+    pub slave_cells: Vec<usize>,
+    /// `COEF_CONT` ρ_n (N/mm³).
+    pub coef_cont: f64,
+    /// `COEF_FROT` ρ_t (1/mm).
+    pub coef_frot: f64,
+    /// `COULOMB` μ when the definition has `FROTTEMENT='COULOMB'`.
+    pub mu: Option<f64>,
+    /// `SEUIL_INIT`: the friction threshold pressure of the first step
+    /// (None: the initial `LAGS_C`).
+    pub seuil_init: Option<f64>,
+    pub contact_init: ContactInit,
+}
+
+/// The top-level continuous keywords.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContinuousDef {
+    pub algo_reso_cont: Resolution,
+    pub algo_reso_frot: Resolution,
+    pub algo_reso_geom: Resolution,
+    /// `RESI_GEOM` (largest move of a point between two pairings over the
+    /// largest master edge) for the geometric fixed point.
+    pub resi_geom: f64,
+    /// `RESI_FROT`: largest change of `LAGS_C` in an iteration over the
+    /// largest `LAGS_C` (the last iterations must also satisfy it).
+    pub resi_frot: f64,
+    /// One per zone of the definition, same order.
+    pub zones: Vec<ContinuousZone>,
+}
+
+/// The weight ω of every contact point (slave node) of `cells`, ascending
+/// node order: Σ over the cells of the node of w_p J_p (times r_p in
+/// AXIS), with the nodal rules of `INTEGRATION='AUTO'` (SEG2: 1, 1; SEG3:
+/// 1/3, 1/3, 4/3) on the **initial** geometry (`mmmjac`). A point on the
+/// axis (r = 0) gets r = 1e-7 as in code_aster (alarm `CONTACT2_14`).
+pub fn nodal_weights(
+    mesh: &Mesh,
+    cells: &[usize],
+    axis: bool,
+) -> Result<Vec<(usize, f64)>, String> {
+    let mut w: std::collections::BTreeMap<usize, f64> = Default::default();
+    for &c in cells {
+        let cell = &mesh.cells[c];
+        let x: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
+        // (parametric coordinate, weight) of each node, MED order.
+        let rule: &[(f64, f64)] = match cell.kind {
+            CellType::Seg2 => &[(-1.0, 1.0), (1.0, 1.0)],
+            CellType::Seg3 => &[(-1.0, 1.0 / 3.0), (1.0, 1.0 / 3.0), (0.0, 4.0 / 3.0)],
+            other => {
+                return Err(format!(
+                "not implemented yet: continuous contact on {} slave cells (only SEG2/SEG3 in 2D)",
+                other.aster_name()
+            ))
+            }
+        };
+        for (k, &(xi, wk)) in rule.iter().enumerate() {
+            let dn: Vec<f64> = match cell.kind {
+                CellType::Seg2 => vec![-0.5, 0.5],
+                _ => vec![xi - 0.5, xi + 0.5, -2.0 * xi],
+            };
+            let mut t = [0.0; 3];
+            for (d, p) in dn.iter().zip(&x) {
+                for i in 0..3 {
+                    t[i] += d * p[i];
+                }
+            }
+            let mut j = dot(t, t).sqrt();
+            if axis {
+                let r = x[k][0].abs();
+                j *= if r == 0.0 { 1e-7 } else { r };
+            }
+            *w.entry(cell.nodes[k]).or_insert(0.0) += wk * j;
+        }
+    }
+    Ok(w.into_iter().collect())
+}
+
+/// `mmstac`: a point is in contact iff the augmented multiplier
+/// λ − ρ_n d is negative (strictly); d > 0 is a penetration.
+pub fn contact_status(lambda: f64, d: f64, rho_n: f64) -> bool {
+    lambda - rho_n * d < 0.0
+}
+
+/// The phase of a point (`mmmpha`), for CONT_NOEU and the tests.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// Not in contact: λ and Λ are driven to 0.
+    Sans,
+    /// In contact, frictionless zone.
+    Cont,
+    /// In contact, friction zone, threshold λ̂ exactly 0: no friction.
+    Ncon,
+    /// Stick: |Λ + ρ_t g_t| ≤ 1.
+    Adhe,
+    /// Slip.
+    Glis,
+}
+
+/// What a point needs at one evaluation (2D: one tangent).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointInput {
+    pub omega: f64,
+    pub rho_n: f64,
+    pub rho_t: f64,
+    /// μ, None for a frictionless zone.
+    pub mu: Option<f64>,
+    /// The contact status s_p in force for this evaluation.
+    pub status: bool,
+    /// λ (`LAGS_C`).
+    pub lambda: f64,
+    /// λ_s, the threshold used when λ is exactly 0 (`mmlagc`).
+    pub lambda_s: f64,
+    /// Λ (`LAGS_F1`).
+    pub lambda_t: f64,
+    /// Penetration d = (x_s − x_m)·n (> 0 penetrating).
+    pub d: f64,
+    /// Tangential slip since the start of the step, along τ.
+    pub g_t: f64,
+    /// Unit inward master normal n.
+    pub normal: [f64; 3],
+    /// Unit tangent τ.
+    pub tangent: [f64; 3],
+    /// Every displacement the slip g_t depends on is imposed (a slave
+    /// node on the symmetry axis of an AXIS model against a fixed
+    /// master): the friction force would be undetermined (it goes into
+    /// the support reaction), so Λ is driven to 0 as without contact.
+    pub slip_locked: bool,
+}
+
+/// The residual of a point and its exact derivatives at frozen pairing.
+/// `f` is the residual of the slave displacement (on the F_int side of
+/// R = F_int − F_ext + ...), so the force the contact exerts on the slave
+/// node is −f. `df_du[i][j]` = ∂f_i/∂[u]_j.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PointOutput {
+    pub f: [f64; 3],
+    pub r_c: f64,
+    pub r_f: f64,
+    pub df_du: [[f64; 3]; 3],
+    pub df_dc: [f64; 3],
+    pub df_df: [f64; 3],
+    pub dc_du: [f64; 3],
+    pub dc_dc: f64,
+    pub dc_df: f64,
+    pub df_du_f: [f64; 3],
+    pub dfr_dc: f64,
+    pub dfr_df: f64,
+    /// Force on the slave split: normal part (force on slave = −f_n) and
+    /// tangential component along τ (force on slave = −f_t τ).
+    pub f_n: [f64; 3],
+    pub f_t: f64,
+}
+
+/// The phase of a point from its input.
+pub fn phase(p: &PointInput) -> Phase {
+    if !p.status {
+        return Phase::Sans;
+    }
+    let Some(_) = p.mu else {
+        return Phase::Cont;
+    };
+    let lh = if p.lambda != 0.0 {
+        p.lambda
+    } else {
+        p.lambda_s
+    };
+    if lh == 0.0 {
+        return Phase::Ncon;
+    }
+    if (p.lambda_t + p.rho_t * p.g_t).abs() <= 1.0 {
+        Phase::Adhe
+    } else {
+        Phase::Glis
+    }
+}
+
+/// Residual and tangent of one point (contact-continue.md §4.2, §5).
+///
+/// The tangent is the exact derivative at frozen pairing except, as in
+/// code_aster (§5 "missing", §13 V7), the derivative of the friction rows
+/// with respect to λ (`dfr_dc` stays 0). That block matters: with it, a
+/// slip iteration entered from a stick iterate far outside the cone
+/// (|Λ| ≫ 1) moves Λ to s − (Λ − s) δλ/λ instead of exactly s, which
+/// on SDNV103 F put r back inside the cone and made Newton cycle between
+/// stick and slip; without it a slip iteration gives Λ = s exactly.
+pub fn evaluate_point(p: &PointInput) -> (Phase, PointOutput) {
+    let ph = phase(p);
+    let mut o = PointOutput::default();
+    let (w, n, t) = (p.omega, p.normal, p.tangent);
+    if p.status {
+        let fn_ = p.lambda - p.rho_n * p.d;
+        for i in 0..3 {
+            o.f[i] = -w * fn_ * n[i];
+            o.df_dc[i] = -w * n[i];
+            o.dc_du[i] = -w * n[i];
+            for j in 0..3 {
+                o.df_du[i][j] = p.rho_n * w * n[i] * n[j];
+            }
+        }
+        o.f_n = o.f;
+        o.r_c = -w * p.d;
+    } else {
+        o.r_c = -w / p.rho_n * p.lambda;
+        o.dc_dc = -w / p.rho_n;
+    }
+    if let Some(mu) = p.mu {
+        let lh = if p.lambda != 0.0 {
+            p.lambda
+        } else {
+            p.lambda_s
+        };
+        // ∂λ̂/∂λ: 1 unless λ̂ falls back on λ_s.
+        let dl = if p.lambda != 0.0 { 1.0 } else { 0.0 };
+        match ph {
+            _ if p.slip_locked => {
+                o.r_f = w * p.lambda_t;
+                o.dfr_df = w;
+            }
+            Phase::Sans | Phase::Ncon | Phase::Cont => {
+                o.r_f = w * p.lambda_t;
+                o.dfr_df = w;
+            }
+            Phase::Adhe => {
+                let r = p.lambda_t + p.rho_t * p.g_t;
+                let c = -w * mu * lh;
+                o.f_t = c * r;
+                for i in 0..3 {
+                    o.f[i] += c * r * t[i];
+                    o.df_df[i] = c * t[i];
+                    o.df_dc[i] += -w * mu * dl * r * t[i];
+                    o.df_du_f[i] = c * t[i];
+                    for j in 0..3 {
+                        o.df_du[i][j] += c * p.rho_t * t[i] * t[j];
+                    }
+                }
+                o.r_f = c * p.g_t;
+            }
+            Phase::Glis => {
+                let r = p.lambda_t + p.rho_t * p.g_t;
+                let s = r.signum();
+                let c = -w * mu * lh;
+                o.f_t = c * s;
+                for i in 0..3 {
+                    o.f[i] += c * s * t[i];
+                    o.df_dc[i] += -w * mu * dl * s * t[i];
+                }
+                o.r_f = w * mu * lh / p.rho_t * (p.lambda_t - s);
+                o.dfr_df = w * mu * lh / p.rho_t;
+            }
+        }
+    }
+    (ph, o)
+}
+
+/// Penetration of a slave point given the frozen link quantities: the
+/// pairing's gap g (> 0 open) is −d.
+pub fn penetration(gap: f64) -> f64 {
+    -gap
+}
+
+/// Tangential slip since the start of the step along τ: τ·(Δu_s − Σ M_j Δu_j).
+pub fn slip(tangent: [f64; 3], du_slave: [f64; 3], du_master: &[[f64; 3]], shape: &[f64]) -> f64 {
+    let mut jump = du_slave;
+    for (m, du) in shape.iter().zip(du_master) {
+        jump = sub(jump, [m * du[0], m * du[1], m * du[2]]);
+    }
+    dot(tangent, jump)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn base() -> PointInput {
+        PointInput {
+            omega: 2.5,
+            rho_n: 100.0,
+            rho_t: 100.0,
+            mu: Some(0.25),
+            status: true,
+            lambda: -3.0,
+            lambda_s: -3.0,
+            lambda_t: 0.3,
+            d: 1e-3,
+            g_t: 2e-3,
+            normal: [0.0, -1.0, 0.0],
+            tangent: [-1.0, 0.0, 0.0],
+            slip_locked: false,
+        }
+    }
+
+    #[test]
+    fn status_examples_of_the_note() {
+        assert!(contact_status(0.0, 1e-9, 100.0));
+        assert!(!contact_status(0.0, 0.0, 100.0));
+        assert!(contact_status(-1.0, -0.005, 100.0));
+        assert!(!contact_status(-1.0, -0.02, 100.0));
+    }
+
+    /// Central differences of the residual in [u] (through d and g_t), λ
+    /// and Λ reproduce every block of the tangent, in stick and in slip.
+    #[test]
+    fn tangent_is_the_derivative_of_the_residual() {
+        for (lt, gt) in [(0.3, 2e-3), (0.9, 5e-3), (-0.95, -4e-3)] {
+            let mut p0 = base();
+            p0.lambda_t = lt;
+            p0.g_t = gt;
+            let (ph, o) = evaluate_point(&p0);
+            let h = 1e-7;
+            // [u] along each axis changes d by n_j h and g_t by τ_j h.
+            for j in 0..2 {
+                let mut pp = p0;
+                let mut pm = p0;
+                pp.d += p0.normal[j] * h;
+                pm.d -= p0.normal[j] * h;
+                pp.g_t += p0.tangent[j] * h;
+                pm.g_t -= p0.tangent[j] * h;
+                let (a, op) = evaluate_point(&pp);
+                let (b, om) = evaluate_point(&pm);
+                assert_eq!((a, b), (ph, ph));
+                for i in 0..2 {
+                    let fd = (op.f[i] - om.f[i]) / (2.0 * h);
+                    assert!(
+                        (fd - o.df_du[i][j]).abs() < 1e-6,
+                        "{ph:?} df_du {i}{j}: {fd} vs {}",
+                        o.df_du[i][j]
+                    );
+                }
+                let fd = (op.r_c - om.r_c) / (2.0 * h);
+                assert!((fd - o.dc_du[j]).abs() < 1e-6);
+                let fd = (op.r_f - om.r_f) / (2.0 * h);
+                assert!(
+                    (fd - o.df_du_f[j]).abs() < 1e-6,
+                    "{ph:?} dfr_du {j}: {fd} vs {}",
+                    o.df_du_f[j]
+                );
+            }
+            let mut pp = p0;
+            let mut pm = p0;
+            pp.lambda += h;
+            pm.lambda -= h;
+            let (_, op) = evaluate_point(&pp);
+            let (_, om) = evaluate_point(&pm);
+            for i in 0..2 {
+                assert!(((op.f[i] - om.f[i]) / (2.0 * h) - o.df_dc[i]).abs() < 1e-6);
+            }
+            assert!(((op.r_c - om.r_c) / (2.0 * h) - o.dc_dc).abs() < 1e-6);
+            // code_aster's missing block: left out on purpose.
+            assert_eq!(o.dfr_dc, 0.0);
+            let mut pp = p0;
+            let mut pm = p0;
+            pp.lambda_t += h;
+            pm.lambda_t -= h;
+            let (_, op) = evaluate_point(&pp);
+            let (_, om) = evaluate_point(&pm);
+            for i in 0..2 {
+                assert!(((op.f[i] - om.f[i]) / (2.0 * h) - o.df_df[i]).abs() < 1e-6);
+            }
+            assert!(((op.r_c - om.r_c) / (2.0 * h) - o.dc_df).abs() < 1e-6);
+            assert!(((op.r_f - om.r_f) / (2.0 * h) - o.dfr_df).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn phases() {
+        let mut p = base();
+        assert_eq!(phase(&p), Phase::Adhe);
+        p.lambda_t = 0.9;
+        p.g_t = 5e-3;
+        assert_eq!(phase(&p), Phase::Glis);
+        p.lambda = 0.0;
+        p.lambda_s = 0.0;
+        assert_eq!(phase(&p), Phase::Ncon);
+        p.status = false;
+        assert_eq!(phase(&p), Phase::Sans);
+        p.status = true;
+        p.mu = None;
+        assert_eq!(phase(&p), Phase::Cont);
+    }
+
+    /// Slip: the tangential force on the slave is μ|λ|ω against the slip,
+    /// and the friction equation makes Λ = sign(r).
+    #[test]
+    fn slip_force_is_the_coulomb_bound() {
+        let mut p = base();
+        p.lambda_t = 1.0;
+        p.g_t = 5e-3;
+        p.d = 0.0;
+        let (ph, o) = evaluate_point(&p);
+        assert_eq!(ph, Phase::Glis);
+        // force on the slave = −f_t τ, τ = −e_x, slip along τ > 0: the
+        // force must point along −τ = +e_x with magnitude μ|λ|ω.
+        let fx = -o.f_t * p.tangent[0];
+        assert!((fx - 0.25 * 3.0 * 2.5).abs() < 1e-12);
+        assert!(o.r_f.abs() < 1e-15);
+    }
+}

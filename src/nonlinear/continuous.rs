@@ -1,0 +1,560 @@
+//! Continuous contact in the Newton loop (`FORMULATION='CONTINUE'`): the
+//! contact pressure `LAGS_C` and the friction semi-multiplier `LAGS_F1`
+//! of every slave node are unknowns of the linear system, numbered after
+//! the displacement equations, and the contact statuses, the friction
+//! phases and the pairing are all updated inside the Newton iterations
+//! (code_aster's generalised Newton, docs/contact.md §9).
+//!
+//! Step by step (contact-continue.md §7): the multipliers restart from 0
+//! at every step (they are totals held in the increment); the prediction
+//! uses the statuses of the last converged step; every later iteration
+//! re-pairs on the current geometry (`ALGO_RESO_GEOM='NEWTON'`), evaluates
+//! the statuses from the current λ and gap, then computes the residual and
+//! the tangent with them. A step converges when the displacement residual
+//! criteria hold **and** no status changed at that iteration **and** the
+//! last correction of `LAGS_C` satisfies `RESI_FROT`.
+
+use super::dofs::{DofNumbering, NONE};
+use super::newton::ContactIteration;
+use crate::contact::continuous::{
+    contact_status, evaluate_point, nodal_weights, ContactInit, ContinuousDef, PointInput,
+    Resolution,
+};
+use crate::contact::{pair, ContactDef, ContactState, Link, LinkState, LinkStatus, Pairing};
+use crate::mesh::Mesh;
+use crate::result::NodalField;
+
+/// One contact point: a slave node of a zone and its weight ω.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    pub zone: usize,
+    pub node: usize,
+    pub omega: f64,
+}
+
+/// The continuous contact term of one DYNA_NON_LINE computation.
+pub struct ContinuousContact {
+    pub def: ContactDef,
+    pub cdef: ContinuousDef,
+    mesh: Mesh,
+    ndpn: usize,
+    pub points: Vec<Point>,
+    /// Unknowns per point: 1 (`LAGS_C`) or 2 with friction (+ `LAGS_F1`).
+    stride: usize,
+    neq: usize,
+    /// Current multipliers (point-major).
+    pub lam: Vec<f64>,
+    /// Their values at the last committed step (for DEPL).
+    pub committed_lam: Vec<f64>,
+    pub status: Vec<bool>,
+    committed_status: Vec<bool>,
+    /// λ_s, the friction threshold used while λ is exactly 0.
+    lam_s: Vec<f64>,
+    committed_lam_s: Vec<f64>,
+    /// No status evaluation yet in this step (the prediction).
+    first: bool,
+    /// A status changed at the last evaluation.
+    pub changed: bool,
+    /// Largest |δλ| (LAGS_C) of the last correction.
+    last_dlam: f64,
+    u_start: Vec<[f64; 3]>,
+    pairing: Pairing,
+    /// Largest move of a point between the last two pairings (POINT_FIXE).
+    geom_move: f64,
+    /// Largest master edge (`arete_max`), the RESI_GEOM denominator.
+    a_max: f64,
+    entries: Vec<(usize, usize)>,
+    /// Whether each full dof is an equation (not imposed).
+    free: Vec<bool>,
+    residual: Vec<f64>,
+    pub trial: ContactState,
+    pub committed: ContactState,
+}
+
+fn per_node(ndpn: usize, u: &[f64]) -> Vec<[f64; 3]> {
+    u.chunks(ndpn)
+        .map(|c| {
+            let mut v = [0.0; 3];
+            v[..ndpn].copy_from_slice(c);
+            v
+        })
+        .collect()
+}
+
+impl ContinuousContact {
+    /// The term at the initial state `u0` (full). `axis`: the points'
+    /// weights carry r (AXIS). Errors: what is not implemented.
+    pub fn new(
+        def: ContactDef,
+        cdef: ContinuousDef,
+        mesh: &Mesh,
+        numbering: &DofNumbering,
+        u0: &[f64],
+        axis: bool,
+    ) -> Result<Self, String> {
+        if def.dim != 2 {
+            return Err("not implemented yet: continuous contact in 3D (FORMULATION='CONTINUE' is available on 2D models only)".into());
+        }
+        let mut points = Vec::new();
+        for (iz, z) in cdef.zones.iter().enumerate() {
+            let slaves = &def.zones[iz].slave_nodes;
+            for (node, omega) in nodal_weights(mesh, &z.slave_cells, axis)? {
+                if slaves.binary_search(&node).is_ok() || slaves.contains(&node) {
+                    points.push(Point {
+                        zone: iz,
+                        node,
+                        omega,
+                    });
+                }
+            }
+        }
+        let friction = cdef.zones.iter().any(|z| z.mu.is_some());
+        let stride = if friction { 2 } else { 1 };
+        let nx = points.len() * stride;
+        let neq = numbering.neq();
+        let ndpn = numbering.ndpn;
+        // Every possible coupling: a point with every master node of its
+        // zone (the pairing may move between master cells within a step).
+        let mut entries = Vec::new();
+        for (i, p) in points.iter().enumerate() {
+            let mut eqs: Vec<usize> = Vec::new();
+            let mut nodes = vec![p.node];
+            for &c in &def.zones[p.zone].master_cells {
+                nodes.extend(mesh.cells[c].nodes.iter().copied());
+            }
+            for n in nodes {
+                for c in 0..def.dim.min(ndpn) {
+                    let e = numbering.eq[n * ndpn + c];
+                    if e != NONE {
+                        eqs.push(e);
+                    }
+                }
+            }
+            for k in 0..stride {
+                eqs.push(neq + i * stride + k);
+            }
+            eqs.sort_unstable();
+            eqs.dedup();
+            for &a in &eqs {
+                for &b in &eqs {
+                    entries.push((a, b));
+                }
+            }
+        }
+        entries.sort_unstable();
+        entries.dedup();
+        let mut a_max: f64 = 0.0;
+        let mut h_mesh = f64::INFINITY;
+        for z in &def.zones {
+            for &c in &z.master_cells {
+                let ns = &mesh.cells[c].nodes;
+                let e = crate::contact::norm(crate::contact::sub(
+                    mesh.coords[ns[1]],
+                    mesh.coords[ns[0]],
+                ));
+                a_max = a_max.max(e);
+            }
+        }
+        for cell in &mesh.cells {
+            let ns = &cell.nodes;
+            for k in 0..ns.len().min(2) {
+                let e = crate::contact::norm(crate::contact::sub(
+                    mesh.coords[ns[(k + 1) % ns.len()]],
+                    mesh.coords[ns[k]],
+                ));
+                if e > 0.0 {
+                    h_mesh = h_mesh.min(e);
+                }
+            }
+        }
+        let un = per_node(ndpn, u0);
+        let pairing = pair(&def, mesh, &un);
+        let np = points.len();
+        let mut c = ContinuousContact {
+            def,
+            cdef,
+            mesh: mesh.clone(),
+            ndpn,
+            points,
+            stride,
+            neq,
+            lam: vec![0.0; nx],
+            committed_lam: vec![0.0; nx],
+            status: vec![false; np],
+            committed_status: vec![false; np],
+            lam_s: vec![0.0; np],
+            committed_lam_s: vec![0.0; np],
+            first: true,
+            changed: false,
+            last_dlam: 0.0,
+            u_start: un,
+            pairing,
+            geom_move: 0.0,
+            a_max: if a_max > 0.0 { a_max } else { 1.0 },
+            entries,
+            free: numbering.eq.iter().map(|&e| e != NONE).collect(),
+            residual: vec![0.0; nx],
+            trial: ContactState::default(),
+            committed: ContactState::default(),
+        };
+        // CONTACT_INIT and SEUIL_INIT (mmopti, first step only).
+        let links = c.links();
+        for (i, p) in c.points.iter().enumerate() {
+            let z = &c.cdef.zones[p.zone];
+            c.status[i] = match (z.contact_init, links[i]) {
+                (_, None) => false,
+                (ContactInit::Oui, _) => true,
+                (ContactInit::Non, _) => false,
+                (ContactInit::Interpenetre, Some(l)) => -c.pairing.links[l].gap >= -1e-6 * h_mesh,
+            };
+            c.lam_s[i] = z.seuil_init.map_or(0.0, |s| -s.abs());
+        }
+        c.committed_status = c.status.clone();
+        c.committed_lam_s = c.lam_s.clone();
+        let u = c.u_start.clone();
+        let st = c.state(&u, None);
+        c.trial = st.clone();
+        c.committed = st;
+        Ok(c)
+    }
+
+    /// Number of extra unknowns (multipliers).
+    pub fn extra_unknowns(&self) -> usize {
+        self.lam.len()
+    }
+
+    /// The index in `pairing.links` of each point's link.
+    fn links(&self) -> Vec<Option<usize>> {
+        let mut by: std::collections::HashMap<(usize, usize), usize> = Default::default();
+        for (k, l) in self.pairing.links.iter().enumerate() {
+            by.insert((l.zone, l.slave), k);
+        }
+        self.points
+            .iter()
+            .map(|p| by.get(&(p.zone, p.node)).copied())
+            .collect()
+    }
+
+    fn repair(&mut self, u: &[[f64; 3]]) {
+        let old: Vec<(usize, usize, [f64; 3])> = self
+            .pairing
+            .links
+            .iter()
+            .map(|l| (l.zone, l.slave, l.proj))
+            .collect();
+        self.pairing = pair(&self.def, &self.mesh, u);
+        // Move of the projections (RESI_GEOM of the fixed point).
+        let mut mv: f64 = 0.0;
+        for l in &self.pairing.links {
+            if let Some((_, _, p)) = old.iter().find(|o| o.0 == l.zone && o.1 == l.slave) {
+                mv = mv.max(crate::contact::norm(crate::contact::sub(l.proj, *p)));
+            }
+        }
+        self.geom_move = mv / self.a_max;
+    }
+
+    /// The input of point i at displacement `u` (per node); `free(n, c)`
+    /// tells whether dof c of node n is an equation.
+    fn input(
+        &self,
+        i: usize,
+        link: &Link,
+        u: &[[f64; 3]],
+        free: &dyn Fn(usize, usize) -> bool,
+    ) -> PointInput {
+        let p = self.points[i];
+        let z = &self.cdef.zones[p.zone];
+        let du = |n: usize| crate::contact::sub(u[n], self.u_start[n]);
+        let mut jump = du(p.node);
+        for (m, &n) in link.shape.iter().zip(&link.master_nodes) {
+            jump = crate::contact::sub(jump, crate::contact::scale(*m, du(n)));
+        }
+        let tangent = link.tangents[0];
+        let slip_locked = std::iter::once(p.node)
+            .chain(link.master_nodes.iter().copied())
+            .all(|n| (0..self.def.dim).all(|c| tangent[c] == 0.0 || !free(n, c)));
+        PointInput {
+            slip_locked,
+            omega: p.omega,
+            rho_n: z.coef_cont,
+            rho_t: z.coef_frot,
+            mu: z.mu,
+            status: self.status[i],
+            lambda: self.lam[i * self.stride],
+            lambda_s: self.lam_s[i],
+            lambda_t: if self.stride == 2 {
+                self.lam[i * self.stride + 1]
+            } else {
+                0.0
+            },
+            d: -link.gap,
+            g_t: crate::contact::dot(tangent, jump),
+            normal: link.normal,
+            tangent,
+        }
+    }
+
+    /// The contact state (CONT_NOEU) at `u` with the current statuses and
+    /// multipliers; `forces` receives the nodal residual when given.
+    fn state(&self, u: &[[f64; 3]], mut forces: Option<&mut Vec<[f64; 3]>>) -> ContactState {
+        let links = self.links();
+        let mut st = ContactState {
+            dim: self.def.dim,
+            links: Vec::new(),
+            unpaired: self.pairing.unpaired.clone(),
+        };
+        for (i, l) in links.iter().enumerate() {
+            let Some(l) = l else { continue };
+            let link = &self.pairing.links[*l];
+            let inp = self.input(i, link, u, &|n, c| self.free[n * self.ndpn + c]);
+            let (_, o) = evaluate_point(&inp);
+            let p = self.points[i];
+            if let Some(fs) = forces.as_deref_mut() {
+                fs[p.node] = crate::contact::add(fs[p.node], o.f);
+                for (m, &n) in link.shape.iter().zip(&link.master_nodes) {
+                    fs[n] = crate::contact::sub(fs[n], crate::contact::scale(*m, o.f));
+                }
+            }
+            let in_contact = self.status[i];
+            let status = if !in_contact {
+                LinkStatus::Open
+            } else if inp.mu.is_none() || inp.lambda_t.abs() >= 0.999 {
+                LinkStatus::Slip
+            } else {
+                LinkStatus::Stick
+            };
+            let lambda_n = -crate::contact::dot(o.f_n, link.normal);
+            st.links.push(LinkState {
+                zone: p.zone,
+                slave: p.node,
+                status,
+                gap: link.gap,
+                lambda_n,
+                normal: link.normal,
+                tangents: link.tangents,
+                ntangents: link.ntangents,
+                frictional: inp.mu.is_some(),
+                slip: [inp.g_t, 0.0],
+                friction: [o.f_t, 0.0],
+                proj: link.proj,
+                percussion: [0.0; 4],
+            });
+        }
+        st
+    }
+
+    /// Before the iterations of a step from `u_start` (full).
+    pub fn begin_step(&mut self, u_start: &[f64]) {
+        self.u_start = per_node(self.ndpn, u_start);
+        self.lam.iter_mut().for_each(|v| *v = 0.0);
+        self.status.clone_from(&self.committed_status);
+        self.lam_s.clone_from(&self.committed_lam_s);
+        self.first = true;
+        self.changed = false;
+        self.last_dlam = 0.0;
+        let u = self.u_start.clone();
+        self.repair(&u);
+    }
+
+    pub fn pattern_entries(&self) -> &[(usize, usize)] {
+        &self.entries
+    }
+
+    /// The residual of the multiplier equations of the last evaluation.
+    pub fn extra_residual(&self) -> &[f64] {
+        &self.residual
+    }
+
+    /// Adds the contact forces and tangent at the current iterate.
+    pub fn add(&mut self, it: ContactIteration) -> Result<(), String> {
+        let nb = it.numbering;
+        if nb.neq() != self.neq {
+            return Err("the numbering changed under the continuous contact".into());
+        }
+        let u = per_node(self.ndpn, it.u);
+        if !self.first && self.cdef.algo_reso_geom == Resolution::Newton {
+            self.repair(&u);
+        }
+        let links = self.links();
+        self.changed = false;
+        if !self.first {
+            for (i, l) in links.iter().enumerate() {
+                let z = &self.cdef.zones[self.points[i].zone];
+                let lam = self.lam[i * self.stride];
+                let s = match l {
+                    Some(l) => contact_status(lam, -self.pairing.links[*l].gap, z.coef_cont),
+                    None => false,
+                };
+                if s != self.status[i] {
+                    self.changed = true;
+                }
+                self.status[i] = s;
+                self.lam_s[i] = lam;
+            }
+        }
+        self.first = false;
+        let ndpn = self.ndpn;
+        let dim = self.def.dim;
+        let eq = |n: usize, c: usize| {
+            let e = nb.eq[n * ndpn + c];
+            (e != NONE).then_some(e)
+        };
+        let mut matrix = it.matrix;
+        for (i, l) in links.iter().enumerate() {
+            let p = self.points[i];
+            let xc = self.neq + i * self.stride;
+            let xf = xc + 1;
+            let Some(l) = l else {
+                // Unpaired: the point is excluded, λ and Λ driven to 0.
+                let z = &self.cdef.zones[p.zone];
+                self.residual[i * self.stride] = -p.omega / z.coef_cont * self.lam[i * self.stride];
+                if let Some(m) = matrix.as_deref_mut() {
+                    m.add(xc, xc, -p.omega / z.coef_cont);
+                }
+                if self.stride == 2 {
+                    self.residual[i * self.stride + 1] = p.omega * self.lam[i * self.stride + 1];
+                    if let Some(m) = matrix.as_deref_mut() {
+                        m.add(xf, xf, p.omega);
+                    }
+                }
+                continue;
+            };
+            let link = &self.pairing.links[*l];
+            let inp = self.input(i, link, &u, &|n, c| self.free[n * self.ndpn + c]);
+            let (_, o) = evaluate_point(&inp);
+            // (node, C_a) of the point: the slave, then the master nodes.
+            let nodes: Vec<(usize, f64)> = std::iter::once((p.node, 1.0))
+                .chain(
+                    link.master_nodes
+                        .iter()
+                        .zip(&link.shape)
+                        .map(|(&n, &m)| (n, -m)),
+                )
+                .collect();
+            for &(n, ca) in &nodes {
+                for c in 0..dim {
+                    let f = n * ndpn + c;
+                    it.residual[f] += ca * o.f[c];
+                    it.force[f] += ca * o.f[c];
+                }
+            }
+            self.residual[i * self.stride] = o.r_c;
+            if self.stride == 2 {
+                self.residual[i * self.stride + 1] = o.r_f;
+            }
+            let Some(m) = matrix.as_deref_mut() else {
+                continue;
+            };
+            for &(na, ca) in &nodes {
+                for c in 0..dim {
+                    let Some(ea) = eq(na, c) else { continue };
+                    for &(nb_, cb) in &nodes {
+                        for e in 0..dim {
+                            let Some(eb) = eq(nb_, e) else { continue };
+                            let v = ca * cb * o.df_du[c][e];
+                            if v != 0.0 {
+                                m.add(ea, eb, v);
+                            }
+                        }
+                    }
+                    m.add(ea, xc, ca * o.df_dc[c]);
+                    m.add(xc, ea, ca * o.dc_du[c]);
+                    if self.stride == 2 {
+                        m.add(ea, xf, ca * o.df_df[c]);
+                        m.add(xf, ea, ca * o.df_du_f[c]);
+                    }
+                }
+            }
+            m.add(xc, xc, o.dc_dc);
+            if self.stride == 2 {
+                m.add(xc, xf, o.dc_df);
+                m.add(xf, xc, o.dfr_dc);
+                m.add(xf, xf, o.dfr_df);
+            }
+        }
+        self.trial = self.state(&u, None);
+        Ok(())
+    }
+
+    /// Applies the solved correction of the multipliers.
+    pub fn apply_extra(&mut self, dx: &[f64]) {
+        let mut m: f64 = 0.0;
+        for (i, (l, d)) in self.lam.iter_mut().zip(dx).enumerate() {
+            *l += d;
+            if i % self.stride == 0 {
+                m = m.max(d.abs());
+            }
+        }
+        self.last_dlam = m;
+    }
+
+    /// RESI_FROT's quantity: the last change of LAGS_C, relative to the
+    /// largest |LAGS_C| when that exceeds 1 (`mmmcrf`).
+    pub fn resi_frot(&self) -> f64 {
+        let lmax = self
+            .lam
+            .iter()
+            .step_by(self.stride)
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        if lmax > 1.0 {
+            self.last_dlam / lmax
+        } else {
+            self.last_dlam
+        }
+    }
+
+    /// No status changed at the last evaluation and RESI_FROT holds.
+    pub fn settled(&self) -> bool {
+        !self.changed && self.resi_frot() <= self.cdef.resi_frot
+    }
+
+    /// After Newton converged at `u`: the geometric fixed point re-pairs
+    /// (`ALGO_RESO_GEOM='POINT_FIXE'`) until the projections stop moving.
+    pub fn accept(&mut self, u: &[f64]) -> Result<bool, String> {
+        if self.cdef.algo_reso_geom == Resolution::Newton {
+            return Ok(true);
+        }
+        let un = per_node(self.ndpn, u);
+        self.repair(&un);
+        Ok(self.geom_move <= self.cdef.resi_geom)
+    }
+
+    /// Accepts the trial state of a converged step of length `dt`.
+    pub fn commit(&mut self, dt: f64) {
+        let mut st = self.trial.clone();
+        st.accumulate_percussion(Some(&self.committed), dt);
+        self.committed = st;
+        self.committed_lam.clone_from(&self.lam);
+        self.committed_status.clone_from(&self.status);
+        self.committed_lam_s.clone_from(&self.lam_s);
+    }
+
+    /// Adds `LAGS_C` (and `LAGS_F1`) of the committed step to a DEPL
+    /// field, on the slave nodes (absent elsewhere).
+    pub fn extend_depl(&self, depl: &mut NodalField) {
+        let nnodes = depl.nnodes();
+        let mut names = depl.components.clone();
+        names.push("LAGS_C".into());
+        if self.stride == 2 {
+            names.push("LAGS_F1".into());
+        }
+        let mut f = NodalField::absent(names, nnodes);
+        let old = depl.ncmp();
+        for n in 0..nnodes {
+            for c in 0..old {
+                f.set(n, c, depl.values[n * old + c]);
+            }
+        }
+        for (i, p) in self.points.iter().enumerate() {
+            for k in 0..self.stride {
+                f.set(p.node, old + k, self.committed_lam[i * self.stride + k]);
+            }
+        }
+        *depl = f;
+    }
+
+    /// CONT_NOEU of the committed state.
+    pub fn cont_noeu(&self) -> NodalField {
+        self.committed.cont_noeu(self.mesh.nnodes())
+    }
+}
