@@ -370,8 +370,9 @@ fn a_result_written_by_salome_draws_its_displacement() {
 /// (`MAI.QU4` block with a localization, 4 points per cell, values
 /// component-major, then cell by cell, the points of a cell together):
 /// SIXX, SIYY = 10 k + cell + 0.1 point, so the cell means are
-/// 10 k + cell + 0.15.
-fn add_gauss_field(path: &Path) {
+/// 10 k + cell + 0.15. With `profile` (1-based cell ranks), only those
+/// cells get values, through `/PROFILS/<name>/PFL`.
+fn add_gauss_field(path: &Path, name: &str, profile: Option<&[i64]>) {
     use hdf5::types::VarLenAscii;
     let file = hdf5::File::open_rw(path).unwrap();
     let s = |loc: &hdf5::Location, name: &str, v: &str| {
@@ -388,11 +389,7 @@ fn add_gauss_field(path: &Path) {
             .write_scalar(&v)
             .unwrap();
     };
-    let f = file
-        .group("CHA")
-        .unwrap()
-        .create_group("RESU____SIEF_ELGA")
-        .unwrap();
+    let f = file.group("CHA").unwrap().create_group(name).unwrap();
     s(&f, "MAI", "ROW");
     i(&f, "TYP", 6);
     i(&f, "NCO", 2);
@@ -411,18 +408,33 @@ fn add_gauss_field(path: &Path) {
         .unwrap();
     i(&st, "RDT", -1);
     i(&st, "ROR", -1);
+    let cells: Vec<i64> = profile.map_or(vec![1, 2, 3], <[i64]>::to_vec);
+    let pname = match profile {
+        Some(p) => {
+            let pname = format!("{name}_PFL");
+            let pr = match file.group("PROFILS") {
+                Ok(g) => g,
+                Err(_) => file.create_group("PROFILS").unwrap(),
+            };
+            let g = pr.create_group(&pname).unwrap();
+            i(&g, "NBR", p.len() as i64);
+            g.new_dataset_builder().with_data(p).create("PFL").unwrap();
+            pname
+        }
+        None => "MED_NO_PROFILE_INTERNAL".to_string(),
+    };
     let b = st.create_group("MAI.QU4").unwrap();
     s(&b, "GAU", "ROW_QU4_FPG4");
-    s(&b, "PFL", "MED_NO_PROFILE_INTERNAL");
-    let pg = b.create_group("MED_NO_PROFILE_INTERNAL").unwrap();
-    i(&pg, "NBR", 3);
+    s(&b, "PFL", &pname);
+    let pg = b.create_group(&pname).unwrap();
+    i(&pg, "NBR", cells.len() as i64);
     i(&pg, "NGA", 4);
     s(&pg, "GAU", "ROW_QU4_FPG4");
     let mut co = Vec::new();
     for k in 0..2 {
-        for c in 0..3 {
+        for c in &cells {
             for g in 0..4 {
-                co.push(10.0 * f64::from(k) + f64::from(c) + 0.1 * f64::from(g));
+                co.push(10.0 * f64::from(k) + (c - 1) as f64 + 0.1 * f64::from(g));
             }
         }
     }
@@ -437,7 +449,8 @@ fn gauss_point_fields_are_drawn_as_their_mean_per_cell() {
     let _turn = turn();
     let rmed = tmp("row_gauss.rmed");
     write_row_result(&rmed);
-    add_gauss_field(&rmed);
+    add_gauss_field(&rmed, "RESU____SIEF_ELGA", None);
+    add_gauss_field(&rmed, "RESU____SIGM_ELGA", Some(&[1, 3]));
     // The cell-constant reader leaves Gauss fields out; the mean reader
     // gives one value per cell.
     let plain = aster::medio::read_elem_fields(&rmed, None).unwrap();
@@ -460,6 +473,18 @@ fn gauss_point_fields_are_drawn_as_their_mean_per_cell() {
     };
     let r = draw_result(&data, &opts, &png).unwrap();
     assert!((r.range.0 - 10.15).abs() < 1e-12 && (r.range.1 - 12.15).abs() < 1e-12);
+
+    // On a profile (cells 1 and 3): the middle cell has no value.
+    let sigm = data
+        .cells
+        .iter()
+        .find(|f| f.name.ends_with("SIGM_ELGA"))
+        .unwrap();
+    let v = &sigm.steps[0].values;
+    for (got, want) in [(v[0], 0.15), (v[1], 10.15), (v[4], 2.15), (v[5], 12.15)] {
+        assert!((got - want).abs() < 1e-12, "{got} vs {want}");
+    }
+    assert!(v[2].is_nan() && v[3].is_nan());
 }
 
 fn aster(args: &[&str]) -> (i32, String, String) {

@@ -459,6 +459,35 @@ fn read_step_values(
     }
 }
 
+/// The entities of `ids` that profile `name` selects.
+fn profile_entities(
+    ctx: Ctx,
+    eg: &Group,
+    ew: &str,
+    name: &str,
+    ids: &[usize],
+) -> Result<Vec<usize>, MedError> {
+    let what = format!("{ew}: profile '{name}'");
+    let file = eg.file().map_err(|e| ctx.h5(&what, e))?;
+    let ds = file
+        .group("PROFILS")
+        .and_then(|g| g.group(name))
+        .and_then(|g| g.dataset("PFL"))
+        .map_err(|_| ctx.inconsistent(format!("{what}: no /PROFILS/{name}/PFL")))?;
+    h5util::read_ints(ctx, &ds, &what)?
+        .into_iter()
+        .map(|r| {
+            usize::try_from(r)
+                .ok()
+                .filter(|&r| (1..=ids.len()).contains(&r))
+                .map(|r| ids[r - 1])
+                .ok_or_else(|| {
+                    ctx.inconsistent(format!("{what}: entity rank {r} outside 1..{}", ids.len()))
+                })
+        })
+        .collect()
+}
+
 /// Reads one entity block into `values` at entities `ids`. Returns false
 /// for blocks of another kind (Gauss points, several values per entity)
 /// unless `support` averages them: MED stores those component-major, then
@@ -482,14 +511,21 @@ fn read_block(
     }
     let pfl = h5util::str_attr(ctx, eg, "PFL", ew)?;
     let pfl = pfl.trim_end();
-    if pfl != NO_PROFILE && !pfl.is_empty() {
-        return Err(ctx.err(MedErrorKind::Unsupported(format!(
-            "{ew}: values on a profile ('{pfl}'); only fields on every entity are read"
-        ))));
-    }
+    // A profile restricts the values to some entities of the block:
+    // `/PROFILS/<name>/PFL` holds their 1-based ranks in it; the others
+    // keep NaN.
+    let (pname, profiled);
+    let ids: &[usize] = if pfl == NO_PROFILE || pfl.is_empty() {
+        pname = NO_PROFILE;
+        ids
+    } else {
+        pname = pfl;
+        profiled = profile_entities(ctx, eg, ew, pfl, ids)?;
+        &profiled
+    };
     let pg = eg
-        .group(NO_PROFILE)
-        .map_err(|_| ctx.inconsistent(format!("{ew}: no '{NO_PROFILE}' group")))?;
+        .group(pname)
+        .map_err(|_| ctx.inconsistent(format!("{ew}: no '{pname}' group")))?;
     let nga = h5util::opt_int_attr(ctx, &pg, "NGA", ew)?.unwrap_or(1);
     if nga != 1 && !support.averages() {
         return Ok(false);
