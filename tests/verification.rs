@@ -337,3 +337,55 @@ fn block_mesh_is_committed() {
     let committed = aster::medio::read_mesh(&file, None).unwrap();
     assert_eq!(committed, aster::medio::read_mesh(&tmp, None).unwrap());
 }
+
+/// The energy balance (RECU_TABLE PARA_CALC) of the elastic bar landing
+/// frictionless under Newmark 1/4, 1/2: at every archived instant the
+/// balance error is under 1 % of the initial kinetic energy, and once the
+/// bar has rebounded (t > 20 us: contact ends 2L/c = 17.9 us after the
+/// impact) kinetic plus internal energy is the initial kinetic energy
+/// within 1 %.
+#[test]
+fn energy_balance_of_the_frictionless_landing() {
+    let resu = run_study("energy_landing");
+    let rows = printed_table(&resu, "ENER");
+    assert_eq!(rows.len(), 153);
+    let ek0 = num(&rows[0], "ENER_CIN");
+    assert!((ek0 - 74.069).abs() < 1e-3, "{ek0}");
+    for r in &rows {
+        let err = num(r, "DISS_SCH");
+        assert!(err.abs() < 0.01 * ek0, "DISS_SCH {err} at {}", r["INST"]);
+        assert_eq!(num(r, "DISS_FROT"), 0.0);
+        assert_eq!(num(r, "TRAV_EXT"), 0.0);
+    }
+    for r in rows.iter().filter(|r| num(r, "INST") > 2.0e-5) {
+        let total = num(r, "ENER_CIN") + num(r, "ENER_TOT");
+        assert!(
+            (total - ek0).abs() < 0.01 * ek0,
+            "total {total} at {}",
+            r["INST"]
+        );
+    }
+}
+
+/// Friction work equals the lost energy: the block braking to rest on the
+/// foundation has lost all its kinetic energy, and DISS_FROT plus the
+/// scheme's dissipation DISS_SCH account for it (the rest: the internal
+/// and gravity works, ~1e-8).
+#[test]
+fn energy_balance_of_the_braking_block() {
+    let resu = run_study("energy_friction");
+    let rows = printed_table(&resu, "ENER");
+    let ek0 = num(&rows[0], "ENER_CIN");
+    let last = rows.last().unwrap();
+    let lost = ek0 - num(last, "ENER_CIN") - num(last, "ENER_TOT") + num(last, "TRAV_EXT");
+    let accounted = num(last, "DISS_FROT") + num(last, "DISS_SCH");
+    assert!(
+        (accounted - lost).abs() < 1e-3 * ek0,
+        "lost {lost}, friction + scheme {accounted}"
+    );
+    let fric = num(last, "DISS_FROT");
+    assert!(
+        (fric - ek0).abs() < 0.01 * ek0,
+        "DISS_FROT {fric}, EK0 {ek0}"
+    );
+}

@@ -722,10 +722,10 @@ fn etat_init(
 }
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
-    for key in ["RECH_LINEAIRE", "ENERGIE"] {
-        if args.given(key) {
-            return Err(args.not_implemented(key, ""));
-        }
+    // ENERGIE is accepted: the balance is computed for every run
+    // (nonlinear::energy) and kept as the result's PARA_CALC table.
+    if args.given("RECH_LINEAIRE") {
+        return Err(args.not_implemented("RECH_LINEAIRE", ""));
     }
     if args.text("MASS_DIAG") == Some("OUI") {
         return Err(args.error(

@@ -42,6 +42,7 @@ pub mod modi_maillage;
 pub mod post_args;
 pub mod post_releve_t;
 pub mod recu_fonction;
+pub mod recu_table;
 pub mod test_resu;
 pub mod test_table;
 
@@ -89,6 +90,7 @@ pub fn all() -> Vec<CommandDef> {
         modi_maillage::def(),
         post_releve_t::def(),
         recu_fonction::def(),
+        recu_table::def(),
         test_resu::def(),
         test_table::def(),
     ]

@@ -5,6 +5,7 @@ use std::collections::{HashMap, HashSet};
 use std::time::Instant;
 
 use super::contact::DiscreteContact;
+use super::energy::EnergyBalance;
 use super::fields;
 use super::newton::{ContactTerm, Engine, IterationRecord, State, StepReport};
 use super::unilateral::UnilateralContact;
@@ -304,6 +305,8 @@ pub fn run(
     let mut summary = RunSummary::default();
     let ndpn = engine.asm.numbering.ndpn;
     let offsets = engine.asm.cell_state_offsets.clone();
+    let mut energy = EnergyBalance::new(engine);
+    let has_term = contact.is_some() || unil.is_some();
     if archive(
         engine,
         tl,
@@ -312,6 +315,7 @@ pub fn run(
         contact.as_deref(),
     ) {
         summary.archived += 1;
+        log_energy(&mut energy, result, log);
     }
     let bar = tl.progress.then(|| {
         let pb = indicatif::ProgressBar::new(tl.instants.len().saturating_sub(1) as u64);
@@ -419,6 +423,7 @@ pub fn run(
                 if let Some(u) = unil.as_deref_mut() {
                     u.commit();
                 }
+                energy.step(engine, contact.as_deref(), has_term);
                 summary.steps += 1;
                 summary.newton_iterations += rep.iterations;
                 log(&step_line(
@@ -450,6 +455,7 @@ pub fn run(
                 {
                     summary.archived += 1;
                     last_archived_t = Some(t_end);
+                    log_energy(&mut energy, result, log);
                 }
                 if let (Some(pb), true) = (&bar, list_end) {
                     pb.inc(1);
@@ -490,7 +496,9 @@ pub fn run(
                             )
                         {
                             summary.archived += 1;
+                            log_energy(&mut energy, result, log);
                         }
+                        store_energy(&energy, result);
                         if let Some(pb) = &bar {
                             pb.abandon();
                         }
@@ -511,6 +519,7 @@ pub fn run(
     if let Some(pb) = &bar {
         pb.finish_and_clear();
     }
+    store_energy(&energy, result);
     summary.seconds = started.elapsed().as_secs_f64();
     log(&format!(
         "  {} steps ({} cuts), {} Newton iterations, {} archived, {:.3} s ({:.3e} s per step)",
@@ -523,6 +532,23 @@ pub fn run(
     ));
     crate::bench::count_time_loop(&summary);
     Ok(summary)
+}
+
+/// The energy row of the step just archived, into the balance and the log.
+fn log_energy(energy: &mut EnergyBalance, result: &EvolNoli, log: &mut dyn FnMut(&str)) {
+    if let Some(s) = result.steps.last() {
+        log(&energy.archive(s.nume_ordre, s.inst));
+    }
+}
+
+/// The balance as the result's PARA_CALC table (RECU_TABLE). A
+/// continuation (reuse=) restarts the balance from its initial state and
+/// replaces the table.
+fn store_energy(energy: &EnergyBalance, result: &mut EvolNoli) {
+    result.tables.insert(
+        super::energy::TABLE_NAME.to_string(),
+        energy.table("energy balance of DYNA_NON_LINE"),
+    );
 }
 
 #[allow(clippy::too_many_arguments)]

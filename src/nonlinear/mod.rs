@@ -15,6 +15,7 @@ pub mod contact;
 pub mod continuous;
 pub mod dofs;
 pub mod dyna;
+pub mod energy;
 pub mod fields;
 pub mod newton;
 pub mod unilateral;

@@ -606,6 +606,12 @@ impl Engine {
         self.steps_done += 1;
     }
 
+    /// The contact forces of the last evaluation (full, on the F_int side;
+    /// zero without a contact term).
+    pub fn contact_force(&self) -> &[f64] {
+        &self.cforce
+    }
+
     /// The residual of the last evaluation (full; reactions at imposed dofs
     /// are its opposite).
     pub fn residual(&self) -> &[f64] {

@@ -118,6 +118,9 @@ pub struct EvolNoli {
     /// (RELATION, DEFORMATION) of each mesh cell with an element.
     pub comportement: Vec<Option<(String, String)>>,
     pub steps: Vec<Step>,
+    /// Tables attached to the result, by RECU_TABLE's NOM_TABLE (the
+    /// energy balance is PARA_CALC).
+    pub tables: IndexMap<String, crate::post::table::Table>,
 }
 
 /// How a step is selected (TEST_RESU, POST_RELEVE_T, CALC_CHAMP...).

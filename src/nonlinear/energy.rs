@@ -1,0 +1,224 @@
+//! The energy balance of a DYNA_NON_LINE run, step after step.
+//!
+//! Why: an impact computation can look right and still create or destroy
+//! energy (a penalty that is too soft, a step too long, numerical damping
+//! of the scheme). The balance says how much, in the units of the problem,
+//! at every archived instant.
+//!
+//! The works are accumulated over the converged steps with the trapezoidal
+//! rule of code_aster's `nmener` (notes/explicit.md §8): for a force f,
+//! W += Δu·(f_n + f_{n+1})/2. The kinetic energy is ½ v·M v (the mass of
+//! the run, on every dof). With the forces on the F_int side of the
+//! equilibrium M a + F_int + C = F_ext + λ (C the contact forces, λ the
+//! support reactions at imposed dofs):
+//!
+//! - `ENER_TOT` = ∫ F_int·du: the internal energy (elastic energy plus
+//!   plastic dissipation, not split: the split needs the elastic compliance
+//!   at every Gauss point, which the engine does not keep);
+//! - `TRAV_EXT` = ∫ (F_ext + λ)·du: work of the loads and of the supports
+//!   (zero for constant imposed values);
+//! - `TRAV_LIAI` = ∫ C·du: energy absorbed by the contact (penalty energy
+//!   while in contact, plus friction);
+//! - `DISS_FROT` (aster extension): friction dissipation, the trapezoidal
+//!   work of the friction forces on the step slips, −Δs·(f_n + f_{n+1})/2
+//!   summed over the contact links (a link new in the step has f_n = 0);
+//!   it is part of TRAV_LIAI. (With the end-of-step force alone, the first
+//!   sliding step alone overcounts by ½ μ N V Δt: 0.8 % in
+//!   tests/verification/energy_friction.comm.)
+//! - `DISS_SCH` = TRAV_EXT − (ENER_CIN − ENER_CIN₀) − ENER_TOT − TRAV_LIAI:
+//!   the balance error, energy the time scheme dissipated (or created).
+//!
+//! For the trapezoidal rule (Newmark β = 1/4, γ = 1/2) on a linear problem
+//! the identity is exact, so DISS_SCH measures only the solver tolerances;
+//! numerical damping (γ > 1/2, HHT) shows in it as a positive dissipation.
+
+use std::collections::HashMap;
+
+use super::contact::DiscreteContact;
+use super::newton::Engine;
+use crate::post::table::{Cell, ColumnType, Table};
+
+/// Name of the table in the result, as code_aster's RECU_TABLE(NOM_TABLE=).
+pub const TABLE_NAME: &str = "PARA_CALC";
+
+/// Column names of the table (code_aster's PARA_CALC energy columns, plus
+/// DISS_FROT).
+pub const COLUMNS: [&str; 7] = [
+    "TRAV_EXT",
+    "ENER_CIN",
+    "ENER_TOT",
+    "TRAV_AMOR",
+    "TRAV_LIAI",
+    "DISS_FROT",
+    "DISS_SCH",
+];
+
+/// Running totals and the forces of the last committed step.
+#[derive(Debug, Clone)]
+pub struct EnergyBalance {
+    pub kinetic0: f64,
+    pub kinetic: f64,
+    pub internal: f64,
+    pub external: f64,
+    pub contact: f64,
+    pub friction: f64,
+    u: Vec<f64>,
+    fint: Vec<f64>,
+    fext: Vec<f64>,
+    cforce: Vec<f64>,
+    work: Vec<f64>,
+    /// Friction force on the slave node of each (zone, slave) link at the
+    /// end of the last step.
+    friction_prev: HashMap<(usize, usize), [f64; 3]>,
+    /// Archived rows (NUME_ORDRE, INST, the seven values).
+    pub rows: Vec<(usize, f64, [f64; 7])>,
+}
+
+impl EnergyBalance {
+    /// The balance at the engine's committed (initial, initialized) state:
+    /// every work is zero there.
+    pub fn new(engine: &Engine) -> EnergyBalance {
+        let n = engine.committed.motion.u.len();
+        let mut e = EnergyBalance {
+            kinetic0: 0.0,
+            kinetic: 0.0,
+            internal: 0.0,
+            external: 0.0,
+            contact: 0.0,
+            friction: 0.0,
+            u: engine.committed.motion.u.clone(),
+            fint: engine.committed.fint.clone(),
+            fext: vec![0.0; n],
+            cforce: vec![0.0; n],
+            work: vec![0.0; n],
+            friction_prev: HashMap::new(),
+            rows: Vec::new(),
+        };
+        e.kinetic = e.kinetic_of(engine);
+        e.kinetic0 = e.kinetic;
+        // The initial support reactions: those of the initial equilibrium
+        // (no contact force is known before the first step).
+        e.external_forces(engine, false);
+        e
+    }
+
+    fn kinetic_of(&mut self, engine: &Engine) -> f64 {
+        let v = &engine.committed.motion.v;
+        engine.asm.mass_mul(v, &mut self.work);
+        0.5 * v.iter().zip(&self.work).map(|(a, b)| a * b).sum::<f64>()
+    }
+
+    /// F_ext + λ of the committed state into `self.fext`, λ = M a + F_int
+    /// + C − F_ext at the imposed dofs (0 elsewhere).
+    fn external_forces(&mut self, engine: &Engine, with_contact: bool) {
+        let st = &engine.committed;
+        engine.asm.mass_mul(&st.motion.a, &mut self.work);
+        self.fext.copy_from_slice(&engine.fext);
+        let c = engine.contact_force();
+        for &(f, _) in &engine.asm.numbering.imposed {
+            let cf = if with_contact { c[f] } else { 0.0 };
+            self.fext[f] = self.work[f] + st.fint[f] + cf;
+        }
+    }
+
+    /// Adds the works of the step just committed (`engine.committed` is
+    /// its end; the engine's last evaluation is that state's).
+    pub fn step(&mut self, engine: &Engine, contact: Option<&DiscreteContact>, has_term: bool) {
+        let st = &engine.committed;
+        let u = &st.motion.u;
+        let c = engine.contact_force();
+        let old_fext = std::mem::take(&mut self.fext);
+        self.fext = vec![0.0; old_fext.len()];
+        self.external_forces(engine, has_term);
+        let (mut wi, mut we, mut wc) = (0.0, 0.0, 0.0);
+        for f in 0..u.len() {
+            let du = u[f] - self.u[f];
+            if du == 0.0 {
+                continue;
+            }
+            wi += 0.5 * du * (self.fint[f] + st.fint[f]);
+            we += 0.5 * du * (old_fext[f] + self.fext[f]);
+            if has_term {
+                wc += 0.5 * du * (self.cforce[f] + c[f]);
+            }
+        }
+        self.internal += wi;
+        self.external += we;
+        self.contact += wc;
+        if let Some(dc) = contact {
+            let mut now = HashMap::new();
+            for l in dc.committed.links.iter().filter(|l| l.frictional) {
+                let f = l.friction_force();
+                let prev = self
+                    .friction_prev
+                    .get(&(l.zone, l.slave))
+                    .copied()
+                    .unwrap_or([0.0; 3]);
+                for k in 0..l.ntangents {
+                    let t = l.tangents[k];
+                    let fk = (0..3).map(|i| (f[i] + prev[i]) * t[i]).sum::<f64>();
+                    self.friction -= 0.5 * fk * l.slip[k];
+                }
+                now.insert((l.zone, l.slave), f);
+            }
+            self.friction_prev = now;
+        }
+        self.u.copy_from_slice(u);
+        self.fint.copy_from_slice(&st.fint);
+        if has_term {
+            self.cforce.copy_from_slice(c);
+        }
+        self.kinetic = self.kinetic_of(engine);
+    }
+
+    /// TRAV_EXT, ENER_CIN, ENER_TOT, TRAV_AMOR, TRAV_LIAI, DISS_FROT, DISS_SCH.
+    pub fn values(&self) -> [f64; 7] {
+        let error = self.external - (self.kinetic - self.kinetic0) - self.internal - self.contact;
+        [
+            self.external,
+            self.kinetic,
+            self.internal,
+            0.0,
+            self.contact,
+            self.friction,
+            error,
+        ]
+    }
+
+    /// Records an archived instant; returns the .mess line.
+    pub fn archive(&mut self, nume_ordre: usize, t: f64) -> String {
+        let v = self.values();
+        self.rows.push((nume_ordre, t, v));
+        format!(
+            "  energy at t = {t:e}: ENER_CIN {:.6e}  ENER_TOT {:.6e}  TRAV_EXT {:.6e}  TRAV_LIAI {:.6e}  DISS_FROT {:.6e}  DISS_SCH {:.6e} ({:.3e} of ENER_CIN0)",
+            v[1],
+            v[2],
+            v[0],
+            v[4],
+            v[5],
+            v[6],
+            if self.kinetic0 > 0.0 {
+                v[6] / self.kinetic0
+            } else {
+                0.0
+            }
+        )
+    }
+
+    /// The rows as a table (NUME_ORDRE, INST, then [`COLUMNS`]).
+    pub fn table(&self, title: &str) -> Table {
+        let mut t = Table::new();
+        t.title = vec![title.to_string()];
+        let _ = t.add_column("NUME_ORDRE", ColumnType::Int);
+        let _ = t.add_column("INST", ColumnType::Real);
+        for c in COLUMNS {
+            let _ = t.add_column(c, ColumnType::Real);
+        }
+        for (n, inst, v) in &self.rows {
+            let mut cells = vec![Some(Cell::Int(*n as i64)), Some(Cell::Real(*inst))];
+            cells.extend(v.iter().map(|&x| Some(Cell::Real(x))));
+            let _ = t.push_row(cells);
+        }
+        t
+    }
+}
