@@ -252,6 +252,11 @@ impl SmallStrainBehaviour for VmisJohnCook {
         &METADATA
     }
 
+    /// HEXS8's hourglass projection reads ν (element::hexs8).
+    fn elastic_params(&self) -> Option<ElasParams> {
+        Some(self.elas)
+    }
+
     fn integrate(&self, input: &SmallStrainInput) -> Result<SmallStrainOutput, IntegrationFailure> {
         check_small_strain_input(&METADATA, input)?;
         let v = input.internal;
