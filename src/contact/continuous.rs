@@ -331,6 +331,55 @@ mod tests {
         }
     }
 
+    /// AXIS SEG3 weights times a uniform pressure are the consistent
+    /// load: L a/6, L b/6 and 2 L r_mid/3 for a straight edge from r = a to
+    /// r = b (note §12.2), summing to ∫ r ds; a node shared by two cells
+    /// gets both shares; a node on the axis gets 1e-7 instead of r = 0.
+    #[test]
+    fn axis_seg3_weights_are_the_consistent_load() {
+        use crate::mesh::{Cell, Mesh};
+        let mesh = Mesh {
+            dim: 2,
+            coords: vec![
+                [0.0, 0.0, 0.0],
+                [2.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [5.0, 0.0, 0.0],
+                [3.5, 0.0, 0.0],
+            ],
+            cells: vec![
+                Cell {
+                    kind: CellType::Seg3,
+                    nodes: vec![0, 1, 2],
+                },
+                Cell {
+                    kind: CellType::Seg3,
+                    nodes: vec![1, 3, 4],
+                },
+            ],
+            ..Mesh::default()
+        };
+        let w = nodal_weights(&mesh, &[0, 1], true).unwrap();
+        let (l1, l2) = (2.0, 3.0);
+        let expect = [
+            (0, l1 / 6.0 * 1e-7),
+            (1, l1 * 2.0 / 6.0 + l2 * 2.0 / 6.0),
+            (2, 2.0 * l1 * 1.0 / 3.0),
+            (3, l2 * 5.0 / 6.0),
+            (4, 2.0 * l2 * 3.5 / 3.0),
+        ];
+        for ((n, v), (m, e)) in w.iter().zip(expect) {
+            assert_eq!(*n, m);
+            assert!((v - e).abs() < 1e-14 * e.max(1.0), "node {n}: {v} vs {e}");
+        }
+        // ∫ r ds over [0, 5] = 12.5 (the axis node's 1e-7 share aside).
+        let total: f64 = w.iter().map(|(_, v)| v).sum();
+        assert!((total - 12.5).abs() < 1e-6);
+        // Plane weights: L/6, L/6, 2L/3 per cell.
+        let w = nodal_weights(&mesh, &[0], false).unwrap();
+        assert_eq!(w, vec![(0, 1.0 / 3.0), (1, 1.0 / 3.0), (2, 4.0 / 3.0)]);
+    }
+
     #[test]
     fn status_examples_of_the_note() {
         assert!(contact_status(0.0, 1e-9, 100.0));
