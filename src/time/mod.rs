@@ -15,6 +15,7 @@
 //! Unknown of the Newton iterations: the displacement increment; velocity
 //! and acceleration follow from the Newmark relations.
 
+pub mod explicit;
 pub mod list;
 
 /// The parameters of a scheme, as the engine uses them.
