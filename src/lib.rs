@@ -1,11 +1,13 @@
 //! aster: a Rust reimplementation of the part of code_aster that runs
 //! nonlinear dynamic impact studies (the SDNV103 Taylor bar family).
 //!
-//! Layers, from the bottom: [`diag`] (positions, messages), [`lang`]
-//! (grammar and syntax tree), [`catalog`] (keyword schema and checker),
-//! [`concepts`] (typed results), [`mesh`] and [`medio`] (meshes, MED
-//! files), [`post`] (tables, test report), [`commands`] (one file per
-//! command: declaration and executor) and [`run`] (the study runner).
+//! Layers, from the bottom (docs/engine.md, enforced by tests/layering.rs):
+//! data ([`mesh`], [`model`], [`result`], [`diag`], [`profile`]), the
+//! engine ([`law`], [`element`], [`contact`], [`solver`], [`time`],
+//! [`nonlinear`]), language and files ([`lang`], [`catalog`],
+//! [`concepts`], [`post`], [`medio`], [`study`]), [`commands`] (one file
+//! per command: declaration and executor) and the drivers ([`run`],
+//! [`bench`], [`sweep`]). A module uses its own layer and those below.
 
 // Diagnostics are large by design (they carry spans, choices and notes)
 // and only travel on the error path.
@@ -29,8 +31,10 @@ pub mod model;
 pub mod nonlinear;
 pub mod plot;
 pub mod post;
+pub mod profile;
 pub mod result;
 pub mod run;
 pub mod solver;
+pub mod study;
 pub mod sweep;
 pub mod time;

@@ -518,7 +518,10 @@ fn main() -> ExitCode {
         } => sweep(&what, out, quick, budget, doc, work),
         Command::Doc { what } => match what.as_str() {
             "commands" => {
-                print!("{}", aster::catalog::doc::commands_markdown());
+                print!(
+                    "{}",
+                    aster::catalog::doc::commands_markdown(&aster::commands::all())
+                );
                 0
             }
             _ => EXIT_USAGE,

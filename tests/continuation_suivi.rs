@@ -37,7 +37,7 @@ fn cook_material() -> Material {
     m
 }
 
-fn setup() -> aster::run::Study {
+fn setup() -> aster::study::Study {
     let mesh = taylor_axis(2, 8);
     let vol = mesh.cell_groups["VOL"].clone();
     let nodes = mesh.nodes_of_cells(&vol);
@@ -71,7 +71,7 @@ const COMMON: &str = "MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ),
     CONVERGENCE=_F(RESI_GLOB_RELA=1.E-6, ITER_GLOB_MAXI=20),
     SUIVI_DDL=_F(NOM_CHAM='VARI_ELGA', NOM_CMP='V1', TOUT='OUI', EVAL_CHAM='MAX', EVAL_ELGA='MAX')";
 
-fn run_single() -> (aster::run::Study, EvolNoli) {
+fn run_single() -> (aster::study::Study, EvolNoli) {
     let mut st = setup();
     let text = format!(
         "RESU = DYNA_NON_LINE({COMMON}, ETAT_INIT=_F(VITE=V0), INCREMENT=_F(LIST_INST=L_INST))"

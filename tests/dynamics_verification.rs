@@ -8,7 +8,7 @@ mod dynamics_support;
 
 use aster::mesh::{Cell, CellType, Mesh};
 use aster::model::Dof;
-use aster::run::Study;
+use aster::study::Study;
 use dynamics_support::*;
 
 /// A 2×2 QUAD8 patch of [0,2]² touching the axis, with the middle corner

@@ -7,10 +7,10 @@ use std::collections::HashMap;
 use aster::element::axis::{
     internal_forces, mass, AxisModelisation, ElemVec, ElementFailure, PointState, NODES,
 };
-use aster::element::quadrature::rule;
 use aster::law::elas::Elas;
 use aster::law::vmis_isot_line::VmisIsotLine;
 use aster::law::{EcroLineParams, ElasParams, SmallStrainBehaviour, TangentKind, Vec6};
+use aster::mesh::quadrature::rule;
 use aster::mesh::CellType;
 
 const MODELS: [AxisModelisation; 2] = [AxisModelisation::Axis, AxisModelisation::AxisSi];

@@ -9,8 +9,7 @@ mod element_support;
 use std::f64::consts::PI;
 
 use aster::element::{
-    element_spec, initial_states, internal_forces, mass, ElementResponse, ElementSpec, Kinematics,
-    LawRef, PointState,
+    initial_states, internal_forces, mass, ElementResponse, Kinematics, LawRef, PointState,
 };
 use aster::law::elas::Elas;
 use aster::law::simo_miehe::{FiniteStrainInput, SimoMiehe};
@@ -18,6 +17,7 @@ use aster::law::vmis_isot_line::VmisIsotLine;
 use aster::law::voigt::{stress_to_tensor, tensor_to_strain};
 use aster::law::{TangentKind, Vec6};
 use aster::mesh::CellType;
+use aster::model::spec::{element_spec, ElementSpec};
 use element_support::*;
 use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, Vector3};
 

@@ -8,14 +8,13 @@
 #![allow(clippy::needless_range_loop)]
 
 use aster::element::hexs8::{self, internal_forces_with, Options, Projection, Variant};
-use aster::element::shape::reference_nodes;
-use aster::element::{
-    element_spec, initial_states, internal_forces, ElementSpec, Kinematics, LawRef, PointState,
-};
+use aster::element::{initial_states, internal_forces, Kinematics, LawRef, PointState};
 use aster::law::elas::Elas;
 use aster::law::vmis_isot_line::VmisIsotLine;
 use aster::law::{EcroLineParams, ElasParams, TangentKind};
+use aster::mesh::shape::reference_nodes;
 use aster::mesh::CellType;
+use aster::model::spec::{element_spec, ElementSpec};
 use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen};
 
 const E: f64 = 117_000.0;

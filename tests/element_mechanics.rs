@@ -7,15 +7,16 @@
 mod element_support;
 
 use aster::element::axis::{self, AxisModelisation, ElemVec};
-use aster::element::quadrature::Fpg;
 use aster::element::{
-    element_spec, initial_states, internal_forces, mass, rigi_points, unimplemented_element,
-    ElementFailure, ElementSpec, Kinematics, LawRef, PointState,
+    initial_states, internal_forces, mass, rigi_points, ElementFailure, Kinematics, LawRef,
+    PointState,
 };
 use aster::law::elas::Elas;
 use aster::law::vmis_isot_line::VmisIsotLine;
 use aster::law::{SmallStrainBehaviour, TangentKind, Vec6};
+use aster::mesh::quadrature::Fpg;
 use aster::mesh::CellType;
+use aster::model::spec::{element_spec, unimplemented_element, ElementSpec};
 use element_support::*;
 use nalgebra::{DMatrix, DVector, Matrix3};
 

@@ -7,8 +7,8 @@
 
 #![allow(clippy::needless_range_loop)]
 
-use aster::element::{quadrature, shape};
 use aster::mesh::taylor::{generate, TaylorParams};
+use aster::mesh::{quadrature, shape};
 use aster::mesh::{CellType, Mesh};
 
 fn det_j(mesh: &Mesh, nodes: &[usize], kind: CellType, xi: [f64; 3]) -> f64 {

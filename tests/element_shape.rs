@@ -3,8 +3,8 @@
 //! of unity, Kronecker property, polynomial reproduction, exact integrals of
 //! monomials), not values computed by the code under test.
 
-use aster::element::quadrature::{families, rule, Fpg};
-use aster::element::shape::{eval, med_to_aster, reference_measure, reference_nodes};
+use aster::mesh::quadrature::{families, rule, Fpg};
+use aster::mesh::shape::{eval, med_to_aster, reference_measure, reference_nodes};
 use aster::mesh::CellType;
 
 const CELLS: [CellType; 11] = [

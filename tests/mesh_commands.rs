@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use aster::concepts::ConceptData;
 use aster::diag::Source;
 use aster::run::driver::{run_file, RunOptions};
-use aster::run::Study;
+use aster::study::Study;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -41,8 +41,7 @@ fn run_in_process(text: &str, mesh: &Path) -> Study {
     let prog = aster::run::driver::parse_and_check(&src, &reg, &mut msgs).expect(&msgs);
     let mut study = Study::default();
     study.units.map.insert(20, mesh.to_path_buf());
-    study
-        .execute(&prog, &reg, &src)
+    aster::run::execute(&mut study, &prog, &reg, &src)
         .unwrap_or_else(|d| panic!("{}", d.render(Some(&src))));
     study
 }

@@ -12,12 +12,12 @@ use std::path::Path;
 use aster::commands;
 use aster::concepts::ConceptData;
 use aster::diag::Source;
-use aster::element::quadrature::Fpg;
+use aster::mesh::quadrature::Fpg;
 use aster::mesh::{CellType, Mesh};
 use aster::model::{CellRole, Dof, Material, MaterialField, MechLoad, Model};
 use aster::result::NodalField;
 use aster::run::driver::parse_and_check;
-use aster::run::Study;
+use aster::study::Study;
 use aster::time::list::{Action, Event, Subdivision, TimeList};
 
 /// Runs `comm` with unit 20 mapped to `med/<mesh>.mmed`. Returns the
@@ -38,8 +38,7 @@ fn run(mesh: &str, comm: &str) -> (Study, Option<String>) {
         .units
         .map
         .insert(20, root.join(format!("med/{mesh}.mmed")));
-    let err = study
-        .execute(&program, &registry, &src)
+    let err = aster::run::execute(&mut study, &program, &registry, &src)
         .err()
         .map(|d| d.render(Some(&src)));
     (study, err)

@@ -27,7 +27,7 @@ use aster::mesh::{Cell, CellType, Mesh};
 use aster::post::table::Cell as TCell;
 use aster::result::{EvolNoli, GaussField, NodalField, Step};
 use aster::run::driver::parse_and_check;
-use aster::run::Study;
+use aster::study::Study;
 
 const INSTS: [f64; 5] = [-1e-5, 0.0, 2.5e-7, 5e-7, 1e-6];
 
@@ -172,9 +172,7 @@ fn run_in(study: &mut Study, body: &str) -> Result<(), String> {
     let Some(program) = parse_and_check(&src, &reg, &mut msgs) else {
         return Err(msgs);
     };
-    study
-        .execute(&program, &reg, &src)
-        .map_err(|d| d.render(Some(&src)))
+    aster::run::execute(study, &program, &reg, &src).map_err(|d| d.render(Some(&src)))
 }
 
 fn run(tag: &str, body: &str) -> Study {

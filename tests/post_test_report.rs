@@ -4,8 +4,8 @@
 //! (TestResult.showResult, Python 3) on the same inputs; expected numbers of
 //! `py_repr` are CPython 3 `repr()` outputs.
 
+use aster::post::test_report::TestCounts;
 use aster::post::test_report::*;
-use aster::run::TestCounts;
 
 fn real(x: f64) -> Value {
     Value::Real(x)

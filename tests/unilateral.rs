@@ -15,7 +15,7 @@ use aster::model::{Dof, ImposedDof, MaterialField};
 use aster::nonlinear::discretize;
 use aster::post::function::{Extrapolation, Function};
 use aster::result::EvolNoli;
-use aster::run::Study;
+use aster::study::Study;
 use dynamics_support::*;
 
 /// Declarations the checker needs for the functions a test inserts.

@@ -12,7 +12,8 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use super::{json, Counter, Phase, Profile, GLOBAL};
+use super::json;
+use crate::profile::{Counter, Phase, Profile, GLOBAL};
 use crate::run::driver::{self, RunOptions, EXIT_OK, EXIT_USAGE};
 
 /// Options of `aster bench`.

@@ -8,7 +8,7 @@
 
 use indexmap::IndexMap;
 
-use crate::concepts::ConceptType;
+use crate::catalog::concept_type::ConceptType;
 use crate::diag::{Diagnostic, Span};
 
 /// One checked value.

@@ -11,12 +11,11 @@
 //! result is caught too.
 
 use crate::catalog::args::{Args, Entry, EntryData, Value};
+use crate::catalog::concept_type::ConceptType;
 use crate::catalog::eval::{Binding, Env, PyVal, SpVal};
 use crate::catalog::schema::{
-    Cond, Factor, Keyword, Lit, Produces, Reentrant, Rule, Simple, Status, Ty,
+    CommandSpec, Cond, Factor, Keyword, Lit, Produces, Reentrant, Rule, Simple, Status, Ty,
 };
-use crate::commands::CommandDef;
-use crate::concepts::ConceptType;
 use crate::diag::{closest, Diagnostic, Span};
 use crate::lang::ast::{ExprKind, Ident, Program, StmtKind};
 
@@ -45,12 +44,13 @@ pub struct CheckedProgram {
 
 /// Checks a whole program. On failure, returns every error found (and the
 /// warnings, after them).
-pub fn check_program(
+pub fn check_program<D: AsRef<CommandSpec>>(
     program: &Program,
-    registry: &[CommandDef],
+    registry: &[D],
 ) -> Result<CheckedProgram, Vec<Diagnostic>> {
+    let registry: Vec<&CommandSpec> = registry.iter().map(AsRef::as_ref).collect();
     let mut ck = Checker {
-        registry,
+        registry: &registry,
         env: Env::default(),
         errors: Vec::new(),
         warnings: Vec::new(),
@@ -58,7 +58,7 @@ pub fn check_program(
     let mut out = Vec::new();
     let mut seen_debut = false;
     let mut fin_at: Option<Span> = None;
-    let names: Vec<&str> = registry.iter().map(|d| d.spec.name).collect();
+    let names: Vec<&str> = registry.iter().map(|d| d.name).collect();
 
     for stmt in &program.stmts {
         let (target, expr) = match &stmt.kind {
@@ -170,7 +170,7 @@ pub fn check_program(
 }
 
 struct Checker<'a> {
-    registry: &'a [CommandDef],
+    registry: &'a [&'a CommandSpec],
     env: Env,
     errors: Vec<Diagnostic>,
     warnings: Vec<Diagnostic>,
@@ -193,11 +193,8 @@ impl Checker<'_> {
         args: &[crate::lang::ast::Arg],
         span: Span,
     ) -> Option<CheckedCommand> {
-        let def_idx = self
-            .registry
-            .iter()
-            .position(|d| d.spec.name == func.name)?;
-        let spec = &self.registry[def_idx].spec;
+        let def_idx = self.registry.iter().position(|d| d.name == func.name)?;
+        let spec = self.registry[def_idx];
         let cmd = spec.name;
         let nerr = self.errors.len();
 
@@ -237,7 +234,7 @@ impl Checker<'_> {
             let registry = self.registry;
             match self
                 .env
-                .eval(&a.value, &|n| registry.iter().any(|d| d.spec.name == n))
+                .eval(&a.value, &|n| registry.iter().any(|d| d.name == n))
             {
                 Ok(v) => given.push((k.clone(), v)),
                 Err(d) => {

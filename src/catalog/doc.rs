@@ -6,11 +6,11 @@
 use std::fmt::Write as _;
 
 use super::schema::*;
-use crate::commands;
 
-/// The whole catalogue as Markdown, commands in registry order.
-pub fn commands_markdown() -> String {
-    let defs = commands::all();
+/// The whole catalogue as Markdown, commands in registry order (the
+/// registry is `commands::all()`, handed down by the caller).
+pub fn commands_markdown<D: AsRef<CommandSpec>>(registry: &[D]) -> String {
+    let defs: Vec<&CommandSpec> = registry.iter().map(AsRef::as_ref).collect();
     let mut out = String::new();
     out.push_str("# Command reference\n\n");
     out.push_str(
@@ -25,11 +25,11 @@ pub fn commands_markdown() -> String {
          keywords of its level (after defaults are filled).\n\n",
     );
     for d in &defs {
-        let _ = writeln!(out, "- [{}](#{})", d.spec.name, d.spec.name.to_lowercase());
+        let _ = writeln!(out, "- [{}](#{})", d.name, d.name.to_lowercase());
     }
     out.push('\n');
     for d in &defs {
-        command_section(&mut out, &d.spec);
+        command_section(&mut out, d);
     }
     out
 }

@@ -9,7 +9,7 @@
 
 use indexmap::IndexMap;
 
-use crate::concepts::ConceptType;
+use crate::catalog::concept_type::ConceptType;
 use crate::diag::{closest, Diagnostic, Span};
 use crate::lang::ast::{BinOp, Expr, ExprKind, Ident, UnOp};
 

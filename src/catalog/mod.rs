@@ -2,6 +2,7 @@
 
 pub mod args;
 pub mod checker;
+pub mod concept_type;
 pub mod doc;
 pub mod eval;
 pub mod schema;

@@ -5,7 +5,7 @@
 //! PRESENT_ABSENT) so that each command declaration reads like its
 //! code_aster catalogue. The checker in [`super::checker`] interprets it.
 
-use crate::concepts::ConceptType;
+use crate::catalog::concept_type::ConceptType;
 
 /// The type of a simple keyword's values.
 #[derive(Debug, Clone, PartialEq)]
@@ -323,6 +323,12 @@ impl Block {
     }
     pub fn kw(self) -> Keyword {
         Keyword::Block(self)
+    }
+}
+
+impl AsRef<CommandSpec> for CommandSpec {
+    fn as_ref(&self) -> &CommandSpec {
+        self
     }
 }
 

@@ -9,7 +9,7 @@ use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::model::{CellRole, Dof, Gravity, ImposedDof, MechLoad};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut ddl = vec![

@@ -11,7 +11,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::model::{CellRole, MaterialField};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(

@@ -10,11 +10,11 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
-use crate::element::{element_spec, unimplemented_element, Formulation};
 use crate::mesh::ops::jacobian_dets;
 use crate::mesh::CellType;
+use crate::model::spec::{element_spec, unimplemented_element, Formulation};
 use crate::model::{CellRole, Dof, Model};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(

@@ -10,7 +10,7 @@ use crate::law::TangentKind;
 use crate::model::MechLoad;
 use crate::nonlinear::{self, fields, Occurrence};
 use crate::result::Access;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut kws = vec![

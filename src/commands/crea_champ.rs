@@ -11,7 +11,7 @@ use crate::concepts::ConceptType as C;
 use crate::diag::{closest, Diagnostic};
 use crate::model::{Dof, Model};
 use crate::result::NodalField;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut extr = vec![

@@ -4,7 +4,7 @@ use super::blocks::*;
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(

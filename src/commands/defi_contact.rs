@@ -16,7 +16,7 @@ use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::mesh::Mesh;
 use crate::model::{CellRole, Dof, Model};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(

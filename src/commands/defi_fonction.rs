@@ -8,7 +8,7 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::{ConceptData, ConceptType as C};
 use crate::post::function::{Extrapolation, Function, Interp};
-use crate::run::Study;
+use crate::study::Study;
 
 const PARAMETERS: &[&str] = &[
     "INST", "X", "Y", "Z", "ABSC", "FREQ", "TEMP", "EPSI", "SIGM", "DX", "DY", "DZ",

@@ -10,7 +10,7 @@ use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::mesh::ops::{self, CritNoeud, GroupSetOp, PlaneNormal};
 use crate::mesh::Mesh;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(

@@ -7,7 +7,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
-use crate::run::Study;
+use crate::study::Study;
 use crate::time::list::{
     Action, AdaptEvent, Adaptation, Event, FailureRule, Subdivision, TimeList, TplusMode,
 };

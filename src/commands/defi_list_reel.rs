@@ -6,7 +6,7 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::{ConceptData, ConceptType as C};
 use crate::diag::Diagnostic;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(

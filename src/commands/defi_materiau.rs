@@ -10,7 +10,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::model::Material;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let spec = command(

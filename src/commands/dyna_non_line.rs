@@ -17,7 +17,7 @@ use crate::nonlinear::{
     NewtonSettings, Occurrence, PrepareError, Reduce, Suivi, SuiviField, TimeLoop,
 };
 use crate::result::{Access, EvolNoli};
-use crate::run::Study;
+use crate::study::Study;
 use crate::time::list::{Action, Event, Subdivision, TimeList, TplusMode};
 use crate::time::Scheme;
 
@@ -1015,7 +1015,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let axis = md
         .model
         .element_cells()
-        .any(|(_, s)| s.formulation == crate::element::spec::Formulation::Axis);
+        .any(|(_, s)| s.formulation == crate::model::spec::Formulation::Axis);
     let mut contact = match contact_def {
         None => None,
         Some(def) => Some(

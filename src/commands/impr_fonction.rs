@@ -8,7 +8,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptType as C;
 use crate::post::function::{write_tableau, write_xmgrace, FunctionCurve, GraphOptions, Scale};
 use crate::post::table::PrintOptions;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let echelle = |n: &'static str| text(n).into(&["LIN", "LOG"]).default(t("LIN")).kw();

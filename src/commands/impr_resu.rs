@@ -14,7 +14,7 @@ use crate::medio::{self, ElemField, FieldStep, NodalField as MedNodal};
 use crate::mesh::Mesh;
 use crate::post::table::RealFormat;
 use crate::result::{GaussField, NodalField, Step};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut acces = vec![

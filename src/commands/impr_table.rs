@@ -8,7 +8,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptType as C;
 use crate::post::function::GraphOptions;
 use crate::post::table::{PrintFormat, PrintOptions};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let tableau = ["TABLEAU", "AGRAF"];

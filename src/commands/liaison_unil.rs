@@ -10,7 +10,7 @@ use crate::diag::Diagnostic;
 use crate::mesh::Mesh;
 use crate::model::{Dof, Model};
 use crate::post::function::Function;
-use crate::run::Study;
+use crate::study::Study;
 
 /// At most this many NOM_CMP entries over all zones (UNILATER_43).
 const MAX_COMPONENTS: usize = 30;

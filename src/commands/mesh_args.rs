@@ -6,7 +6,7 @@ use crate::concepts::ConceptData;
 use crate::diag::{closest, Diagnostic};
 use crate::mesh::ops::{MeshError, Report};
 use crate::mesh::Mesh;
-use crate::run::Study;
+use crate::study::Study;
 
 /// The mesh of the concept given under `key`.
 pub fn mesh_of<'s>(study: &'s Study, args: &Args, key: &str) -> Result<&'s Mesh, Diagnostic> {

@@ -12,13 +12,14 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::CommandSpec;
 use crate::concepts::ConceptData;
 use crate::diag::Diagnostic;
-use crate::run::Study;
+use crate::study::Study;
 
 pub mod affe_char_meca;
 pub mod affe_materiau;
 pub mod affe_modele;
 pub mod blocks;
 pub mod calc_champ;
+pub mod contact_def;
 pub mod crea_champ;
 pub mod crea_maillage;
 pub mod debut;
@@ -57,6 +58,12 @@ pub type ExecFn = fn(study: &mut Study, args: &Args, result: Option<&str>) -> Ex
 pub struct CommandDef {
     pub spec: CommandSpec,
     pub exec: ExecFn,
+}
+
+impl AsRef<CommandSpec> for CommandDef {
+    fn as_ref(&self) -> &CommandSpec {
+        &self.spec
+    }
 }
 
 /// The executor of commands whose engine is not built yet.

@@ -9,7 +9,7 @@ use crate::concepts::ConceptData;
 use crate::diag::Diagnostic;
 use crate::mesh::Mesh;
 use crate::model::Model;
-use crate::run::Study;
+use crate::study::Study;
 
 /// The model concept given under `key`, with its name.
 pub fn model_of<'s>(

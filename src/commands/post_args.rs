@@ -19,7 +19,7 @@ use crate::post::test_report::{
     occurrence_checks, CheckLine, Critere, RefKind, Reference, TestSpec, Value as TestValue,
 };
 use crate::result::{Access, EvolNoli, GaussField, NodalField, Step};
-use crate::run::Study;
+use crate::study::Study;
 
 /// code_aster's default name of node `i` (0-based index): `N<i+1>`.
 pub fn node_name(i: usize) -> String {

@@ -14,7 +14,7 @@ use crate::diag::Diagnostic;
 use crate::mesh::Mesh;
 use crate::post::table::{Cell, ColumnType, Table};
 use crate::result::NodalField;
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut extrac = vec![

@@ -12,7 +12,7 @@ use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::post::function::{Extrapolation, Function, Interp};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut prec = critere_precision(1e-6);

@@ -13,7 +13,7 @@ use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::post::test_report::{format_checks, header_lines, resu_block, Value};
 use crate::result::{Access, NodalField};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let (refe_kws, refe_rules) = c_test_reference(true, false);

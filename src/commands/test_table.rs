@@ -9,7 +9,7 @@ use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::post::table::{Cell, Table};
 use crate::post::test_report::{table_block, Value};
-use crate::run::Study;
+use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let (refe_kws, refe_rules) = c_test_reference(false, true);

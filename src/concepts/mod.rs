@@ -9,47 +9,9 @@ use indexmap::IndexMap;
 
 use crate::diag::Span;
 
-/// The type of a concept, as code_aster names it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum ConceptType {
-    Maillage,
-    Modele,
-    Mater,
-    ChamMater,
-    CharMeca,
-    CharContact,
-    Listr8,
-    ListInst,
-    Fonction,
-    ChamNo,
-    EvolNoli,
-    Table,
-}
-
-impl ConceptType {
-    pub fn aster_name(self) -> &'static str {
-        match self {
-            ConceptType::Maillage => "maillage_sdaster",
-            ConceptType::Modele => "modele_sdaster",
-            ConceptType::Mater => "mater_sdaster",
-            ConceptType::ChamMater => "cham_mater",
-            ConceptType::CharMeca => "char_meca",
-            ConceptType::CharContact => "char_contact",
-            ConceptType::Listr8 => "listr8_sdaster",
-            ConceptType::ListInst => "list_inst",
-            ConceptType::Fonction => "fonction_sdaster",
-            ConceptType::ChamNo => "cham_no_sdaster",
-            ConceptType::EvolNoli => "evol_noli",
-            ConceptType::Table => "table_sdaster",
-        }
-    }
-}
-
-impl std::fmt::Display for ConceptType {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.aster_name())
-    }
-}
+/// Moved to the catalogue, whose checker types keywords with it; the
+/// path here stays for code written before the move.
+pub use crate::catalog::concept_type::ConceptType;
 
 /// The data of a concept once its command has run. Variants are added as
 /// engines are built; a concept produced by `aster check` has no data.

@@ -4,7 +4,7 @@
 
 use std::collections::HashMap;
 
-use super::{add, norm, scale};
+use crate::mesh::vec3::{add, norm, scale};
 use crate::result::NodalField;
 
 /// The 30 components of `CONT_NOEU` (quantity INFC_R), in code_aster's order.

@@ -16,7 +16,7 @@
 //! residual of a slave dof is the point's force vector `f`, the one of
 //! master node j is −M_j f, and the derivatives scale the same way.
 
-use super::{dot, sub};
+use crate::mesh::vec3::{dot, sub};
 use crate::mesh::{CellType, Mesh};
 
 /// `ALGO_RESO_CONT` / `ALGO_RESO_FROT` / `ALGO_RESO_GEOM`.

@@ -21,7 +21,8 @@
 
 use super::cont_noeu::{ContactState, LinkState, LinkStatus};
 use super::pairing::{Link, Pairing};
-use super::{dot, ContactDef};
+use super::ContactDef;
+use crate::mesh::vec3::dot;
 
 /// RESI_GLOB_RELA above which the slip part of the friction tangent is
 /// weighted by COEF_MATR_FROT (code_aster's `cffpm2`).

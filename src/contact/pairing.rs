@@ -10,8 +10,9 @@
 //! the master body, and the gap g = (x_proj − x_slave)·n_in is > 0 when the
 //! slave node is outside the master body, < 0 when it has penetrated.
 
-use super::{cross, dot, norm, scale, sub, ContactDef};
-use crate::element::shape;
+use super::ContactDef;
+use crate::mesh::shape;
+use crate::mesh::vec3::{add, cross, dot, norm, scale, sub};
 use crate::mesh::{CellType, Mesh};
 
 /// An orthogonal projection of a point on one master cell.
@@ -92,7 +93,7 @@ pub struct Pairing {
 /// If `u` does not have one entry per mesh node (a caller bug).
 pub fn pair(def: &ContactDef, mesh: &Mesh, u: &[[f64; 3]]) -> Pairing {
     assert_eq!(u.len(), mesh.nnodes(), "one displacement per mesh node");
-    let cur = |n: usize| super::add(mesh.coords[n], u[n]);
+    let cur = |n: usize| add(mesh.coords[n], u[n]);
     let mut out = Pairing {
         dim: def.dim,
         ..Pairing::default()
@@ -137,7 +138,7 @@ pub fn pair(def: &ContactDef, mesh: &Mesh, u: &[[f64; 3]]) -> Pairing {
             let nodes = mesh.cells[c].nodes.clone();
             let mut x_ref = [0.0; 3];
             for (j, &n) in nodes.iter().enumerate() {
-                x_ref = super::add(x_ref, scale(pr.shape[j], mesh.coords[n]));
+                x_ref = add(x_ref, scale(pr.shape[j], mesh.coords[n]));
             }
             let gap_ref = dot(pr.normal, sub(x_ref, mesh.coords[s]));
             out.links.push(Link {
@@ -187,9 +188,9 @@ pub fn project(kind: CellType, xs: &[[f64; 3]], p: [f64; 3], dim: usize) -> Opti
         let mut x = [0.0; 3];
         let mut t = [[0.0; 3]; 2];
         for (i, xi_node) in xs.iter().enumerate() {
-            x = super::add(x, scale(sh.n()[i], *xi_node));
+            x = add(x, scale(sh.n()[i], *xi_node));
             for (a, ta) in t.iter_mut().enumerate().take(pdim) {
-                *ta = super::add(*ta, scale(sh.dn()[i][a], *xi_node));
+                *ta = add(*ta, scale(sh.dn()[i][a], *xi_node));
             }
         }
         (x, t, sh.n().to_vec())

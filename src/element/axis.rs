@@ -15,9 +15,9 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::quadrature::{rule, Fpg};
-use super::shape::eval;
 use crate::law::{Mat6, SmallStrainBehaviour, SmallStrainInput, TangentKind, Vec6};
+use crate::mesh::quadrature::{rule, Fpg};
+use crate::mesh::shape::eval;
 use crate::mesh::CellType;
 
 // Shared with the generic element interface, which supersedes this module
@@ -175,7 +175,7 @@ pub fn internal_forces(
         let b = b_matrix(gp);
         let de4 = b * du;
         let de = Vec6::new(de4[0], de4[1], de4[2], de4[3], 0.0, 0.0);
-        let law_span = crate::bench::span(crate::bench::Phase::LawIntegration);
+        let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
         let out = law
             .integrate(&SmallStrainInput {
                 stress: st.stress,

@@ -12,10 +12,10 @@
 use indexmap::IndexMap;
 
 use super::mechanics::ElementFailure;
-use super::quadrature::rule;
-use super::shape::eval;
-use super::spec::{ElementSpec, Formulation};
+use crate::mesh::quadrature::rule;
+use crate::mesh::shape::eval;
 use crate::mesh::Mesh;
+use crate::model::spec::{ElementSpec, Formulation};
 use crate::model::{CellRole, Gravity, Material, MaterialField, MechLoad, Model};
 
 /// The nodal forces ∫ ρ b N_a dV of one element (node-major, 2 or 3
@@ -170,8 +170,9 @@ fn acceleration(g: &Gravity) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::{element_spec, mass};
+    use crate::element::mass;
     use crate::mesh::CellType;
+    use crate::model::spec::element_spec;
 
     /// f = M·(b at every node) (the consistent mass, same Gauss family),
     /// and Σ_a f_a = ρ·V·b with the volume V computed by hand.

@@ -53,18 +53,18 @@ use std::sync::OnceLock;
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 
 use super::mechanics::{ElementFailure, ElementResponse, Kinematics, LawRef, PointState};
-use super::quadrature::{rule, Fpg};
-use super::shape::{eval, reference_nodes, ShapeEval};
-use super::spec::ElementSpec;
 use crate::law::{Mat6, SmallStrainInput, TangentKind, Vec6};
+use crate::mesh::quadrature::{rule, Fpg};
+use crate::mesh::shape::{eval, reference_nodes, ShapeEval};
 use crate::mesh::CellType;
+use crate::model::spec::ElementSpec;
 
 /// Rows of engine state per element: the centre point and 12 rows of Q.
 pub const STATE_ROWS: usize = 13;
 /// Number of generalised hourglass stresses (FSTAB1..FSTAB72).
 pub const NQ: usize = 72;
 /// code_aster's element name.
-pub const NAME: &str = "MECA_HEXS8";
+pub const NAME: &str = crate::model::spec::HEXS8_NAME;
 
 type B = SMatrix<f64, 6, 24>;
 type K24 = SMatrix<f64, 24, 24>;
@@ -271,7 +271,7 @@ pub fn internal_forces_with(
         tangent
     };
     let out = {
-        let _span = crate::bench::span(crate::bench::Phase::LawIntegration);
+        let _span = crate::profile::span(crate::profile::Phase::LawIntegration);
         l.integrate(&SmallStrainInput {
             stress: st0.stress,
             internal: st0.internal.as_slice(),

@@ -44,9 +44,6 @@ use std::sync::OnceLock;
 
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 
-use super::quadrature::{families, rule, Fpg};
-use super::shape::{eval, ShapeEval, MAX_NODES};
-use super::spec::{ElementSpec, Formulation};
 use crate::law::gdef_log::FiniteStrainBehaviour;
 use crate::law::simo_miehe::{FiniteStrainInput, SimoMiehe};
 use crate::law::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
@@ -54,7 +51,10 @@ use crate::law::{
     IntegrationFailure, InternalVars, SmallStrainBehaviour, SmallStrainInput, StrainMeasure,
     TangentKind, Vec6,
 };
+use crate::mesh::quadrature::{families, rule, Fpg};
+use crate::mesh::shape::{eval, ShapeEval, MAX_NODES};
 use crate::mesh::CellType;
+use crate::model::spec::{ElementSpec, Formulation};
 
 /// The largest number of dofs of an element (HEXA20 in 3D).
 pub const MAX_DOFS: usize = 3 * MAX_NODES;
@@ -309,7 +309,7 @@ pub fn internal_forces(
         let (s, new_state) = match (kin, law) {
             (Kinematics::Petit | Kinematics::PetitReac, LawRef::Small(l)) => {
                 let grad_du = geom.gradient(&du[..ndof], d);
-                let law_span = crate::bench::span(crate::bench::Phase::LawIntegration);
+                let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
                 let out = l
                     .integrate(&SmallStrainInput {
                         stress: st.stress,
@@ -364,7 +364,7 @@ pub fn internal_forces(
                     point: p,
                     message: "singular deformation gradient".into(),
                 })?;
-                let law_span = crate::bench::span(crate::bench::Phase::LawIntegration);
+                let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
                 let input = FiniteStrainInput {
                     f_n,
                     f_np1: f,

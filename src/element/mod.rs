@@ -11,12 +11,8 @@ pub mod axis;
 pub mod body_force;
 pub mod hexs8;
 pub mod mechanics;
-pub mod quadrature;
-pub mod shape;
-pub mod spec;
 
 pub use mechanics::{
     initial_states, internal_forces, mass, output_points, rigi_points, ElementFailure,
     ElementResponse, Kinematics, LawRef, PointState, MAX_DOFS,
 };
-pub use spec::{element_spec, unimplemented_element, ElementSpec, Formulation};

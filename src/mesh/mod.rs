@@ -267,4 +267,7 @@ impl Mesh {
 }
 
 pub mod ops;
+pub mod quadrature;
+pub mod shape;
 pub mod taylor;
+pub mod vec3;

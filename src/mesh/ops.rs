@@ -12,6 +12,9 @@
 
 use std::fmt;
 
+use super::quadrature::{self, Fpg, QuadRule};
+use super::shape;
+use super::vec3::{cross, dot, sub};
 use super::{Cell, CellType, Mesh};
 
 /// A non-fatal condition code_aster reports as an alarm (`<A>`).
@@ -388,7 +391,7 @@ pub fn crea_group_no_plan(
             }
         }
     };
-    let norm = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let norm = super::vec3::norm(n);
     if norm.is_nan() || norm <= 0.0 || !norm.is_finite() {
         return Err(MeshError::new(
             "ASTER_RS_PLAN_NORMAL",
@@ -496,22 +499,6 @@ fn vertex_centroid(mesh: &Mesh, cell: &Cell) -> [f64; 3] {
         }
     }
     c.map(|v| v / nv as f64)
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Normal used by orilma's test only (not normalised): 3D from the first
@@ -814,258 +801,37 @@ pub fn med_to_aster(kind: CellType) -> &'static [usize] {
     }
 }
 
-/// Node coordinates of code_aster's reference element (aster order).
-fn reference_nodes(kind: CellType) -> Vec<[f64; 3]> {
-    let hexa = |x: &[f64], y: &[f64], z: &[f64]| -> Vec<[f64; 3]> {
-        (0..x.len()).map(|i| [x[i], y[i], z[i]]).collect()
+/// The Gauss rule of the mesh checks: code_aster's FPG family of the cell
+/// that integrates the geometry of a straight or curved cell exactly
+/// (degree 5 per direction on segments, quadrangles and hexahedra, 2 on
+/// triangles and tetrahedra, 5 x 5 on prisms).
+fn check_rule(kind: CellType) -> QuadRule {
+    let fpg = match kind {
+        CellType::Poi1 => Fpg::Fpg1,
+        CellType::Seg2 | CellType::Seg3 | CellType::Tria3 | CellType::Tria6 => Fpg::Fpg3,
+        CellType::Quad4 | CellType::Quad8 => Fpg::Fpg9,
+        CellType::Tetra4 => Fpg::Fpg4,
+        CellType::Penta6 | CellType::Penta15 => Fpg::Fpg21,
+        CellType::Hexa8 | CellType::Hexa20 => Fpg::Fpg27,
     };
-    match kind {
-        CellType::Poi1 => vec![[0.0; 3]],
-        CellType::Seg2 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]],
-        CellType::Seg3 => vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]],
-        CellType::Tria3 | CellType::Tria6 => {
-            let mut v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-            if kind == CellType::Tria6 {
-                v.extend([[0.5, 0.0, 0.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.0]]);
-            }
-            v
-        }
-        CellType::Quad4 | CellType::Quad8 => {
-            let mut v = vec![
-                [-1.0, -1.0, 0.0],
-                [1.0, -1.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [-1.0, 1.0, 0.0],
-            ];
-            if kind == CellType::Quad8 {
-                v.extend([
-                    [0.0, -1.0, 0.0],
-                    [1.0, 0.0, 0.0],
-                    [0.0, 1.0, 0.0],
-                    [-1.0, 0.0, 0.0],
-                ]);
-            }
-            v
-        }
-        CellType::Tetra4 => vec![
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-        ],
-        CellType::Penta6 | CellType::Penta15 => {
-            let mut v = hexa(
-                &[-1.0, -1.0, -1.0, 1.0, 1.0, 1.0],
-                &[1.0, 0.0, 0.0, 1.0, 0.0, 0.0],
-                &[0.0, 1.0, 0.0, 0.0, 1.0, 0.0],
-            );
-            if kind == CellType::Penta15 {
-                v.extend(hexa(
-                    &[-1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-                    &[0.5, 0.0, 0.5, 1.0, 0.0, 0.0, 0.5, 0.0, 0.5],
-                    &[0.5, 0.5, 0.0, 0.0, 1.0, 0.0, 0.5, 0.5, 0.0],
-                ));
-            }
-            v
-        }
-        CellType::Hexa8 | CellType::Hexa20 => {
-            let mut v = hexa(
-                &[-1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0],
-                &[-1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0],
-                &[-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0],
-            );
-            if kind == CellType::Hexa20 {
-                v.extend(hexa(
-                    &[
-                        0.0, 1.0, 0.0, -1.0, -1.0, 1.0, 1.0, -1.0, 0.0, 1.0, 0.0, -1.0,
-                    ],
-                    &[
-                        -1.0, 0.0, 1.0, 0.0, -1.0, -1.0, 1.0, 1.0, -1.0, 0.0, 1.0, 0.0,
-                    ],
-                    &[
-                        -1.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0,
-                    ],
-                ));
-            }
-            v
-        }
-    }
+    quadrature::rule(kind, fpg).expect("every cell type has its check family")
 }
 
-/// Shape functions of code_aster's reference element at `xi` (aster order).
-fn shape(kind: CellType, xi: [f64; 3]) -> Vec<f64> {
-    let [x, y, z] = xi;
-    let refs = reference_nodes(kind);
-    match kind {
-        CellType::Poi1 => vec![1.0],
-        CellType::Seg2 => vec![0.5 * (1.0 - x), 0.5 * (1.0 + x)],
-        CellType::Seg3 => vec![0.5 * x * (x - 1.0), 0.5 * x * (x + 1.0), 1.0 - x * x],
-        CellType::Tria3 => vec![1.0 - x - y, x, y],
-        CellType::Tria6 => {
-            let l = [1.0 - x - y, x, y];
-            vec![
-                l[0] * (2.0 * l[0] - 1.0),
-                l[1] * (2.0 * l[1] - 1.0),
-                l[2] * (2.0 * l[2] - 1.0),
-                4.0 * l[0] * l[1],
-                4.0 * l[1] * l[2],
-                4.0 * l[2] * l[0],
-            ]
-        }
-        CellType::Quad4 => refs
-            .iter()
-            .map(|r| 0.25 * (1.0 + r[0] * x) * (1.0 + r[1] * y))
-            .collect(),
-        CellType::Quad8 => refs
-            .iter()
-            .map(|r| {
-                if r[0] == 0.0 {
-                    0.5 * (1.0 - x * x) * (1.0 + r[1] * y)
-                } else if r[1] == 0.0 {
-                    0.5 * (1.0 - y * y) * (1.0 + r[0] * x)
-                } else {
-                    0.25 * (1.0 + r[0] * x) * (1.0 + r[1] * y) * (r[0] * x + r[1] * y - 1.0)
-                }
-            })
-            .collect(),
-        CellType::Tetra4 => vec![y, z, 1.0 - x - y - z, x],
-        CellType::Penta6 => {
-            let l = [y, z, 1.0 - y - z];
-            (0..6)
-                .map(|i| {
-                    let h = if i < 3 { 1.0 - x } else { 1.0 + x };
-                    0.5 * l[i % 3] * h
-                })
-                .collect()
-        }
-        CellType::Penta15 => {
-            let l = [y, z, 1.0 - y - z];
-            let mut n = Vec::with_capacity(15);
-            for li in l {
-                n.push(0.5 * li * (1.0 - x) * (2.0 * li - 2.0 - x));
-            }
-            for li in l {
-                n.push(0.5 * li * (1.0 + x) * (2.0 * li - 2.0 + x));
-            }
-            for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-                n.push(2.0 * l[i] * l[j] * (1.0 - x));
-            }
-            for li in l {
-                n.push(li * (1.0 - x * x));
-            }
-            for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-                n.push(2.0 * l[i] * l[j] * (1.0 + x));
-            }
-            n
-        }
-        CellType::Hexa8 => refs
-            .iter()
-            .map(|r| 0.125 * (1.0 + r[0] * x) * (1.0 + r[1] * y) * (1.0 + r[2] * z))
-            .collect(),
-        CellType::Hexa20 => refs
-            .iter()
-            .map(|r| {
-                let f = |a: f64, t: f64| if a == 0.0 { 1.0 - t * t } else { 1.0 + a * t };
-                let p = f(r[0], x) * f(r[1], y) * f(r[2], z);
-                if r[0] != 0.0 && r[1] != 0.0 && r[2] != 0.0 {
-                    0.125 * p * (r[0] * x + r[1] * y + r[2] * z - 2.0)
-                } else {
-                    0.25 * p
-                }
-            })
-            .collect(),
-    }
+/// Integration points of the check rule with their weights.
+fn check_points(kind: CellType) -> impl Iterator<Item = ([f64; 3], f64)> {
+    let r = check_rule(kind);
+    r.points.into_iter().zip(r.weights)
 }
 
-/// Derivatives of the shape functions by central differences: exact for
-/// the quadratic terms, 1e-10-accurate for the cubic ones of the
-/// serendipity cells, and one code path for every cell type.
-fn shape_derivatives(kind: CellType, xi: [f64; 3]) -> Vec<[f64; 3]> {
-    const H: f64 = 1e-5;
-    let mut d = vec![[0.0; 3]; kind.nnodes()];
-    for a in 0..kind.dim() {
-        let mut p = xi;
-        let mut m = xi;
-        p[a] += H;
-        m[a] -= H;
-        let (np, nm) = (shape(kind, p), shape(kind, m));
-        for i in 0..d.len() {
-            d[i][a] = (np[i] - nm[i]) / (2.0 * H);
-        }
-    }
-    d
-}
-
-/// Quadrature of the reference element: (point, weight). Exact at least
-/// for polynomials of degree 5 per direction on segments, quadrangles and
-/// hexahedra, degree 2 on triangles and tetrahedra.
-fn quadrature(kind: CellType) -> Vec<([f64; 3], f64)> {
-    let g = (0.6f64).sqrt();
-    let gauss = [(-g, 5.0 / 9.0), (0.0, 8.0 / 9.0), (g, 5.0 / 9.0)];
-    let tri = [
-        (1.0 / 6.0, 1.0 / 6.0),
-        (2.0 / 3.0, 1.0 / 6.0),
-        (1.0 / 6.0, 2.0 / 3.0),
-    ];
-    match kind.dim() {
-        0 => vec![([0.0; 3], 1.0)],
-        1 => gauss.iter().map(|&(p, w)| ([p, 0.0, 0.0], w)).collect(),
-        2 if matches!(kind, CellType::Tria3 | CellType::Tria6) => {
-            tri.iter().map(|&(a, b)| ([a, b, 0.0], 1.0 / 6.0)).collect()
-        }
-        2 => {
-            let mut v = Vec::new();
-            for &(a, wa) in &gauss {
-                for &(b, wb) in &gauss {
-                    v.push(([a, b, 0.0], wa * wb));
-                }
-            }
-            v
-        }
-        _ => match kind {
-            CellType::Tetra4 => {
-                let a = (5.0 + 3.0 * 5f64.sqrt()) / 20.0;
-                let b = (5.0 - 5f64.sqrt()) / 20.0;
-                vec![
-                    ([a, b, b], 1.0 / 24.0),
-                    ([b, a, b], 1.0 / 24.0),
-                    ([b, b, a], 1.0 / 24.0),
-                    ([b, b, b], 1.0 / 24.0),
-                ]
-            }
-            CellType::Penta6 | CellType::Penta15 => {
-                let mut v = Vec::new();
-                for &(x, wx) in &gauss {
-                    for &(a, b) in &tri {
-                        v.push(([x, a, b], wx / 6.0));
-                    }
-                }
-                v
-            }
-            _ => {
-                let mut v = Vec::new();
-                for &(a, wa) in &gauss {
-                    for &(b, wb) in &gauss {
-                        for &(c, wc) in &gauss {
-                            v.push(([a, b, c], wa * wb * wc));
-                        }
-                    }
-                }
-                v
-            }
-        },
-    }
-}
-
-/// Columns dx/dxi_a of the Jacobian at `xi`, for a cell read in aster order.
+/// Columns dx/dxi_a of the Jacobian at `xi` on code_aster's reference
+/// element (the shape functions of [`super::shape`] take the MED node order).
 fn jacobian_columns(mesh: &Mesh, cell: &Cell, xi: [f64; 3]) -> Vec<[f64; 3]> {
-    let perm = med_to_aster(cell.kind);
-    let d = shape_derivatives(cell.kind, xi);
+    let ev = shape::eval(cell.kind, xi);
     (0..cell.kind.dim())
         .map(|a| {
             let mut col = [0.0; 3];
-            for (j, dj) in d.iter().enumerate() {
-                let p = mesh.coords[cell.nodes[perm[j]]];
+            for (&n, dj) in cell.nodes.iter().zip(ev.dn()) {
+                let p = mesh.coords[n];
                 for k in 0..3 {
                     col[k] += p[k] * dj[a];
                 }
@@ -1086,11 +852,11 @@ pub fn jacobian_dets(mesh: &Mesh, cell: &Cell) -> Option<Vec<f64>> {
     if kind.dim() != 3 && !planar {
         return None;
     }
-    let refs = reference_nodes(kind);
+    let refs = shape::reference_nodes(kind);
     let points = refs[..kind.nvertices()]
         .iter()
         .copied()
-        .chain(quadrature(kind).into_iter().map(|(p, _)| p));
+        .chain(check_points(kind).map(|(p, _)| p));
     Some(
         points
             .map(|xi| {
@@ -1109,8 +875,7 @@ pub fn jacobian_dets(mesh: &Mesh, cell: &Cell) -> Option<Vec<f64>> {
 /// norm of the tangent / surface element for cells embedded in space).
 pub fn cell_measure(mesh: &Mesh, cell: &Cell) -> f64 {
     let kind = cell.kind;
-    quadrature(kind)
-        .into_iter()
+    check_points(kind)
         .map(|(xi, w)| {
             let c = jacobian_columns(mesh, cell, xi);
             let j = match kind.dim() {
@@ -1134,16 +899,15 @@ pub fn cell_first_moment_x(mesh: &Mesh, cell: &Cell) -> Option<f64> {
     if cell.kind.dim() != 2 {
         return None;
     }
-    let perm = med_to_aster(cell.kind);
-    let m = quadrature(cell.kind)
-        .into_iter()
+    let m = check_points(cell.kind)
         .map(|(xi, w)| {
             let c = jacobian_columns(mesh, cell, xi);
-            let n = shape(cell.kind, xi);
-            let x: f64 = n
+            let ev = shape::eval(cell.kind, xi);
+            let x: f64 = ev
+                .n()
                 .iter()
-                .enumerate()
-                .map(|(j, nj)| nj * mesh.coords[cell.nodes[perm[j]]][0])
+                .zip(&cell.nodes)
+                .map(|(nj, &n)| nj * mesh.coords[n][0])
                 .sum();
             w * x * (c[0][0] * c[1][1] - c[0][1] * c[1][0]).abs()
         })
@@ -1171,12 +935,7 @@ mod tests {
     /// Builds a one-cell mesh whose nodes are code_aster's reference
     /// element read into MED order: the map is the identity, det J = 1.
     fn reference_cell_in_med_order(kind: CellType) -> Mesh {
-        let refs = reference_nodes(kind);
-        let perm = med_to_aster(kind);
-        let mut coords = vec![[0.0; 3]; kind.nnodes()];
-        for (aster, &med) in perm.iter().enumerate() {
-            coords[med] = refs[aster];
-        }
+        let coords = shape::reference_nodes(kind).to_vec();
         Mesh {
             dim: if kind.dim() == 3 { 3 } else { 2 },
             coords,

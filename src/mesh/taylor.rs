@@ -14,6 +14,7 @@
 use indexmap::IndexMap;
 
 use super::ops;
+use super::vec3::{dot, sub};
 use super::{Cell, CellType, Mesh};
 
 /// Bar radius (mm).
@@ -528,8 +529,7 @@ fn tetra(nr: usize, nz: usize) -> Mesh {
 /// of code_aster's reference element); swap two nodes when it does not.
 fn med_oriented_tetra(coords: &[[f64; 3]], t: [usize; 4]) -> Vec<usize> {
     let x = |k: usize| coords[t[k]];
-    let d = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let (u, v, w) = (d(x(1), x(0)), d(x(2), x(0)), d(x(3), x(0)));
+    let (u, v, w) = (sub(x(1), x(0)), sub(x(2), x(0)), sub(x(3), x(0)));
     let s = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
         + u[2] * (v[0] * w[1] - v[1] * w[0]);
     if s > 0.0 {
@@ -553,8 +553,6 @@ pub struct TetraQuality {
 
 /// Dihedral angles and volumes over the TETRA4 cells; None if there are none.
 pub fn tetra_quality(mesh: &Mesh) -> Option<TetraQuality> {
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let mut q = TetraQuality {
         count: 0,
         min_dihedral_deg: f64::INFINITY,

@@ -7,8 +7,10 @@
 
 use indexmap::IndexMap;
 
-use crate::element::ElementSpec;
 use crate::mesh::Mesh;
+use crate::model::spec::ElementSpec;
+
+pub mod spec;
 
 /// A degree of freedom of the displacement quantity.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -15,11 +15,12 @@ use rayon::prelude::*;
 use super::behaviour::{BehaviourField, CellLaw};
 use super::dofs::{DofNumbering, NONE};
 use crate::element::{
-    initial_states, internal_forces, mass, ElementFailure, ElementResponse, ElementSpec,
-    Kinematics, PointState, MAX_DOFS,
+    initial_states, internal_forces, mass, ElementFailure, ElementResponse, Kinematics, PointState,
+    MAX_DOFS,
 };
 use crate::law::TangentKind;
 use crate::mesh::Mesh;
+use crate::model::spec::ElementSpec;
 use crate::model::{CellRole, Model};
 use crate::solver::{CscPattern, SparseMatrix};
 
@@ -237,7 +238,7 @@ impl Assembler {
         fint: &mut [f64],
         stiffness: Option<&mut SparseMatrix>,
     ) -> Result<(), CellFailure> {
-        let _elements = crate::bench::span(crate::bench::Phase::ElementAssembly);
+        let _elements = crate::profile::span(crate::profile::Phase::ElementAssembly);
         let laws = &self.laws;
         let integrate = |e: &ElementData| {
             let n = e.full.len();

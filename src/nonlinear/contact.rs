@@ -160,7 +160,7 @@ impl DiscreteContact {
         self.u_paired.extend_from_slice(u);
         self.pairings_in_step += 1;
         self.pairings += 1;
-        crate::bench::count(crate::bench::Counter::Pairings, 1);
+        crate::profile::count(crate::profile::Counter::Pairings, 1);
     }
 
     /// Accepts the trial state of a converged step of length `dt`: the
@@ -198,7 +198,7 @@ impl ContactTerm for DiscreteContact {
             c.begin_step(u_start);
             return;
         }
-        let _contact = crate::bench::span(crate::bench::Phase::Contact);
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.u_start = per_node(self.ndpn, u_start);
         self.pairings_in_step = 0;
         // REAC_GEOM='SANS' keeps the first pairing of the computation
@@ -221,7 +221,7 @@ impl ContactTerm for DiscreteContact {
             self.trial = c.trial.clone();
             return Ok(());
         }
-        let _contact = crate::bench::span(crate::bench::Phase::Contact);
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         let Some(pairing) = self.pairing.as_ref() else {
             return Err("no pairing before the first iteration".into());
         };
@@ -264,7 +264,7 @@ impl ContactTerm for DiscreteContact {
         if let Some(c) = self.continuous.as_mut() {
             return c.accept(u);
         }
-        let _contact = crate::bench::span(crate::bench::Phase::Contact);
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         match self.def.reac_geom {
             ReacGeom::Sans => Ok(true),
             ReacGeom::Controle { nb_iter_geom } => {

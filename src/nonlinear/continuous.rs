@@ -148,7 +148,7 @@ impl ContinuousContact {
         for z in &def.zones {
             for &c in &z.master_cells {
                 let ns = &mesh.cells[c].nodes;
-                let e = crate::contact::norm(crate::contact::sub(
+                let e = crate::mesh::vec3::norm(crate::mesh::vec3::sub(
                     mesh.coords[ns[1]],
                     mesh.coords[ns[0]],
                 ));
@@ -158,7 +158,7 @@ impl ContinuousContact {
         for cell in &mesh.cells {
             let ns = &cell.nodes;
             for k in 0..ns.len().min(2) {
-                let e = crate::contact::norm(crate::contact::sub(
+                let e = crate::mesh::vec3::norm(crate::mesh::vec3::sub(
                     mesh.coords[ns[(k + 1) % ns.len()]],
                     mesh.coords[ns[k]],
                 ));
@@ -247,7 +247,7 @@ impl ContinuousContact {
         let mut mv: f64 = 0.0;
         for l in &self.pairing.links {
             if let Some((_, _, p)) = old.iter().find(|o| o.0 == l.zone && o.1 == l.slave) {
-                mv = mv.max(crate::contact::norm(crate::contact::sub(l.proj, *p)));
+                mv = mv.max(crate::mesh::vec3::norm(crate::mesh::vec3::sub(l.proj, *p)));
             }
         }
         self.geom_move = mv / self.a_max;
@@ -264,10 +264,10 @@ impl ContinuousContact {
     ) -> PointInput {
         let p = self.points[i];
         let z = &self.cdef.zones[p.zone];
-        let du = |n: usize| crate::contact::sub(u[n], self.u_start[n]);
+        let du = |n: usize| crate::mesh::vec3::sub(u[n], self.u_start[n]);
         let mut jump = du(p.node);
         for (m, &n) in link.shape.iter().zip(&link.master_nodes) {
-            jump = crate::contact::sub(jump, crate::contact::scale(*m, du(n)));
+            jump = crate::mesh::vec3::sub(jump, crate::mesh::vec3::scale(*m, du(n)));
         }
         let tangent = link.tangents[0];
         let slip_locked = std::iter::once(p.node)
@@ -288,7 +288,7 @@ impl ContinuousContact {
                 0.0
             },
             d: -link.gap,
-            g_t: crate::contact::dot(tangent, jump),
+            g_t: crate::mesh::vec3::dot(tangent, jump),
             normal: link.normal,
             tangent,
         }
@@ -310,9 +310,9 @@ impl ContinuousContact {
             let (_, o) = evaluate_point(&inp);
             let p = self.points[i];
             if let Some(fs) = forces.as_deref_mut() {
-                fs[p.node] = crate::contact::add(fs[p.node], o.f);
+                fs[p.node] = crate::mesh::vec3::add(fs[p.node], o.f);
                 for (m, &n) in link.shape.iter().zip(&link.master_nodes) {
-                    fs[n] = crate::contact::sub(fs[n], crate::contact::scale(*m, o.f));
+                    fs[n] = crate::mesh::vec3::sub(fs[n], crate::mesh::vec3::scale(*m, o.f));
                 }
             }
             let in_contact = self.status[i];
@@ -323,7 +323,7 @@ impl ContinuousContact {
             } else {
                 LinkStatus::Stick
             };
-            let lambda_n = -crate::contact::dot(o.f_n, link.normal);
+            let lambda_n = -crate::mesh::vec3::dot(o.f_n, link.normal);
             st.links.push(LinkState {
                 zone: p.zone,
                 slave: p.node,

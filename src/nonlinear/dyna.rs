@@ -223,6 +223,16 @@ pub struct RunSummary {
     pub seconds: f64,
 }
 
+impl RunSummary {
+    /// Adds the totals of this time loop to the profiler's counters.
+    fn count_profile(&self) {
+        use crate::profile::{count, Counter};
+        count(Counter::Steps, self.steps);
+        count(Counter::StepCuts, self.cuts);
+        count(Counter::NewtonIterations, self.newton_iterations);
+    }
+}
+
 /// The computation stopped: `message` says where and why; the result
 /// holds every step archived before (and the last converged state).
 #[derive(Debug, Clone, PartialEq)]
@@ -509,7 +519,7 @@ pub fn run(
                             result.steps.last().map_or(t0, |s| s.inst)
                         );
                         log(&message);
-                        crate::bench::count_time_loop(&summary);
+                        summary.count_profile();
                         return Err(Stopped { message, summary });
                     }
                 }
@@ -530,7 +540,7 @@ pub fn run(
         summary.seconds,
         summary.seconds / summary.steps.max(1) as f64
     ));
-    crate::bench::count_time_loop(&summary);
+    summary.count_profile();
     Ok(summary)
 }
 

@@ -2,8 +2,9 @@
 //! the result's fields (DEPL, VITE, ACCE, SIEF_ELGA, VARI_ELGA).
 
 use super::assembly::Assembler;
-use crate::element::{hexs8, Formulation, PointState};
+use crate::element::{hexs8, PointState};
 use crate::law::InternalVars;
+use crate::model::spec::Formulation;
 use crate::result::{GaussField, NodalField};
 
 /// Nodal field of a full vector: components = the model's dofs, nodes of

@@ -7,8 +7,6 @@
 //! produced by code_aster. The format is documented in
 //! `docs/testing-report.md`.
 
-use crate::run::TestCounts;
-
 /// code_aster's `r8prem()`: the machine epsilon. A VALE_CALC at most this
 /// large in magnitude counts as zero for the skip rule.
 pub const R8PREM: f64 = f64::EPSILON;
@@ -714,6 +712,14 @@ pub fn table_block(
     }
     out.push_str("  \n");
     out
+}
+
+/// Counts of the test report.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TestCounts {
+    pub ok: usize,
+    pub nook: usize,
+    pub skip: usize,
 }
 
 /// Adds the lines' statuses to the study's counts.

@@ -12,7 +12,7 @@ use crate::commands::{self, CommandDef};
 use crate::diag::{Diagnostic, Severity, Source};
 use crate::lang::parser::parse;
 use crate::run::export::{parse_export, ExportFile};
-use crate::run::Study;
+use crate::study::Study;
 
 pub const EXIT_OK: i32 = 0;
 pub const EXIT_STUDY: i32 = 1;
@@ -228,7 +228,7 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
             for (u, p) in &study.units.map.clone() {
                 study.log(format!("unit {u:>3} -> {}", p.display()));
             }
-            match study.execute(&program, &registry, &src) {
+            match crate::run::execute(&mut study, &program, &registry, &src) {
                 Ok(()) => {
                     completed = true;
                     if study.tests.nook > 0 {
@@ -329,7 +329,7 @@ fn save_results(study: &Study) -> Vec<String> {
 
 /// Writes .mess, .resu and the text of other logical units.
 fn write_outputs(study: &Study) -> Result<(), String> {
-    let _output = crate::bench::span(crate::bench::Phase::Output);
+    let _output = crate::profile::span(crate::profile::Phase::Output);
     let w = |p: PathBuf, text: &str| {
         std::fs::write(&p, text).map_err(|e| format!("cannot write '{}': {e}", p.display()))
     };

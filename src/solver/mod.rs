@@ -338,7 +338,7 @@ impl DirectLu {
 
 impl LinearSolver for DirectLu {
     fn factorize(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
-        let _factor = crate::bench::span(crate::bench::Phase::FactorSolve);
+        let _factor = crate::profile::span(crate::profile::Phase::FactorSolve);
         if let Some(v) = a.values.iter().find(|v| !v.is_finite()) {
             return Err(SolverError::Singular(format!(
                 "the matrix holds a non-finite value ({v})"
@@ -366,7 +366,7 @@ impl LinearSolver for DirectLu {
     }
 
     fn solve(&self, b: &mut [f64]) -> Result<(), SolverError> {
-        let _solve = crate::bench::span(crate::bench::Phase::FactorSolve);
+        let _solve = crate::profile::span(crate::profile::Phase::FactorSolve);
         let kind = self
             .current
             .ok_or_else(|| SolverError::Usage("solve called before factorize".into()))?;

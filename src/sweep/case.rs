@@ -17,7 +17,7 @@ use crate::concepts::ConceptData;
 use crate::diag::Source;
 use crate::mesh::taylor::{generate, TaylorKind, TaylorParams};
 use crate::run::driver::parse_and_check;
-use crate::run::Study;
+use crate::study::Study;
 
 /// The command-file template, derived from comm/sdnv103b.comm.
 const TEMPLATE: &str = include_str!("taylor_b.comm.in");
@@ -453,7 +453,7 @@ fn run_in_process(spec: &CaseSpec, comm: &Path, mesh: &Path, out_dir: &Path) -> 
             Outcome::Failed(format!("the generated command file is invalid: {messages}")),
         );
     };
-    let outcome = match study.execute(&program, &registry, &src) {
+    let outcome = match crate::run::execute(&mut study, &program, &registry, &src) {
         Ok(()) => Outcome::Completed,
         Err(d) => Outcome::Stopped(d.message),
     };

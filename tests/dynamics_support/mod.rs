@@ -12,12 +12,12 @@ use aster::catalog::checker::check_program;
 use aster::commands::{all, CommandDef};
 use aster::concepts::{Concept, ConceptData, ConceptType};
 use aster::diag::{Source, Span};
-use aster::element::element_spec;
 use aster::mesh::taylor::{generate, TaylorKind, TaylorParams};
 use aster::mesh::Mesh;
+use aster::model::spec::element_spec;
 use aster::model::{CellRole, Dof, ImposedDof, Material, MaterialField, MechLoad, Model};
 use aster::result::{EvolNoli, NodalField};
-use aster::run::Study;
+use aster::study::Study;
 use aster::time::list::TimeList;
 
 /// Concepts declared (for the checker) before the command under test.

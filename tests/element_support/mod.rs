@@ -7,9 +7,9 @@
 
 use std::collections::HashMap;
 
-use aster::element::shape::{eval, reference_nodes};
 use aster::law::simo_miehe::SimoMiehe;
 use aster::law::{EcroLineParams, ElasParams};
+use aster::mesh::shape::{eval, reference_nodes};
 use aster::mesh::CellType;
 use nalgebra::Matrix3;
 

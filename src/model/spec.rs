@@ -8,8 +8,12 @@
 //! contact; they are not stiffness elements, so [`element_spec`] returns
 //! `None` for them and the model builder treats them separately.
 
-use super::quadrature::Fpg;
+use crate::mesh::quadrature::Fpg;
 use crate::mesh::CellType;
+
+/// The element name of 3D_SI on HEXA8 (element::hexs8), which carries
+/// hourglass stresses in extra state rows.
+pub const HEXS8_NAME: &str = "MECA_HEXS8";
 
 /// The mechanical formulation shared by the elements of a modelisation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -48,7 +52,7 @@ impl ElementSpec {
     /// MECA_HEXS8: one-point element with hourglass stresses carried in
     /// extra state rows (element::hexs8).
     pub fn is_hexs8(&self) -> bool {
-        self.name == super::hexs8::NAME
+        self.name == HEXS8_NAME
     }
     pub fn nnodes(&self) -> usize {
         self.cell.nnodes()
@@ -77,7 +81,7 @@ pub fn element_spec(modelisation: &str, cell: CellType) -> Option<ElementSpec> {
         ("3D", Tetra4) => ("MECA_TETRA4", Solid3d, Fpg1, Fpg4),
         ("3D_SI", Hexa20) => ("MECA_HEXS20", Solid3d, Fpg8, Fpg27),
         // One point plus hourglass stabilisation (element::hexs8).
-        ("3D_SI", Hexa8) => (super::hexs8::NAME, Solid3d, Fpg1, Fpg8),
+        ("3D_SI", Hexa8) => (HEXS8_NAME, Solid3d, Fpg1, Fpg8),
         ("AXIS", Quad8) => ("MEAXQU8", Axis, Fpg9, Fpg9),
         ("AXIS", Quad4) => ("MEAXQU4", Axis, Fpg4, Fpg4),
         ("AXIS", Tria6) => ("MEAXTR6", Axis, Fpg6, Fpg6),

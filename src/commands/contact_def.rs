@@ -1,0 +1,467 @@
+//! DEFI_CONTACT's checked keywords turned into the contact engine's
+//! [`ContactDef`]: the command language stays above the engine, which
+//! only sees the resolved definition. Every error names the keyword it is
+//! about; what the engine does not implement is refused, never ignored.
+
+use crate::catalog::args::Args;
+use crate::contact::{continuous, is_contact_surface, ContactDef, ContactZone, Coulomb, ReacGeom};
+use crate::diag::Diagnostic;
+use crate::mesh::Mesh;
+
+impl ContactDef {
+    /// Builds the definition from DEFI_CONTACT's checked keywords on the
+    /// model's mesh. Every error names the keyword it is about.
+    pub fn from_args(args: &Args, mesh: &Mesh) -> Result<ContactDef, Diagnostic> {
+        let formulation = args.text("FORMULATION").unwrap_or("DISCRETE");
+        match formulation {
+            "DISCRETE" | "CONTINUE" => {}
+            "LIAISON_UNIL" => {
+                return Err(args.not_implemented(
+                    "FORMULATION",
+                    "unilateral linear conditions (FORMULATION='LIAISON_UNIL'); only 'DISCRETE' penalised contact is available",
+                ))
+            }
+            other => {
+                return Err(args.error(
+                    "FORMULATION",
+                    format!("FORMULATION='{other}' is not supported"),
+                ))
+            }
+        }
+        if mesh.dim != 2 && mesh.dim != 3 {
+            return Err(args.error(
+                "",
+                format!(
+                    "contact needs a 2D or 3D mesh, {} has dimension {}",
+                    mesh.name, mesh.dim
+                ),
+            ));
+        }
+        let friction = args.text("FROTTEMENT") == Some("COULOMB");
+        if args.text("LISSAGE") == Some("OUI") {
+            return Err(args.not_implemented("LISSAGE", "normal smoothing (LISSAGE='OUI')"));
+        }
+        let reac_geom = reac_geom(args)?;
+        let zones = args.facts("ZONE");
+        if zones.is_empty() {
+            return Err(args.error("ZONE", "at least one ZONE is required"));
+        }
+        let continuous = formulation == "CONTINUE";
+        let czones = if continuous {
+            if mesh.dim != 2 {
+                return Err(args.not_implemented(
+                    "FORMULATION",
+                    "the continuous formulation in 3D (FORMULATION='CONTINUE' is available on 2D models)",
+                ));
+            }
+            Some(
+                zones
+                    .iter()
+                    .map(|z| continuous_zone(z, mesh, friction))
+                    .collect::<Result<Vec<_>, _>>()?,
+            )
+        } else {
+            None
+        };
+        let zones = zones
+            .iter()
+            .map(|z| zone(z, mesh, friction, continuous))
+            .collect::<Result<Vec<_>, _>>()?;
+        let continuous = match czones {
+            None => None,
+            Some(czones) => Some(continuous_def(args, czones)?),
+        };
+        Ok(ContactDef {
+            dim: mesh.dim,
+            friction,
+            reac_geom,
+            zones,
+            continuous,
+        })
+    }
+}
+
+fn reac_geom(args: &Args) -> Result<ReacGeom, Diagnostic> {
+    Ok(match args.text("REAC_GEOM").unwrap_or("AUTOMATIQUE") {
+        "CONTROLE" => {
+            let n = args.int("NB_ITER_GEOM").unwrap_or(2);
+            if n < 0 {
+                return Err(args.error(
+                    "NB_ITER_GEOM",
+                    format!("NB_ITER_GEOM must be >= 0, got {n}"),
+                ));
+            }
+            if n == 0 {
+                ReacGeom::Sans
+            } else {
+                ReacGeom::Controle {
+                    nb_iter_geom: n as usize,
+                }
+            }
+        }
+        "SANS" => ReacGeom::Sans,
+        _ => {
+            let n = args.int("ITER_GEOM_MAXI").unwrap_or(10);
+            if n < 1 {
+                return Err(args.error(
+                    "ITER_GEOM_MAXI",
+                    format!("ITER_GEOM_MAXI must be >= 1, got {n}"),
+                ));
+            }
+            let r = args.real("RESI_GEOM").unwrap_or(0.01);
+            if r.is_nan() || r <= 0.0 {
+                return Err(args.error("RESI_GEOM", format!("RESI_GEOM must be > 0, got {r:e}")));
+            }
+            ReacGeom::Automatique {
+                iter_geom_maxi: n as usize,
+                resi_geom: r,
+            }
+        }
+    })
+}
+
+/// Cells of a group, or an error naming the keyword and the nearest group.
+fn cell_group<'m>(
+    z: &Args,
+    key: &str,
+    name: &str,
+    mesh: &'m Mesh,
+) -> Result<&'m [usize], Diagnostic> {
+    match mesh.cell_groups.get(name) {
+        Some(c) => Ok(c),
+        None => {
+            let names: Vec<&str> = mesh.cell_groups.keys().map(String::as_str).collect();
+            Err(z
+                .error(
+                    key,
+                    format!("the mesh {} has no cell group '{name}'", mesh.name),
+                )
+                .choices(name, &names))
+        }
+    }
+}
+
+/// The top-level keywords of the continuous formulation.
+fn continuous_def(
+    args: &Args,
+    zones: Vec<continuous::ContinuousZone>,
+) -> Result<continuous::ContinuousDef, Diagnostic> {
+    use continuous::Resolution;
+    let reso = |key: &str| -> Result<Resolution, Diagnostic> {
+        match args.text(key).unwrap_or("NEWTON") {
+            "NEWTON" => Ok(Resolution::Newton),
+            "POINT_FIXE" => Ok(Resolution::PointFixe),
+            other => Err(args.error(key, format!("{key}='{other}' is not supported"))),
+        }
+    };
+    let algo_reso_cont = reso("ALGO_RESO_CONT")?;
+    let algo_reso_frot = reso("ALGO_RESO_FROT")?;
+    let algo_reso_geom = reso("ALGO_RESO_GEOM")?;
+    if algo_reso_cont == Resolution::PointFixe {
+        return Err(args.not_implemented(
+            "ALGO_RESO_CONT",
+            "the contact fixed point (ALGO_RESO_CONT='POINT_FIXE'); the statuses are updated inside Newton (NEWTON)",
+        ));
+    }
+    if algo_reso_frot == Resolution::PointFixe && args.text("FROTTEMENT") == Some("COULOMB") {
+        return Err(args.not_implemented(
+            "ALGO_RESO_FROT",
+            "the friction fixed point (ALGO_RESO_FROT='POINT_FIXE'); friction is solved inside Newton (NEWTON)",
+        ));
+    }
+    let resi_geom = args.real("RESI_GEOM").unwrap_or(match algo_reso_geom {
+        Resolution::Newton => 1e-6,
+        Resolution::PointFixe => 1e-2,
+    });
+    let resi_frot = args.real("RESI_FROT").unwrap_or(1e-4);
+    for (key, v) in [("RESI_GEOM", resi_geom), ("RESI_FROT", resi_frot)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(args.error(key, format!("{key} must be > 0, got {v:e}")));
+        }
+    }
+    Ok(continuous::ContinuousDef {
+        algo_reso_cont,
+        algo_reso_frot,
+        algo_reso_geom,
+        resi_geom,
+        resi_frot,
+        zones,
+    })
+}
+
+/// The continuous keywords of one ZONE; what is not built is refused.
+fn continuous_zone(
+    z: &Args,
+    mesh: &Mesh,
+    friction: bool,
+) -> Result<continuous::ContinuousZone, Diagnostic> {
+    use continuous::ContactInit;
+    match z.text("ALGO_CONT").unwrap_or("STANDARD") {
+        "STANDARD" => {}
+        other => {
+            return Err(z.not_implemented(
+                "ALGO_CONT",
+                &format!("ALGO_CONT='{other}' in the continuous formulation; only the augmented Lagrangian (ALGO_CONT='STANDARD') is available"),
+            ))
+        }
+    }
+    if let Some(a) = z.text("ALGO_FROT") {
+        if a != "STANDARD" {
+            return Err(z.not_implemented(
+                "ALGO_FROT",
+                &format!("ALGO_FROT='{a}' in the continuous formulation; only ALGO_FROT='STANDARD' is available"),
+            ));
+        }
+    }
+    if let Some(i) = z.text("INTEGRATION") {
+        if i != "AUTO" {
+            return Err(z.not_implemented(
+                "INTEGRATION",
+                &format!("INTEGRATION='{i}'; only the nodal contact points of INTEGRATION='AUTO' are available"),
+            ));
+        }
+    }
+    if let Some(a) = z.text("ADAPTATION") {
+        if a != "CYCLAGE" && a != "NON" {
+            return Err(z.not_implemented(
+                "ADAPTATION",
+                &format!("ADAPTATION='{a}' (automatic coefficients); only 'CYCLAGE' (without effect here, docs/contact.md) and 'NON' are available"),
+            ));
+        }
+    }
+    for (key, ok) in [
+        ("GLISSIERE", "NON"),
+        ("GRAND_GLIS", "NON"),
+        ("LISSAGE", "NON"),
+    ] {
+        if let Some(v) = z.text(key) {
+            if v != ok {
+                return Err(z.not_implemented(key, &format!("{key}='{v}'")));
+            }
+        }
+    }
+    if z.has("SANS_GROUP_NO_FR") {
+        return Err(z.not_implemented("SANS_GROUP_NO_FR", "nodes without friction"));
+    }
+    let positive = |key: &str, default: f64| -> Result<f64, Diagnostic> {
+        let v = z.real(key).unwrap_or(default);
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(z.error(key, format!("{key} must be > 0, got {v:e}")))
+        }
+    };
+    let coef_cont = positive("COEF_CONT", 100.0)?;
+    let coef_frot = positive("COEF_FROT", 100.0)?;
+    let mu = if friction {
+        let mu = z
+            .real("COULOMB")
+            .ok_or_else(|| z.error("COULOMB", "COULOMB is required with FROTTEMENT='COULOMB'"))?;
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(z.error("COULOMB", format!("COULOMB must be >= 0, got {mu:e}")));
+        }
+        Some(mu)
+    } else {
+        None
+    };
+    let contact_init = match z.text("CONTACT_INIT").unwrap_or("INTERPENETRE") {
+        "OUI" => ContactInit::Oui,
+        "NON" => ContactInit::Non,
+        _ => ContactInit::Interpenetre,
+    };
+    let name = z
+        .text("GROUP_MA_ESCL")
+        .ok_or_else(|| z.error("GROUP_MA_ESCL", "GROUP_MA_ESCL is required"))?;
+    let slave_cells = cell_group(z, "GROUP_MA_ESCL", name, mesh)?.to_vec();
+    Ok(continuous::ContinuousZone {
+        slave_cells,
+        coef_cont,
+        coef_frot,
+        mu,
+        seuil_init: z.real("SEUIL_INIT"),
+        contact_init,
+    })
+}
+
+fn zone(
+    z: &Args,
+    mesh: &Mesh,
+    friction: bool,
+    continuous: bool,
+) -> Result<ContactZone, Diagnostic> {
+    // Keywords whose meaning aster does not implement: refuse, never ignore.
+    for key in ["MAILLE_MAIT", "MAILLE_ESCL", "SANS_NOEUD", "SANS_MAILLE"] {
+        if z.given(key) {
+            return Err(z.not_implemented(key, "cells and nodes are designated by groups"));
+        }
+    }
+    let unsupported: [(&str, &str, &str); 5] = [
+        ("APPARIEMENT", "MAIT_ESCL", "NODAL pairing"),
+        ("NORMALE", "MAIT", "a normal from the slave surface"),
+        ("VECT_MAIT", "AUTO", "an imposed master normal"),
+        (
+            "TYPE_PROJECTION",
+            "ORTHOGONALE",
+            "a fixed projection direction",
+        ),
+        (
+            "RESOLUTION",
+            "OUI",
+            "pairing-only checks (RESOLUTION='NON')",
+        ),
+    ];
+    for (key, ok, what) in unsupported {
+        if let Some(v) = z.text(key) {
+            if v != ok {
+                return Err(z.not_implemented(key, what));
+            }
+        }
+    }
+    for key in ["DIST_MAIT", "DIST_ESCL"] {
+        if z.has(key) {
+            return Err(z.not_implemented(key, "fictitious thicknesses added to the gap"));
+        }
+    }
+    let algo = z.text("ALGO_CONT").unwrap_or("CONTRAINTE");
+    if continuous {
+        return zone_groups(z, mesh, 0.0, None);
+    }
+    if friction && algo != "PENALISATION" {
+        return Err(z
+            .error(
+                "ALGO_CONT",
+                format!(
+                    "with FROTTEMENT='COULOMB' the discrete formulation needs ALGO_CONT='PENALISATION', not '{algo}' (code_aster CONTACT3_3)"
+                ),
+            )
+            .note("the catalogue default of ALGO_CONT is 'CONTRAINTE': write ALGO_CONT='PENALISATION' and give E_N"));
+    }
+    if algo != "PENALISATION" {
+        return Err(z.not_implemented(
+            "ALGO_CONT",
+            &format!("ALGO_CONT='{algo}'; only the penalised discrete method (ALGO_CONT='PENALISATION' with E_N) is available"),
+        ));
+    }
+    let positive = |key: &str| -> Result<f64, Diagnostic> {
+        let v = z
+            .real(key)
+            .ok_or_else(|| z.error(key, format!("{key} is required")))?;
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(z.error(key, format!("{key} must be > 0, got {v:e}")))
+        }
+    };
+    let e_n = positive("E_N")?;
+    let coulomb = if friction {
+        let e_t = positive("E_T")?;
+        let mu = z
+            .real("COULOMB")
+            .ok_or_else(|| z.error("COULOMB", "COULOMB is required with FROTTEMENT='COULOMB'"))?;
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(z.error("COULOMB", format!("COULOMB must be >= 0, got {mu:e}")));
+        }
+        let c = z.real("COEF_MATR_FROT").unwrap_or(0.0);
+        if !(0.0..=1.0).contains(&c) {
+            return Err(z.error(
+                "COEF_MATR_FROT",
+                format!("COEF_MATR_FROT must be in [0, 1], got {c:e}"),
+            ));
+        }
+        Some(Coulomb {
+            mu,
+            e_t,
+            coef_matr_frot: c,
+        })
+    } else {
+        None
+    };
+    zone_groups(z, mesh, e_n, coulomb)
+}
+
+/// The groups, slave nodes and pairing options of a zone.
+fn zone_groups(
+    z: &Args,
+    mesh: &Mesh,
+    e_n: f64,
+    coulomb: Option<Coulomb>,
+) -> Result<ContactZone, Diagnostic> {
+    let skin_dim = mesh.dim - 1;
+    let allowed = if skin_dim == 1 {
+        "SEG2/SEG3"
+    } else {
+        "TRIA3/TRIA6/QUAD4/QUAD8"
+    };
+    let mut groups = Vec::new();
+    for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
+        let name = z
+            .text(key)
+            .ok_or_else(|| z.error(key, format!("{key} is required")))?;
+        let cells = cell_group(z, key, name, mesh)?;
+        if cells.is_empty() {
+            return Err(z.error(key, format!("the cell group '{name}' is empty")));
+        }
+        for &c in cells {
+            let kind = mesh.cells[c].kind;
+            let ok = is_contact_surface(kind, mesh.dim);
+            if !ok {
+                return Err(z.error(
+                    key,
+                    format!(
+                        "group '{name}': cell {} is a {}; a contact surface of a {}D model is made of {allowed} cells",
+                        c + 1,
+                        kind.aster_name(),
+                        mesh.dim
+                    ),
+                ));
+            }
+        }
+        groups.push((name.to_string(), cells.to_vec()));
+    }
+    let (slave_group, slave_cells) = groups.pop().expect("two groups pushed");
+    let (master_group, master_cells) = groups.pop().expect("two groups pushed");
+
+    let mut excluded = vec![false; mesh.nnodes()];
+    for name in z.texts("SANS_GROUP_NO") {
+        let nodes = mesh.node_groups.get(name).ok_or_else(|| {
+            let names: Vec<&str> = mesh.node_groups.keys().map(String::as_str).collect();
+            z.error(
+                "SANS_GROUP_NO",
+                format!("the mesh {} has no node group '{name}'", mesh.name),
+            )
+            .choices(name, &names)
+        })?;
+        for &n in nodes {
+            excluded[n] = true;
+        }
+    }
+    for name in z.texts("SANS_GROUP_MA") {
+        let cells = cell_group(z, "SANS_GROUP_MA", name, mesh)?;
+        for n in mesh.nodes_of_cells(cells) {
+            excluded[n] = true;
+        }
+    }
+    let slave_nodes: Vec<usize> = mesh
+        .nodes_of_cells(&slave_cells)
+        .into_iter()
+        .filter(|&n| !excluded[n])
+        .collect();
+    if slave_nodes.is_empty() {
+        return Err(z.error(
+            "GROUP_MA_ESCL",
+            format!("no slave node is left in '{slave_group}' once SANS_GROUP_NO/SANS_GROUP_MA are removed"),
+        ));
+    }
+    let tole = z.real("TOLE_PROJ_EXT").unwrap_or(0.5);
+    let dist_appa = z.real("DIST_APPA").unwrap_or(-1.0);
+    Ok(ContactZone {
+        master_group,
+        slave_group,
+        master_cells,
+        slave_nodes,
+        e_n,
+        friction: coulomb,
+        tole_proj_ext: (tole >= 0.0).then_some(tole),
+        dist_appa: (dist_appa > 0.0).then_some(dist_appa),
+    })
+}

@@ -1,0 +1,73 @@
+//! The execution context of a study, below the commands that act on it.
+//!
+//! A study owns the concept table, the logical units (unit 20 -> mesh
+//! file...), the message log (.mess) and the result file (.resu, unit 8),
+//! and the count of OK/NOOK checks that decides the exit code.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use crate::concepts::Concepts;
+pub use crate::post::test_report::TestCounts;
+
+/// Logical units: code_aster's numbered files (fort.N).
+#[derive(Debug, Clone, Default)]
+pub struct Units {
+    pub map: BTreeMap<i64, PathBuf>,
+}
+
+impl Units {
+    pub fn path(&self, unit: i64) -> Option<&PathBuf> {
+        self.map.get(&unit)
+    }
+}
+
+/// The state of a running study.
+#[derive(Debug, Default)]
+pub struct Study {
+    pub concepts: Concepts,
+    pub units: Units,
+    /// Directory where output files (.mess, .resu, unit files) are written.
+    pub out_dir: PathBuf,
+    /// Base name of the study (`sdnv103b` for `sdnv103b.comm`).
+    pub stem: String,
+    /// Text of the message file, flushed at the end and on error.
+    pub mess: String,
+    /// Text of the result file (unit 8).
+    pub resu: String,
+    /// Text written to other logical units (IMPR_TABLE UNITE=..., etc.).
+    pub unit_text: BTreeMap<i64, String>,
+    pub tests: TestCounts,
+    /// Echo progress lines to the terminal.
+    pub verbose: bool,
+}
+
+impl Study {
+    /// Appends a line to the message file (and echoes it when verbose).
+    pub fn log(&mut self, line: impl AsRef<str>) {
+        let line = line.as_ref();
+        if self.verbose {
+            eprintln!("{line}");
+        }
+        self.mess.push_str(line);
+        self.mess.push('\n');
+    }
+
+    /// Appends text to a logical unit; unit 8 is the .resu file.
+    pub fn write_unit(&mut self, unit: i64, text: &str) {
+        if unit == 8 {
+            self.resu.push_str(text);
+        } else {
+            self.unit_text.entry(unit).or_default().push_str(text);
+        }
+    }
+
+    /// The path of a logical unit: mapped by the .export or `--unit`, else
+    /// `fort.N` in the output directory, as code_aster names them.
+    pub fn unit_path(&self, unit: i64) -> PathBuf {
+        self.units
+            .path(unit)
+            .cloned()
+            .unwrap_or_else(|| self.out_dir.join(format!("fort.{unit}")))
+    }
+}
