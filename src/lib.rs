@@ -2,10 +2,10 @@
 //! nonlinear dynamic impact studies (the SDNV103 Taylor bar family).
 //!
 //! Layers, from the bottom (docs/engine.md, enforced by tests/layering.rs):
-//! data ([`mesh`], [`model`], [`result`], [`diag`], [`profile`]), the
+//! data ([`mesh`], [`model`], [`result`], [`post`], [`diag`], [`profile`]), the
 //! engine ([`law`], [`element`], [`contact`], [`solver`], [`time`],
 //! [`nonlinear`]), language and files ([`lang`], [`catalog`],
-//! [`concepts`], [`post`], [`medio`], [`study`]), [`commands`] (one file
+//! [`concepts`], [`medio`], [`study`]), [`commands`] (one file
 //! per command: declaration and executor) and the drivers ([`run`],
 //! [`bench`], [`sweep`]). A module uses its own layer and those below.
 

@@ -17,13 +17,16 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("commands", &["commands"]),
     (
         "language and files",
-        &["catalog", "concepts", "post", "medio", "study", "lang"],
+        &["catalog", "concepts", "medio", "study", "lang"],
     ),
     (
         "engine",
         &["nonlinear", "time", "solver", "contact", "element", "law"],
     ),
-    ("data", &["mesh", "model", "result", "diag", "profile"]),
+    (
+        "data",
+        &["mesh", "model", "result", "post", "diag", "profile"],
+    ),
 ];
 
 fn layer_of(module: &str) -> Option<usize> {
