@@ -7,7 +7,7 @@
 //! [`nonlinear`]), language and files ([`lang`], [`catalog`],
 //! [`concepts`], [`medio`], [`study`]), [`commands`] (one file
 //! per command: declaration and executor) and the drivers ([`run`],
-//! [`bench`], [`sweep`]). A module uses its own layer and those below.
+//! [`bench`], [`sweep`], [`plot`]). A module uses its own layer and those below.
 
 // Diagnostics are large by design (they carry spans, choices and notes)
 // and only travel on the error path.

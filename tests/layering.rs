@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 /// Layers from the top (0) to the bottom. A new top-level module must be
 /// placed here (and in docs/engine.md) before the test accepts it.
 const LAYERS: &[(&str, &[&str])] = &[
-    ("drivers", &["main", "run", "bench", "sweep"]),
+    ("drivers", &["main", "run", "bench", "sweep", "plot"]),
     ("commands", &["commands"]),
     (
         "language and files",
