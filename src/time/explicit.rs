@@ -97,8 +97,8 @@ pub fn critical_step(k: &DMatrix<f64>, lumped: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use crate::element::mechanics::mass;
-    use crate::element::spec::element_spec;
     use crate::mesh::CellType;
+    use crate::model::spec::element_spec;
 
     /// 2-node bar, stiffness EA/L, lumped ρAL/2: ω_max = 2c/L, Δt = L/c.
     #[test]
