@@ -785,6 +785,24 @@ impl Checker<'_> {
             );
             return;
         }
+        if occs.len() < f.min {
+            // `KEY=()`: given, but with no occurrence; code_aster's
+            // supervisor refuses it as it refuses a required keyword left
+            // out.
+            self.errors.push(
+                Diagnostic::error(format!(
+                    "{} needs at least {} occurrence{} _F(...), {} given",
+                    f.name,
+                    f.min,
+                    if f.min > 1 { "s" } else { "" },
+                    occs.len()
+                ))
+                .at(v.span)
+                .in_command(cmd)
+                .keyword(kp),
+            );
+            return;
+        }
         if let Some(max) = f.max {
             if occs.len() > max {
                 self.errors.push(
