@@ -52,7 +52,9 @@ use std::sync::OnceLock;
 
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 
-use super::mechanics::{ElementFailure, ElementResponse, Kinematics, LawRef, PointState};
+use super::mechanics::{
+    jacobian_3d, ElementFailure, ElementResponse, Kinematics, LawRef, PointState,
+};
 use crate::law::{Mat6, SmallStrainInput, TangentKind, Vec6};
 use crate::mesh::quadrature::{rule, Fpg};
 use crate::mesh::shape::{eval, reference_nodes, ShapeEval};
@@ -507,23 +509,7 @@ fn dh_dxi(p: &[f64; 3]) -> [[f64; 3]; 4] {
 
 /// Jacobian determinant and inverse (inv[(l, k)] = ∂ξ_l/∂x_k).
 fn jacobian(s: &ShapeEval, x: &[[f64; 3]; 8]) -> Result<(f64, Matrix3<f64>), String> {
-    let dn = s.dn();
-    let mut j = Matrix3::<f64>::zeros();
-    for a in 0..8 {
-        for k in 0..3 {
-            for l in 0..3 {
-                j[(k, l)] += x[a][k] * dn[a][l];
-            }
-        }
-    }
-    let det = j.determinant();
-    if det.is_nan() || det <= 0.0 {
-        return Err(format!("non-positive Jacobian {det}"));
-    }
-    let inv = j
-        .try_inverse()
-        .ok_or_else(|| "singular Jacobian".to_string())?;
-    Ok((det, inv))
+    jacobian_3d(x, s.dn())
 }
 
 fn gradient(s: &ShapeEval, inv: &Matrix3<f64>) -> [[f64; 3]; 8] {

@@ -704,6 +704,29 @@ impl PointGeometry {
     }
 }
 
+/// Determinant and inverse of the 3D Jacobian J[k][l] = ∂x_k/∂ξ_l
+/// (inv[(l, k)] = ∂ξ_l/∂x_k) of nodes `x` with reference derivatives `dn`;
+/// one home for every 3D element, so the refusal of a folded cell reads
+/// the same whichever element meets it.
+pub(crate) fn jacobian_3d(x: &[[f64; 3]], dn: &[[f64; 3]]) -> Result<(f64, Matrix3<f64>), String> {
+    let mut j = Matrix3::<f64>::zeros();
+    for (xa, dna) in x.iter().zip(dn) {
+        for k in 0..3 {
+            for l in 0..3 {
+                j[(k, l)] += xa[k] * dna[l];
+            }
+        }
+    }
+    let det = j.determinant();
+    if det.is_nan() || det <= 0.0 {
+        return Err(format!("non-positive Jacobian {det}"));
+    }
+    let inv = j
+        .try_inverse()
+        .ok_or_else(|| "singular Jacobian".to_string())?;
+    Ok((det, inv))
+}
+
 /// Maps the reference derivatives to the configuration with node
 /// positions `x`; the error message says what is wrong with it.
 fn point_geometry(
@@ -724,22 +747,7 @@ fn point_geometry(
     let dn = s.dn();
     match formulation {
         Formulation::Solid3d => {
-            // J[k][j] = ∂x_k/∂ξ_j
-            let mut j = Matrix3::<f64>::zeros();
-            for a in 0..nn {
-                for k in 0..3 {
-                    for l in 0..3 {
-                        j[(k, l)] += x[a][k] * dn[a][l];
-                    }
-                }
-            }
-            let det = j.determinant();
-            if det.is_nan() || det <= 0.0 {
-                return Err(format!("non-positive Jacobian {det}"));
-            }
-            let inv = j
-                .try_inverse()
-                .ok_or_else(|| "singular Jacobian".to_string())?;
+            let (det, inv) = jacobian_3d(x, dn)?;
             // ∇ₓN = J⁻ᵀ ∇_ξ N
             for a in 0..nn {
                 for k in 0..3 {

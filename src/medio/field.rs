@@ -291,20 +291,7 @@ pub fn read_nodal_fields(
 /// points) on mesh `mesh_name` (first mesh when `None`), values in the cell
 /// order of [`super::read_mesh`].
 pub fn read_elem_fields(path: &Path, mesh_name: Option<&str>) -> Result<Vec<ElemField>, MedError> {
-    let ctx = Ctx { path };
-    let file = h5util::open_read(path)?;
-    let mesh = read_mesh_from(ctx, &file, mesh_name)?;
-    let blocks = write::type_blocks(&mesh);
-    Ok(
-        read_fields(ctx, &file, &mesh.name, &Support::Cells(&blocks))?
-            .into_iter()
-            .map(|(name, components, steps)| ElemField {
-                name,
-                components,
-                steps,
-            })
-            .collect(),
-    )
+    read_cell_fields(path, mesh_name, false)
 }
 
 /// Every field with values on cells, one value per cell and component:
@@ -317,20 +304,33 @@ pub fn read_cell_mean_fields(
     path: &Path,
     mesh_name: Option<&str>,
 ) -> Result<Vec<ElemField>, MedError> {
+    read_cell_fields(path, mesh_name, true)
+}
+
+/// The fields on cells, with Gauss-point and element-node values either
+/// left out (`means` false) or averaged per cell (`means` true).
+fn read_cell_fields(
+    path: &Path,
+    mesh_name: Option<&str>,
+    means: bool,
+) -> Result<Vec<ElemField>, MedError> {
     let ctx = Ctx { path };
     let file = h5util::open_read(path)?;
     let mesh = read_mesh_from(ctx, &file, mesh_name)?;
     let blocks = write::type_blocks(&mesh);
-    Ok(
-        read_fields(ctx, &file, &mesh.name, &Support::CellMeans(&blocks))?
-            .into_iter()
-            .map(|(name, components, steps)| ElemField {
-                name,
-                components,
-                steps,
-            })
-            .collect(),
-    )
+    let support = if means {
+        Support::CellMeans(&blocks)
+    } else {
+        Support::Cells(&blocks)
+    };
+    Ok(read_fields(ctx, &file, &mesh.name, &support)?
+        .into_iter()
+        .map(|(name, components, steps)| ElemField {
+            name,
+            components,
+            steps,
+        })
+        .collect())
 }
 
 type RawField = (String, Vec<String>, Vec<FieldStep>);
