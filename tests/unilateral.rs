@@ -11,6 +11,7 @@
 mod dynamics_support;
 
 use aster::concepts::{ConceptData, ConceptType};
+use aster::mesh::taylor::{generate, TaylorKind, TaylorParams};
 use aster::model::{Dof, ImposedDof, MaterialField};
 use aster::nonlinear::discretize;
 use aster::post::function::{Extrapolation, Function};
@@ -457,6 +458,166 @@ fn elastic_bar_dropped_on_the_floor_conserves_momentum_exchange() {
         "momentum change {} vs impulse {impulse}",
         p1 - p0
     );
+}
+
+/// One step of the independent reference of
+/// `sdnv103e_time_list_bounce_is_newmark_and_depends_on_the_layer_height`.
+struct BarState {
+    u: Vec<f64>,
+    v: Vec<f64>,
+    /// Floor reaction on the bottom node (per radian, upward), 0 if free.
+    mu: f64,
+}
+
+/// A linear bar of `n2` two-node elements (length 32.4, section `area`,
+/// bottom at the floor's height + 2.27), all nodes at −`v0` at `times[0]`,
+/// integrated by Newmark in displacement form with code_aster's
+/// predictor (u⁰ = u_n, ndnpas) and an exact floor on the bottom node
+/// (one link, so the complementarity problem is solved by hand: free
+/// increment; if it goes through the floor, the bottom increment is the
+/// gap and the rest is solved again). Hand-built K = EA/h [1 −1; −1 1] and
+/// M = ρAh/6 [2 1; 1 2]: nothing of the engine is used.
+fn bar_on_floor_reference(n2: usize, area: f64, v0: f64, times: &[f64]) -> Vec<BarState> {
+    use nalgebra::{DMatrix, DVector};
+    let (e, rho, beta, gamma) = (117000.0, 8.93e-9, 0.49, 0.9);
+    let (n, h) = (n2 + 1, 32.4 / n2 as f64);
+    let mut k = DMatrix::<f64>::zeros(n, n);
+    let mut m = DMatrix::<f64>::zeros(n, n);
+    for el in 0..n2 {
+        for (a, b, kk, mm) in [
+            (0, 0, 1.0, 2.0),
+            (0, 1, -1.0, 1.0),
+            (1, 0, -1.0, 1.0),
+            (1, 1, 1.0, 2.0),
+        ] {
+            k[(el + a, el + b)] += e * area / h * kk;
+            m[(el + a, el + b)] += rho * area * h / 6.0 * mm;
+        }
+    }
+    let mut u = DVector::<f64>::zeros(n);
+    let mut v = DVector::<f64>::from_element(n, -v0);
+    let mut acc = DVector::<f64>::zeros(n);
+    let mut out = Vec::new();
+    for w in times.windows(2) {
+        let dt = w[1] - w[0];
+        let v_pred = &v * (1.0 - gamma / beta) + &acc * (dt * (1.0 - gamma / (2.0 * beta)));
+        let a_pred = &v * (-1.0 / (beta * dt)) - &acc * (1.0 / (2.0 * beta) - 1.0);
+        let c = &k + &m / (beta * dt * dt);
+        let r = -(&k * &u) - &m * &a_pred;
+        let mut d = c.clone().cholesky().unwrap().solve(&r);
+        let mut mu = 0.0;
+        if u[0] + d[0] < -2.27 {
+            let d0 = -2.27 - u[0];
+            let c11 = c.view((1, 1), (n - 1, n - 1)).into_owned();
+            let r1 = r.rows(1, n - 1) - c.view((1, 0), (n - 1, 1)) * d0;
+            let d1 = c11.cholesky().unwrap().solve(&r1);
+            d[0] = d0;
+            d.rows_mut(1, n - 1).copy_from(&d1);
+            mu = (&c * &d - &r)[0];
+            assert!(mu > -1e-9 * r[0].abs().max(1.0), "tensile reaction {mu}");
+        }
+        u += &d;
+        v = v_pred + &d * (gamma / (beta * dt));
+        acc = a_pred + &d / (beta * dt * dt);
+        out.push(BarState {
+            u: u.iter().copied().collect(),
+            v: v.iter().copied().collect(),
+            mu,
+        });
+    }
+    out
+}
+
+/// SDNV103 E's time list and scheme (one step of 9.75e-6 s, then steps of
+/// 5e-8 s; Newmark β = 0.49, γ = 0.9) on an elastic column of AXIS QUAD4
+/// (ν = 0, DX blocked: the exact solution is uniform in r, a 1D bar) whose
+/// bottom closes the gap to a LIAISON_UNIL floor exactly at t = 0. Every
+/// DEPL, VITE and the bottom REAC_NODA of every step equal the
+/// independent reference `bar_on_floor_reference`. The reference shows
+/// what E's A1 does: held in the step after the impact with the Newmark
+/// velocity (1 − γ/β)(−V) = +189939 mm/s *upwards* (δ = 0 in
+/// v = (1 − γ/β)v_n + γ/(βΔt)δ), released at the next step, back on the
+/// floor some steps later — and whether it is back at 2.5e-7 depends on
+/// the layer height alone: 30 layers (h = 1.08) is above the floor there,
+/// 34 layers (h = 0.95) on it (docs/contact.md §9).
+#[test]
+fn sdnv103e_time_list_bounce_is_newmark_and_depends_on_the_layer_height() {
+    let v0 = 227000.0;
+    let mut times = vec![-1e-5];
+    for k in 0..=15 {
+        times.push(-2.5e-7 + k as f64 * 5e-8);
+    }
+    for (n2, on_floor_at_2_5e_7) in [(30, false), (34, true)] {
+        let mut mesh = generate(&TaylorParams {
+            kind: TaylorKind::Axis,
+            n1: 1,
+            n2,
+            n3: 0,
+            linear: true,
+        })
+        .unwrap();
+        mesh.name = "MAIL".into();
+        let vol = mesh.cell_groups["VOL"].clone();
+        let nodes = mesh.nodes_of_cells(&vol);
+        let bottom = mesh.nodes_of_cells(&mesh.cell_groups["SZZ"]);
+        assert_eq!(bottom.len(), 2);
+        let mo = model(&mesh, "AXIS", &vol);
+        let mut st = study(
+            mesh.clone(),
+            mo,
+            material(117000.0, 0.0, 8.93e-9, None),
+            imposed(&nodes, Dof::Dx, 0.0),
+            Some(velocity(mesh.nnodes(), &nodes, -v0)),
+            times.clone(),
+            None,
+        );
+        insert_function(&mut st, "CI", Function::constant(2.27, "TOUTRESU"));
+        run(
+            &mut st,
+            "_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=CM1, COEF_IMPO=CI)",
+            "SCHEMA='NEWMARK', BETA=0.49, GAMMA=0.9, FORMULATION='DEPLACEMENT'",
+            "INCREMENT=_F(LIST_INST=L_INST)",
+        )
+        .unwrap();
+        let r = result(&st, "RESU");
+        assert_eq!(r.steps.len(), times.len());
+        // Per radian, as the AXIS nodal forces.
+        let reference = bar_on_floor_reference(n2, 3.2 * 3.2 / 2.0, v0, &times);
+        let h = 32.4 / n2 as f64;
+        for (s, st_ref) in reference.iter().enumerate() {
+            let step = s + 1;
+            for &i in &nodes {
+                let layer = ((mesh.coords[i][1] - 2.27) / h).round() as usize;
+                let (u, v) = (st_ref.u[layer], st_ref.v[layer]);
+                let du = val(r, step, "DEPL", i, "DY") - u;
+                let dv = val(r, step, "VITE", i, "DY") - v;
+                assert!(
+                    du.abs() < 1e-10 && dv.abs() < 1e-4,
+                    "n2 {n2}, t = {:e}, node {}: DY {u} + {du:e}, VY {v} + {dv:e}",
+                    times[step],
+                    i + 1
+                );
+            }
+            let reac: f64 = bottom
+                .iter()
+                .map(|&i| val(r, step, "REAC_NODA", i, "DY"))
+                .sum();
+            assert!(
+                (reac - st_ref.mu).abs() < 1e-7 * 2e4,
+                "n2 {n2}, t = {:e}: REAC_NODA {reac} vs {}",
+                times[step],
+                st_ref.mu
+            );
+        }
+        // The mechanism, read on the reference: held at 5e-8 with the
+        // Newmark velocity of a stopped node, released at 1e-7.
+        let (held, released) = (&reference[6], &reference[7]);
+        assert!(held.mu > 0.0 && held.u[0] == -2.27);
+        assert!((held.v[0] - (1.0 - 0.9 / 0.49) * -v0).abs() < 1e-6 * v0);
+        assert!(released.mu == 0.0 && released.u[0] > -2.27 + 1e-3);
+        let at = &reference[10];
+        assert_eq!(at.u[0] == -2.27, on_floor_at_2_5e_7, "n2 {n2}: {}", at.u[0]);
+    }
 }
 
 /// LIAISON_UNIL produces no CONT_NOEU (as code_aster): asking for it is a
