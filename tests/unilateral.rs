@@ -5,7 +5,8 @@
 //! relations of a mass stopped by an exact constraint (§9.3 a), the static
 //! spring pushed by a moving floor and the 1/(k + E) law of its penalised
 //! version (§9.2), the KKT conditions read back from DEPL and REAC_NODA,
-//! and the momentum balance of a bar dropped on the floor.
+//! the momentum balance of a bar dropped on the floor, and a hand-built 1D
+//! Newmark bar that follows SDNV103 E's time list step by step.
 #![allow(clippy::needless_range_loop)]
 
 mod dynamics_support;
