@@ -32,6 +32,30 @@ const RESI: f64 = 1e-10;
 
 #[test]
 fn contact_impulse_equals_the_bar_momentum_change() {
+    impulse_against_momentum(
+        "FORMULATION='DISCRETE', REAC_GEOM='CONTROLE', NB_ITER_GEOM=2,
+    FROTTEMENT='COULOMB', ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', APPARIEMENT='MAIT_ESCL',
+    ALGO_CONT='PENALISATION', E_N=1.E10, ALGO_FROT='PENALISATION', E_T=1.E5, COULOMB=0.25,
+    COEF_MATR_FROT=0.4)",
+    );
+}
+
+/// The same balance with the continuous formulation (SDNV103 F's contact
+/// keywords on D's study): RY of CONT_NOEU is the force the multipliers
+/// exert on the bar. It caught RN* reported with the wrong sign (into the
+/// foundation) by the continuous formulation.
+#[test]
+fn continuous_contact_impulse_equals_the_bar_momentum_change() {
+    impulse_against_momentum(
+        "FORMULATION='CONTINUE', FROTTEMENT='COULOMB', ALGO_RESO_CONT='NEWTON',
+    ALGO_RESO_FROT='NEWTON', ALGO_RESO_GEOM='NEWTON',
+    ZONE=_F(APPARIEMENT='MAIT_ESCL', GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', COULOMB=0.25)",
+    );
+}
+
+/// Runs D's study with the DEFI_CONTACT keywords `contact` and checks
+/// the impulse of Σ RY against the momentum change.
+fn impulse_against_momentum(contact: &str) {
     let mut mesh = taylor_axis(2, 2);
     orie_peau(&mut mesh, OrieDim::D2, &["SZZ", "RIGID"], None).unwrap();
     let vol = mesh.cell_groups["VOL"].clone();
@@ -64,10 +88,7 @@ fn contact_impulse_equals_the_bar_momentum_change() {
         None,
     );
     let text = format!(
-        "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION='DISCRETE', REAC_GEOM='CONTROLE', NB_ITER_GEOM=2,
-    FROTTEMENT='COULOMB', ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', APPARIEMENT='MAIT_ESCL',
-    ALGO_CONT='PENALISATION', E_N=1.E10, ALGO_FROT='PENALISATION', E_T=1.E5, COULOMB=0.25,
-    COEF_MATR_FROT=0.4))
+        "CONT = DEFI_CONTACT(MODELE=MO, {contact})
 RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT=CONT,
     COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', DEFORMATION='SIMO_MIEHE', TOUT='OUI'),
     ETAT_INIT=_F(VITE=V0),

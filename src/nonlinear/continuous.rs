@@ -323,7 +323,10 @@ impl ContinuousContact {
             } else {
                 LinkStatus::Stick
             };
-            let lambda_n = -crate::mesh::vec3::dot(o.f_n, link.normal);
+            // The normal force on the slave node is −f_n = ω(ρ_n d − λ) n_out
+            // (n_out = −n): λ_n = f_n·n ≥ 0 in contact, the discrete
+            // method's convention (RN* = λ_n n_out).
+            let lambda_n = crate::mesh::vec3::dot(o.f_n, link.normal);
             st.links.push(LinkState {
                 zone: p.zone,
                 slave: p.node,
