@@ -389,3 +389,258 @@ fn energy_balance_of_the_braking_block() {
         "DISS_FROT {fric}, EK0 {ek0}"
     );
 }
+
+/// Edges of a structured QUAD8 block (SEG3: ends, then middle).
+struct Quad8Block {
+    cells: Vec<usize>,
+    bottom: Vec<usize>,
+    top: Vec<usize>,
+    left: Vec<usize>,
+    right: Vec<usize>,
+}
+
+/// A structured QUAD8 block of [r0, r1] x [y0, y1] in the (r, y) plane,
+/// nr x ny cells, with its own nodes and its four sides as SEG3 cells
+/// oriented counterclockwise around the block (outward normal (t_y, -t_x)).
+fn quad8_block(mesh: &mut Mesh, r: (f64, f64, usize), y: (f64, f64, usize)) -> Quad8Block {
+    let (nr, ny) = (2 * r.2, 2 * y.2);
+    let mut id = vec![vec![usize::MAX; ny + 1]; nr + 1];
+    for i in 0..=nr {
+        for j in 0..=ny {
+            if i % 2 == 1 && j % 2 == 1 {
+                continue;
+            }
+            id[i][j] = mesh.coords.len();
+            mesh.coords.push([
+                r.0 + (r.1 - r.0) * i as f64 / nr as f64,
+                y.0 + (y.1 - y.0) * j as f64 / ny as f64,
+                0.0,
+            ]);
+        }
+    }
+    let mut b = Quad8Block {
+        cells: vec![],
+        bottom: vec![],
+        top: vec![],
+        left: vec![],
+        right: vec![],
+    };
+    for ci in 0..r.2 {
+        for cj in 0..y.2 {
+            let (i, j) = (2 * ci, 2 * cj);
+            b.cells.push(mesh.cells.len());
+            mesh.cells.push(Cell {
+                kind: CellType::Quad8,
+                nodes: vec![
+                    id[i][j],
+                    id[i + 2][j],
+                    id[i + 2][j + 2],
+                    id[i][j + 2],
+                    id[i + 1][j],
+                    id[i + 2][j + 1],
+                    id[i + 1][j + 2],
+                    id[i][j + 1],
+                ],
+            });
+        }
+    }
+    let seg = |mesh: &mut Mesh, list: &mut Vec<usize>, n: [usize; 3]| {
+        list.push(mesh.cells.len());
+        mesh.cells.push(Cell {
+            kind: CellType::Seg3,
+            nodes: n.to_vec(),
+        });
+    };
+    for ci in 0..r.2 {
+        let i = 2 * ci;
+        seg(mesh, &mut b.bottom, [id[i][0], id[i + 2][0], id[i + 1][0]]);
+        seg(mesh, &mut b.top, [id[i + 2][ny], id[i][ny], id[i + 1][ny]]);
+    }
+    for cj in 0..y.2 {
+        let j = 2 * cj;
+        seg(
+            mesh,
+            &mut b.right,
+            [id[nr][j], id[nr][j + 2], id[nr][j + 1]],
+        );
+        seg(mesh, &mut b.left, [id[0][j + 2], id[0][j], id[0][j + 1]]);
+    }
+    b
+}
+
+/// The AXIS ring of the continuous penetration study: BLOC, a ring of
+/// r in [1, 3], y in [0, 1] (2 x 2 QUAD8), standing on SOCLE, one QUAD8 of
+/// [0, 4] x [-1, 0]; ESCL the ring's bottom (2 SEG3), FOND the foundation's
+/// top (1 SEG3), HAUT the ring's top.
+fn ring_mesh() -> Mesh {
+    let mut mesh = Mesh {
+        name: "RING".into(),
+        dim: 2,
+        ..Mesh::default()
+    };
+    let ring = quad8_block(&mut mesh, (1.0, 3.0, 2), (0.0, 1.0, 2));
+    let socle = quad8_block(&mut mesh, (0.0, 4.0, 1), (-1.0, 0.0, 1));
+    mesh.cell_groups.insert("BLOC".into(), ring.cells);
+    mesh.cell_groups.insert("ESCL".into(), ring.bottom);
+    mesh.cell_groups.insert("HAUT".into(), ring.top);
+    mesh.cell_groups.insert("SOCLE".into(), socle.cells);
+    mesh.cell_groups.insert("FOND".into(), socle.top);
+    mesh
+}
+
+/// The AXIS sleeve of the continuous friction study: BLOC, a sleeve of
+/// r in [2, 3], y in [0, 2] (2 x 2 QUAD8), on SOCLE, a rigid mandrel of
+/// [1, 2] x [-2, 4] (1 QUAD8); ESCL the sleeve's inner face (2 SEG3 at
+/// r = 2), FOND the mandrel's outer face (1 SEG3 at r = 2), HAUT the
+/// sleeve's top.
+fn sleeve_mesh() -> Mesh {
+    let mut mesh = Mesh {
+        name: "SLEEVE".into(),
+        dim: 2,
+        ..Mesh::default()
+    };
+    let sleeve = quad8_block(&mut mesh, (2.0, 3.0, 2), (0.0, 2.0, 2));
+    let socle = quad8_block(&mut mesh, (1.0, 2.0, 1), (-2.0, 4.0, 1));
+    mesh.cell_groups.insert("BLOC".into(), sleeve.cells);
+    mesh.cell_groups.insert("ESCL".into(), sleeve.left);
+    mesh.cell_groups.insert("HAUT".into(), sleeve.top);
+    mesh.cell_groups.insert("SOCLE".into(), socle.cells);
+    mesh.cell_groups.insert("FOND".into(), socle.right);
+    mesh
+}
+
+/// The committed ring and sleeve meshes are the ones built above
+/// (regenerate with `UPDATE_MESHES=1 cargo test --test verification
+/// axis_contact_meshes`).
+#[test]
+fn axis_contact_meshes_are_committed() {
+    for (name, mesh) in [("ring", ring_mesh()), ("sleeve", sleeve_mesh())] {
+        let file = dir().join(format!("{name}.mmed"));
+        if std::env::var_os("UPDATE_MESHES").is_some() {
+            aster::medio::write_mesh(&file, &mesh).unwrap();
+        }
+        let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}_regen.mmed"));
+        aster::medio::write_mesh(&tmp, &mesh).unwrap();
+        let committed = aster::medio::read_mesh(&file, None).unwrap();
+        assert_eq!(committed, aster::medio::read_mesh(&tmp, None).unwrap());
+    }
+}
+
+/// The tables of a .resu (everything before the first test block, without
+/// the title lines that hold the date of the run), for a snapshot.
+fn tables_of(resu: &str) -> String {
+    resu.lines()
+        .take_while(|l| !l.starts_with(" ---- ") && !l.starts_with("-----"))
+        .filter(|l| !l.starts_with("#ASTER"))
+        .map(|l| l.trim_end())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The landing of contact_landing.comm in the continuous formulation
+/// (contact_landing_continue.comm checks the free flight, no penetration
+/// and the rebound). Against the penalised run of the same study: the
+/// contact of B1 ends at the same instant (the bar leaves the wall 2L/c
+/// after the impact in both), and the rebound speed, read from the
+/// opening gap over the last step, agrees within 1 % and is the impact
+/// speed within 2 % (an elastic bar; Newmark 0.3025/0.6 dissipates a
+/// little).
+#[test]
+fn landing_in_the_continuous_formulation() {
+    let resu = run_study("contact_landing_continue");
+    let cont = printed_table(&resu, "TAB");
+    let disc_run = common::run_study(
+        "tests/verification/contact_landing.comm",
+        "verif_contact_landing_for_continue",
+    );
+    let disc_resu = common::assert_all_ok(&disc_run, "contact_landing.resu");
+    let disc = printed_table(&disc_resu, "TAB");
+    assert_eq!(cont.len(), disc.len());
+    let release = |rows: &[std::collections::HashMap<String, String>]| -> f64 {
+        let last_closed = rows
+            .iter()
+            .rposition(|r| num(r, "CONT") > 0.0)
+            .expect("B1 touches");
+        num(&rows[last_closed + 1], "INST")
+    };
+    let (tc, td) = (release(&cont), release(&disc));
+    assert!((tc - td).abs() < 1e-12, "release {tc} vs {td}");
+    assert!((tc - 1.8e-5).abs() < 1e-12, "release {tc}");
+    let speed = |rows: &[std::collections::HashMap<String, String>]| -> f64 {
+        let n = rows.len();
+        (num(&rows[n - 1], "JEU") - num(&rows[n - 2], "JEU"))
+            / (num(&rows[n - 1], "INST") - num(&rows[n - 2], "INST"))
+    };
+    let (vc, vd) = (speed(&cont), speed(&disc));
+    eprintln!("rebound speed: continuous {vc}, discrete {vd} mm/s");
+    assert!((vc - vd).abs() <= 0.01 * vd.abs(), "{vc} vs {vd}");
+    assert!((vc - 1e4).abs() <= 0.02 * 1e4, "{vc}");
+    // No penetration at B1 at any instant (the .comm checks every slave
+    // node through the minimum), while the penalty penetrates.
+    assert!(cont.iter().all(|r| num(r, "JEU") >= 0.0));
+    assert!(disc.iter().any(|r| num(r, "JEU") < -1e-5));
+    insta::assert_snapshot!(tables_of(&resu));
+}
+
+/// contact_penalty_continue.comm (the AXIS ring under its weight, DISCRETE
+/// E_N = 1e4, 1e5 and CONTINUE), node by node: the penalty law
+/// RN = E_N (-JEU) and the summed penetration 10 times smaller with 10
+/// E_N; the continuous run has JEU = 0 and one uniform LAGS_C at every
+/// node, whose nodal forces RN are LAGS_C times the nodal weights (so
+/// that they sum to the weight).
+#[test]
+fn penetration_in_the_continuous_formulation() {
+    let resu = run_study("contact_penalty_continue");
+    let mut sums = Vec::new();
+    for (tab, e_n) in [("TAB1", 1e4), ("TAB2", 1e5)] {
+        let rows = printed_table(&resu, tab);
+        assert_eq!(rows.len(), 5);
+        let mut sum = 0.0;
+        for r in &rows {
+            let (jeu, rn) = (num(r, "JEU"), num(r, "RN"));
+            assert!(jeu < 0.0, "{r:?}");
+            assert!((-jeu * e_n - rn).abs() <= 1e-5 * rn, "{tab} {r:?}");
+            sum -= jeu;
+        }
+        sums.push(sum);
+    }
+    assert!((sums[0] / sums[1] - 10.0).abs() <= 1e-4, "{sums:?}");
+    let cont = printed_table(&resu, "TAB3");
+    let lags = printed_table(&resu, "LAGS");
+    assert_eq!((cont.len(), lags.len()), (5, 5));
+    for (c, l) in cont.iter().zip(&lags) {
+        assert!(num(c, "JEU").abs() <= 1e-12, "{c:?}");
+        assert!((num(l, "LAGS_C") + 7.8e-3).abs() <= 1e-8 * 7.8e-3, "{l:?}");
+    }
+    insta::assert_snapshot!(tables_of(&resu));
+}
+
+/// contact_friction_continue.comm (the AXIS sleeve on a rigid mandrel),
+/// node by node from its tables (6 significant digits): sliding, every
+/// node carries exactly |RTGY| = 0.25 RN; sticking, every node is inside
+/// the cone; the penalised discrete STICK carries the axial weight with
+/// its friction (stick and slip nodes together: it creeps).
+#[test]
+fn coulomb_friction_in_the_continuous_formulation() {
+    let resu = run_study("contact_friction_continue");
+    for r in &printed_table(&resu, "T_SLIDE") {
+        let rn = num(r, "RN");
+        assert_eq!(num(r, "CONT"), 2.0, "{r:?}");
+        assert!((num(r, "RTGY") - 0.25 * rn).abs() <= 1e-5 * rn, "{r:?}");
+    }
+    for r in &printed_table(&resu, "T_STICK") {
+        assert_eq!(num(r, "CONT"), 1.0, "{r:?}");
+        assert!(num(r, "RTAY").abs() < 0.25 * num(r, "RN"), "{r:?}");
+    }
+    let stick_d = printed_table(&resu, "T_STICKD");
+    let friction: f64 = stick_d
+        .iter()
+        .map(|r| num(r, "RTAY") + num(r, "RTGY"))
+        .sum();
+    let weight = 7.8e-9 * 2.0 * 2.5 * 1e6 * 0.15 / (1.0f64 + 0.15 * 0.15).sqrt();
+    assert!(
+        (friction - weight).abs() <= 1e-5 * weight,
+        "{friction} vs {weight}"
+    );
+    insta::assert_snapshot!(tables_of(&resu));
+}
