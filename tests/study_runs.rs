@@ -79,3 +79,20 @@ fn a_stopped_run_keeps_its_results_on_disk() {
         .expect("DEPL saved");
     assert!(!depl.steps.is_empty());
 }
+
+/// SDNV103 F with the penalised discrete contact of D instead of the
+/// continuous formulation (tests/studies/sdnv103f_discrete.comm), run
+/// beside F: it reaches FIN with its non-regression checks OK; its tables
+/// are snapshotted, and docs/contact.md §10 compares them with F's.
+#[test]
+fn f_with_discrete_contact_runs_beside_f() {
+    let run = common::run_study("tests/studies/sdnv103f_discrete.comm", "sdnv103f_discrete");
+    let resu = common::assert_all_ok(&run, "sdnv103f_discrete.resu");
+    let tables: Vec<&str> = resu
+        .lines()
+        .take_while(|l| !l.starts_with(" ---- ") && !l.starts_with("-----"))
+        .filter(|l| !l.starts_with("#ASTER"))
+        .map(|l| l.trim_end())
+        .collect();
+    insta::assert_snapshot!(tables.join("\n"));
+}
