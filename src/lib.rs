@@ -2,7 +2,7 @@
 //! nonlinear dynamic impact studies (the SDNV103 Taylor bar family).
 //!
 //! Layers, from the bottom (docs/engine.md, enforced by tests/layering.rs):
-//! data ([`mesh`], [`model`], [`result`], [`post`], [`diag`], [`profile`]), the
+//! data ([`mesh`], [`model`], [`result`], [`post`], [`diag`], [`profile`], [`interrupt`]), the
 //! engine ([`law`], [`element`], [`contact`], [`solver`], [`time`],
 //! [`nonlinear`]), language and files ([`lang`], [`catalog`],
 //! [`concepts`], [`medio`], [`study`]), [`commands`] (one file
@@ -23,6 +23,7 @@ pub mod concepts;
 pub mod contact;
 pub mod diag;
 pub mod element;
+pub mod interrupt;
 pub mod lang;
 pub mod law;
 pub mod medio;

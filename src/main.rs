@@ -16,7 +16,7 @@ use aster::run::driver::{self, RunOptions, EXIT_USAGE};
 command and keyword against its catalogue before running anything, and produces the same \
 message file (.mess), result file (.resu, with the OK/NOOK test report) and MED results \
 as code_aster.\n\nExit codes: 0 success, 1 study error (syntax, check, run, or a NOOK test), \
-2 usage error."
+2 usage error, 130/143 a run stopped by SIGINT/SIGTERM (what was computed is kept)."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -431,16 +431,23 @@ fn main() -> ExitCode {
             export,
             out,
             quiet,
-        } => driver::run_file(
-            &RunOptions {
-                comm: file,
-                units,
-                export,
-                out_dir: out,
-                verbose: !quiet,
-            },
-            &mut stdout,
-        ),
+        } => {
+            // SIGINT/SIGTERM stop the run cleanly, keeping what was
+            // computed (docs/dynamics.md, "Stopping a run").
+            if let Err(e) = aster::interrupt::install() {
+                eprintln!("warning: {e}; a signal will kill the run without saving it");
+            }
+            driver::run_file(
+                &RunOptions {
+                    comm: file,
+                    units,
+                    export,
+                    out_dir: out,
+                    verbose: !quiet,
+                },
+                &mut stdout,
+            )
+        }
         Command::Bench {
             file,
             runs,

@@ -25,7 +25,15 @@ const LAYERS: &[(&str, &[&str])] = &[
     ),
     (
         "data",
-        &["mesh", "model", "result", "post", "diag", "profile"],
+        &[
+            "mesh",
+            "model",
+            "result",
+            "post",
+            "diag",
+            "profile",
+            "interrupt",
+        ],
     ),
 ];
 

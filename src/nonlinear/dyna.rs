@@ -7,7 +7,7 @@ use std::time::Instant;
 use super::contact::DiscreteContact;
 use super::energy::EnergyBalance;
 use super::fields;
-use super::newton::{ContactTerm, Engine, IterationRecord, State, StepReport};
+use super::newton::{ContactTerm, Engine, IterationRecord, State, StepFailure, StepReport};
 use super::unilateral::UnilateralContact;
 use crate::result::{EvolNoli, Step};
 use crate::time::list::{Action, Subdivision};
@@ -239,6 +239,9 @@ impl RunSummary {
 pub struct Stopped {
     pub message: String,
     pub summary: RunSummary,
+    /// The signal that asked for the stop ([`crate::interrupt`]), if the
+    /// computation did not stop on a failure.
+    pub signal: Option<i32>,
 }
 
 /// Appends the state to the result if its instant is after the last
@@ -352,6 +355,25 @@ pub fn run(
     let mut refine_until: Option<f64> = None;
     while let Some((t_end, level, list_end)) = pending.pop() {
         let t0 = engine.committed.t;
+        if let Some(signal) = crate::interrupt::requested() {
+            let mut stop = StopState {
+                energy: &mut energy,
+                summary: &mut summary,
+                last_archived_t,
+                started,
+                bar: bar.as_ref(),
+            };
+            return Err(stop_on_signal(
+                signal,
+                None,
+                engine,
+                contact.as_deref(),
+                tl,
+                result,
+                &mut stop,
+                log,
+            ));
+        }
         if let (Some((subd_inst, _)), Some(until)) = (tl.events.collision, refine_until) {
             // Inside a collision window every step is made of sub-steps
             // of about SUBD_INST, up to the end of the window.
@@ -400,6 +422,25 @@ pub fn run(
             log(r);
         }
         let outcome = match outcome {
+            Err(StepFailure::Interrupted(signal)) => {
+                let mut stop = StopState {
+                    energy: &mut energy,
+                    summary: &mut summary,
+                    last_archived_t,
+                    started,
+                    bar: bar.as_ref(),
+                };
+                return Err(stop_on_signal(
+                    signal,
+                    Some(t_end),
+                    engine,
+                    contact.as_deref(),
+                    tl,
+                    result,
+                    &mut stop,
+                    log,
+                ));
+            }
             Err(failure) => Err((failure.to_string(), failure.is_fatal())),
             Ok(rep) => match contact.as_deref_mut() {
                 Some(c) => match check_events(
@@ -520,7 +561,11 @@ pub fn run(
                         );
                         log(&message);
                         summary.count_profile();
-                        return Err(Stopped { message, summary });
+                        return Err(Stopped {
+                            message,
+                            summary,
+                            signal: None,
+                        });
                     }
                 }
             }
@@ -542,6 +587,63 @@ pub fn run(
     ));
     summary.count_profile();
     Ok(summary)
+}
+
+/// The loop's bookkeeping that a stop on a signal closes.
+struct StopState<'a> {
+    energy: &'a mut EnergyBalance,
+    summary: &'a mut RunSummary,
+    last_archived_t: Option<f64>,
+    started: Instant,
+    bar: Option<&'a indicatif::ProgressBar>,
+}
+
+/// A stop requested by `signal` ([`crate::interrupt`]) before the step to
+/// `abandoned` (None: between steps): the last committed state is archived
+/// if it is not yet, so the result holds everything computed, and the
+/// message says where the run stopped and what is kept.
+#[allow(clippy::too_many_arguments)]
+fn stop_on_signal(
+    signal: i32,
+    abandoned: Option<f64>,
+    engine: &Engine,
+    contact: Option<&DiscreteContact>,
+    tl: &TimeLoop,
+    result: &mut EvolNoli,
+    stop: &mut StopState,
+    log: &mut dyn FnMut(&str),
+) -> Stopped {
+    if let Some(pb) = stop.bar {
+        pb.abandon();
+    }
+    let t = engine.committed.t;
+    if stop.last_archived_t != Some(t)
+        && archive(engine, tl, result, &engine.committed.clone(), contact)
+    {
+        stop.summary.archived += 1;
+        log_energy(stop.energy, result, log);
+    }
+    store_energy(stop.energy, result);
+    stop.summary.seconds = stop.started.elapsed().as_secs_f64();
+    let end = tl.instants.last().copied().unwrap_or(t);
+    let first = result.steps.first().map_or(t, |s| s.inst);
+    let last = result.steps.last().map_or(t, |s| s.inst);
+    let message = format!(
+        "DYNA_NON_LINE stopped by {} at t = {t:e}{}, after {} converged steps: the {} archived instants (t = {first:e} to {last:e}, the last converged state included) are kept in the result; the computation up to t = {end:e} was not done.",
+        crate::interrupt::name(signal),
+        abandoned.map_or(String::new(), |te| format!(
+            " (the step to t = {te:e} was abandoned)"
+        )),
+        stop.summary.steps,
+        result.steps.len(),
+    );
+    log(&message);
+    stop.summary.count_profile();
+    Stopped {
+        message,
+        summary: stop.summary.clone(),
+        signal: Some(signal),
+    }
 }
 
 /// The energy row of the step just archived, into the balance and the log.

@@ -191,6 +191,9 @@ pub enum StepFailure {
     Singular(String),
     NonFinite(String),
     Contact(String),
+    /// A stop was requested (the signal's number, [`crate::interrupt`]):
+    /// the step is abandoned, the committed state is what was done.
+    Interrupted(i32),
 }
 
 impl StepFailure {
@@ -228,6 +231,11 @@ impl std::fmt::Display for StepFailure {
             StepFailure::Singular(m) => write!(f, "{m}"),
             StepFailure::NonFinite(m) => write!(f, "{m}"),
             StepFailure::Contact(m) => write!(f, "contact: {m}"),
+            StepFailure::Interrupted(s) => write!(
+                f,
+                "{} received, the step is abandoned",
+                crate::interrupt::name(*s)
+            ),
         }
     }
 }
@@ -389,6 +397,11 @@ impl Engine {
         let mut last_rela = f64::INFINITY;
         let mut check_pattern = contact.is_some();
         for it in 0..=self.conv.iter_glob_maxi {
+            // A stop request abandons the step: an iteration of a large
+            // model can take seconds, and the committed state is intact.
+            if let Some(signal) = crate::interrupt::requested() {
+                return Err(StepFailure::Interrupted(signal));
+            }
             let mut new_pattern = false;
             if check_pattern {
                 check_pattern = false;

@@ -2,7 +2,8 @@
 //! tests drive them without spawning the binary.
 //!
 //! Exit codes: 0 success, 1 a study error (syntax, check, execution, or
-//! any NOOK test), 2 a usage error (unreadable file, bad option).
+//! any NOOK test), 2 a usage error (unreadable file, bad option), 128 + the
+//! signal's number for a run stopped by SIGINT (130) or SIGTERM (143).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -241,12 +242,23 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
                     let r = d.render(Some(&src));
                     let _ = write!(out, "{r}");
                     study.mess.push_str(&r);
-                    for line in save_results(&study) {
+                    let signal = crate::interrupt::requested();
+                    for line in save_results(&study, signal) {
                         let _ = writeln!(out, "{line}");
                         study.mess.push_str(&line);
                         study.mess.push('\n');
                     }
-                    EXIT_STUDY
+                    match signal {
+                        Some(s) => {
+                            let code = crate::interrupt::exit_code(s);
+                            study.log(format!(
+                                "the run was stopped by {}; .mess and .resu hold what was done; exit code {code}",
+                                crate::interrupt::name(s)
+                            ));
+                            code
+                        }
+                        None => EXIT_STUDY,
+                    }
                 }
             }
         }
@@ -263,7 +275,12 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
         out,
         "{}: {} (messages in {})",
         src.name,
-        if code == EXIT_OK { "done" } else { "FAILED" },
+        match crate::interrupt::requested() {
+            _ if code == EXIT_OK => "done".to_string(),
+            Some(s) if code == crate::interrupt::exit_code(s) =>
+                format!("STOPPED by {}", crate::interrupt::name(s)),
+            _ => "FAILED".to_string(),
+        },
         out_dir.join(format!("{stem}.mess")).display()
     );
     RunOutcome {
@@ -273,10 +290,15 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
     }
 }
 
-/// After a failure, writes every transient result computed so far (its
-/// nodal fields at every archived step) to `<study>_<RESULT>.rmed`, so
-/// that nothing computed is lost; returns the lines to report.
-fn save_results(study: &Study) -> Vec<String> {
+/// After a failure or a stop by `signal`, writes every transient result
+/// computed so far (its nodal fields at every archived step) to
+/// `<study>_<RESULT>.rmed`, so that nothing computed is lost; returns the
+/// lines to report.
+fn save_results(study: &Study, signal: Option<i32>) -> Vec<String> {
+    let cause = match signal {
+        Some(s) => format!("the stop by {}", crate::interrupt::name(s)),
+        None => "the error".to_string(),
+    };
     use crate::concepts::ConceptData;
     let mut lines = Vec::new();
     for c in study.concepts.iter() {
@@ -313,7 +335,7 @@ fn save_results(study: &Study) -> Vec<String> {
             .join(format!("{}_{}.rmed", study.stem, c.name));
         match crate::medio::write_result(&path, mesh, &fields) {
             Ok(()) => lines.push(format!(
-                "the {} archived steps of {} computed before the error are saved in {}",
+                "the {} archived steps of {} computed before {cause} are saved in {}",
                 res.steps.len(),
                 c.name,
                 path.display()
@@ -322,7 +344,9 @@ fn save_results(study: &Study) -> Vec<String> {
         }
     }
     if lines.is_empty() {
-        lines.push("the study stopped on this error; no transient result had been computed".into());
+        lines.push(format!(
+            "the study stopped on {cause}; no transient result had been computed"
+        ));
     }
     lines
 }

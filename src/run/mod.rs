@@ -5,6 +5,7 @@ use crate::catalog::checker::CheckedProgram;
 use crate::commands::CommandDef;
 use crate::concepts::{Concept, ConceptData};
 use crate::diag::Diagnostic;
+use crate::interrupt;
 use crate::profile::{self, Phase};
 use crate::study::Study;
 
@@ -13,15 +14,27 @@ pub mod export;
 
 /// Runs the commands in order. Stops at the first error, which is
 /// returned; everything produced before it stays in the study (and the
-/// caller writes the .mess/.resu files in both cases).
+/// caller writes the .mess/.resu files in both cases). A stop requested by
+/// a signal ([`crate::interrupt`]) ends the run before the next command,
+/// or inside DYNA_NON_LINE between steps; the error then lists the
+/// commands skipped.
 pub fn execute(
     study: &mut Study,
     program: &CheckedProgram,
     registry: &[CommandDef],
     source: &crate::diag::Source,
 ) -> Result<(), Diagnostic> {
-    for c in &program.commands {
+    for (i, c) in program.commands.iter().enumerate() {
         let (line, _) = source.line_col(c.span.start);
+        if let Some(signal) = interrupt::requested() {
+            return Err(Diagnostic::error(format!(
+                "{} received: the study stops before {} (line {line})",
+                interrupt::name(signal),
+                c.name
+            ))
+            .at(c.span)
+            .note(skipped(program, i)));
+        }
         let def = &registry[c.def];
         let target = c.result.as_ref().map(|t| t.name.as_str());
         study.log(format!(
@@ -31,7 +44,13 @@ pub fn execute(
         ));
         let started = std::time::Instant::now();
         let _output = profile::span_if(c.name.starts_with("IMPR_"), Phase::Output);
-        let data = (def.exec)(study, &c.args, target)?;
+        let data = (def.exec)(study, &c.args, target).map_err(|d| {
+            if interrupt::requested().is_some() {
+                d.note(skipped(program, i + 1))
+            } else {
+                d
+            }
+        })?;
         study.log(format!(
             "#      {} done in {:.3} s",
             c.name,
@@ -51,4 +70,20 @@ pub fn execute(
         }
     }
     Ok(())
+}
+
+/// The commands from index `from` on, which a stop leaves unrun.
+fn skipped(program: &CheckedProgram, from: usize) -> String {
+    let rest = &program.commands[from.min(program.commands.len())..];
+    if rest.is_empty() {
+        return "no command was left to run".into();
+    }
+    let names: Vec<&str> = rest.iter().map(|c| c.name.as_str()).collect();
+    format!(
+        "the {} command{} left {} not run: {}",
+        rest.len(),
+        if rest.len() == 1 { "" } else { "s" },
+        if rest.len() == 1 { "was" } else { "were" },
+        names.join(", ")
+    )
 }
