@@ -251,10 +251,14 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
                     match signal {
                         Some(s) => {
                             let code = crate::interrupt::exit_code(s);
-                            study.log(format!(
+                            let line = format!(
                                 "the run was stopped by {}; .mess and .resu hold what was done; exit code {code}",
                                 crate::interrupt::name(s)
-                            ));
+                            );
+                            study.log(&line);
+                            // The .resu says why it ends early (its tables
+                            // and tests after the stop were not produced).
+                            study.resu.push_str(&format!("\n{}\n{line}\n", d.message));
                             code
                         }
                         None => EXIT_STUDY,

@@ -78,7 +78,24 @@ fn skipped(program: &CheckedProgram, from: usize) -> String {
     if rest.is_empty() {
         return "no command was left to run".into();
     }
-    let names: Vec<&str> = rest.iter().map(|c| c.name.as_str()).collect();
+    // Runs of one command (the TEST_TABLE of a study) are counted.
+    let mut names: Vec<(&str, usize)> = Vec::new();
+    for c in rest {
+        match names.last_mut() {
+            Some((n, k)) if *n == c.name => *k += 1,
+            _ => names.push((&c.name, 1)),
+        }
+    }
+    let names: Vec<String> = names
+        .iter()
+        .map(|&(n, k)| {
+            if k == 1 {
+                n.to_string()
+            } else {
+                format!("{n} (x{k})")
+            }
+        })
+        .collect();
     format!(
         "the {} command{} left {} not run: {}",
         rest.len(),
