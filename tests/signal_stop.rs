@@ -130,9 +130,10 @@ fn check_stopped(run: &Stopped, signal_name: &str, code: i32) {
         run.stdout
     );
     let mess = std::fs::read_to_string(run.out.join("sdnv103b.mess")).expect("the .mess is written");
+    let resu = std::fs::read_to_string(run.out.join("sdnv103b.resu")).expect("the .resu is written");
     assert!(
-        run.out.join("sdnv103b.resu").is_file(),
-        "the .resu is written"
+        resu.contains(&format!("DYNA_NON_LINE stopped by {signal_name} at t = ")),
+        "the .resu says where the run ended:\n{resu}"
     );
     let stop = format!("DYNA_NON_LINE stopped by {signal_name} at t = ");
     let line = mess
