@@ -186,7 +186,9 @@ pub struct StepReport {
 /// Why a step failed: the time-step controller may cut it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum StepFailure {
-    NotConverged { history: Vec<IterationRecord> },
+    NotConverged {
+        history: Vec<IterationRecord>,
+    },
     Element(CellFailure),
     Singular(String),
     NonFinite(String),
