@@ -274,6 +274,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
             check_surface(mesh, model, &model_name, zone, key)?;
         }
+        if args.text("VERI_NORM") != Some("NON") {
+            for key in ["GROUP_MA_ESCL", "GROUP_MA_MAIT"] {
+                check_outward(mesh, zone, key, k)?;
+            }
+        }
         let (mait, escl) = (
             zone.text("GROUP_MA_MAIT").unwrap_or_default(),
             zone.text("GROUP_MA_ESCL").unwrap_or_default(),
@@ -315,6 +320,42 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         study.log(l);
     }
     Ok(Some(ConceptData::Contact(Box::new(args.clone()))))
+}
+
+/// VERI_NORM='OUI': the normals of a contact surface must point out of
+/// the body it bounds. The contact engine measures the gap along them, so
+/// an inward normal turns a closing gap into an opening one and the bodies
+/// go through each other without any error.
+fn check_outward(mesh: &Mesh, zone: &Args, key: &str, k: usize) -> Result<(), Diagnostic> {
+    let Some(group) = zone.text(key) else {
+        return Ok(());
+    };
+    let Some(cells) = mesh.cell_groups.get(group) else {
+        return Ok(());
+    };
+    let inward = crate::mesh::ops::inward_skin_cells(mesh, cells);
+    let Some(first) = inward.first() else {
+        return Ok(());
+    };
+    let orie = if crate::mesh::ops::is_z_constant(mesh) {
+        "ORIE_PEAU_2D"
+    } else {
+        "ORIE_PEAU_3D"
+    };
+    Err(zone.error(
+        key,
+        format!(
+            "zone {}: the normals of {} of the {} cells of {key}='{group}' point into the body \
+             (first: cell M{}, on cell M{}); contact needs outward normals: orient the skin with \
+             MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, {orie}=_F(GROUP_MA='{group}')) before \
+             DEFI_CONTACT (VERI_NORM='NON' skips this check)",
+            k + 1,
+            inward.len(),
+            cells.len(),
+            first.cell + 1,
+            first.support + 1
+        ),
+    ))
 }
 
 /// A contact surface is one cell group whose cells all are boundary cells

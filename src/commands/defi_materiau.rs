@@ -134,6 +134,23 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             ));
         }
     }
+    // The catalogue bounds NU to [-1, 0.5] as code_aster's does; the two
+    // ends are limits, not materials: NU = 0.5 makes the bulk modulus
+    // E/(3(1 - 2 NU)) infinite and NU = -1 the shear modulus E/(2(1 + NU)),
+    // and either turns the elastic matrix into inf/NaN at the first step.
+    if let Some(nu) = mat.get("ELAS", "NU") {
+        if nu >= 0.5 || nu <= -1.0 {
+            let occ = args.fact("ELAS").unwrap_or(args);
+            let why = if nu >= 0.5 {
+                "NU = 0.5 is the incompressible limit: the bulk modulus E/(3(1 - 2 NU)) is infinite, \
+                 which the displacement elements cannot represent; give NU < 0.5 (0.499 for a nearly \
+                 incompressible material)"
+            } else {
+                "NU = -1 makes the shear modulus E/(2(1 + NU)) infinite; give -1 < NU < 0.5"
+            };
+            return Err(occ.error("NU", format!("{why} (NU = {nu})")));
+        }
+    }
     let mut notes = Vec::new();
     if let (Some(e), Some(et)) = (mat.get("ELAS", "E"), mat.get("ECRO_LINE", "D_SIGM_EPSI")) {
         if et >= e {

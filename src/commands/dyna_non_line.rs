@@ -355,6 +355,7 @@ pub(crate) fn prepare_error(args: &Args, e: PrepareError) -> Diagnostic {
         }
         PrepareError::Load(m) => args.error("EXCIT", m),
         PrepareError::Mesh(m) => args.error("MODELE", m),
+        PrepareError::Material(m) => args.error("CHAM_MATER", m),
     }
 }
 

@@ -151,15 +151,7 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, tout: &[usize]) -> Result<Vec<usize
 /// The names of the mesh's cell groups that contain at least one of
 /// `cells`, for messages that must say where offending cells are.
 pub fn groups_containing(mesh: &Mesh, cells: &[usize]) -> Vec<String> {
-    let mut set = vec![false; mesh.ncells()];
-    for &c in cells {
-        set[c] = true;
-    }
-    mesh.cell_groups
-        .iter()
-        .filter(|(_, g)| g.iter().any(|&c| set[c]))
-        .map(|(n, _)| n.clone())
-        .collect()
+    mesh.groups_containing(cells)
 }
 
 /// "the selected nodes" or the names of the selecting groups, for messages.

@@ -422,6 +422,37 @@ pub fn internal_forces(
     })
 }
 
+/// Where the initial geometry of an element is invalid: a non-positive
+/// Jacobian (or, in AXIS, a radius <= 0) at Gauss point `point` (0-based)
+/// of `family`, which would make every later quantity of the cell NaN.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BadPoint {
+    pub family: Fpg,
+    pub point: usize,
+    /// What is wrong, with the value ("non-positive Jacobian -0.25").
+    pub message: String,
+}
+
+/// Checks the initial geometry of an element at every Gauss point of its
+/// stiffness and mass families, the points the computation will use, so
+/// that an inverted cell is refused before the first step with its point
+/// and value.
+pub fn check_initial_geometry(spec: &ElementSpec, coords: &[[f64; 3]]) -> Result<(), BadPoint> {
+    for family in [spec.rigi, spec.mass] {
+        let Some(tab) = tabulated(spec.cell, family) else {
+            continue;
+        };
+        for (p, (shape, w)) in tab.shapes.iter().zip(&tab.weights).enumerate() {
+            point_geometry(spec.formulation, shape, coords, *w).map_err(|message| BadPoint {
+                family,
+                point: p,
+                message,
+            })?;
+        }
+    }
+    Ok(())
+}
+
 /// Consistent mass ∫ ρ Nᵀ N dV₀ on the MASS family (per radian in AXIS).
 pub fn mass(
     spec: &ElementSpec,

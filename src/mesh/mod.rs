@@ -238,6 +238,20 @@ impl Mesh {
             .collect()
     }
 
+    /// The cell groups holding at least one of `cells`, in group order
+    /// (to say where a cell named in a message is).
+    pub fn groups_containing(&self, cells: &[usize]) -> Vec<String> {
+        let mut set = vec![false; self.ncells()];
+        for &c in cells {
+            set[c] = true;
+        }
+        self.cell_groups
+            .iter()
+            .filter(|(_, g)| g.iter().any(|&c| set[c]))
+            .map(|(n, _)| n.clone())
+            .collect()
+    }
+
     /// All distinct nodes of a set of cells, in increasing node order.
     pub fn nodes_of_cells(&self, cells: &[usize]) -> Vec<usize> {
         let mut seen = vec![false; self.nnodes()];

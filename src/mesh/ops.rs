@@ -514,6 +514,76 @@ fn skin_normal(mesh: &Mesh, cell: &Cell, dim: OrieDim) -> [f64; 3] {
     }
 }
 
+/// For each node, the cells of dimension `dim` holding it (only those
+/// flagged in `allowed` when given): the candidate supports of skin cells.
+fn support_cells_by_node(mesh: &Mesh, dim: usize, allowed: Option<&[bool]>) -> Vec<Vec<usize>> {
+    let mut cells_of_node: Vec<Vec<usize>> = vec![Vec::new(); mesh.nnodes()];
+    for (ci, cell) in mesh.cells.iter().enumerate() {
+        if cell.kind.dim() != dim || allowed.is_some_and(|a| !a[ci]) {
+            continue;
+        }
+        for &n in &cell.nodes {
+            if cells_of_node[n].last() != Some(&ci) {
+                cells_of_node[n].push(ci);
+            }
+        }
+    }
+    cells_of_node
+}
+
+/// The cells that hold every node of the skin cell `skin`.
+fn supports_of(mesh: &Mesh, cells_of_node: &[Vec<usize>], skin: &Cell) -> Vec<usize> {
+    cells_of_node[skin.nodes[0]]
+        .iter()
+        .copied()
+        .filter(|&s| skin.nodes.iter().all(|n| mesh.cells[s].nodes.contains(n)))
+        .collect()
+}
+
+/// orilma's test: the normal of `skin` points into its support cell.
+fn points_into(mesh: &Mesh, skin: &Cell, support: usize, dim: OrieDim) -> bool {
+    let n = skin_normal(mesh, skin, dim);
+    let xs = vertex_centroid(mesh, &mesh.cells[support]);
+    let xk = vertex_centroid(mesh, skin);
+    dot(sub(xs, xk), n) > 0.0
+}
+
+/// A skin cell whose normal points into the body (DEFI_CONTACT VERI_NORM).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct InwardSkin {
+    pub cell: usize,
+    /// The volume (or surface) cell it lies on.
+    pub support: usize,
+}
+
+/// The cells of `cells` whose normal, computed as ORIE_PEAU does, points
+/// into the one cell they lie on: segments of a flat mesh on its surface
+/// cells, faces of a 3D mesh on its volume cells. A cell lying on no
+/// cell or between two has no outside and is not reported; nor are cells
+/// of another dimension.
+pub fn inward_skin_cells(mesh: &Mesh, cells: &[usize]) -> Vec<InwardSkin> {
+    let (dim, skin_dim) = if is_z_constant(mesh) {
+        (OrieDim::D2, 1)
+    } else {
+        (OrieDim::D3, 2)
+    };
+    let cells_of_node = support_cells_by_node(mesh, skin_dim + 1, None);
+    cells
+        .iter()
+        .filter(|&&c| mesh.cells[c].kind.dim() == skin_dim)
+        .filter_map(|&c| {
+            let skin = &mesh.cells[c];
+            match supports_of(mesh, &cells_of_node, skin).as_slice() {
+                [s] if points_into(mesh, skin, *s, dim) => Some(InwardSkin {
+                    cell: c,
+                    support: *s,
+                }),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
 /// `MODI_MAILLAGE(ORIE_PEAU_2D|ORIE_PEAU_3D=_F(GROUP_MA=groups,
 /// [GROUP_MA_SURF|GROUP_MA_VOLU=support_groups]))`: renumbers the skin
 /// cells whose normal points into their support cell.
@@ -586,22 +656,7 @@ pub fn orie_peau<S: AsRef<str>>(
         }
         allowed = Some(a);
     }
-    let mut cells_of_node: Vec<Vec<usize>> = vec![Vec::new(); mesh.nnodes()];
-    for (ci, cell) in mesh.cells.iter().enumerate() {
-        if cell.kind.dim() != skin_dim + 1 {
-            continue;
-        }
-        if let Some(a) = &allowed {
-            if !a[ci] {
-                continue;
-            }
-        }
-        for &n in &cell.nodes {
-            if cells_of_node[n].last() != Some(&ci) {
-                cells_of_node[n].push(ci);
-            }
-        }
-    }
+    let cells_of_node = support_cells_by_node(mesh, skin_dim + 1, allowed.as_deref());
     // Cells are turned as they are met (a cell listed in two groups must
     // not be turned twice); an error later puts them all back.
     let original = mesh.cells.clone();
@@ -611,11 +666,7 @@ pub fn orie_peau<S: AsRef<str>>(
         let mut not_processed = 0;
         for c in cells {
             let skin = mesh.cells[c].clone();
-            let supports: Vec<usize> = cells_of_node[skin.nodes[0]]
-                .iter()
-                .copied()
-                .filter(|&s| skin.nodes.iter().all(|n| mesh.cells[s].nodes.contains(n)))
-                .collect();
+            let supports = supports_of(mesh, &cells_of_node, &skin);
             let support = match supports.as_slice() {
                 [] => {
                     not_processed += 1;
@@ -641,10 +692,7 @@ pub fn orie_peau<S: AsRef<str>>(
                     ));
                 }
             };
-            let n = skin_normal(mesh, &skin, dim);
-            let xs = vertex_centroid(mesh, &mesh.cells[support]);
-            let xk = vertex_centroid(mesh, &skin);
-            if dot(sub(xs, xk), n) > 0.0 {
+            if points_into(mesh, &skin, support, dim) {
                 let p = reverse_permutation(skin.kind).expect("checked above");
                 mesh.cells[c].nodes = p.iter().map(|&k| skin.nodes[k]).collect();
                 reoriented += 1;

@@ -43,15 +43,19 @@ pub enum PrepareError {
     Behaviour(BehaviourError),
     /// DDL_IMPO problem.
     Load(String),
-    /// Mesh error (inverted cell) found while building the mass.
+    /// Mesh error (inverted cell) found before the first step.
     Mesh(String),
+    /// A material value the dynamics cannot use (RHO <= 0).
+    Material(String),
 }
 
 impl std::fmt::Display for PrepareError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             PrepareError::Behaviour(b) => f.write_str(&b.message),
-            PrepareError::Load(m) | PrepareError::Mesh(m) => f.write_str(m),
+            PrepareError::Load(m) | PrepareError::Mesh(m) | PrepareError::Material(m) => {
+                f.write_str(m)
+            }
         }
     }
 }
@@ -66,12 +70,96 @@ pub fn discretize(
     occurrences: &[Occurrence],
     loads: &[&MechLoad],
 ) -> Result<(Assembler, Vec<String>), PrepareError> {
+    check_geometry(mesh, model)?;
+    check_density(mesh, model, matfield, materials)?;
     let beh = behaviour::build(model, matfield, materials, occurrences)
         .map_err(PrepareError::Behaviour)?;
     let alarms = beh.alarms.clone();
     let nb = dofs::number(mesh, model, loads).map_err(PrepareError::Load)?;
     let asm = Assembler::new(mesh, model, beh, nb).map_err(PrepareError::Mesh)?;
     Ok((asm, alarms))
+}
+
+/// Every element's initial geometry at the Gauss points it will use: an
+/// inverted or degenerate cell would give NaN in every field, so it is
+/// refused before the first step, named as code_aster names it (M + its
+/// number), with its groups, the point and the value.
+fn check_geometry(mesh: &Mesh, model: &Model) -> Result<(), PrepareError> {
+    for (cell, role) in model.cells.iter().enumerate() {
+        let crate::model::CellRole::Element(spec) = role else {
+            continue;
+        };
+        let coords: Vec<[f64; 3]> = mesh.cells[cell]
+            .nodes
+            .iter()
+            .map(|&n| mesh.coords[n])
+            .collect();
+        if let Err(bad) = crate::element::check_initial_geometry(spec, &coords) {
+            return Err(PrepareError::Mesh(format!(
+                "cell M{} ({} {}, group(s) {}): {} at Gauss point {} of its {} family, on the initial mesh; \
+                 the cell is inverted or degenerate (the nodes turn the wrong way, or a node is misplaced): \
+                 correct the mesh before the first step (AFFE_MODELE VERI_JACOBIEN='OUI' lists such cells)",
+                cell + 1,
+                spec.name,
+                mesh.cells[cell].kind.aster_name(),
+                group_list(mesh, cell),
+                bad.message,
+                bad.point + 1,
+                bad.family.name()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// ELAS/RHO of the material of every element, where it is given (a
+/// missing RHO is the behaviour field's error): the mass matrix of a
+/// dynamic computation needs a positive density, and a zero one leaves the
+/// accelerations undefined.
+fn check_density(
+    mesh: &Mesh,
+    model: &Model,
+    matfield: &MaterialField,
+    materials: &IndexMap<String, Material>,
+) -> Result<(), PrepareError> {
+    for (cell, role) in model.cells.iter().enumerate() {
+        if !matches!(role, crate::model::CellRole::Element(_)) {
+            continue;
+        }
+        let Some(Some(name)) = matfield.cell_material.get(cell) else {
+            continue;
+        };
+        let Some(rho) = materials.get(name).and_then(|m| m.get("ELAS", "RHO")) else {
+            continue;
+        };
+        if !(rho > 0.0 && rho.is_finite()) {
+            let cells: Vec<usize> = (0..model.cells.len())
+                .filter(|&c| {
+                    matches!(model.cells[c], crate::model::CellRole::Element(_))
+                        && matfield.cell_material.get(c).and_then(|m| m.as_deref())
+                            == Some(name.as_str())
+                })
+                .collect();
+            return Err(PrepareError::Material(format!(
+                "the material {name} (DEFI_MATERIAU, ELAS/RHO = {rho:e}) is assigned to {} element(s) of group(s) {} (first: M{}); \
+                 the mass matrix of DYNA_NON_LINE needs a density RHO > 0",
+                cells.len(),
+                mesh.groups_containing(&cells).join(", "),
+                cell + 1
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The groups of a cell for a message ("none" when it is in no group).
+fn group_list(mesh: &Mesh, cell: usize) -> String {
+    let g = mesh.groups_containing(&[cell]);
+    if g.is_empty() {
+        "none".into()
+    } else {
+        g.join(", ")
+    }
 }
 
 /// A state at rest at `t` with virgin Gauss points, then `u`, `v`, `a`

@@ -1,0 +1,381 @@
+//! Bad numerical input is refused before the first step, with a message
+//! that says where (issue 16): an element with a non-positive Jacobian at
+//! a Gauss point, NU at or beyond its limits, a density RHO <= 0 on a
+//! dynamic model, a time list that does not increase, a contact surface
+//! whose normals point into the body. Each case is built here (meshes
+//! written by the test from the SDNV103 meshes), run through the checker
+//! and the runner, and the error's text, command/keyword path and line are
+//! checked, and that no result was computed.
+
+use std::path::{Path, PathBuf};
+
+use aster::commands;
+use aster::diag::Source;
+use aster::medio::{read_mesh, write_mesh};
+use aster::mesh::ops::{orie_peau, OrieDim};
+use aster::mesh::Mesh;
+use aster::run::driver::parse_and_check;
+use aster::study::Study;
+
+/// Runs `comm` with unit 20 mapped to `mesh`; returns the study and the
+/// rendered error, if the run stopped on one.
+fn run(mesh: &Path, comm: &str, tag: &str) -> (Study, Option<String>) {
+    let src = Source::new("test.comm", comm);
+    let registry = commands::all();
+    let mut messages = String::new();
+    let checked = parse_and_check(&src, &registry, &mut messages);
+    let mut study = Study {
+        out_dir: Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("bad_input_{tag}")),
+        stem: "test".into(),
+        ..Study::default()
+    };
+    let Some(program) = checked else {
+        // Refused by the checker: nothing ran.
+        return (study, Some(messages));
+    };
+    study.units.map.insert(20, mesh.to_path_buf());
+    let err = aster::run::execute(&mut study, &program, &registry, &src)
+        .err()
+        .map(|d| d.render(Some(&src)));
+    (study, err)
+}
+
+fn root_mesh(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("med/{name}.mmed"))
+}
+
+/// Writes `mesh` into the test's scratch directory.
+fn scratch_mesh(mesh: &Mesh, name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bad_input_meshes");
+    std::fs::create_dir_all(&dir).expect("scratch directory");
+    let path = dir.join(name);
+    write_mesh(&path, mesh).expect("the mesh is written");
+    path
+}
+
+/// The 1-based line of the first line of `text` containing `needle`.
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("'{needle}' not in the command file"))
+        + 1
+}
+
+/// The error names `path` on its first line, contains every word, and
+/// points at the line of `at`.
+fn assert_error(comm: &str, err: &Option<String>, path: &str, words: &[&str], at: &str) {
+    let e = err.as_deref().expect("the run should stop on an error");
+    let first = e.lines().next().unwrap_or_default();
+    assert!(first.contains(path), "expected {path} in:\n{e}");
+    for w in words {
+        assert!(e.contains(w), "expected '{w}' in:\n{e}");
+    }
+    let loc = format!("test.comm:{}:", line_of(comm, at));
+    assert!(e.contains(&loc), "expected location {loc} in:\n{e}");
+}
+
+/// No step was computed: the step table of DYNA_NON_LINE never started
+/// and the result concept does not exist.
+fn assert_no_step(study: &Study, result: &str) {
+    assert!(
+        !study.mess.contains("RESI_GLOB_RELA"),
+        "a step was started:\n{}",
+        study.mess
+    );
+    assert!(study.concepts.data(result).is_none(), "{result} exists");
+}
+
+/// The free flight of the modelling D bar (sdnv103d mesh, group VOL) with
+/// the given material line, up to DYNA_NON_LINE.
+fn free_flight(material: &str) -> String {
+    format!(
+        "DEBUT()\n\
+         MAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+         MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(GROUP_MA='VOL', PHENOMENE='MECANIQUE', MODELISATION='AXIS'))\n\
+         {material}\n\
+         CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=_F(GROUP_MA='VOL', MATER=CUIVRE))\n\
+         VITINI = CREA_CHAMP(TYPE_CHAM='NOEU_DEPL_R', OPERATION='AFFE', MODELE=MO,\n\
+         AFFE=_F(GROUP_MA='VOL', NOM_CMP=('DX', 'DY'), VALE=(0., -227000.)))\n\
+         L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1.E-6, NOMBRE=2))\n\
+         RES = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT,\n\
+         COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', DEFORMATION='SIMO_MIEHE', GROUP_MA='VOL'),\n\
+         ETAT_INIT=_F(VITE=VITINI), INCREMENT=_F(LIST_INST=L_INST),\n\
+         SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))\n\
+         FIN()\n"
+    )
+}
+
+const CUIVRE: &str = "CUIVRE = DEFI_MATERIAU(ELAS=_F(E=117.E3, NU=0.35, RHO=8.93E-9), ECRO_LINE=_F(D_SIGM_EPSI=100., SY=400.))";
+
+#[test]
+fn the_free_flight_runs_with_good_input() {
+    // The control: the same file with a valid material and mesh runs.
+    let comm = free_flight(CUIVRE);
+    let (study, err) = run(&root_mesh("sdnv103d"), &comm, "control");
+    assert!(err.is_none(), "{err:?}");
+    assert!(study.concepts.data("RES").is_some());
+}
+
+#[test]
+fn an_inverted_cell_is_refused_before_the_first_step() {
+    let mut mesh = read_mesh(&root_mesh("sdnv103d"), None).expect("sdnv103d mesh");
+    let cell = mesh.cell_groups["VOL"][1];
+    // Reverse the QUAD8's node order: the cell turns clockwise, and its
+    // Jacobian is negative at every point.
+    let n = mesh.cells[cell].nodes.clone();
+    mesh.cells[cell].nodes = [3, 2, 1, 0, 6, 5, 4, 7].iter().map(|&k| n[k]).collect();
+    let path = scratch_mesh(&mesh, "inverted_cell.mmed");
+    let comm = free_flight(CUIVRE);
+    let (study, err) = run(&path, &comm, "inverted");
+    let name = format!("cell M{} (", cell + 1);
+    assert_error(
+        &comm,
+        &err,
+        "DYNA_NON_LINE/MODELE",
+        &[
+            &name,
+            "MEAXQU8 QUAD8",
+            "group(s) VOL",
+            "non-positive Jacobian -",
+            "at Gauss point 1 of its FPG9 family",
+            "before the first step",
+        ],
+        "RES = DYNA_NON_LINE",
+    );
+    assert_no_step(&study, "RES");
+    // AFFE_MODELE's VERI_JACOBIEN already warned, naming the group.
+    assert!(
+        study
+            .mess
+            .contains("1 element(s) have a non-positive Jacobian determinant"),
+        "{}",
+        study.mess
+    );
+}
+
+#[test]
+fn a_cell_folded_near_one_corner_is_located() {
+    // The mid-side node of an edge slid along it to 95 % of the way to a
+    // corner: the corners stay where they were, but the map folds near
+    // that corner and the Jacobian is negative at the Gauss point next to
+    // it (for a square: one of the 9 points, det J = -0.31 x its area/4).
+    let mut mesh = read_mesh(&root_mesh("sdnv103d"), None).expect("sdnv103d mesh");
+    let cell = mesh.cell_groups["VOL"][0];
+    let nodes = mesh.cells[cell].nodes.clone();
+    let (a, b, mid) = (nodes[0], nodes[1], nodes[4]);
+    let (pa, pb) = (mesh.coords[a], mesh.coords[b]);
+    mesh.coords[mid] = [
+        pa[0] + 0.95 * (pb[0] - pa[0]),
+        pa[1] + 0.95 * (pb[1] - pa[1]),
+        0.0,
+    ];
+    // The node is shared with the neighbour across that edge, if any,
+    // which folds the same way: the error names one of them.
+    let holders: Vec<usize> = (0..mesh.ncells())
+        .filter(|&c| mesh.cells[c].kind.dim() == 2 && mesh.cells[c].nodes.contains(&mid))
+        .collect();
+    let path = scratch_mesh(&mesh, "folded_cell.mmed");
+    let comm = free_flight(CUIVRE);
+    let (study, err) = run(&path, &comm, "folded");
+    assert_error(
+        &comm,
+        &err,
+        "DYNA_NON_LINE/MODELE",
+        &["non-positive Jacobian -", "Gauss point", "group(s) VOL"],
+        "RES = DYNA_NON_LINE",
+    );
+    let e = err.unwrap();
+    assert!(
+        holders
+            .iter()
+            .any(|c| e.contains(&format!("cell M{} (", c + 1))),
+        "one of the cells {holders:?} (0-based) is named:\n{e}"
+    );
+    assert_no_step(&study, "RES");
+}
+
+#[test]
+fn a_zero_or_negative_density_is_refused_on_a_dynamic_model() {
+    for rho in ["0.", "-8.93E-9"] {
+        let comm = free_flight(&format!(
+            "CUIVRE = DEFI_MATERIAU(ELAS=_F(E=117.E3, NU=0.35, RHO={rho}), ECRO_LINE=_F(D_SIGM_EPSI=100., SY=400.))"
+        ));
+        let (study, err) = run(&root_mesh("sdnv103d"), &comm, "rho");
+        let value: f64 = rho.parse().unwrap();
+        assert_error(
+            &comm,
+            &err,
+            "DYNA_NON_LINE/CHAM_MATER",
+            &[
+                "the material CUIVRE (DEFI_MATERIAU, ELAS/RHO = ",
+                &format!("RHO = {value:e})"),
+                "group(s) VOL",
+                "needs a density RHO > 0",
+            ],
+            "CHAM_MATER=CHMAT",
+        );
+        assert_no_step(&study, "RES");
+    }
+    // A material without RHO at all.
+    let comm = free_flight(
+        "CUIVRE = DEFI_MATERIAU(ELAS=_F(E=117.E3, NU=0.35), ECRO_LINE=_F(D_SIGM_EPSI=100., SY=400.))",
+    );
+    let (study, err) = run(&root_mesh("sdnv103d"), &comm, "no_rho");
+    assert_error(
+        &comm,
+        &err,
+        "DYNA_NON_LINE/COMPORTEMENT",
+        &["material CUIVRE: ELAS/RHO is needed by the mass matrix"],
+        "COMPORTEMENT=_F",
+    );
+    assert_no_step(&study, "RES");
+}
+
+#[test]
+fn nu_at_its_limits_or_beyond_is_refused() {
+    // The limits of the catalogue's range: accepted by the checker,
+    // refused by DEFI_MATERIAU as no material.
+    for (nu, word) in [("0.5", "incompressible limit"), ("-1.", "shear modulus")] {
+        let comm = free_flight(&format!(
+            "CUIVRE = DEFI_MATERIAU(ELAS=_F(E=117.E3, NU={nu}, RHO=8.93E-9))"
+        ));
+        let (study, err) = run(&root_mesh("sdnv103d"), &comm, "nu_limit");
+        assert_error(
+            &comm,
+            &err,
+            "DEFI_MATERIAU/ELAS/NU",
+            &[word],
+            &format!("NU={nu}"),
+        );
+        assert_no_step(&study, "RES");
+    }
+    // Beyond: the catalogue's bounds (checked before anything runs).
+    for nu in ["0.6", "-1.5"] {
+        let comm = free_flight(&format!(
+            "CUIVRE = DEFI_MATERIAU(ELAS=_F(E=117.E3, NU={nu}, RHO=8.93E-9))"
+        ));
+        let (study, err) = run(&root_mesh("sdnv103d"), &comm, "nu_range");
+        let e = err.expect("refused by the checker");
+        assert!(e.contains("DEFI_MATERIAU/ELAS/NU"), "{e}");
+        assert!(
+            e.contains(&format!(
+                "test.comm:{}:",
+                line_of(&comm, &format!("NU={nu}"))
+            )),
+            "{e}"
+        );
+        assert!(e.contains("nothing was run"), "{e}");
+        assert!(study.concepts.data("CUIVRE").is_none());
+    }
+}
+
+#[test]
+fn a_time_list_that_does_not_increase_is_refused() {
+    let base = free_flight(CUIVRE);
+    let cases = [
+        (
+            "L_INST = DEFI_LIST_REEL(VALE=(0., 1.E-6, 5.E-7))",
+            "DEFI_LIST_REEL/VALE",
+            "strictly increasing",
+        ),
+        (
+            "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=-1.E-6, NOMBRE=2))",
+            "DEFI_LIST_REEL/INTERVALLE/JUSQU_A",
+            "",
+        ),
+    ];
+    for (line, path, word) in cases {
+        let comm = base.replace(
+            "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1.E-6, NOMBRE=2))",
+            line,
+        );
+        let (study, err) = run(&root_mesh("sdnv103d"), &comm, "time_list");
+        assert_error(&comm, &err, path, &[word], "L_INST =");
+        assert_no_step(&study, "RES");
+    }
+}
+
+/// The SDNV103 B contact definition on `mesh`, with `orient` (a
+/// MODI_MAILLAGE line or nothing) before it and `veri` in DEFI_CONTACT.
+fn contact_b(orient: &str, veri: &str) -> String {
+    format!(
+        "DEBUT()\n\
+         MAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+         {orient}\n\
+         MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='AXIS'))\n\
+         CONT = DEFI_CONTACT(MODELE=MO, FORMULATION='DISCRETE',{veri}\n\
+         ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', ALGO_CONT='PENALISATION', E_N=1.E10))\n\
+         FIN()\n"
+    )
+}
+
+#[test]
+fn a_contact_surface_with_inward_normals_is_refused() {
+    // Outward skins (ORIE_PEAU_2D as the study does), then one cell of
+    // the slave surface SZZ turned over.
+    let mut mesh = read_mesh(&root_mesh("sdnv103b"), None).expect("sdnv103b mesh");
+    orie_peau(&mut mesh, OrieDim::D2, &["SZZ", "RIGID"], None).expect("orientation");
+    let outward = scratch_mesh(&mesh, "contact_outward.mmed");
+    let szz = mesh.cell_groups["SZZ"].clone();
+    let cell = szz[szz.len() / 2];
+    let n = mesh.cells[cell].nodes.clone();
+    mesh.cells[cell].nodes = vec![n[1], n[0], n[2]];
+    let one_inward = scratch_mesh(&mesh, "contact_one_inward.mmed");
+
+    // Control: outward normals pass.
+    let comm = contact_b("", "");
+    let (study, err) = run(&outward, &comm, "contact_ok");
+    assert!(err.is_none(), "{err:?}");
+    assert!(study.concepts.data("CONT").is_some());
+
+    let (study, err) = run(&one_inward, &comm, "contact_inward");
+    assert_error(
+        &comm,
+        &err,
+        "DEFI_CONTACT/ZONE/GROUP_MA_ESCL",
+        &[
+            &format!(
+                "zone 1: the normals of 1 of the {} cells of GROUP_MA_ESCL='SZZ' point into the body",
+                szz.len()
+            ),
+            &format!("(first: cell M{}, on cell M", cell + 1),
+            "MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ORIE_PEAU_2D=_F(GROUP_MA='SZZ'))",
+        ],
+        "ZONE=_F",
+    );
+    assert!(study.concepts.data("CONT").is_none());
+
+    // The advice works: orienting the skin in the file clears the error.
+    let comm = contact_b(
+        "MAIL = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ORIE_PEAU_2D=_F(GROUP_MA='SZZ'))",
+        "",
+    );
+    let (_, err) = run(&one_inward, &comm, "contact_fixed");
+    assert!(err.is_none(), "{err:?}");
+
+    // VERI_NORM='NON' skips the check, as in code_aster.
+    let comm = contact_b("", " VERI_NORM='NON',");
+    let (_, err) = run(&one_inward, &comm, "contact_unchecked");
+    assert!(err.is_none(), "{err:?}");
+
+    // The master surface is checked too: every RIGID cell turned over.
+    let mut mesh = read_mesh(&outward, None).expect("outward mesh");
+    let rigid = mesh.cell_groups["RIGID"].clone();
+    for &c in &rigid {
+        let n = mesh.cells[c].nodes.clone();
+        mesh.cells[c].nodes = vec![n[1], n[0], n[2]];
+    }
+    let master_inward = scratch_mesh(&mesh, "contact_master_inward.mmed");
+    let comm = contact_b("", "");
+    let (_, err) = run(&master_inward, &comm, "contact_master");
+    assert_error(
+        &comm,
+        &err,
+        "DEFI_CONTACT/ZONE/GROUP_MA_MAIT",
+        &[&format!(
+            "the normals of {0} of the {0} cells of GROUP_MA_MAIT='RIGID' point into the body",
+            rigid.len()
+        )],
+        "ZONE=_F",
+    );
+}
