@@ -944,8 +944,13 @@ fn defi_contact_checks() {
         &["holds a QUAD8 cell", "dimension 1"],
         "DEFI_CONTACT",
     );
-    // Frictionless discrete contact with the default algorithm is kept.
-    let comm = axis_mo(&format!("C = DEFI_CONTACT(MODELE=MO, {zone}))"));
+    // Frictionless discrete contact with the default algorithm is kept
+    // (on outward skins: the mesh's RIGID edge points into the foundation
+    // until ORIE_PEAU_2D turns it, as the study does; VERI_NORM checks it).
+    let comm = axis_mo(&format!(
+        "MAIL = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ORIE_PEAU_2D=_F(GROUP_MA=('SZZ', 'RIGID')))\n\
+         C = DEFI_CONTACT(MODELE=MO, {zone}))"
+    ));
     let (s, err) = run("sdnv103b", &comm);
     assert!(err.is_none(), "{err:?}");
     match data(&s, "C") {

@@ -274,11 +274,6 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
             check_surface(mesh, model, &model_name, zone, key)?;
         }
-        if args.text("VERI_NORM") != Some("NON") {
-            for key in ["GROUP_MA_ESCL", "GROUP_MA_MAIT"] {
-                check_outward(mesh, zone, key, k)?;
-            }
-        }
         let (mait, escl) = (
             zone.text("GROUP_MA_MAIT").unwrap_or_default(),
             zone.text("GROUP_MA_ESCL").unwrap_or_default(),
@@ -299,6 +294,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                     k + 1
                 ),
             ));
+        }
+        if args.text("VERI_NORM") != Some("NON") {
+            for key in ["GROUP_MA_ESCL", "GROUP_MA_MAIT"] {
+                check_outward(mesh, zone, key, k)?;
+            }
         }
         lines.push(format!(
             "      zone {}: slave {escl} ({} cells) on master {mait} ({} cells), ALGO_CONT={algo}",
