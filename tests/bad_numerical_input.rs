@@ -143,14 +143,14 @@ fn an_inverted_cell_is_refused_before_the_first_step() {
         "RES = DYNA_NON_LINE",
     );
     assert_no_step(&study, "RES");
-    // AFFE_MODELE's VERI_JACOBIEN already warned, naming the group.
-    assert!(
-        study
-            .mess
-            .contains("1 element(s) have a non-positive Jacobian determinant"),
-        "{}",
-        study.mess
-    );
+    // AFFE_MODELE's VERI_JACOBIEN already warned, naming the group and
+    // the cell.
+    for alarm in [
+        "1 element(s) have a non-positive Jacobian determinant (inverted or degenerate cells) in group(s) VOL".to_string(),
+        format!("(first: cell M{}, smallest det J -", cell + 1),
+    ] {
+        assert!(study.mess.contains(&alarm), "{alarm} in:\n{}", study.mess);
+    }
 }
 
 #[test]

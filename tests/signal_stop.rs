@@ -237,3 +237,39 @@ fn sigint_keeps_the_archived_instants() {
     let run = run_and_stop(libc::SIGINT, 2e-6, "signal_sigint");
     check_stopped(&run, "SIGINT", 130);
 }
+
+/// A stop requested between two commands (here before the first one, in
+/// this process, as the handler would record it): nothing runs, the
+/// commands are listed as skipped, and the outputs are still written.
+#[test]
+fn a_stop_before_a_command_skips_the_rest_of_the_file() {
+    use aster::run::driver::{run_file, RunOptions};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("signal_between");
+    let _ = std::fs::remove_dir_all(&out);
+    let mut term = Vec::new();
+    aster::interrupt::request(libc::SIGTERM);
+    let code = run_file(
+        &RunOptions {
+            comm: root.join("tests/verification/free_flight.comm"),
+            out_dir: Some(out.clone()),
+            units: vec![(80, out.join("resu.rmed"))],
+            ..RunOptions::default()
+        },
+        &mut term,
+    );
+    aster::interrupt::clear();
+    let term = String::from_utf8(term).unwrap();
+    assert_eq!(code, 143, "{term}");
+    let mess = std::fs::read_to_string(out.join("free_flight.mess")).expect("the .mess");
+    for want in [
+        "SIGTERM received: the study stops before DEBUT (line",
+        "were not run: DEBUT, LIRE_MAILLAGE, AFFE_MODELE",
+        "no transient result had been computed before the stop by SIGTERM",
+        "exit code 143",
+    ] {
+        assert!(mess.contains(want), "'{want}' in:\n{mess}");
+    }
+    assert!(out.join("free_flight.resu").is_file());
+    assert!(term.contains("STOPPED by SIGTERM"), "{term}");
+}

@@ -241,12 +241,20 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             })
             .map(|(c, _)| c)
             .collect();
-        if !bad.is_empty() {
+        if let Some(&first) = bad.first() {
+            // The smallest determinant over the cell's vertices and check
+            // points says how far the first cell is from valid.
+            let smallest = jacobian_dets(&mesh, &mesh.cells[first])
+                .unwrap_or_default()
+                .into_iter()
+                .fold(f64::INFINITY, f64::min);
             alarms.push(format!(
                 "<A> <AFFE_MODELE> {} element(s) have a non-positive Jacobian determinant \
-                 (inverted or degenerate cells) in group(s) {}",
+                 (inverted or degenerate cells) in group(s) {} (first: cell M{}, smallest det J \
+                 {smallest:e} at its vertices and check points)",
                 bad.len(),
-                groups_containing(&mesh, &bad).join(", ")
+                groups_containing(&mesh, &bad).join(", "),
+                first + 1
             ));
         }
     }

@@ -349,7 +349,7 @@ fn save_results(study: &Study, signal: Option<i32>) -> Vec<String> {
     }
     if lines.is_empty() {
         lines.push(format!(
-            "the study stopped on {cause}; no transient result had been computed"
+            "no transient result had been computed before {cause}"
         ));
     }
     lines
