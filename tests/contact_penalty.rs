@@ -213,15 +213,12 @@ fn stick_tangent_is_the_derivative() {
     assert!(c.fd_error(&u, 1.0) < 1e-6);
 }
 
-/// The slip tangent is code_aster's (`frogdp`): the stick matrix minus a
-/// correction on sliding links; with the full weight (COEF_MATR_FROT = 1,
-/// or any coefficient once RESI_GLOB_RELA < 1e-3) it is the secant of the
-/// slip law at fixed λ_n, K_f = (λ_f/|g_t|) Σ_k B_t,kᵀB_t,k, so that
-/// K_f·(u − u_start) equals the friction residual exactly. (The consistent
-/// derivative, with its −μ E_N e B_nᵀ coupling, made Newton cycle between
-/// stick and slip on the Taylor bar: docs/contact.md §3.)
+/// With the default COEF_MATR_FROT = 0 and a large residual the slip
+/// tangent is code_aster's MAF1 alone (`cffpm1`), the secant of the slip
+/// law at fixed λ_n, K_f = (λ_f/|g_t|) Σ_k B_t,kᵀB_t,k: K_f·(u − u_start)
+/// equals the friction residual exactly.
 #[test]
-fn slip_tangent_with_coef_matr_frot_1_is_the_secant() {
+fn slip_tangent_with_coef_matr_frot_0_is_the_secant() {
     let check = |cf: &Case, c0: &Case, u: &[[f64; 3]], resi: f64| {
         let dim = cf.def.dim;
         let (rf, kf, s) = cf.eval(u, resi, false);
@@ -245,25 +242,104 @@ fn slip_tangent_with_coef_matr_frot_1_is_the_secant() {
             );
         }
     };
-    let (cf, mut u) = case_2d(coulomb(0.3, 1000.0, 1.0));
+    let (cf, mut u) = case_2d(coulomb(0.3, 1000.0, 0.0));
     u[3][0] = 0.08;
     let (c0, _) = case_2d(None);
     check(&cf, &c0, &u, 1.0);
-    // Any coefficient once the residual is small.
-    let (cf4, _) = case_2d(coulomb(0.3, 1000.0, 0.4));
-    check(&cf4, &c0, &u, 1e-4);
     // 3D: two tangents.
-    let (cf, mut u) = case_3d(coulomb(0.3, 1000.0, 1.0));
+    let (cf, mut u) = case_3d(coulomb(0.3, 1000.0, 0.0));
     u[8][0] = 0.05;
     u[8][1] = 0.07;
     let (c0, _) = case_3d(None);
     check(&cf, &c0, &u, 1.0);
-    // With COEF_MATR_FROT = 0 and a large residual the sliding link keeps
-    // the stick matrix E_T B_tᵀB_t, which is not ∂r/∂u.
-    let (c, mut u) = case_3d(coulomb(0.3, 1000.0, 0.0));
+    // The secant is not ∂r/∂u.
+    assert!(cf.fd_error(&u, 1.0) > 1e-2, "{}", cf.fd_error(&u, 1.0));
+}
+
+/// The full slip tangent (COEF_MATR_FROT = 1, or any coefficient once
+/// RESI_GLOB_RELA < 1e-3) is the derivative of the friction force at fixed
+/// normal force: (λ_f/|g_t|)(Σ_k B_t,k B_t,kᵀ − b_e b_eᵀ), b_e = Σ_k e_k B_t,k.
+/// The full derivative adds the normal-tangential coupling
+/// C = −μ E_N b_e B_nᵀ (λ_f = μ E_N (−g)), which code_aster leaves out and
+/// so do we; this test rebuilds C from the link's normal, tangents and
+/// master weights and checks K + C against central differences of the
+/// whole contact residual, in 2D (one tangent, where the slip part of K is
+/// 0) and in 3D on a curved QUAD8 with a slip along both tangents.
+#[test]
+fn slip_tangent_is_the_derivative_at_fixed_normal_force() {
+    let check = |c: &Case, u: &[[f64; 3]], resi: f64, mu: f64, e_n: f64| {
+        let dim = c.def.dim;
+        let (_, k, s) = c.eval(u, resi, false);
+        let st = &s.links[0];
+        assert_eq!(st.status, LinkStatus::Slip);
+        let link = &c.pairing.links[0];
+        let nloc = c.nnodes * dim;
+        // Local dof of (node, component) is node·dim + c here: the slave
+        // is the last node, the master nodes are 0..k in order.
+        let mut bn = vec![0.0; nloc];
+        let mut be = vec![0.0; nloc];
+        let g = (0..st.ntangents)
+            .map(|q| st.slip[q] * st.slip[q])
+            .sum::<f64>()
+            .sqrt();
+        for cc in 0..dim {
+            bn[link.slave * dim + cc] -= link.normal[cc];
+            for q in 0..st.ntangents {
+                be[link.slave * dim + cc] += st.slip[q] / g * link.tangents[q][cc];
+            }
+            for (j, &n) in link.master_nodes.iter().enumerate() {
+                bn[n * dim + cc] += link.shape[j] * link.normal[cc];
+                for q in 0..st.ntangents {
+                    be[n * dim + cc] -= link.shape[j] * st.slip[q] / g * link.tangents[q][cc];
+                }
+            }
+        }
+        let kmax = k.iter().flatten().fold(0.0f64, |a, &b| a.max(b.abs()));
+        let h = 1e-7;
+        let mut err = 0.0f64;
+        for j in 0..nloc {
+            let (n, cc) = (j / dim, j % dim);
+            let mut up = u.to_vec();
+            let mut um = u.to_vec();
+            up[n][cc] += h;
+            um[n][cc] -= h;
+            let (rp, _, sp) = c.eval(&up, resi, false);
+            let (rm, _, sm) = c.eval(&um, resi, false);
+            assert_eq!(sp.links[0].status, LinkStatus::Slip);
+            assert_eq!(sm.links[0].status, LinkStatus::Slip);
+            for i in 0..nloc {
+                let d = (rp[i] - rm[i]) / (2.0 * h);
+                let coupling = -mu * e_n * be[i] * bn[j];
+                err = err.max((d - k[i][j] - coupling).abs());
+            }
+        }
+        assert!(
+            err < 1e-6 * kmax,
+            "max |FD − K − C| = {err:e}, max |K| = {kmax:e}"
+        );
+        // Without the coupling the difference is not round-off: the test
+        // sees the term it adds.
+        let cmax = (0..nloc)
+            .flat_map(|i| (0..nloc).map(move |j| (i, j)))
+            .fold(0.0f64, |a, (i, j)| a.max((mu * e_n * be[i] * bn[j]).abs()));
+        assert!(cmax > 1e-3 * kmax);
+    };
+    let (c, mut u) = case_2d(coulomb(0.3, 1000.0, 1.0));
+    u[3][0] = 0.08;
+    check(&c, &u, 1.0, 0.3, 1000.0);
+    let (c, mut u) = case_3d(coulomb(0.3, 1000.0, 1.0));
     u[8][0] = 0.05;
     u[8][1] = 0.07;
-    assert!(c.fd_error(&u, 1.0) > 1e-2, "{}", c.fd_error(&u, 1.0));
+    check(&c, &u, 1.0, 0.3, 1000.0);
+    // Any COEF_MATR_FROT once RESI_GLOB_RELA < 1e-3.
+    let (c, _) = case_3d(coulomb(0.3, 1000.0, 0.4));
+    check(&c, &u, 1e-4, 0.3, 1000.0);
+    // A slip along τ2 mostly, with the master moving too.
+    let (c, mut u) = case_3d(coulomb(0.3, 1000.0, 1.0));
+    u[8][0] = -0.01;
+    u[8][1] = 0.09;
+    u[2] = [0.004, -0.003, 0.001];
+    check(&c, &u, 1e-4, 0.3, 1000.0);
 }
 
 #[test]
@@ -281,8 +357,8 @@ fn coef_matr_frot_weights_the_slip_tangent_while_the_residual_is_large() {
     let (_, k1, _) = c1.eval(&u, 0.5, false);
     let (r4, k4, _) = c4.eval(&u, 0.5, false);
     let (r1, _, _) = c1.eval(&u, 0.5, false);
-    // The residual does not depend on COEF_MATR_FROT; the tangent is
-    // K_contact + 0.4·K_slip.
+    // The residual does not depend on COEF_MATR_FROT; the tangent is the
+    // secant (w = 0) plus 0.4 times the correction −(λ_f/|g_t|) b_e b_eᵀ.
     assert_eq!(r4, r1);
     let mut slip_part = 0.0f64;
     for i in 0..k0.len() {

@@ -246,31 +246,35 @@ impl LinkCalc {
                 r[i] += ls.friction[q] * self.bt[q][i];
             }
         }
-        // The slip tangent as code_aster's frogdp builds it: the stick
-        // matrix E_T B_tᵀB_t of every active link minus, on a sliding
-        // link, the correction (E_T − λ_f/|g_t|) B_tᵀB_t, that correction
-        // weighted by COEF_MATR_FROT while RESI_GLOB_RELA ≥ 1e-3 (w = 1
-        // below). With w = 1 the tangential stiffness is the secant
-        // λ_f/|g_t| of the slip law; with w = 0 the stick matrix (stiffer:
-        // Newton converges linearly without stick/slip cycling). There is
-        // no normal-tangential coupling (the consistent derivative's
-        // −μ E_N e B_nᵀ): with E_N ≫ E_T it made Newton cycle between
-        // stick and slip on the Taylor bar (docs/contact.md §3).
+        // The slip tangent as code_aster's frogdp builds it (cffpm1: MAF1
+        // with the secant coefficient λ_f/|g_t| on both tangents; cffpm2:
+        // MAF2 = β²·F_f F_fᵀ with β² = 1/(λ_f |g_t|) and F_f = λ_f b_e the
+        // friction force at the link's dofs):
+        //     K_f = (λ_f/|g_t|)·(Σ_k B_t,k B_t,kᵀ − w b_e b_eᵀ),  b_e = Σ_k e_k B_t,k,
+        // w = COEF_MATR_FROT while RESI_GLOB_RELA ≥ 1e-3, 1 below. With
+        // w = 1 it is the derivative of F_t = λ_f e at fixed λ_n, i.e.
+        // (λ_f/|g_t|)(I − e eᵀ) in the tangent plane (0 in 2D, where e = ±1);
+        // with w = 0 it is the secant (K_f·Δu = r_f). The normal-tangential
+        // coupling −μ E_N b_e B_nᵀ of the full derivative is left out, as
+        // code_aster does: it is not symmetric, and with E_N ≫ E_T it made
+        // Newton cycle between stick and slip on the Taylor bar
+        // (docs/contact.md §3).
         let w = if input.resi_glob_rela >= RESI_COEF_MATR_FROT {
             fr.coef_matr_frot
         } else {
             1.0
         };
-        let kt = fr.e_t - w * (fr.e_t - threshold / gt);
-        for q in 0..nt {
-            for i in 0..nloc {
-                let bq = self.bt[q][i];
-                if bq == 0.0 {
-                    continue;
+        let secant = threshold / gt;
+        let be: Vec<f64> = (0..nloc)
+            .map(|i| (0..nt).map(|q| e[q] * self.bt[q][i]).sum())
+            .collect();
+        for i in 0..nloc {
+            for j in 0..nloc {
+                let mut v = -w * be[i] * be[j];
+                for q in 0..nt {
+                    v += self.bt[q][i] * self.bt[q][j];
                 }
-                for j in 0..nloc {
-                    k[i][j] += kt * bq * self.bt[q][j];
-                }
+                k[i][j] += secant * v;
             }
         }
         (ls, r, k)
