@@ -72,6 +72,29 @@ fn elastic_wave_in_a_rod() {
     run_study("wave_rod");
 }
 
+/// Free flight under DIFF_CENT and TCHAMWA, lumped and consistent mass,
+/// and a run continued with ETAT_INIT EVOL_NOLI: exact rigid motion.
+#[test]
+fn free_flight_explicit() {
+    run_study("free_flight_explicit");
+}
+
+/// The elastic wave in a rod under DIFF_CENT: the wave speed from the
+/// energy balance, the node motion with the consistent mass, the balance
+/// error bounded over 480 steps.
+#[test]
+fn elastic_wave_in_a_rod_explicit() {
+    run_study("wave_rod_explicit");
+}
+
+/// Explicit contact (an aster extension): Coulomb braking of a block with
+/// the kinematic and the penalised enforcement, the penalty penetration
+/// 2 m g / (9 E_N) of a block dropped on its springs.
+#[test]
+fn explicit_friction_braking_and_penalty_penetration() {
+    run_study("explicit_friction");
+}
+
 /// The Taylor bar on a frictionless wall, 10 x 40 QUAD8, 80 us (about 30 s
 /// in an optimised build).
 #[test]

@@ -7,11 +7,49 @@ use crate::catalog::args::Args;
 use crate::contact::{continuous, is_contact_surface, ContactDef, ContactZone, Coulomb, ReacGeom};
 use crate::diag::Diagnostic;
 use crate::mesh::Mesh;
+use crate::nonlinear::explicit_contact::Enforcement;
 
 impl ContactDef {
     /// Builds the definition from DEFI_CONTACT's checked keywords on the
     /// model's mesh. Every error names the keyword it is about.
     pub fn from_args(args: &Args, mesh: &Mesh) -> Result<ContactDef, Diagnostic> {
+        build(args, mesh, false)
+    }
+
+    /// The definition for an explicit DYNA_NON_LINE (an aster extension:
+    /// code_aster refuses contact in explicit dynamics): DISCRETE only,
+    /// ALGO_CONT='PENALISATION' (E_N, and E_T with friction) or
+    /// 'CONTRAINTE' enforced kinematically, Coulomb friction in both.
+    pub fn explicit_from_args(
+        args: &Args,
+        mesh: &Mesh,
+    ) -> Result<(ContactDef, Enforcement), Diagnostic> {
+        if args.text("FORMULATION").unwrap_or("DISCRETE") != "DISCRETE" {
+            return Err(args.not_implemented(
+                "FORMULATION",
+                "contact in explicit dynamics with a formulation other than 'DISCRETE'",
+            ));
+        }
+        let def = build(args, mesh, true)?;
+        let kinematic = args
+            .facts("ZONE")
+            .first()
+            .and_then(|z| z.text("ALGO_CONT"))
+            .unwrap_or("CONTRAINTE")
+            == "CONTRAINTE";
+        Ok((
+            def,
+            if kinematic {
+                Enforcement::Kinematic
+            } else {
+                Enforcement::Penalty
+            },
+        ))
+    }
+}
+
+fn build(args: &Args, mesh: &Mesh, explicit: bool) -> Result<ContactDef, Diagnostic> {
+    {
         let formulation = args.text("FORMULATION").unwrap_or("DISCRETE");
         match formulation {
             "DISCRETE" | "CONTINUE" => {}
@@ -65,7 +103,7 @@ impl ContactDef {
         };
         let zones = zones
             .iter()
-            .map(|z| zone(z, mesh, friction, continuous))
+            .map(|z| zone(z, mesh, friction, continuous, explicit))
             .collect::<Result<Vec<_>, _>>()?;
         let continuous = match czones {
             None => None,
@@ -288,6 +326,7 @@ fn zone(
     mesh: &Mesh,
     friction: bool,
     continuous: bool,
+    explicit: bool,
 ) -> Result<ContactZone, Diagnostic> {
     // Keywords whose meaning aster does not implement: refuse, never ignore.
     for key in ["MAILLE_MAIT", "MAILLE_ESCL", "SANS_NOEUD", "SANS_MAILLE"] {
@@ -325,6 +364,26 @@ fn zone(
     let algo = z.text("ALGO_CONT").unwrap_or("CONTRAINTE");
     if continuous {
         return zone_groups(z, mesh, 0.0, None);
+    }
+    if explicit && algo == "CONTRAINTE" {
+        // Kinematic enforcement: no penalty; COULOMB alone (E_T, required
+        // by the catalogue with friction, is not used).
+        let coulomb = if friction {
+            let mu = z.real("COULOMB").ok_or_else(|| {
+                z.error("COULOMB", "COULOMB is required with FROTTEMENT='COULOMB'")
+            })?;
+            if !(mu.is_finite() && mu >= 0.0) {
+                return Err(z.error("COULOMB", format!("COULOMB must be >= 0, got {mu:e}")));
+            }
+            Some(Coulomb {
+                mu,
+                e_t: 0.0,
+                coef_matr_frot: 0.0,
+            })
+        } else {
+            None
+        };
+        return zone_groups(z, mesh, 0.0, coulomb);
     }
     if friction && algo != "PENALISATION" {
         return Err(z

@@ -286,13 +286,12 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         }
         let algo = zone.text("ALGO_CONT").unwrap_or_default();
         if formulation == "DISCRETE" && friction && algo != "PENALISATION" {
-            return Err(zone.error(
-                "ALGO_CONT",
-                format!(
-                    "discrete contact with Coulomb friction needs ALGO_CONT='PENALISATION' \
-                     (zone {}: ALGO_CONT='{algo}') (CONTACT3_3)",
-                    k + 1
-                ),
+            // code_aster stops here (CONTACT3_3); aster accepts it for the
+            // kinematic contact of explicit dynamics, its extension, and
+            // an implicit DYNA_NON_LINE refuses it with CONTACT3_3.
+            lines.push(format!(
+                "      zone {}: Coulomb friction with ALGO_CONT='{algo}': only for an explicit DYNA_NON_LINE (kinematic contact, an aster extension); implicit schemes need ALGO_CONT='PENALISATION' (code_aster CONTACT3_3)",
+                k + 1
             ));
         }
         if args.text("VERI_NORM") != Some("NON") {

@@ -18,6 +18,7 @@ use crate::nonlinear::{
 };
 use crate::result::{Access, EvolNoli};
 use crate::study::Study;
+use crate::time::explicit::ExplicitScheme;
 use crate::time::list::{Action, Event, Subdivision, TimeList, TplusMode};
 use crate::time::Scheme;
 
@@ -50,7 +51,7 @@ pub fn def() -> CommandDef {
             .doc("loads and boundary conditions")
             .kw(),
             concept("CONTACT", &[C::CharContact])
-                .doc("contact definition from DEFI_CONTACT (not with explicit schemes)")
+                .doc("contact definition from DEFI_CONTACT (with explicit schemes: DISCRETE against a fixed master, an aster extension)")
                 .kw(),
             text("AMOR_RAYL_RIGI")
                 .into(&["TANGENTE", "ELASTIQUE"])
@@ -359,12 +360,36 @@ pub(crate) fn prepare_error(args: &Args, e: PrepareError) -> Diagnostic {
     }
 }
 
-fn scheme_of(args: &Args) -> Result<Scheme, Diagnostic> {
+/// The scheme of SCHEMA_TEMPS: implicit (Newmark family) or explicit.
+enum SchemeChoice {
+    Implicit(Scheme),
+    Explicit(ExplicitScheme),
+}
+
+fn scheme_of(args: &Args) -> Result<SchemeChoice, Diagnostic> {
     let st = args
         .fact("SCHEMA_TEMPS")
         .ok_or_else(|| args.error("SCHEMA_TEMPS", "SCHEMA_TEMPS is compulsory"))?;
     let schema = st.text("SCHEMA").unwrap_or("");
     let formulation = st.text("FORMULATION").unwrap_or("");
+    match schema {
+        "DIFF_CENT" | "TCHAMWA" => {
+            if formulation != "ACCELERATION" {
+                return Err(st.error(
+                    "FORMULATION",
+                    format!("SCHEMA='{schema}' needs FORMULATION='ACCELERATION' (MECANONLINE5_10)"),
+                ));
+            }
+            return Ok(SchemeChoice::Explicit(if schema == "DIFF_CENT" {
+                ExplicitScheme::DiffCent
+            } else {
+                ExplicitScheme::Tchamwa {
+                    phi: st.real("PHI").unwrap_or(1.05),
+                }
+            }));
+        }
+        _ => {}
+    }
     let scheme = match schema {
         "NEWMARK" => Scheme::newmark(
             st.real("BETA").unwrap_or(0.25),
@@ -377,13 +402,13 @@ fn scheme_of(args: &Args) -> Result<Scheme, Diagnostic> {
         other => {
             return Err(st.not_implemented(
                 "SCHEMA",
-                &format!("SCHEMA='{other}'; NEWMARK and HHT are implemented"),
+                &format!("SCHEMA='{other}'; NEWMARK, HHT, DIFF_CENT and TCHAMWA are implemented"),
             ))
         }
     }
     .map_err(|m| st.error("SCHEMA", m))?;
     match formulation {
-        "DEPLACEMENT" => Ok(scheme),
+        "DEPLACEMENT" => Ok(SchemeChoice::Implicit(scheme)),
         "VITESSE" => Err(st.error(
             "FORMULATION",
             format!("FORMULATION='VITESSE' is forbidden with SCHEMA='{schema}' (as in code_aster)"),
@@ -451,7 +476,7 @@ fn convergence_of(args: &Args, log: &mut Vec<String>) -> Result<ConvergenceSetti
     Ok(c)
 }
 
-fn archive_of(study: &Study, args: &Args) -> Result<ArchivePolicy, Diagnostic> {
+pub(crate) fn archive_of(study: &Study, args: &Args) -> Result<ArchivePolicy, Diagnostic> {
     let Some(o) = args.fact("ARCHIVAGE") else {
         return Ok(ArchivePolicy::Every(1));
     };
@@ -484,7 +509,7 @@ fn archive_of(study: &Study, args: &Args) -> Result<ArchivePolicy, Diagnostic> {
     })
 }
 
-fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Suivi>, Diagnostic> {
+pub(crate) fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Suivi>, Diagnostic> {
     let mut out = Vec::new();
     for o in args.facts("SUIVI_DDL") {
         let name = o.text("NOM_CHAM").unwrap_or("");
@@ -567,7 +592,7 @@ fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Suivi>, Diagn
 
 /// The time list and the instants [INST_INIT .. INST_FIN] to compute;
 /// `t_etat` is the initial instant of an EVOL_NOLI initial state.
-fn time_range(
+pub(crate) fn time_range(
     study: &Study,
     args: &Args,
     t_etat: Option<f64>,
@@ -645,15 +670,15 @@ fn time_range(
 }
 
 /// The initial state: (t0 from EVOL_NOLI, u, v, a, Gauss states).
-struct Init {
-    t0: Option<f64>,
-    u: Option<Vec<f64>>,
-    v: Option<Vec<f64>>,
-    a: Option<Vec<f64>>,
-    points: Option<Vec<crate::element::PointState>>,
+pub(crate) struct Init {
+    pub t0: Option<f64>,
+    pub u: Option<Vec<f64>>,
+    pub v: Option<Vec<f64>>,
+    pub a: Option<Vec<f64>>,
+    pub points: Option<Vec<crate::element::PointState>>,
 }
 
-fn etat_init(
+pub(crate) fn etat_init(
     study: &Study,
     args: &Args,
     asm: &Assembler,
@@ -728,10 +753,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     if args.given("RECH_LINEAIRE") {
         return Err(args.not_implemented("RECH_LINEAIRE", ""));
     }
-    if args.text("MASS_DIAG") == Some("OUI") {
+    let choice = scheme_of(args)?;
+    if args.text("MASS_DIAG") == Some("OUI") && matches!(choice, SchemeChoice::Implicit(_)) {
         return Err(args.error(
             "MASS_DIAG",
-            "MASS_DIAG='OUI' is only allowed with explicit schemes",
+            "MASS_DIAG='OUI' is only allowed with explicit schemes (MECANONLINE5_13)",
         ));
     }
     let unilateral = args.concept("CONTACT").is_some_and(|name| {
@@ -747,7 +773,6 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             }
         }
     }
-    let scheme = scheme_of(args)?;
     let mut notes: Vec<String> = Vec::new();
     let model_name = args.concept("MODELE").unwrap_or("").to_string();
     let mat_name = args.concept("CHAM_MATER").unwrap_or("").to_string();
@@ -785,6 +810,27 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     )
     .map_err(|e| prepare_error(args, e))?;
     notes.extend(alarms);
+    let scheme = match choice {
+        SchemeChoice::Implicit(s) => s,
+        SchemeChoice::Explicit(es) => {
+            return super::dyna_explicit::exec(
+                study,
+                args,
+                result,
+                super::dyna_explicit::Prepared {
+                    scheme: es,
+                    md,
+                    occs,
+                    loads,
+                    load_names,
+                    asm,
+                    notes,
+                    model_name,
+                    mat_name,
+                },
+            )
+        }
+    };
     let mut newton = newton_of(args)?;
     let mut unil_def = None;
     let contact_def = match args.concept("CONTACT") {

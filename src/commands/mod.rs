@@ -30,6 +30,7 @@ pub mod defi_group;
 pub mod defi_list_inst;
 pub mod defi_list_reel;
 pub mod defi_materiau;
+pub mod dyna_explicit;
 pub mod dyna_non_line;
 pub mod fin;
 pub mod impr_fonction;

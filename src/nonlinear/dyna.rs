@@ -26,7 +26,8 @@ pub enum ArchivePolicy {
 }
 
 impl ArchivePolicy {
-    fn wants(&self, computed: usize, t: f64) -> bool {
+    /// Whether the `computed`-th step, ending at `t`, is archived.
+    pub fn wants(&self, computed: usize, t: f64) -> bool {
         match self {
             ArchivePolicy::Every(p) => *p > 0 && computed.is_multiple_of(*p),
             ArchivePolicy::Instants {

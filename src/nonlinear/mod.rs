@@ -16,6 +16,8 @@ pub mod continuous;
 pub mod dofs;
 pub mod dyna;
 pub mod energy;
+pub mod explicit;
+pub mod explicit_contact;
 pub mod fields;
 pub mod newton;
 pub mod unilateral;

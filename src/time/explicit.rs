@@ -1,7 +1,6 @@
-//! Building blocks of explicit dynamics (DIFF_CENT with MASS_DIAG='OUI'):
-//! the lumped mass and a sound critical step. The explicit time loop
-//! itself is not built yet (DYNA_NON_LINE refuses DIFF_CENT/TCHAMWA with
-//! `not implemented yet`).
+//! Building blocks of explicit dynamics (DIFF_CENT, TCHAMWA): the two
+//! schemes' coefficients, the lumped mass and a sound critical step. The
+//! time loop that uses them is `nonlinear::explicit`.
 //!
 //! Lumped mass: HRZ diagonal scaling (Hinton, Rock & Zienkiewicz 1976).
 //! Why not row sums: on quadratic elements the rows of the consistent mass
@@ -22,7 +21,77 @@
 //! central-difference limit on every mesh. ω_max,e comes from power
 //! iteration on the symmetric D^{-1/2} K_e D^{-1/2} (D the lumped diagonal).
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, SymmetricEigen};
+
+/// An explicit scheme of code_aster's acceleration formulation
+/// (notes/explicit.md §3): both predict u_{n+1} = u_n + Δt v_n + c Δt² a_n
+/// and solve M a_{n+1} = r(u_{n+1}).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ExplicitScheme {
+    /// DIFF_CENT: c = ½, v* = v_n + ½Δt a_n, then v_{n+1} = v* + ½Δt a_{n+1}
+    /// (Newmark β = 0, γ = ½: the leapfrog scheme).
+    DiffCent,
+    /// TCHAMWA(PHI): c = φ, v_{n+1} = v_n + Δt a_n, no velocity correction
+    /// (a_{n+1} first enters v_{n+2}); first order and dissipative for φ > 1.
+    Tchamwa { phi: f64 },
+}
+
+impl ExplicitScheme {
+    /// c of the displacement predictor u_n + Δt v_n + c Δt² a_n.
+    pub fn displacement_coefficient(&self) -> f64 {
+        match self {
+            ExplicitScheme::DiffCent => 0.5,
+            ExplicitScheme::Tchamwa { phi } => *phi,
+        }
+    }
+
+    /// The factor f of the critical step f·2/ω_max. For DIFF_CENT 1. For
+    /// TCHAMWA the exact single-dof limit Ω ≤ 2/√(2φ−1) (notes/explicit.md
+    /// §3.2, the amplification matrix [[1−φΩ², 1], [−Ω², 1]]); code_aster
+    /// divides by φ instead, which is more conservative but not the limit.
+    /// None for φ < 1: the scheme is unstable at every step (the
+    /// determinant 1 − (φ−1)Ω² exceeds 1).
+    pub fn stability_factor(&self) -> Option<f64> {
+        match self {
+            ExplicitScheme::DiffCent => Some(1.0),
+            ExplicitScheme::Tchamwa { phi } if *phi >= 1.0 => Some(1.0 / (2.0 * phi - 1.0).sqrt()),
+            ExplicitScheme::Tchamwa { .. } => None,
+        }
+    }
+
+    /// code_aster's name of the scheme.
+    pub fn name(&self) -> &'static str {
+        match self {
+            ExplicitScheme::DiffCent => "DIFF_CENT",
+            ExplicitScheme::Tchamwa { .. } => "TCHAMWA",
+        }
+    }
+}
+
+/// The largest ω² of K x = ω² M x for a symmetric positive definite
+/// element mass `m` (consistent) and a stiffness `k` (symmetrised here:
+/// a finite-strain tangent may be slightly unsymmetric), by the
+/// symmetric eigenvalues of L⁻¹ K L⁻ᵀ with M = L Lᵀ. None when M is not
+/// positive definite.
+pub fn max_eigenvalue_consistent(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Option<f64> {
+    let l = m.clone().cholesky()?.l();
+    let ks = (k + k.transpose()) * 0.5;
+    let linv = l.clone().try_inverse()?;
+    let a = &linv * ks * linv.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    Some(SymmetricEigen::new(a).eigenvalues.max().max(0.0))
+}
+
+/// The largest ω² of K x = ω² D x for the diagonal D = diag(`lumped`), by
+/// the symmetric eigenvalues of D^{-1/2} K D^{-1/2} (a direct method: the
+/// power iteration of [`max_eigenvalue`] converges slowly when the top two
+/// modes are close, and the run re-estimates the step many times).
+pub fn max_eigenvalue_lumped(k: &DMatrix<f64>, lumped: &[f64]) -> f64 {
+    let n = k.nrows();
+    let s: Vec<f64> = lumped.iter().map(|m| 1.0 / m.sqrt()).collect();
+    let a = DMatrix::from_fn(n, n, |i, j| 0.5 * s[i] * (k[(i, j)] + k[(j, i)]) * s[j]);
+    SymmetricEigen::new(a).eigenvalues.max().max(0.0)
+}
 
 /// HRZ lumped mass of an element: the consistent mass `m` (`nn·d` square,
 /// node-major, directions uncoupled) to one positive mass per local dof.

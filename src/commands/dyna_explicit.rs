@@ -1,0 +1,319 @@
+//! DYNA_NON_LINE with an explicit scheme (SCHEMA='DIFF_CENT' | 'TCHAMWA'):
+//! the keywords turned into the engine's input (`nonlinear::explicit`),
+//! code_aster's checks of the explicit path (notes/explicit.md §2, §9) and
+//! the CFL check of the time list.
+
+use super::dyna_non_line::{
+    archive_of, cell_comportement, etat_init, prepare_error, time_range, ModelData,
+};
+use super::ExecResult;
+use crate::catalog::args::Args;
+use crate::concepts::{Concept, ConceptData, ConceptType as C};
+use crate::diag::Diagnostic;
+use crate::model::MechLoad;
+use crate::nonlinear::explicit::{self, Explicit, ExplicitSettings};
+use crate::nonlinear::explicit_contact::{Enforcement, ExplicitContact};
+use crate::nonlinear::{
+    self, dyna, ConvergenceSettings, Engine, NewtonSettings, Occurrence, PrepareError, TimeLoop,
+};
+use crate::result::EvolNoli;
+use crate::study::Study;
+use crate::time::explicit::ExplicitScheme;
+use crate::time::list::Action;
+use crate::time::Scheme;
+
+/// What the implicit and explicit paths share, built by `dyna_non_line`.
+pub(crate) struct Prepared {
+    pub scheme: ExplicitScheme,
+    pub md: ModelData,
+    pub occs: Vec<Occurrence>,
+    pub loads: Vec<MechLoad>,
+    pub load_names: Vec<String>,
+    pub asm: nonlinear::Assembler,
+    pub notes: Vec<String>,
+    pub model_name: String,
+    pub mat_name: String,
+}
+
+/// Steps between two estimates of the critical step on the current
+/// geometry (the mesh deforms little in so many explicit steps).
+const RECHECK_STEPS: usize = 25;
+
+pub(crate) fn exec(
+    study: &mut Study,
+    args: &Args,
+    result: Option<&str>,
+    p: Prepared,
+) -> ExecResult {
+    let Prepared {
+        scheme,
+        md,
+        occs,
+        loads,
+        load_names,
+        asm,
+        mut notes,
+        model_name,
+        mat_name,
+    } = p;
+    let st = args
+        .fact("SCHEMA_TEMPS")
+        .ok_or_else(|| args.error("SCHEMA_TEMPS", "SCHEMA_TEMPS is compulsory"))?;
+    let stop_cfl = st.text("STOP_CFL").unwrap_or("OUI") == "OUI";
+    let lumped = args.text("MASS_DIAG") == Some("OUI");
+    if let Some(o) = args.fact("NEWTON") {
+        let matrice = o.text("MATRICE").unwrap_or("TANGENTE");
+        let prediction = o.text("PREDICTION").unwrap_or(matrice);
+        if prediction != "TANGENTE" {
+            return Err(o.error(
+                "PREDICTION",
+                format!("an explicit scheme needs the prediction 'TANGENTE', here '{prediction}' (MATRICE gives PREDICTION its default) (MECANONLINE5_1)"),
+            ));
+        }
+    }
+    if args.has("SUIVI_DDL") {
+        return Err(args.not_implemented("SUIVI_DDL", "SUIVI_DDL with an explicit scheme"));
+    }
+    if args.has("CONVERGENCE") || args.has("NEWTON") {
+        notes.push("CONVERGENCE and NEWTON have no effect with an explicit scheme: every step is converged by definition (as code_aster)".into());
+    }
+    if scheme.stability_factor().is_none() {
+        let m = format!(
+            "TCHAMWA with PHI = {} < 1 is unstable for every step (the amplification matrix has determinant 1 - (PHI-1) (w dt)^2 > 1)",
+            scheme.displacement_coefficient()
+        );
+        if stop_cfl {
+            return Err(st.error("PHI", m));
+        }
+        notes.push(format!("alarm: {m}"));
+    }
+    if lumped {
+        notes.push("MASS_DIAG='OUI': lumped mass by HRZ diagonal scaling (Hinton, Rock & Zienkiewicz: the consistent diagonal scaled to keep each element's mass, positive on quadratic elements; code_aster's MASS_MECA_EXPLI recipe); each step is a division, no factorisation".into());
+        if md
+            .model
+            .element_cells()
+            .any(|(_, s)| s.formulation == crate::model::spec::Formulation::Axis)
+        {
+            notes.push("the lumped mass of AXIS elements (HRZ with the weight r) is an aster extension: code_aster has no diagonal mass for AXIS elements (CALCUL_38)".into());
+        }
+        if md.model.element_cells().any(|(_, s)| s.is_hexs8()) {
+            notes.push("the lumped mass of HEXS8 (3D_SI HEXA8) cells is an aster extension: code_aster's MECA_HEXS8 declares no MASS_MECA_EXPLI".into());
+        }
+    } else {
+        notes.push("MASS_DIAG absent: the consistent mass is used, factorised once and solved at every step, as code_aster does; MASS_DIAG='OUI' gives the lumped mass (no solve)".into());
+    }
+    let contact_def = match args.concept("CONTACT") {
+        None => None,
+        Some(name) => {
+            let Some(ConceptData::Contact(cargs)) = study.concepts.data(name) else {
+                return Err(args.error(
+                    "CONTACT",
+                    format!("the contact {name} holds no data (its command did not run)"),
+                ));
+            };
+            if !lumped {
+                return Err(args.not_implemented(
+                    "CONTACT",
+                    "contact in explicit dynamics with the consistent mass (give MASS_DIAG='OUI')",
+                ));
+            }
+            let (def, enf) = crate::contact::ContactDef::explicit_from_args(cargs, &md.mesh)?;
+            notes.push(format!(
+                "contact in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_22): {} against a fixed master",
+                match enf {
+                    Enforcement::Kinematic => "ALGO_CONT='CONTRAINTE' enforced kinematically (predictor-corrector, momentum-conserving)",
+                    Enforcement::Penalty => "ALGO_CONT='PENALISATION' (penalty force; its stiffness enters the stable step)",
+                }
+            ));
+            Some((def, enf))
+        }
+    };
+    let archive = archive_of(study, args)?;
+    let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
+    let init = etat_init(study, args, &asm, &dof_names)?;
+    let (list, instants) = time_range(study, args, init.t0)?;
+    if list.on_error() != &Action::Arret || list.rules.len() > 1 {
+        notes.push("the time list's events and actions are not used in explicit: a failure stops the run (the sub-steps come from the critical step)".into());
+    }
+    let load_refs: Vec<&MechLoad> = loads.iter().collect();
+    let rho = explicit::cell_densities(&md.model, &md.matfield, &md.materials, &occs)
+        .map_err(|e| prepare_error(args, PrepareError::Behaviour(e)))?;
+    let tl = TimeLoop {
+        instants,
+        on_error: Action::Arret,
+        archive,
+        newton_table: false,
+        suivi: Vec::new(),
+        progress: false,
+        dof_names,
+        ncells: md.mesh.ncells(),
+        events: dyna::ContactEvents::default(),
+        growth: None,
+    };
+    let mut evol = match result.and_then(|r| study.concepts.data(r)) {
+        Some(ConceptData::Result(r)) => (**r).clone(),
+        _ => EvolNoli::default(),
+    };
+    evol.mesh = md.model.mesh.clone();
+    evol.model = model_name.clone();
+    evol.cham_mater = mat_name.clone();
+    evol.loads = load_names.clone();
+    evol.comportement = cell_comportement(&md.model, &occs);
+
+    let has_acce = init.a.is_some();
+    let mut state = nonlinear::initial_state(&asm, tl.instants[0], init.u, init.v, init.a);
+    if let Some(pts) = init.points {
+        state.points = pts;
+    }
+    // The Newmark parameters of the engine are unused: the explicit loop
+    // drives the engine's states and assembler itself.
+    let unused = Scheme::newmark(0.25, 0.5).map_err(|m| args.error("SCHEMA_TEMPS", m))?;
+    let mut engine = Engine::new(
+        asm,
+        unused,
+        NewtonSettings::default(),
+        ConvergenceSettings::default(),
+        state,
+    );
+    engine.fext = crate::element::body_force::gravity_forces(
+        &md.mesh,
+        &md.model,
+        &md.matfield,
+        &md.materials,
+        &load_refs,
+    )
+    .map_err(|m| args.error("EXCIT", m))?;
+    let mut ex = Explicit::new(&mut engine.asm, &rho, scheme, lumped)
+        .map_err(|m| args.error("MODELE", m))?;
+    let clamped = ex.impose_initial(&mut engine);
+    if clamped > 0 {
+        notes.push(format!(
+            "{clamped} imposed dof(s) had an initial velocity: the imposed displacement holds them (v = 0 there from the start; code_aster imposes the acceleration and would let them drift)"
+        ));
+    }
+    engine
+        .initialize(false)
+        .map_err(|f| args.error("", format!("initial state: {f}")))?;
+    let mut contact = match contact_def {
+        None => None,
+        Some((def, enf)) => Some(
+            ExplicitContact::new(
+                def,
+                enf,
+                &md.mesh,
+                &engine.asm.numbering,
+                &engine.committed.motion.u,
+            )
+            .map_err(|m| args.error("CONTACT", m))?,
+        ),
+    };
+    let w2c = contact.as_ref().map_or(0.0, |c| c.penalty_omega2(&ex.mass));
+    let bound = ex
+        .step_bound(
+            &engine.asm,
+            &engine.committed.motion.u,
+            &engine.committed.points,
+            w2c,
+        )
+        .map_err(|f| {
+            args.error(
+                "",
+                format!("critical step: cell {}: {}", f.cell + 1, f.failure),
+            )
+        })?;
+    notes.push(format!(
+        "{}: critical step {:.6e} s (element eigenvalue bound 2/w_max{}, largest w at cell {}){}",
+        scheme.name(),
+        bound.dt,
+        match scheme {
+            ExplicitScheme::DiffCent => String::new(),
+            ExplicitScheme::Tchamwa { phi } =>
+                format!(" times 1/sqrt(2 PHI - 1) = {:.4}, PHI = {phi}", scheme.stability_factor().unwrap_or(0.0)),
+        },
+        bound.cell + 1,
+        if w2c > 0.0 {
+            format!(
+                "; without the contact penalty {:.6e} s: the penalty stiffness on the lightest slave node lowers it by a factor {:.3}",
+                bound.dt_elements,
+                bound.dt_elements / bound.dt
+            )
+        } else {
+            String::new()
+        }
+    ));
+    if w2c > 0.0 && bound.dt < bound.dt_elements / 10.0 {
+        notes.push(format!(
+            "alarm: the contact penalty shrinks the stable step by more than 10 times: {:.6e} s instead of {:.6e} s (lower E_N/E_T, or use ALGO_CONT='CONTRAINTE')",
+            bound.dt, bound.dt_elements
+        ));
+    }
+    if let Some((k, t, dt)) = explicit::first_step_above(&tl.instants, bound.dt) {
+        let m = format!(
+            "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} of cell {} (DYNAMIQUE_2)",
+            bound.dt,
+            bound.cell + 1
+        );
+        if stop_cfl {
+            let inc = args.fact("INCREMENT").unwrap_or(args);
+            return Err(inc
+                .error("LIST_INST", m)
+                .note("STOP_CFL='NON' runs it anyway with an alarm"));
+        }
+        notes.push(format!(
+            "alarm: {m}; STOP_CFL='NON': the list is followed as given"
+        ));
+    }
+    let settings = ExplicitSettings {
+        stop_cfl,
+        recheck: if stop_cfl { RECHECK_STEPS } else { 0 },
+    };
+    for n in &notes {
+        study.log(format!("  {n}"));
+    }
+    study.log(format!(
+        "  DYNA_NON_LINE ({}): {} equations ({} imposed dofs), {} elements; {} steps of the list from {:e} to {:e}",
+        scheme.name(),
+        engine.asm.numbering.neq(),
+        engine.asm.numbering.imposed.len(),
+        engine.asm.elements.len(),
+        tl.instants.len() - 1,
+        tl.instants[0],
+        tl.instants[tl.instants.len() - 1]
+    ));
+    let verbose = study.verbose;
+    let mess = &mut study.mess;
+    let mut log = |line: &str| {
+        if verbose {
+            eprintln!("{line}");
+        }
+        mess.push_str(line);
+        mess.push('\n');
+    };
+    let outcome = explicit::run(
+        &mut engine,
+        &mut ex,
+        contact.as_mut(),
+        &tl,
+        &settings,
+        has_acce,
+        &mut evol,
+        &mut log,
+    );
+    match outcome {
+        Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
+        Err(stopped) => {
+            if let Some(name) = result {
+                study.concepts.insert(Concept {
+                    name: name.to_string(),
+                    ty: C::EvolNoli,
+                    defined_at: args.span,
+                    command: args.command.clone(),
+                    data: ConceptData::Result(Box::new(evol)),
+                });
+            }
+            Err(Diagnostic::error(stopped.message)
+                .at(args.span)
+                .in_command(args.command.clone()))
+        }
+    }
+}

@@ -1,0 +1,729 @@
+//! Explicit dynamics: DYNA_NON_LINE with SCHEMA='DIFF_CENT' or 'TCHAMWA'
+//! (FORMULATION='ACCELERATION'), code_aster's predictors and correctors
+//! (notes/explicit.md §3), without Newton and without factorisation when
+//! the mass is lumped (MASS_DIAG='OUI'): one internal-force evaluation per
+//! step, the laws called with the strain increment of the step.
+//!
+//! One step from (u_n, v_n, a_n), c = ½ (DIFF_CENT) or φ (TCHAMWA):
+//! 1. u_{n+1} = u_n + Δt v_n + c Δt² a_n on the free dofs, the imposed value
+//!    on imposed ones;
+//! 2. F_int(u_{n+1}) by one element pass (the law integrates u_n → u_{n+1});
+//!    penalised contact adds its forces at u_{n+1};
+//! 3. a_{n+1} = M⁻¹ (F_ext − F_int − F_c) on the free dofs (a division by
+//!    the lumped mass; with the consistent mass, a solve with the mass
+//!    factorised once, as code_aster does when MASS_DIAG is absent);
+//! 4. DIFF_CENT: v_{n+1} = v_n + ½Δt (a_n + a_{n+1}); TCHAMWA: v_{n+1} =
+//!    v_n + Δt a_n (no correction);
+//! 5. kinematic contact corrects a_{n+1} (and, for DIFF_CENT, v_{n+1}) so
+//!    that the next predicted positions do not penetrate
+//!    (`nonlinear::explicit_contact`).
+//!
+//! Imposed dofs (DDL_IMPO, constant values) are prescribed kinematically,
+//! as explicit codes do (notes/explicit.md §4, Belytschko, Liu & Moran
+//! ch. 6): u = the value, v = a = 0. code_aster imposes the acceleration
+//! through Lagrange rows instead, so a clamped dof given an initial
+//! velocity drifts there; here it holds.
+//!
+//! Stable step: the element eigenvalue inequality (time::explicit) bounds
+//! the assembled ω_max by the largest element one, so Δt ≤ f·2/ω_max,e is
+//! stable (f the scheme's factor); a contact penalty k on a node of mass m
+//! adds k/m to ω² (Weyl's inequality on the scaled matrices). The bound is
+//! checked against the time list once (STOP_CFL, as code_aster) and, an
+//! aster extension, re-estimated on the current geometry during the run:
+//! when the mesh has shrunk below the list's step, that step is cut into
+//! equal sub-steps (logged), since a crushed element's limit falls with its
+//! size.
+
+use nalgebra::DMatrix;
+use rayon::prelude::*;
+
+use super::assembly::{Assembler, CellFailure};
+use super::dyna::{archive, RunSummary, Stopped, TimeLoop};
+use super::energy::EnergyBalance;
+use super::explicit_contact::ExplicitContact;
+use super::newton::Engine;
+use crate::element::{internal_forces, mass, PointState, MAX_DOFS};
+use crate::law::TangentKind;
+use crate::result::EvolNoli;
+use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
+use crate::time::explicit::{
+    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_lumped, ExplicitScheme,
+};
+
+/// The mass of one element as the step estimate uses it.
+enum ElemMass {
+    Lumped(Vec<f64>),
+    Consistent(DMatrix<f64>),
+}
+
+/// The element critical step bound of a state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepBound {
+    /// f·2/ω_max over the elements (penalty included when `with_contact`).
+    pub dt: f64,
+    /// The same without the contact penalty.
+    pub dt_elements: f64,
+    /// The mesh cell (0-based) with the largest element ω.
+    pub cell: usize,
+}
+
+/// The explicit integrator of one computation: the scheme, the mass and
+/// the element masses of the step estimates.
+pub struct Explicit {
+    pub scheme: ExplicitScheme,
+    /// MASS_DIAG='OUI'.
+    pub lumped: bool,
+    /// Lumped mass of each full dof (0 outside the model); with the
+    /// consistent mass, its HRZ lumping, used by the contact only.
+    pub mass: Vec<f64>,
+    elem_mass: Vec<ElemMass>,
+    /// The consistent mass of the free equations, factorised once.
+    solver: Option<DirectLu>,
+    rhs: Vec<f64>,
+    /// Internal forces, state n (the energy balance's trapezoid).
+    prev_fint: Vec<f64>,
+    prev_ext: Vec<f64>,
+    prev_fc: Vec<f64>,
+    prev_u: Vec<f64>,
+    work: Vec<f64>,
+}
+
+/// The explicit run's settings besides the time loop's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExplicitSettings {
+    /// STOP_CFL='OUI': the bound is enforced (list check, sub-steps when
+    /// the mesh shrinks); 'NON': the list is followed as given.
+    pub stop_cfl: bool,
+    /// Re-estimate the bound every this many computed steps (0: never).
+    pub recheck: usize,
+}
+
+impl Explicit {
+    /// Builds the masses: HRZ lumping of each element's consistent mass
+    /// (`rho[cell]` the density of each mesh cell) when `lumped`, the
+    /// consistent mass factorised once otherwise. With `lumped`, the
+    /// assembler's mass arrays are replaced by the diagonal, so that every
+    /// later use (kinetic energy, reactions) sees the mass of the run.
+    pub fn new(
+        asm: &mut Assembler,
+        rho: &[f64],
+        scheme: ExplicitScheme,
+        lumped: bool,
+    ) -> Result<Explicit, String> {
+        let nfull = asm.numbering.nfull();
+        let d = asm.numbering.ndpn;
+        let mut diag = vec![0.0; nfull];
+        let mut elem_mass = Vec::with_capacity(asm.elements.len());
+        for e in &asm.elements {
+            let m = mass(&e.spec, &e.coords, rho[e.cell])
+                .map_err(|f| format!("cell {}: mass matrix: {f}", e.cell + 1))?;
+            let l = hrz_lumped(&m, d).ok_or_else(|| {
+                format!(
+                    "cell {}: the lumped (HRZ) mass is not positive (zero density or volume)",
+                    e.cell + 1
+                )
+            })?;
+            for (k, &f) in e.full.iter().enumerate() {
+                diag[f] += l[k];
+            }
+            elem_mass.push(if lumped {
+                ElemMass::Lumped(l)
+            } else {
+                ElemMass::Consistent(m)
+            });
+        }
+        let mut solver = None;
+        if lumped {
+            let mf = &mut asm.mass_full;
+            let pat = mf.pattern.clone();
+            for j in 0..pat.n {
+                for k in pat.col_ptr[j]..pat.col_ptr[j + 1] {
+                    mf.values[k] = if pat.row_idx[k] == j { diag[j] } else { 0.0 };
+                }
+            }
+            let nb = &asm.numbering;
+            let pat = asm.pattern.clone();
+            for j in 0..pat.n {
+                for k in pat.col_ptr[j]..pat.col_ptr[j + 1] {
+                    asm.mass_free[k] = if pat.row_idx[k] == j && j < nb.neq() {
+                        diag[nb.free[j]]
+                    } else {
+                        0.0
+                    };
+                }
+            }
+        } else {
+            let mut m = SparseMatrix::zeros(asm.pattern.clone());
+            m.values.copy_from_slice(&asm.mass_free);
+            let mut lu = DirectLu::new();
+            lu.factorize(&m)
+                .map_err(|e| format!("the consistent mass cannot be factorised: {e}"))?;
+            solver = Some(lu);
+        }
+        Ok(Explicit {
+            scheme,
+            lumped,
+            mass: diag,
+            elem_mass,
+            solver,
+            rhs: vec![0.0; asm.numbering.neq()],
+            prev_fint: vec![0.0; nfull],
+            prev_ext: vec![0.0; nfull],
+            prev_fc: vec![0.0; nfull],
+            prev_u: vec![0.0; nfull],
+            work: vec![0.0; nfull],
+        })
+    }
+
+    /// The element bound of the critical step at the state (`u`, `points`):
+    /// each element's elastic stiffness there (finite-strain elements on
+    /// their current geometry) against its mass; `contact_omega2` is the
+    /// contact penalty's k/m (0 without).
+    pub fn step_bound(
+        &self,
+        asm: &Assembler,
+        u: &[f64],
+        points: &[PointState],
+        contact_omega2: f64,
+    ) -> Result<StepBound, CellFailure> {
+        let laws = &asm.laws;
+        let per: Vec<Result<f64, CellFailure>> = asm
+            .elements
+            .par_iter()
+            .zip(&self.elem_mass)
+            .map(|(e, m)| {
+                let n = e.full.len();
+                let mut lu = [0.0; MAX_DOFS];
+                for k in 0..n {
+                    lu[k] = u[e.full[k]];
+                }
+                let fail = |failure| CellFailure {
+                    cell: e.cell,
+                    failure,
+                };
+                let r = internal_forces(
+                    &e.spec,
+                    e.kin,
+                    &e.coords,
+                    &lu[..n],
+                    &lu[..n],
+                    &points[e.state_offset..e.state_offset + e.npg],
+                    laws[e.law].law_ref(),
+                    0.0,
+                    TangentKind::Elastic,
+                )
+                .map_err(fail)?;
+                let Some(k) = r.stiffness else {
+                    return Ok(0.0);
+                };
+                Ok(match m {
+                    ElemMass::Lumped(l) => max_eigenvalue_lumped(&k, l),
+                    ElemMass::Consistent(mc) => {
+                        max_eigenvalue_consistent(&k, mc).unwrap_or(f64::INFINITY)
+                    }
+                })
+            })
+            .collect();
+        let (mut w2, mut cell) = (0.0f64, asm.elements.first().map_or(0, |e| e.cell));
+        for (e, r) in asm.elements.iter().zip(per) {
+            let v = r?;
+            if v > w2 {
+                w2 = v;
+                cell = e.cell;
+            }
+        }
+        let f = self.scheme.stability_factor().unwrap_or(0.0);
+        let dt_of = |w2: f64| {
+            if w2 > 0.0 {
+                f * 2.0 / w2.sqrt()
+            } else {
+                f64::INFINITY
+            }
+        };
+        Ok(StepBound {
+            dt: dt_of(w2 + contact_omega2),
+            dt_elements: dt_of(w2),
+            cell,
+        })
+    }
+
+    /// The initial acceleration when ETAT_INIT gives none (code_aster's
+    /// accel0): a₀ = M⁻¹(F_ext − F_int(u₀) − F_c) on the free dofs, with
+    /// the state's internal forces already computed (`Engine::initialize`).
+    pub fn initial_acceleration(&mut self, engine: &mut Engine, fc: &[f64]) -> Result<(), String> {
+        let st = &engine.committed;
+        let nb = &engine.asm.numbering;
+        for (e, &f) in nb.free.iter().enumerate() {
+            self.rhs[e] = engine.fext[f] - st.fint[f] - fc[f];
+        }
+        self.solve_into(&mut engine.committed.motion.a, &engine.asm)
+    }
+
+    /// a = M⁻¹ rhs on the free dofs, 0 elsewhere.
+    fn solve_into(&mut self, a: &mut [f64], asm: &Assembler) -> Result<(), String> {
+        let nb = &asm.numbering;
+        if let Some(lu) = &self.solver {
+            lu.solve(&mut self.rhs)
+                .map_err(|e| format!("the mass solve failed: {e}"))?;
+            a.iter_mut().for_each(|x| *x = 0.0);
+            for (e, &f) in nb.free.iter().enumerate() {
+                a[f] = self.rhs[e];
+            }
+        } else {
+            a.iter_mut().for_each(|x| *x = 0.0);
+            for (e, &f) in nb.free.iter().enumerate() {
+                a[f] = self.rhs[e] / self.mass[f];
+            }
+        }
+        Ok(())
+    }
+
+    /// Imposed dofs take their value with v = a = 0 (the clamp holds them);
+    /// returns how many had a nonzero velocity.
+    pub fn impose_initial(&self, engine: &mut Engine) -> usize {
+        let st = &mut engine.committed;
+        let mut moved = 0;
+        for &(f, val) in &engine.asm.numbering.imposed {
+            if st.motion.v[f] != 0.0 {
+                moved += 1;
+            }
+            st.motion.u[f] = val;
+            st.motion.v[f] = 0.0;
+            st.motion.a[f] = 0.0;
+        }
+        moved
+    }
+
+    /// One step of `dt` from `engine.committed` into `engine.trial`
+    /// (not committed). Penalised contact adds its forces at u_{n+1}.
+    pub fn step(
+        &mut self,
+        engine: &mut Engine,
+        dt: f64,
+        contact: Option<&mut ExplicitContact>,
+    ) -> Result<(), String> {
+        let c = self.scheme.displacement_coefficient();
+        let Engine {
+            asm,
+            committed: cm,
+            trial: tr,
+            fext,
+            ..
+        } = engine;
+        let nb = &asm.numbering;
+        tr.t = cm.t + dt;
+        let n = cm.motion.u.len();
+        tr.motion.u.resize(n, 0.0);
+        tr.motion.v.resize(n, 0.0);
+        tr.motion.a.resize(n, 0.0);
+        for &f in &nb.free {
+            tr.motion.u[f] = cm.motion.u[f] + dt * cm.motion.v[f] + c * dt * dt * cm.motion.a[f];
+        }
+        for &(f, val) in &nb.imposed {
+            tr.motion.u[f] = val;
+        }
+        asm.compute(
+            &cm.motion.u,
+            &tr.motion.u,
+            &cm.points,
+            &mut tr.points,
+            dt,
+            TangentKind::None,
+            &mut tr.fint,
+            None,
+        )
+        .map_err(|f| format!("cell {}: {}", f.cell + 1, f.failure))?;
+        let nb = &asm.numbering;
+        let mut fc_zero = Vec::new();
+        let fc: &[f64] = match contact {
+            Some(ct) if !ct.kinematic() => {
+                ct.penalty_forces(nb, &cm.motion.u, &tr.motion.u);
+                &ct.force_on_fint_side
+            }
+            _ => {
+                fc_zero.resize(n, 0.0);
+                &fc_zero
+            }
+        };
+        for (e, &f) in nb.free.iter().enumerate() {
+            self.rhs[e] = fext[f] - tr.fint[f] - fc[f];
+        }
+        self.solve_into(&mut tr.motion.a, asm)?;
+        match self.scheme {
+            ExplicitScheme::DiffCent => {
+                for &f in &nb.free {
+                    tr.motion.v[f] = cm.motion.v[f] + 0.5 * dt * (cm.motion.a[f] + tr.motion.a[f]);
+                }
+            }
+            ExplicitScheme::Tchamwa { .. } => {
+                for &f in &nb.free {
+                    tr.motion.v[f] = cm.motion.v[f] + dt * cm.motion.a[f];
+                }
+            }
+        }
+        for &(f, _) in &nb.imposed {
+            tr.motion.v[f] = 0.0;
+            tr.motion.a[f] = 0.0;
+        }
+        if let Some((f, x)) = nb
+            .free
+            .iter()
+            .map(|&f| (f, tr.motion.u[f] + tr.motion.a[f]))
+            .find(|(_, x)| !x.is_finite())
+        {
+            return Err(format!(
+                "the motion is not finite at dof {} of node {} ({x}): the step exceeds the stability limit",
+                f % nb.ndpn + 1,
+                f / nb.ndpn + 1
+            ));
+        }
+        Ok(())
+    }
+
+    /// The kinematic contact correction of the trial state (its a and, for
+    /// DIFF_CENT, its v) before the next step of `dt_next`; `dt_prev` is the
+    /// step that led to the trial state (0 at the initial state, whose
+    /// velocity is given and not corrected).
+    pub fn correct(
+        &self,
+        engine: &mut Engine,
+        contact: &mut ExplicitContact,
+        dt_prev: f64,
+        dt_next: f64,
+        state_is_trial: bool,
+    ) {
+        let kappa = match self.scheme {
+            ExplicitScheme::DiffCent => 0.5 * dt_prev,
+            ExplicitScheme::Tchamwa { .. } => 0.0,
+        };
+        let c = self.scheme.displacement_coefficient();
+        let st = if state_is_trial {
+            &mut engine.trial
+        } else {
+            &mut engine.committed
+        };
+        contact.kinematic_correction(
+            &engine.asm.numbering,
+            &self.mass,
+            &mut st.motion,
+            dt_next,
+            kappa,
+            c,
+        );
+    }
+
+    /// Starts the energy balance at the committed state (after the initial
+    /// acceleration and correction): the trapezoid's state n.
+    fn start_energy(&mut self, engine: &Engine, fc: &[f64]) -> EnergyBalance {
+        let e = EnergyBalance::new(engine);
+        self.prev_u.copy_from_slice(&engine.committed.motion.u);
+        self.prev_fint.copy_from_slice(&engine.committed.fint);
+        self.prev_fc.copy_from_slice(fc);
+        self.external_of(engine, fc);
+        self.prev_ext.copy_from_slice(&self.work);
+        e
+    }
+
+    /// F_ext + λ of the committed state into `work` (λ the support
+    /// reactions at imposed dofs, M a + F_int + F_c − F_ext there).
+    fn external_of(&mut self, engine: &Engine, fc: &[f64]) {
+        let st = &engine.committed;
+        let mut ma = vec![0.0; self.work.len()];
+        engine.asm.mass_mul(&st.motion.a, &mut ma);
+        self.work.copy_from_slice(&engine.fext);
+        for &(f, _) in &engine.asm.numbering.imposed {
+            self.work[f] = ma[f] + st.fint[f] + fc[f];
+        }
+    }
+
+    /// Adds the works of the step just committed (trapezoidal rule, as
+    /// code_aster's nmener): internal, external with the reactions, contact.
+    fn energy_step(&mut self, energy: &mut EnergyBalance, engine: &Engine, fc: &[f64]) {
+        self.external_of(engine, fc);
+        let st = &engine.committed;
+        let (mut wi, mut we, mut wc) = (0.0, 0.0, 0.0);
+        for f in 0..st.motion.u.len() {
+            let du = st.motion.u[f] - self.prev_u[f];
+            if du == 0.0 {
+                continue;
+            }
+            wi += 0.5 * du * (self.prev_fint[f] + st.fint[f]);
+            we += 0.5 * du * (self.prev_ext[f] + self.work[f]);
+            wc += 0.5 * du * (self.prev_fc[f] + fc[f]);
+        }
+        energy.internal += wi;
+        energy.external += we;
+        energy.contact += wc;
+        self.prev_u.copy_from_slice(&st.motion.u);
+        self.prev_fint.copy_from_slice(&st.fint);
+        self.prev_fc.copy_from_slice(fc);
+        self.prev_ext.copy_from_slice(&self.work);
+        engine.asm.mass_mul(&st.motion.v, &mut self.work);
+        energy.kinetic = 0.5
+            * st.motion
+                .v
+                .iter()
+                .zip(&self.work)
+                .map(|(a, b)| a * b)
+                .sum::<f64>();
+    }
+}
+
+/// The first list step above `bound` (index of the step, its start, its
+/// length), if any; equality passes, as in code_aster's `pascou`.
+pub fn first_step_above(instants: &[f64], bound: f64) -> Option<(usize, f64, f64)> {
+    instants
+        .windows(2)
+        .enumerate()
+        .map(|(k, w)| (k + 1, w[0], w[1] - w[0]))
+        .find(|&(_, _, dt)| dt > bound)
+}
+
+/// Runs the explicit loop over the instants of `tl` from the engine's
+/// committed state (internal forces computed; `has_acce`: ETAT_INIT gave
+/// the acceleration), archiving into `result`.
+#[allow(clippy::too_many_arguments)]
+pub fn run(
+    engine: &mut Engine,
+    ex: &mut Explicit,
+    mut contact: Option<&mut ExplicitContact>,
+    tl: &TimeLoop,
+    settings: &ExplicitSettings,
+    has_acce: bool,
+    result: &mut EvolNoli,
+    log: &mut dyn FnMut(&str),
+) -> Result<RunSummary, Stopped> {
+    let started = std::time::Instant::now();
+    let mut summary = RunSummary::default();
+    let nfull = engine.asm.numbering.nfull();
+    let zero = vec![0.0; nfull];
+    let stop = |message: String, summary: &RunSummary| Stopped {
+        message,
+        summary: summary.clone(),
+    };
+    let contact_w2 = contact
+        .as_deref()
+        .map_or(0.0, |c| c.penalty_omega2(&ex.mass));
+    let mut bound = ex
+        .step_bound(
+            &engine.asm,
+            &engine.committed.motion.u,
+            &engine.committed.points,
+            contact_w2,
+        )
+        .map_err(|f| {
+            stop(
+                format!("step estimate: cell {}: {}", f.cell + 1, f.failure),
+                &summary,
+            )
+        })?;
+    // The step plan: list instants, each reached by equal sub-steps no
+    // longer than the current bound (STOP_CFL='OUI').
+    let plan = |t: f64, target: f64, bound: &StepBound| -> f64 {
+        let span = target - t;
+        if !settings.stop_cfl || span <= bound.dt {
+            return span;
+        }
+        let n = (span / bound.dt).ceil().max(1.0);
+        span / n
+    };
+    let mut next = 1usize;
+    let first_dt = plan(tl.instants[0], tl.instants[1], &bound);
+    if let Some(ct) = contact.as_deref_mut() {
+        ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
+        if !has_acce && !ct.kinematic() {
+            ct.penalty_forces(
+                &engine.asm.numbering,
+                &engine.committed.motion.u,
+                &engine.committed.motion.u,
+            );
+        }
+    }
+    if !has_acce {
+        let fc = contact
+            .as_deref()
+            .map_or(&zero[..], |c| &c.force_on_fint_side[..]);
+        let fc = fc.to_vec();
+        ex.initial_acceleration(engine, &fc)
+            .map_err(|m| stop(m, &summary))?;
+        for &(f, _) in &engine.asm.numbering.imposed {
+            engine.committed.motion.a[f] = 0.0;
+        }
+    }
+    if let Some(ct) = contact.as_deref_mut() {
+        if ct.kinematic() {
+            ex.correct(engine, ct, 0.0, first_dt, false);
+        }
+    }
+    let p0 = momentum(engine);
+    let fc0 = contact
+        .as_deref()
+        .map_or(zero.clone(), |c| c.force_on_fint_side.clone());
+    let mut energy = ex.start_energy(engine, &fc0);
+    if archive(engine, tl, result, &engine.committed.clone(), None) {
+        summary.archived += 1;
+        archive_line(&mut energy, result, &summary, first_dt, log);
+    }
+    let mut dt = first_dt;
+    let mut alarmed_sub = false;
+    let mut list_steps = 0usize;
+    while next < tl.instants.len() {
+        let target = tl.instants[next];
+        let t0 = engine.committed.t;
+        if let Some(ct) = contact.as_deref_mut() {
+            ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
+        }
+        let outcome = ex.step(engine, dt, contact.as_deref_mut());
+        if let Err(why) = outcome {
+            let message = format!(
+                "DYNA_NON_LINE stopped at the step from t = {t0:e} to t = {:e}: {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
+                t0 + dt,
+                result.steps.len(),
+                result.steps.last().map_or(t0, |s| s.inst)
+            );
+            if archive(engine, tl, result, &engine.committed.clone(), None) {
+                summary.archived += 1;
+            }
+            store_energy(&energy, result);
+            log(&message);
+            summary.seconds = started.elapsed().as_secs_f64();
+            crate::profile::count(crate::profile::Counter::Steps, summary.steps);
+            return Err(stop(message, &summary));
+        }
+        summary.steps += 1;
+        let t1 = engine.trial.t;
+        let at_list = (target - t1).abs() <= 1e-9 * dt;
+        if at_list {
+            engine.trial.t = target;
+            next += 1;
+            list_steps += 1;
+        }
+        if settings.recheck > 0 && summary.steps.is_multiple_of(settings.recheck) {
+            let b = ex.step_bound(
+                &engine.asm,
+                &engine.trial.motion.u,
+                &engine.trial.points,
+                contact_w2,
+            );
+            if let Ok(b) = b {
+                bound = b;
+            }
+        }
+        let dt_next = if next < tl.instants.len() {
+            plan(engine.trial.t, tl.instants[next], &bound)
+        } else {
+            0.0
+        };
+        if settings.stop_cfl && next < tl.instants.len() {
+            let list_dt = tl.instants[next] - tl.instants[next - 1];
+            if dt_next < list_dt * (1.0 - 1e-9) && !alarmed_sub {
+                alarmed_sub = true;
+                log(&format!(
+                    "  alarm: at t = {:e} the critical step on the current geometry is {:.4e} (cell {}), below the list's step {:.4e}: the list's steps are cut into equal sub-steps from now on while needed (an aster extension; code_aster checks the list once)",
+                    engine.trial.t,
+                    bound.dt,
+                    bound.cell + 1,
+                    list_dt
+                ));
+            }
+        }
+        if let Some(ct) = contact.as_deref_mut() {
+            if ct.kinematic() {
+                ct.pair(&engine.asm.numbering, &engine.trial.motion.u);
+                ex.correct(engine, ct, dt, dt_next, true);
+            }
+        }
+        engine.commit();
+        if let Some(ct) = contact.as_deref_mut() {
+            ct.commit(&engine.committed.motion.u, dt);
+        }
+        let fc = contact
+            .as_deref()
+            .map_or(&zero[..], |c| &c.force_on_fint_side[..])
+            .to_vec();
+        ex.energy_step(&mut energy, engine, &fc);
+        if let Some(ct) = contact.as_deref() {
+            energy.friction = ct.friction_dissipation;
+        }
+        let last = next >= tl.instants.len();
+        if at_list
+            && (tl.archive.wants(list_steps, engine.committed.t) || last)
+            && archive(engine, tl, result, &engine.committed.clone(), None)
+        {
+            summary.archived += 1;
+            archive_line(&mut energy, result, &summary, dt, log);
+        }
+        dt = dt_next;
+    }
+    store_energy(&energy, result);
+    summary.seconds = started.elapsed().as_secs_f64();
+    log(&format!(
+        "  {} explicit steps ({} of the list), {} archived, {:.3} s ({:.3e} s per step)",
+        summary.steps,
+        list_steps,
+        summary.archived,
+        summary.seconds,
+        summary.seconds / summary.steps.max(1) as f64
+    ));
+    if let Some(ct) = contact.as_deref() {
+        log(&ct.summary_line());
+        let p1 = momentum(engine);
+        let dp: Vec<String> = p0
+            .iter()
+            .zip(&p1)
+            .map(|(a, b)| format!("{:.9e}", b - a))
+            .collect();
+        log(&format!(
+            "  momentum of the model (M v): change over the run ({})",
+            dp.join(", ")
+        ));
+    }
+    crate::profile::count(crate::profile::Counter::Steps, summary.steps);
+    Ok(summary)
+}
+
+fn archive_line(
+    energy: &mut EnergyBalance,
+    result: &EvolNoli,
+    summary: &RunSummary,
+    dt: f64,
+    log: &mut dyn FnMut(&str),
+) {
+    if let Some(s) = result.steps.last() {
+        log(&format!(
+            "  archived NUME_ORDRE {} at t = {:e} after {} steps (dt = {:.4e})",
+            s.nume_ordre, s.inst, summary.steps, dt
+        ));
+        log(&energy.archive(s.nume_ordre, s.inst));
+    }
+}
+
+fn store_energy(energy: &EnergyBalance, result: &mut EvolNoli) {
+    result.tables.insert(
+        super::energy::TABLE_NAME.to_string(),
+        energy.table("energy balance of DYNA_NON_LINE"),
+    );
+}
+
+/// Density of each mesh cell of the model (0 elsewhere): the lumped mass
+/// is built from the element masses, which need it.
+pub fn cell_densities(
+    model: &crate::model::Model,
+    matfield: &crate::model::MaterialField,
+    materials: &indexmap::IndexMap<String, crate::model::Material>,
+    occurrences: &[super::Occurrence],
+) -> Result<Vec<f64>, super::BehaviourError> {
+    let beh = super::behaviour::build(model, matfield, materials, occurrences)?;
+    Ok(beh.cells.iter().map(|c| c.map_or(0.0, |b| b.rho)).collect())
+}
+
+/// Σ (M v) per direction over the whole model.
+fn momentum(engine: &Engine) -> Vec<f64> {
+    let nd = engine.asm.numbering.ndpn;
+    let v = &engine.committed.motion.v;
+    let mut mv = vec![0.0; v.len()];
+    engine.asm.mass_mul(v, &mut mv);
+    (0..nd)
+        .map(|k| mv.iter().skip(k).step_by(nd).sum())
+        .collect()
+}

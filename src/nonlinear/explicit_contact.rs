@@ -1,0 +1,409 @@
+//! Contact in explicit dynamics, an aster extension: code_aster refuses
+//! DEFI_CONTACT with DIFF_CENT/TCHAMWA (MECANONLINE5_22). Node-to-surface
+//! contact of the slave nodes against a master surface held fixed by
+//! DDL_IMPO (a rigid obstacle, as the Taylor bar's foundation), in the
+//! discrete formulation's pairing (`contact::pair`, master/slave,
+//! inward normal n, gap g = g_ref + n·(Σ N_j u_j − u_s) > 0 when open).
+//!
+//! Two enforcements (notes/explicit.md §10):
+//! - ALGO_CONT='PENALISATION': the force E_N⟨−g⟩ at u_{n+1} enters the
+//!   right-hand side of a_{n+1}; friction is the elastic predictor and
+//!   return to the Coulomb disc on the history of the tangential force
+//!   (f_T ← f_T − E_T Δu_T, capped at μ f_N; LS-DYNA's penalty friction):
+//!   in explicit a step is tiny, so the implicit discrete method's
+//!   per-step E_T·slip would make friction a viscosity.
+//! - ALGO_CONT='CONTRAINTE': kinematic, predictor-corrector (Taylor &
+//!   Flanagan's PRONTO, the defence-node correction against a rigid
+//!   master): after a_{n+1} is known, the next predicted position of each
+//!   slave node is computed; a node predicted inside the master gets the
+//!   acceleration correction δa that puts it exactly on the surface
+//!   (n·δu = g̃), with the force m δa (momentum exchanged = impulse, no
+//!   tension by construction); Coulomb friction then removes the
+//!   predicted tangential motion up to μ|f_N| (a radial return in
+//!   velocity). The node-by-node constraints are decoupled because the
+//!   mass is lumped and the master immobile, so no iteration is needed.
+
+use std::collections::HashMap;
+
+use super::dofs::{DofNumbering, NONE};
+use crate::contact::{pair, ContactDef, Pairing};
+use crate::mesh::Mesh;
+use crate::time::Kinematics as Motion;
+
+/// How the non-penetration is enforced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Enforcement {
+    /// ALGO_CONT='PENALISATION'.
+    Penalty,
+    /// ALGO_CONT='CONTRAINTE': kinematic correction.
+    Kinematic,
+}
+
+pub struct ExplicitContact {
+    pub def: ContactDef,
+    pub enforcement: Enforcement,
+    mesh: Mesh,
+    ndpn: usize,
+    dim: usize,
+    pairing: Pairing,
+    /// Tangential force on the slave node of each (zone, slave) link at
+    /// the last state, and at the state before.
+    ft: HashMap<(usize, usize), [f64; 3]>,
+    ft_prev: HashMap<(usize, usize), [f64; 3]>,
+    /// Contact forces of the last state on the F_int side (the opposite of
+    /// the force on the nodes), full vector.
+    pub force_on_fint_side: Vec<f64>,
+    /// Sum of the contact forces on the slave nodes of the last state and
+    /// of the state before.
+    body_force: [f64; 3],
+    body_force_prev: [f64; 3],
+    /// Full displacement of the last committed state.
+    u_prev: Vec<f64>,
+    /// Impulse of the contact reactions on the bodies since the start.
+    pub impulse: [f64; 3],
+    /// Work dissipated by friction since the start.
+    pub friction_dissipation: f64,
+    /// Largest penetration seen at an evaluated state (penalty).
+    pub max_penetration: f64,
+    /// Largest number of links in contact at a state.
+    pub max_active: usize,
+    active: usize,
+    pub pairings: usize,
+}
+
+impl ExplicitContact {
+    /// Checks that every master node is fixed (all its dofs imposed, or
+    /// outside the model): deformable masters are not implemented.
+    pub fn new(
+        def: ContactDef,
+        enforcement: Enforcement,
+        mesh: &Mesh,
+        numbering: &DofNumbering,
+        u0: &[f64],
+    ) -> Result<ExplicitContact, String> {
+        let ndpn = numbering.ndpn;
+        for z in &def.zones {
+            for &c in &z.master_cells {
+                for &n in &mesh.cells[c].nodes {
+                    if (0..ndpn).any(|k| numbering.eq[n * ndpn + k] != NONE) {
+                        return Err(format!(
+                            "not implemented yet: explicit contact against a deformable master surface: node {} of the master group {} has free dofs (the master must be held by DDL_IMPO on all its dofs, a rigid obstacle)",
+                            n + 1,
+                            z.master_group
+                        ));
+                    }
+                }
+            }
+        }
+        let nfull = numbering.nfull();
+        Ok(ExplicitContact {
+            dim: def.dim.min(ndpn),
+            def,
+            enforcement,
+            mesh: mesh.clone(),
+            ndpn,
+            pairing: Pairing::default(),
+            ft: HashMap::new(),
+            ft_prev: HashMap::new(),
+            force_on_fint_side: vec![0.0; nfull],
+            body_force: [0.0; 3],
+            body_force_prev: [0.0; 3],
+            u_prev: u0.to_vec(),
+            impulse: [0.0; 3],
+            friction_dissipation: 0.0,
+            max_penetration: 0.0,
+            max_active: 0,
+            active: 0,
+            pairings: 0,
+        })
+    }
+
+    pub fn kinematic(&self) -> bool {
+        self.enforcement == Enforcement::Kinematic
+    }
+
+    /// Pairs the slave nodes on the geometry of `u` (full).
+    pub fn pair(&mut self, numbering: &DofNumbering, u: &[f64]) {
+        let nd = numbering.ndpn;
+        let un: Vec<[f64; 3]> = u
+            .chunks(nd)
+            .map(|c| {
+                let mut v = [0.0; 3];
+                v[..nd].copy_from_slice(c);
+                v
+            })
+            .collect();
+        self.pairing = pair(&self.def, &self.mesh, &un);
+        self.pairings += 1;
+        crate::profile::count(crate::profile::Counter::Pairings, 1);
+    }
+
+    /// The largest k/m of the penalty springs over the slave nodes
+    /// (0 for the kinematic enforcement): what the contact adds to ω².
+    pub fn penalty_omega2(&self, mass: &[f64]) -> f64 {
+        if self.kinematic() {
+            return 0.0;
+        }
+        let mut w2: f64 = 0.0;
+        for (z, s) in self.def.slave_nodes() {
+            let zone = &self.def.zones[z];
+            let k = zone.e_n.max(zone.friction.map_or(0.0, |f| f.e_t));
+            let m = (0..self.ndpn)
+                .map(|c| mass[s * self.ndpn + c])
+                .fold(0.0, f64::max);
+            if m > 0.0 {
+                w2 = w2.max(k / m);
+            }
+        }
+        w2
+    }
+
+    fn node_u(&self, u: &[f64], n: usize) -> [f64; 3] {
+        let mut v = [0.0; 3];
+        for (c, x) in v.iter_mut().enumerate().take(self.dim) {
+            *x = u[n * self.ndpn + c];
+        }
+        v
+    }
+
+    /// The penalty forces at `u` (the step's end), the step starting at
+    /// `u_n`: into [`ExplicitContact::force_on_fint_side`].
+    pub fn penalty_forces(&mut self, _numbering: &DofNumbering, u_n: &[f64], u: &[f64]) {
+        self.force_on_fint_side.iter_mut().for_each(|x| *x = 0.0);
+        let mut ft_new = HashMap::new();
+        let mut body = [0.0; 3];
+        let mut active = 0;
+        let links = std::mem::take(&mut self.pairing.links);
+        for l in &links {
+            let zone = &self.def.zones[l.zone];
+            let us = self.node_u(u, l.slave);
+            let us_n = self.node_u(u_n, l.slave);
+            let mut um = [0.0; 3];
+            let mut dum = [0.0; 3];
+            for (j, &mn) in l.master_nodes.iter().enumerate() {
+                let (a, b) = (self.node_u(u, mn), self.node_u(u_n, mn));
+                for c in 0..3 {
+                    um[c] += l.shape[j] * a[c];
+                    dum[c] += l.shape[j] * (a[c] - b[c]);
+                }
+            }
+            let n = l.normal;
+            let g = l.gap_ref + (0..3).map(|c| n[c] * (um[c] - us[c])).sum::<f64>();
+            if g >= 0.0 {
+                continue;
+            }
+            active += 1;
+            self.max_penetration = self.max_penetration.max(-g);
+            let fnorm = zone.e_n * (-g);
+            let mut f = [0.0; 3];
+            for c in 0..3 {
+                f[c] = -fnorm * n[c];
+            }
+            if let Some(cf) = zone.friction {
+                let mut d = [0.0; 3];
+                for c in 0..3 {
+                    d[c] = (us[c] - us_n[c]) - dum[c];
+                }
+                let dn: f64 = (0..3).map(|c| d[c] * n[c]).sum();
+                let old = self.ft.get(&(l.zone, l.slave)).copied().unwrap_or([0.0; 3]);
+                let on: f64 = (0..3).map(|c| old[c] * n[c]).sum();
+                let mut tr = [0.0; 3];
+                for c in 0..3 {
+                    tr[c] = (old[c] - on * n[c]) - cf.e_t * (d[c] - dn * n[c]);
+                }
+                let norm = tr.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let cap = cf.mu * fnorm;
+                if norm > cap && norm > 0.0 {
+                    for x in tr.iter_mut() {
+                        *x *= cap / norm;
+                    }
+                }
+                for c in 0..3 {
+                    f[c] += tr[c];
+                }
+                ft_new.insert((l.zone, l.slave), tr);
+            }
+            for c in 0..self.dim {
+                self.force_on_fint_side[l.slave * self.ndpn + c] -= f[c];
+                body[c] += f[c];
+                for (j, &mn) in l.master_nodes.iter().enumerate() {
+                    self.force_on_fint_side[mn * self.ndpn + c] += l.shape[j] * f[c];
+                }
+            }
+        }
+        self.pairing.links = links;
+        self.active = active;
+        self.max_active = self.max_active.max(active);
+        self.ft = ft_new;
+        self.body_force = body;
+    }
+
+    /// The kinematic correction of the state `m` (its a, and v by
+    /// `kappa`·δa) so that the next predicted positions u + dt v + c dt² a
+    /// of the slave nodes do not penetrate, with Coulomb friction;
+    /// `mass` the lumped mass of each full dof.
+    pub fn kinematic_correction(
+        &mut self,
+        numbering: &DofNumbering,
+        mass: &[f64],
+        m: &mut Motion,
+        dt: f64,
+        kappa: f64,
+        c: f64,
+    ) {
+        self.force_on_fint_side.iter_mut().for_each(|x| *x = 0.0);
+        self.body_force = [0.0; 3];
+        self.ft.clear();
+        self.active = 0;
+        if dt <= 0.0 {
+            return;
+        }
+        let h = dt * kappa + c * dt * dt;
+        let nd = self.ndpn;
+        let dim = self.dim;
+        let links = std::mem::take(&mut self.pairing.links);
+        for l in &links {
+            let s = l.slave;
+            let free: Vec<bool> = (0..3)
+                .map(|k| k < dim && numbering.eq[s * nd + k] != NONE)
+                .collect();
+            let Some(first) = (0..dim).find(|&k| free[k]) else {
+                continue;
+            };
+            let mass_s = mass[s * nd + first];
+            if mass_s <= 0.0 {
+                continue;
+            }
+            let mut pred = [0.0; 3];
+            let mut now = [0.0; 3];
+            for k in 0..dim {
+                let f = s * nd + k;
+                now[k] = m.u[f];
+                pred[k] = if free[k] {
+                    m.u[f] + dt * m.v[f] + c * dt * dt * m.a[f]
+                } else {
+                    m.u[f]
+                };
+            }
+            let mut um = [0.0; 3];
+            for (j, &mn) in l.master_nodes.iter().enumerate() {
+                let a = self.node_u(&m.u, mn);
+                for k in 0..3 {
+                    um[k] += l.shape[j] * a[k];
+                }
+            }
+            let n = l.normal;
+            let g = l.gap_ref + (0..3).map(|k| n[k] * (um[k] - pred[k])).sum::<f64>();
+            if g >= 0.0 {
+                continue;
+            }
+            let mut nf = [0.0; 3];
+            for k in 0..dim {
+                if free[k] {
+                    nf[k] = n[k];
+                }
+            }
+            let nn: f64 = nf.iter().map(|x| x * x).sum();
+            if nn < 1e-12 {
+                continue;
+            }
+            self.active += 1;
+            let mut da = [0.0; 3];
+            for k in 0..3 {
+                da[k] = g * nf[k] / nn / h;
+            }
+            let fnorm = mass_s * da.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if let Some(cf) = self.def.zones[l.zone].friction {
+                // Predicted tangential motion over the step once the
+                // normal correction is applied.
+                let mut w = [0.0; 3];
+                for k in 0..dim {
+                    w[k] = (pred[k] + h * da[k] - now[k]) / dt;
+                }
+                let wn: f64 = (0..3).map(|k| w[k] * n[k]).sum();
+                let mut stop = [0.0; 3];
+                for k in 0..dim {
+                    if free[k] {
+                        stop[k] = -(w[k] - wn * n[k]) * dt / h;
+                    }
+                }
+                let need = mass_s * stop.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let cap = cf.mu * fnorm;
+                let scale = if need > cap && need > 0.0 {
+                    cap / need
+                } else {
+                    1.0
+                };
+                let mut ftv = [0.0; 3];
+                for k in 0..3 {
+                    da[k] += scale * stop[k];
+                    ftv[k] = mass_s * scale * stop[k];
+                }
+                self.ft.insert((l.zone, s), ftv);
+            }
+            for k in 0..dim {
+                if !free[k] {
+                    continue;
+                }
+                let f = s * nd + k;
+                m.a[f] += da[k];
+                m.v[f] += kappa * da[k];
+                let force = mass[f] * da[k];
+                self.force_on_fint_side[f] -= force;
+                self.body_force[k] += force;
+            }
+        }
+        self.pairing.links = links;
+        self.max_active = self.max_active.max(self.active);
+    }
+
+    /// After the step of length `dt` ending at the committed `u`: the
+    /// impulse of the reactions (trapezoidal, as DIFF_CENT updates the
+    /// momentum) and the friction dissipation (the force that acted on the
+    /// step's slip: the trapezoid for the penalty, the correction of the
+    /// step's start for the kinematic enforcement).
+    pub fn commit(&mut self, u: &[f64], dt: f64) {
+        for k in 0..3 {
+            self.impulse[k] += 0.5 * dt * (self.body_force_prev[k] + self.body_force[k]);
+        }
+        let nd = self.ndpn;
+        let keys: std::collections::BTreeSet<(usize, usize)> =
+            self.ft.keys().chain(self.ft_prev.keys()).copied().collect();
+        for key in keys {
+            let s = key.1;
+            let old = self.ft_prev.get(&key).copied().unwrap_or([0.0; 3]);
+            let new = self.ft.get(&key).copied().unwrap_or([0.0; 3]);
+            for k in 0..self.dim {
+                let d = u[s * nd + k] - self.u_prev[s * nd + k];
+                let f = match self.enforcement {
+                    Enforcement::Penalty => 0.5 * (old[k] + new[k]),
+                    Enforcement::Kinematic => old[k],
+                };
+                self.friction_dissipation -= f * d;
+            }
+        }
+        self.ft_prev = self.ft.clone();
+        self.body_force_prev = self.body_force;
+        self.u_prev.copy_from_slice(u);
+    }
+
+    /// The .mess line of the end of the run.
+    pub fn summary_line(&self) -> String {
+        let what = match self.enforcement {
+            Enforcement::Penalty => {
+                format!("penalty (largest penetration {:.4e})", self.max_penetration)
+            }
+            Enforcement::Kinematic => "kinematic (no penetration by construction)".to_string(),
+        };
+        format!(
+            "  explicit contact, {what}: {} pairings, at most {} slave nodes in contact at once; impulse of the contact reactions on the bodies ({})",
+            self.pairings,
+            self.max_active,
+            self.impulse[..self.dim]
+                .iter()
+                .map(|x| format!("{x:.9e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
