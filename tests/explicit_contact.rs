@@ -24,7 +24,10 @@ fn tuples(mess: &str, tag: &str) -> Vec<Vec<f64>> {
 
 #[test]
 fn landing_bar_momentum_is_the_impulse_of_the_reactions() {
-    let run = common::run_study("tests/verification/explicit_landing.comm", "explicit_landing");
+    let run = common::run_study(
+        "tests/verification/explicit_landing.comm",
+        "explicit_landing",
+    );
     let resu = common::assert_all_ok(&run, "explicit_landing.resu");
     let mess = run.file("explicit_landing.mess");
     let impulse = tuples(&mess, "impulse of the contact reactions on the bodies ");
@@ -44,7 +47,10 @@ fn landing_bar_momentum_is_the_impulse_of_the_reactions() {
         // kinematic impact's loss (notes/explicit.md §10.1) or the penalty's
         // residual vibration.
         let ratio = i[1] / p0;
-        assert!((1.85..=2.0).contains(&ratio), "run {k}: impulse / p0 = {ratio}");
+        assert!(
+            (1.85..=2.0).contains(&ratio),
+            "run {k}: impulse / p0 = {ratio}"
+        );
     }
     // Every row of both balances: |DISS_SCH| < 1 % of EK0.
     let ek0 = 74.068992;

@@ -79,7 +79,7 @@ fn limits(mesh: &Mesh, mo: &Model, imp: &[aster::model::ImposedDof]) -> (f64, f6
     let (mut asm, _) =
         aster::nonlinear::discretize(mesh, mo, &matfield, &materials, &occs, &[&load]).unwrap();
     let rho = aster::nonlinear::explicit::cell_densities(mo, &matfield, &materials, &occs).unwrap();
-    let ex = Explicit::new(&mut asm, &rho, ExplicitScheme::DiffCent, true).unwrap();
+    let mut ex = Explicit::new(&mut asm, &rho, ExplicitScheme::DiffCent, true).unwrap();
     let n = asm.numbering.nfull();
     let u = vec![0.0; n];
     let pts = asm.initial_states();

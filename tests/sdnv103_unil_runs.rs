@@ -1,5 +1,6 @@
-//! Modellings E and K of SDNV103 (LIAISON_UNIL, active set and penalty)
-//! run to FIN; their POST_RELEVE_T tables and the verdict of every check
+//! Modellings E and K of SDNV103 (LIAISON_UNIL, active set and penalty),
+//! and B run explicitly (comm/sdnv103b_explicit.comm, B1 DX NOOK against the
+//! implicit B), run to FIN; their POST_RELEVE_T tables and the verdict of every check
 //! are snapshotted. Not every check is OK: A1 DZ (both) and B1 VY (E)
 //! fail honestly, for the reasons docs/contact.md §9 gives; the
 //! snapshot keeps the NOOK lines visible, and any change of a verdict or a
@@ -33,4 +34,10 @@ fn sdnv103e_tables() {
 #[test]
 fn sdnv103k_tables() {
     insta::assert_snapshot!(run("k"));
+}
+
+/// About 7000 explicit steps on B's mesh (a few seconds).
+#[test]
+fn sdnv103b_explicit_tables() {
+    insta::assert_snapshot!(run("b_explicit"));
 }

@@ -87,6 +87,15 @@ fn elastic_wave_in_a_rod_explicit() {
     run_study("wave_rod_explicit");
 }
 
+/// The Taylor bar on a frictionless wall under DIFF_CENT against the
+/// literature band and the second-order HHT on the same mesh (about a
+/// minute: `cargo test --test verification -- --ignored`).
+#[test]
+#[ignore]
+fn taylor_bar_on_a_frictionless_wall_explicit() {
+    run_study("taylor_wall_explicit");
+}
+
 /// Explicit contact (an aster extension): Coulomb braking of a block with
 /// the kinematic and the penalised enforcement, the penalty penetration
 /// 2 m g / (9 E_N) of a block dropped on its springs.

@@ -34,7 +34,7 @@
 //! equal sub-steps (logged), since a crushed element's limit falls with its
 //! size.
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::assembly::{Assembler, CellFailure};
@@ -47,7 +47,8 @@ use crate::law::TangentKind;
 use crate::result::EvolNoli;
 use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
 use crate::time::explicit::{
-    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_lumped, ExplicitScheme,
+    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_lumped, max_eigenvalue_warm,
+    scaled_lumped, ExplicitScheme,
 };
 
 /// The mass of one element as the step estimate uses it.
@@ -77,6 +78,12 @@ pub struct Explicit {
     /// consistent mass, its HRZ lumping, used by the contact only.
     pub mass: Vec<f64>,
     elem_mass: Vec<ElemMass>,
+    /// Each element's top eigenvector of the last estimate (lumped mass):
+    /// the warm start of the next one.
+    eigvecs: Vec<DVector<f64>>,
+    /// Estimates of the critical step made, and their total time (s).
+    pub estimates: usize,
+    pub estimate_seconds: f64,
     /// The consistent mass of the free equations, factorised once.
     solver: Option<DirectLu>,
     rhs: Vec<f64>,
@@ -94,7 +101,8 @@ pub struct ExplicitSettings {
     /// STOP_CFL='OUI': the bound is enforced (list check, sub-steps when
     /// the mesh shrinks); 'NON': the list is followed as given.
     pub stop_cfl: bool,
-    /// Re-estimate the bound every this many computed steps (0: never).
+    /// Re-estimate the bound about every this many computed steps (0:
+    /// never); the interval adapts to how fast the bound moves.
     pub recheck: usize,
 }
 
@@ -164,6 +172,9 @@ impl Explicit {
             scheme,
             lumped,
             mass: diag,
+            eigvecs: vec![DVector::zeros(0); elem_mass.len()],
+            estimates: 0,
+            estimate_seconds: 0.0,
             elem_mass,
             solver,
             rhs: vec![0.0; asm.numbering.neq()],
@@ -180,18 +191,21 @@ impl Explicit {
     /// their current geometry) against its mass; `contact_omega2` is the
     /// contact penalty's k/m (0 without).
     pub fn step_bound(
-        &self,
+        &mut self,
         asm: &Assembler,
         u: &[f64],
         points: &[PointState],
         contact_omega2: f64,
     ) -> Result<StepBound, CellFailure> {
+        let started = std::time::Instant::now();
         let laws = &asm.laws;
+        let first = self.estimates == 0;
         let per: Vec<Result<f64, CellFailure>> = asm
             .elements
             .par_iter()
             .zip(&self.elem_mass)
-            .map(|(e, m)| {
+            .zip(self.eigvecs.par_iter_mut())
+            .map(|((e, m), x)| {
                 let n = e.full.len();
                 let mut lu = [0.0; MAX_DOFS];
                 for k in 0..n {
@@ -217,7 +231,15 @@ impl Explicit {
                     return Ok(0.0);
                 };
                 Ok(match m {
-                    ElemMass::Lumped(l) => max_eigenvalue_lumped(&k, l),
+                    // The first estimate (the CFL check of the list) is the
+                    // exact decomposition; the run's re-estimates start
+                    // from its eigenvectors.
+                    ElemMass::Lumped(l) if first => {
+                        let a = scaled_lumped(&k, l);
+                        let w = max_eigenvalue_lumped(&k, l);
+                        max_eigenvalue_warm(&a, x, 1e-3).max(w)
+                    }
+                    ElemMass::Lumped(l) => max_eigenvalue_warm(&scaled_lumped(&k, l), x, 1e-3),
                     ElemMass::Consistent(mc) => {
                         max_eigenvalue_consistent(&k, mc).unwrap_or(f64::INFINITY)
                     }
@@ -232,6 +254,8 @@ impl Explicit {
                 cell = e.cell;
             }
         }
+        self.estimates += 1;
+        self.estimate_seconds += started.elapsed().as_secs_f64();
         let f = self.scheme.stability_factor().unwrap_or(0.0);
         let dt_of = |w2: f64| {
             if w2 > 0.0 {
@@ -565,6 +589,8 @@ pub fn run(
         archive_line(&mut energy, result, &summary, first_dt, log);
     }
     let mut dt = first_dt;
+    let mut interval = settings.recheck;
+    let mut next_estimate = interval;
     let mut alarmed_sub = false;
     let mut list_steps = 0usize;
     while next < tl.instants.len() {
@@ -598,7 +624,10 @@ pub fn run(
             next += 1;
             list_steps += 1;
         }
-        if settings.recheck > 0 && summary.steps.is_multiple_of(settings.recheck) {
+        // The interval between estimates adapts: doubled (up to 8 times
+        // `recheck`) while the bound moves by less than 1 % between two,
+        // halved (down to `recheck`/4) when it moves by more than 4 %.
+        if interval > 0 && summary.steps >= next_estimate {
             let b = ex.step_bound(
                 &engine.asm,
                 &engine.trial.motion.u,
@@ -606,8 +635,15 @@ pub fn run(
                 contact_w2,
             );
             if let Ok(b) = b {
+                let change = (b.dt - bound.dt).abs() / bound.dt;
+                if change < 0.01 {
+                    interval = (2 * interval).min(8 * settings.recheck);
+                } else if change > 0.04 {
+                    interval = (interval / 2).max(settings.recheck / 4).max(1);
+                }
                 bound = b;
             }
+            next_estimate = summary.steps + interval;
         }
         let dt_next = if next < tl.instants.len() {
             plan(engine.trial.t, tl.instants[next], &bound)
@@ -658,12 +694,14 @@ pub fn run(
     store_energy(&energy, result);
     summary.seconds = started.elapsed().as_secs_f64();
     log(&format!(
-        "  {} explicit steps ({} of the list), {} archived, {:.3} s ({:.3e} s per step)",
+        "  {} explicit steps ({} of the list), {} archived, {:.3} s ({:.3e} s per step); {} estimates of the critical step ({:.3} s)",
         summary.steps,
         list_steps,
         summary.archived,
         summary.seconds,
-        summary.seconds / summary.steps.max(1) as f64
+        summary.seconds / summary.steps.max(1) as f64,
+        ex.estimates,
+        ex.estimate_seconds
     ));
     if let Some(ct) = contact.as_deref() {
         log(&ct.summary_line());

@@ -82,6 +82,52 @@ pub fn max_eigenvalue_consistent(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Option<f
     Some(SymmetricEigen::new(a).eigenvalues.max().max(0.0))
 }
 
+/// An upper estimate of the largest eigenvalue of the symmetric `a` by
+/// power iteration from `x` (the top eigenvector of a nearby matrix: the
+/// run's previous estimate, updated in place): the Rayleigh quotient ρ plus
+/// the residual norm |a x − ρ x| (|x| = 1), which bounds the distance from
+/// ρ to an eigenvalue, so ρ + |r| is at or above the top eigenvalue once x
+/// is nearest the top eigenvector, as it is from a warm start. Falls back
+/// to the full symmetric eigen-decomposition when the iteration does not
+/// settle to `tol` in 50 steps.
+pub fn max_eigenvalue_warm(a: &DMatrix<f64>, x: &mut DVector<f64>, tol: f64) -> f64 {
+    let n = a.nrows();
+    if x.len() != n || x.norm() == 0.0 {
+        *x = DVector::from_element(n, 1.0);
+    }
+    let mut y = DVector::zeros(n);
+    for _ in 0..50 {
+        let nx = x.norm();
+        *x /= nx;
+        a.mul_to(x, &mut y);
+        let rho = x.dot(&y);
+        let r = (&y - &*x * rho).norm();
+        if rho > 0.0 && r <= tol * rho {
+            return rho + r;
+        }
+        std::mem::swap(x, &mut y);
+    }
+    let e = SymmetricEigen::new(a.clone());
+    let (k, top) = e
+        .eigenvalues
+        .iter()
+        .enumerate()
+        .fold(
+            (0, f64::NEG_INFINITY),
+            |acc, (i, &v)| if v > acc.1 { (i, v) } else { acc },
+        );
+    *x = e.eigenvectors.column(k).into_owned();
+    top.max(0.0)
+}
+
+/// The matrix D^{-1/2} K D^{-1/2} (symmetrised) whose eigenvalues are the
+/// ω² of K x = ω² D x.
+pub fn scaled_lumped(k: &DMatrix<f64>, lumped: &[f64]) -> DMatrix<f64> {
+    let n = k.nrows();
+    let s: Vec<f64> = lumped.iter().map(|m| 1.0 / m.sqrt()).collect();
+    DMatrix::from_fn(n, n, |i, j| 0.5 * s[i] * (k[(i, j)] + k[(j, i)]) * s[j])
+}
+
 /// The largest ω² of K x = ω² D x for the diagonal D = diag(`lumped`), by
 /// the symmetric eigenvalues of D^{-1/2} K D^{-1/2} (a direct method: the
 /// power iteration of [`max_eigenvalue`] converges slowly when the top two
