@@ -913,7 +913,8 @@ fn defi_contact_checks() {
     // kinematic contact of explicit dynamics and says so (an implicit
     // DYNA_NON_LINE refuses it: tests/contact_def.rs).
     let comm = axis_mo(&format!(
-        "C = DEFI_CONTACT(MODELE=MO, FORMULATION='DISCRETE', FROTTEMENT='COULOMB', {zone} COULOMB=0.25, E_T=1.E5))"
+        "MAIL = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ORIE_PEAU_2D=_F(GROUP_MA=('SZZ', 'RIGID')))\n\
+         C = DEFI_CONTACT(MODELE=MO, FORMULATION='DISCRETE', FROTTEMENT='COULOMB', {zone} COULOMB=0.25, E_T=1.E5))"
     ));
     let (study, err) = run("sdnv103b", &comm);
     assert!(err.is_none(), "{err:?}");

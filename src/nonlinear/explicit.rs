@@ -524,6 +524,7 @@ pub fn run(
     let stop = |message: String, summary: &RunSummary| Stopped {
         message,
         summary: summary.clone(),
+        signal: None,
     };
     let contact_w2 = contact
         .as_deref()
@@ -596,6 +597,30 @@ pub fn run(
     while next < tl.instants.len() {
         let target = tl.instants[next];
         let t0 = engine.committed.t;
+        // SIGINT/SIGTERM (crate::interrupt): stop between two steps, the
+        // last state archived, as the implicit loop does.
+        if let Some(signal) = crate::interrupt::requested() {
+            if archive(engine, tl, result, &engine.committed.clone(), None) {
+                summary.archived += 1;
+                archive_line(&mut energy, result, &summary, dt, log);
+            }
+            store_energy(&energy, result);
+            summary.seconds = started.elapsed().as_secs_f64();
+            let message = format!(
+                "DYNA_NON_LINE stopped by {} at t = {t0:e}, after {} explicit steps: the {} archived instants are kept in the result; the computation up to t = {:e} was not done.",
+                crate::interrupt::name(signal),
+                summary.steps,
+                result.steps.len(),
+                tl.instants[tl.instants.len() - 1]
+            );
+            log(&message);
+            crate::profile::count(crate::profile::Counter::Steps, summary.steps);
+            return Err(Stopped {
+                message,
+                summary,
+                signal: Some(signal),
+            });
+        }
         if let Some(ct) = contact.as_deref_mut() {
             ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
         }
