@@ -676,3 +676,55 @@ fn coulomb_friction_in_the_continuous_formulation() {
     );
     insta::assert_snapshot!(tables_of(&resu));
 }
+
+/// The contact fixed point (ALGO_RESO_CONT='POINT_FIXE': statuses frozen
+/// during Newton, re-evaluated after it converges) reaches the same
+/// solution as the generalised Newton on the continuous landing, whose
+/// statuses change at the impact, the chattering and the release: B1's
+/// gap and force agree at every one of the 153 instants within the Newton
+/// tolerance.
+#[test]
+fn landing_with_the_contact_fixed_point() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("landing_point_fixe_src");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("contact_landing_continue.comm")).unwrap();
+    let pf = comm.replace("ALGO_RESO_CONT='NEWTON'", "ALGO_RESO_CONT='POINT_FIXE'");
+    assert_ne!(pf, comm);
+    std::fs::write(tmp.join("pf.comm"), pf).unwrap();
+    std::fs::write(
+        tmp.join("pf.export"),
+        format!("F mmed {} D 20\n", dir().join("bar_2x8.mmed").display()),
+    )
+    .unwrap();
+    let run = common::run_study(tmp.join("pf.comm").to_str().unwrap(), "verif_landing_pf");
+    let pf_resu = common::assert_all_ok(&run, "pf.resu");
+    let newton_run = common::run_study(
+        "tests/verification/contact_landing_continue.comm",
+        "verif_landing_newton_for_pf",
+    );
+    let newton_resu = common::assert_all_ok(&newton_run, "contact_landing_continue.resu");
+    let a = printed_table(&pf_resu, "TAB");
+    let b = printed_table(&newton_resu, "TAB");
+    assert_eq!(a.len(), 153);
+    assert_eq!(a.len(), b.len());
+    let rn_max = b.iter().map(|r| num(r, "RN")).fold(0.0, f64::max);
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(num(x, "CONT"), num(y, "CONT"), "{x:?} {y:?}");
+        assert!((num(x, "JEU") - num(y, "JEU")).abs() <= 1e-9, "{x:?} {y:?}");
+        assert!(
+            (num(x, "RN") - num(y, "RN")).abs() <= 1e-6 * rn_max,
+            "{x:?} {y:?}"
+        );
+    }
+    let totals = |mess: &str| {
+        mess.lines()
+            .find(|l| l.contains(" steps (") && l.contains("Newton iterations"))
+            .unwrap_or_default()
+            .to_string()
+    };
+    eprintln!(
+        "POINT_FIXE: {}\nNEWTON: {}",
+        totals(&run.file("pf.mess")),
+        totals(&newton_run.file("contact_landing_continue.mess"))
+    );
+}

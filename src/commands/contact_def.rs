@@ -195,18 +195,34 @@ fn continuous_def(
     let algo_reso_cont = reso("ALGO_RESO_CONT")?;
     let algo_reso_frot = reso("ALGO_RESO_FROT")?;
     let algo_reso_geom = reso("ALGO_RESO_GEOM")?;
-    if algo_reso_cont == Resolution::PointFixe {
-        return Err(args.not_implemented(
-            "ALGO_RESO_CONT",
-            "the contact fixed point (ALGO_RESO_CONT='POINT_FIXE'); the statuses are updated inside Newton (NEWTON)",
-        ));
-    }
     if algo_reso_frot == Resolution::PointFixe && args.text("FROTTEMENT") == Some("COULOMB") {
         return Err(args.not_implemented(
             "ALGO_RESO_FROT",
             "the friction fixed point (ALGO_RESO_FROT='POINT_FIXE'); friction is solved inside Newton (NEWTON)",
         ));
     }
+    let iter_cont_maxi = if algo_reso_cont == Resolution::PointFixe {
+        match args.text("ITER_CONT_TYPE").unwrap_or("MAXI") {
+            "MAXI" => {
+                let n = args.int("ITER_CONT_MAXI").unwrap_or(30);
+                if n < 1 {
+                    return Err(args.error(
+                        "ITER_CONT_MAXI",
+                        format!("ITER_CONT_MAXI must be >= 1, got {n}"),
+                    ));
+                }
+                n as usize
+            }
+            other => {
+                return Err(args.not_implemented(
+                    "ITER_CONT_TYPE",
+                    &format!("ITER_CONT_TYPE='{other}'; only 'MAXI' is available"),
+                ))
+            }
+        }
+    } else {
+        0
+    };
     let resi_geom = args.real("RESI_GEOM").unwrap_or(match algo_reso_geom {
         Resolution::Newton => 1e-6,
         Resolution::PointFixe => 1e-2,
@@ -223,6 +239,7 @@ fn continuous_def(
         algo_reso_geom,
         resi_geom,
         resi_frot,
+        iter_cont_maxi,
         zones,
     })
 }

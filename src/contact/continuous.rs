@@ -66,6 +66,9 @@ pub struct ContinuousDef {
     /// `RESI_FROT`: largest change of `LAGS_C` in an iteration over the
     /// largest `LAGS_C` (the last iterations must also satisfy it).
     pub resi_frot: f64,
+    /// `ITER_CONT_MAXI`: status evaluations of the contact fixed point
+    /// (`ALGO_RESO_CONT='POINT_FIXE'`) allowed in a step.
+    pub iter_cont_maxi: usize,
     /// One per zone of the definition, same order.
     pub zones: Vec<ContinuousZone>,
 }

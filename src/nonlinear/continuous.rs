@@ -55,6 +55,10 @@ pub struct ContinuousContact {
     first: bool,
     /// A status changed at the last evaluation.
     pub changed: bool,
+    /// Status evaluations of the contact fixed point in this step.
+    fixed_point_loops: usize,
+    /// The last one changed a status (not yet seen by an iteration).
+    fixed_point_changed: bool,
     /// Largest |δλ| (LAGS_C) of the last correction.
     last_dlam: f64,
     u_start: Vec<[f64; 3]>,
@@ -187,6 +191,8 @@ impl ContinuousContact {
             first: true,
             changed: false,
             last_dlam: 0.0,
+            fixed_point_loops: 0,
+            fixed_point_changed: false,
             u_start: un,
             pairing,
             geom_move: 0.0,
@@ -355,6 +361,8 @@ impl ContinuousContact {
         self.first = true;
         self.changed = false;
         self.last_dlam = 0.0;
+        self.fixed_point_loops = 0;
+        self.fixed_point_changed = false;
         let u = self.u_start.clone();
         self.repair(&u);
     }
@@ -378,23 +386,13 @@ impl ContinuousContact {
         if !self.first && self.cdef.algo_reso_geom == Resolution::Newton {
             self.repair(&u);
         }
-        let links = self.links();
-        self.changed = false;
-        if !self.first {
-            for (i, l) in links.iter().enumerate() {
-                let z = &self.cdef.zones[self.points[i].zone];
-                let lam = self.lam[i * self.stride];
-                let s = match l {
-                    Some(l) => contact_status(lam, -self.pairing.links[*l].gap, z.coef_cont),
-                    None => false,
-                };
-                if s != self.status[i] {
-                    self.changed = true;
-                }
-                self.status[i] = s;
-                self.lam_s[i] = lam;
-            }
+        // A status changed by the contact fixed point is a change of this
+        // iteration: at least one solve with it before convergence.
+        self.changed = std::mem::take(&mut self.fixed_point_changed);
+        if !self.first && self.cdef.algo_reso_cont == Resolution::Newton {
+            self.changed = self.update_statuses();
         }
+        let links = self.links();
         self.first = false;
         let ndpn = self.ndpn;
         let dim = self.def.dim;
@@ -511,13 +509,53 @@ impl ContinuousContact {
         !self.changed && self.resi_frot() <= self.cdef.resi_frot
     }
 
-    /// After Newton converged at `u`: the geometric fixed point re-pairs
-    /// (`ALGO_RESO_GEOM='POINT_FIXE'`) until the projections stop moving.
+    /// The statuses from the current λ and gaps (`mmstac`); λ_s := λ.
+    /// Returns whether one changed.
+    fn update_statuses(&mut self) -> bool {
+        let links = self.links();
+        let mut changed = false;
+        for (i, l) in links.iter().enumerate() {
+            let z = &self.cdef.zones[self.points[i].zone];
+            let lam = self.lam[i * self.stride];
+            let s = match l {
+                Some(l) => contact_status(lam, -self.pairing.links[*l].gap, z.coef_cont),
+                None => false,
+            };
+            changed |= s != self.status[i];
+            self.status[i] = s;
+            self.lam_s[i] = lam;
+        }
+        changed
+    }
+
+    /// After Newton converged at `u`. The contact fixed point
+    /// (`ALGO_RESO_CONT='POINT_FIXE'`): the statuses, frozen during the
+    /// Newton iterations, are evaluated at the converged state; if one
+    /// changed, the iterations go on with the new ones (same
+    /// ITER_GLOB_MAXI counter). Then the geometric fixed point
+    /// (`ALGO_RESO_GEOM='POINT_FIXE'`) re-pairs until the projections stop
+    /// moving.
     pub fn accept(&mut self, u: &[f64]) -> Result<bool, String> {
+        let un = per_node(self.ndpn, u);
+        if self.cdef.algo_reso_cont == Resolution::PointFixe {
+            if self.cdef.algo_reso_geom == Resolution::Newton {
+                self.repair(&un);
+            }
+            self.fixed_point_loops += 1;
+            if self.update_statuses() {
+                if self.fixed_point_loops >= self.cdef.iter_cont_maxi {
+                    return Err(format!(
+                        "the contact fixed point (ALGO_RESO_CONT='POINT_FIXE') changed statuses at each of its {} evaluations (ITER_CONT_MAXI)",
+                        self.fixed_point_loops
+                    ));
+                }
+                self.fixed_point_changed = true;
+                return Ok(false);
+            }
+        }
         if self.cdef.algo_reso_geom == Resolution::Newton {
             return Ok(true);
         }
-        let un = per_node(self.ndpn, u);
         self.repair(&un);
         Ok(self.geom_move <= self.cdef.resi_geom)
     }
