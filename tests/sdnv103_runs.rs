@@ -18,7 +18,7 @@ const NOT_RUNNING_YET: &[&str] = &[];
 /// docs give (E, K: docs/contact.md §9). Their tables and verdicts are
 /// snapshotted by tests/sdnv103_unil_runs.rs, so a verdict that changes
 /// shows up there; once every check is OK, move the letter to `studies!`.
-/// B_EXPLICIT: B explicitly (DIFF_CENT, kinematic contact): B1 DX 7 %
+/// B_EXPLICIT: B explicitly (DIFF_CENT, kinematic contact): B1 DX 6.2 %
 /// below the implicit B on the same mesh against issue 15's 5 %; the
 /// command file and docs/performance.md say why (the implicit model's
 /// dissipation and penalised friction).
