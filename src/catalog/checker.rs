@@ -153,9 +153,12 @@ pub fn check_program<D: AsRef<CommandSpec>>(
         );
     }
     if fin_at.is_none() && seen_debut {
-        ck.warnings.push(Diagnostic::warning(
-            "the study has no FIN(): it is closed at the end of the file",
-        ));
+        // Located where FIN() would go: after the last statement.
+        let end = program.stmts.last().map_or(0, |s| s.span.end);
+        ck.warnings.push(
+            Diagnostic::warning("the study has no FIN(): it is closed at the end of the file")
+                .at(Span::new(end, end)),
+        );
     }
     if ck.errors.is_empty() {
         Ok(CheckedProgram {

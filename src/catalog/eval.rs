@@ -244,9 +244,21 @@ impl Env {
                     ("int", PyVal::Str(s)) => PyVal::Int(s.trim().parse().map_err(|_| {
                         Diagnostic::error(format!("int() cannot convert '{s}'")).at(x.span)
                     })?),
-                    ("float", PyVal::Str(s)) => PyVal::Real(s.trim().parse().map_err(|_| {
-                        Diagnostic::error(format!("float() cannot convert '{s}'")).at(x.span)
-                    })?),
+                    ("float", PyVal::Str(s)) => {
+                        let r: f64 = s.trim().parse().map_err(|_| {
+                            Diagnostic::error(format!("float() cannot convert '{s}'")).at(x.span)
+                        })?;
+                        // Python accepts 'nan' and 'inf'; no keyword of a
+                        // study means anything with them, and a NaN would
+                        // pass every bound check (comparisons are false).
+                        if !r.is_finite() {
+                            return Err(Diagnostic::error(format!(
+                                "float('{s}') is not a finite number"
+                            ))
+                            .at(x.span));
+                        }
+                        PyVal::Real(r)
+                    }
                     ("float", _) => PyVal::Real(num(x)?),
                     ("abs", PyVal::Int(i)) => PyVal::Int(
                         i.checked_abs()

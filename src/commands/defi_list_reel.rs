@@ -50,6 +50,12 @@ pub fn def() -> CommandDef {
 /// code_aster's tolerance on the number of PAS steps in an interval.
 const PAS_TOLERANCE: f64 = 1e-3;
 
+/// The most values a list may hold (80 MB of reals). code_aster has no
+/// such limit, but a mistyped NOMBRE or PAS (1e12 steps) would otherwise
+/// fill the memory before anything is reported; no transient study of
+/// this size range needs more.
+pub const MAX_VALUES: usize = 10_000_000;
+
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let values = if args.has("VALE") {
         explicit(args)?
@@ -111,6 +117,12 @@ pub fn by_intervals(
             if n < 1 {
                 return Err(occ.error("NOMBRE", format!("NOMBRE = {n} must be at least 1")));
             }
+            if n as u64 > MAX_VALUES as u64 {
+                return Err(occ.error(
+                    "NOMBRE",
+                    format!("NOMBRE = {n} is more than the {MAX_VALUES} values a list may hold"),
+                ));
+            }
             (n as usize, length / n as f64)
         } else {
             let pas = occ
@@ -120,6 +132,14 @@ pub fn by_intervals(
                 return Err(occ.error("PAS", format!("PAS = {pas:e} must be positive")));
             }
             let ratio = length / pas;
+            if ratio > MAX_VALUES as f64 {
+                return Err(occ.error(
+                    "PAS",
+                    format!(
+                        "PAS = {pas:e} cuts [{prev:e}, {end:e}] into {ratio:e} steps, more than the {MAX_VALUES} values a list may hold"
+                    ),
+                ));
+            }
             if ratio <= 1.0 - PAS_TOLERANCE {
                 return Err(occ.error(
                     "PAS",
@@ -139,6 +159,22 @@ pub fn by_intervals(
                 (full + 1, pas)
             }
         };
+        if values.len() + steps > MAX_VALUES {
+            return Err(occ.error(
+                "",
+                format!("the intervals give more than the {MAX_VALUES} values a list may hold"),
+            ));
+        }
+        // A step below the spacing of reals near the interval would give
+        // a list that does not increase.
+        if prev + step <= prev || end - step >= end {
+            return Err(occ.error(
+                if occ.has("NOMBRE") { "NOMBRE" } else { "PAS" },
+                format!(
+                    "the step {step:e} is below the resolution of reals in [{prev:e}, {end:e}]"
+                ),
+            ));
+        }
         let mut v = prev;
         for _ in 1..steps {
             v += step;
@@ -258,6 +294,33 @@ mod tests {
             e.message
         );
         assert_eq!(e.keyword.as_deref(), Some("INTERVALLE/PAS"));
+    }
+
+    /// Found by tests/fuzz_runner.rs: NOMBRE = i64::MAX filled the memory.
+    #[test]
+    fn too_many_values_is_fatal_before_any_allocation() {
+        let mut alarms = Vec::new();
+        let e = by_intervals(0.0, &[nombre(1.0, i64::MAX)], &mut alarms).unwrap_err();
+        assert_eq!(e.keyword.as_deref(), Some("INTERVALLE/NOMBRE"));
+        let e = by_intervals(0.0, &[pas(1.0, 1e-300)], &mut alarms).unwrap_err();
+        assert_eq!(e.keyword.as_deref(), Some("INTERVALLE/PAS"));
+        let half = nombre(1.0, (MAX_VALUES / 2 + 1) as i64);
+        let e = by_intervals(
+            0.0,
+            &[half, nombre(2.0, (MAX_VALUES / 2) as i64)],
+            &mut alarms,
+        )
+        .unwrap_err();
+        assert!(e.message.contains("more than"), "{}", e.message);
+    }
+
+    /// A step below the spacing of reals would repeat a value.
+    #[test]
+    fn step_below_the_resolution_of_reals_is_fatal() {
+        let mut alarms = Vec::new();
+        let e = by_intervals(1e10, &[nombre(1e10 + 1e-4, 1000)], &mut alarms).unwrap_err();
+        assert_eq!(e.keyword.as_deref(), Some("INTERVALLE/NOMBRE"));
+        assert!(e.message.contains("resolution"), "{}", e.message);
     }
 
     #[test]

@@ -321,6 +321,31 @@ pub fn check(
             line.error = Some(error);
         }
     }
+    // The line shows the tolerance (a percentage when relative) and the
+    // error: a value, reference or tolerance so large that these overflow
+    // would print "inf" or "nan" where a number is expected.
+    let shown_tolerance = match critere {
+        Critere::Relatif => tolerance * 100.0,
+        Critere::Absolu => tolerance * ordre_grandeur.unwrap_or(1.0),
+    };
+    if !shown_tolerance.is_finite() {
+        return Err(format!(
+            "the tolerance {} is too large: the {} it gives overflows the reals",
+            py_repr(tolerance),
+            if critere == Critere::Relatif {
+                "percentage"
+            } else {
+                "absolute tolerance"
+            }
+        ));
+    }
+    if !line.error.is_some_and(f64::is_finite) {
+        return Err(format!(
+            "the difference between the computed value {} and the reference {} overflows the reals",
+            py_repr(value),
+            py_repr(reference)
+        ));
+    }
     line.ordre_grandeur = ordre_grandeur;
     line.status = if ok { Status::Ok } else { Status::Nook };
     Ok(line)
@@ -791,6 +816,27 @@ mod tests {
             row,
             " OK   NON_REGRESSION   XXXX             1.0                1.0                0.0%             1E-4%           "
         );
+    }
+
+    /// Found by tests/fuzz_runner.rs: PRECISION=1.E308 printed "inf%".
+    #[test]
+    fn overflowing_tolerance_or_error_is_refused() {
+        let check_with = |v: f64, r: f64, tol: f64, c: Critere| {
+            check(
+                RefKind::NonRegression,
+                &Value::Real(v),
+                &[Value::Real(r)],
+                tol,
+                c,
+                None,
+                false,
+            )
+        };
+        let e = check_with(1.0, 1.0, 1e308, Critere::Relatif).unwrap_err();
+        assert!(e.contains("too large"), "{e}");
+        let e = check_with(1e308, -1e308, 1e-6, Critere::Absolu).unwrap_err();
+        assert!(e.contains("overflows"), "{e}");
+        assert!(check_with(1.0, 1.0, 1e300, Critere::Absolu).is_ok());
     }
 
     #[test]
