@@ -65,3 +65,33 @@ fn landing_bar_momentum_is_the_impulse_of_the_reactions() {
     }
     assert!(rows >= 60, "{rows} rows");
 }
+
+/// A stiff penalty (E_N = 1e9 on the landing bar) lowers the stable step by
+/// more than 10 times: the .mess reports the factor and an alarm gives the
+/// step it implies; the CFL message names the penalty as the limit.
+#[test]
+fn stiff_penalty_step_is_reported_with_an_alarm() {
+    let run = common::run_study(
+        "tests/verification/explicit_penalty_step.comm",
+        "explicit_penalty_step",
+    );
+    common::assert_all_ok(&run, "explicit_penalty_step.resu");
+    let mess = run.file("explicit_penalty_step.mess");
+    let alarm = mess
+        .lines()
+        .find(|l| {
+            l.contains("alarm: the contact penalty shrinks the stable step by more than 10 times")
+        })
+        .unwrap_or_else(|| panic!("no alarm in:\n{mess}"));
+    // "... times: A s instead of B s (...)": A = B / factor, factor > 10.
+    let after = &alarm[alarm.find("times:").unwrap()..];
+    let nums: Vec<f64> = after
+        .split_whitespace()
+        .filter_map(|w| w.parse::<f64>().ok())
+        .collect();
+    assert!(nums.len() >= 2 && nums[0] < nums[1] / 10.0, "{alarm}");
+    assert!(
+        mess.contains("set by the contact penalty") && mess.contains("STOP_CFL='NON'"),
+        "{mess}"
+    );
+}

@@ -248,11 +248,20 @@ pub(crate) fn exec(
         ));
     }
     if let Some((k, t, dt)) = explicit::first_step_above(&tl.instants, bound.dt) {
-        let m = format!(
-            "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} of cell {} (DYNAMIQUE_2)",
-            bound.dt,
-            bound.cell + 1
-        );
+        let m = if bound.dt < bound.dt_elements {
+            format!(
+                "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} set by the contact penalty (the elements' alone: {:.6e} at cell {}) (DYNAMIQUE_2)",
+                bound.dt,
+                bound.dt_elements,
+                bound.cell + 1
+            )
+        } else {
+            format!(
+                "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} of cell {} (DYNAMIQUE_2)",
+                bound.dt,
+                bound.cell + 1
+            )
+        };
         if stop_cfl {
             let inc = args.fact("INCREMENT").unwrap_or(args);
             return Err(inc
