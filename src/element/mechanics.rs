@@ -230,6 +230,23 @@ pub fn output_points(spec: &ElementSpec) -> usize {
     tabulated(spec.cell, spec.rigi).map_or(0, |t| t.weights.len())
 }
 
+/// Reusable output of [`internal_forces_into`]: the engine keeps one per
+/// element, so that an iteration of the element loop allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub struct ElementBuffers {
+    /// f_int, dof order node-major.
+    pub forces: Vec<f64>,
+    /// ∂f_int/∂u, row-major (entry (a, b) at `a·ndof + b`); empty for
+    /// [`TangentKind::None`].
+    pub stiffness: Vec<f64>,
+    /// One per state row, as [`ElementResponse::states`].
+    pub states: Vec<PointState>,
+    /// The tangent partners M_b by component: `partners[3r + c][b]` is
+    /// M_b(r, c). One contiguous row per component lets the ndof² loop of
+    /// the tangent run over b in SIMD lanes.
+    partners: Vec<[f64; MAX_DOFS]>,
+}
+
 /// Integrates the law at every RIGI point for the step u_n → u and
 /// assembles the internal forces and, unless `tangent` is
 /// [`TangentKind::None`], their derivative with respect to u.
@@ -256,6 +273,54 @@ pub fn internal_forces(
             spec, kin, coords, u_n, u, states_n, law, dt, tangent,
         );
     }
+    let mut out = ElementBuffers::default();
+    internal_forces_into(
+        spec, kin, coords, u_n, u, states_n, law, dt, tangent, &mut out,
+    )?;
+    let n = out.forces.len();
+    Ok(ElementResponse {
+        forces: DVector::from_vec(out.forces),
+        stiffness: (tangent != TangentKind::None)
+            .then(|| DMatrix::from_row_slice(n, n, &out.stiffness)),
+        states: out.states,
+    })
+}
+
+/// [`internal_forces`] into reusable buffers (same contract; the tangent
+/// row-major in `out.stiffness`).
+#[allow(clippy::too_many_arguments)]
+pub fn internal_forces_into(
+    spec: &ElementSpec,
+    kin: Kinematics,
+    coords: &[[f64; 3]],
+    u_n: &[f64],
+    u: &[f64],
+    states_n: &[PointState],
+    law: LawRef,
+    dt: f64,
+    tangent: TangentKind,
+    buf: &mut ElementBuffers,
+) -> Result<(), ElementFailure> {
+    let ElementBuffers {
+        forces,
+        stiffness,
+        states,
+        partners,
+    } = buf;
+    if spec.is_hexs8() {
+        let r =
+            super::hexs8::internal_forces(spec, kin, coords, u_n, u, states_n, law, dt, tangent)?;
+        forces.clear();
+        forces.extend_from_slice(r.forces.as_slice());
+        stiffness.clear();
+        if let Some(k) = &r.stiffness {
+            let n = k.nrows();
+            stiffness.extend((0..n * n).map(|ab| k[(ab / n, ab % n)]));
+        }
+        states.clear();
+        states.extend_from_slice(&r.states);
+        return Ok(());
+    }
     let tab = table(spec, spec.rigi)?;
     let nn = spec.nnodes();
     let d = spec.formulation.dofs_per_node();
@@ -269,9 +334,17 @@ pub fn internal_forces(
     }
     check_law(kin, law)?;
 
-    let mut forces = DVector::zeros(ndof);
-    let mut stiffness = (tangent != TangentKind::None).then(|| DMatrix::zeros(ndof, ndof));
-    let mut states = Vec::with_capacity(tab.weights.len());
+    let want_k = tangent != TangentKind::None;
+    forces.clear();
+    forces.resize(ndof, 0.0);
+    stiffness.clear();
+    if want_k {
+        stiffness.resize(ndof * ndof, 0.0);
+    }
+    states.clear();
+    partners.resize(9, [0.0; MAX_DOFS]);
+    let mt = &mut partners[..];
+    let axis = spec.formulation == Formulation::Axis;
 
     let mut du = [0.0; MAX_DOFS];
     for k in 0..ndof {
@@ -289,7 +362,6 @@ pub fn internal_forces(
     }
     // Per-dof virtual gradients G_α (or G⁰_α F⁻¹) and tangent partners M_α.
     let mut g = [VGrad::ZERO; MAX_DOFS];
-    let mut m = [Matrix3::zeros(); MAX_DOFS];
 
     for (p, (shape, w)) in tab.shapes.iter().zip(&tab.weights).enumerate() {
         let st = &states_n[p];
@@ -304,7 +376,6 @@ pub fn internal_forces(
                 g[a * d + i] = geom.virtual_gradient(a, i);
             }
         }
-        let want_k = stiffness.is_some();
         // S: the stress conjugate to the virtual gradients g.
         let (s, new_state) = match (kin, law) {
             (Kinematics::Petit | Kinematics::PetitReac, LawRef::Small(l)) => {
@@ -333,9 +404,14 @@ pub fn internal_forces(
                         } else {
                             gk
                         };
-                        m[k] = stress_to_tensor(&(dmat * tensor_to_strain(&dl)));
+                        let mut mk = stress_to_tensor(&(dmat * tensor_to_strain(&dl)));
                         if kin == Kinematics::PetitReac {
-                            m[k] += s * gk.trace() - s * gk.transpose();
+                            mk += s * gk.trace() - s * gk.transpose();
+                        }
+                        for r in 0..3 {
+                            for c in 0..3 {
+                                mt[3 * r + c][k] = mk[(r, c)];
+                            }
                         }
                     }
                 }
@@ -373,7 +449,7 @@ pub fn internal_forces(
                     tangent,
                 };
                 let out = match law {
-                    LawRef::SimoMiehe(l) => l.integrate(&input),
+                    LawRef::SimoMiehe(l) => l.integrate_columns(&input, tangent_columns(axis)),
                     LawRef::GdefLog(l) => l.integrate(&input),
                     LawRef::Small(_) => unreachable!("check_law rejects small laws here"),
                 }
@@ -388,7 +464,7 @@ pub fn internal_forces(
                 for k in 0..ndof {
                     let sp = g[k].times(&f_inv, geom.axis);
                     if let Some(c) = &c {
-                        m[k] = g[k].tangent_partner(&sp, c, &tau);
+                        g[k].tangent_partner_into(&sp, c, &tau, axis, mt, k);
                     }
                     g[k] = sp;
                 }
@@ -405,21 +481,55 @@ pub fn internal_forces(
         for k in 0..ndof {
             forces[k] += geom.dv * g[k].dot(&s);
         }
-        if let Some(kmat) = stiffness.as_mut() {
-            for b in 0..ndof {
-                let mb = &m[b];
-                for a in 0..ndof {
-                    kmat[(a, b)] += geom.dv * g[a].dot(mb);
-                }
-            }
+        if want_k {
+            add_tangent(stiffness, &g[..ndof], mt, geom.dv, axis);
         }
         states.push(new_state);
     }
-    Ok(ElementResponse {
-        forces,
-        stiffness,
-        states,
-    })
+    Ok(())
+}
+
+/// K += dv (G_a : M_b) for every pair (a, b), `k` row-major. The inner
+/// loop runs over b on the component rows of the partners, so it
+/// vectorises; each entry is the same sum in the same order as G_a : M_b
+/// written out, less terms that are exact zeros: the third column of G_a
+/// in AXIS (∂/∂θ), and the hoop term of every dof but the radial ones of
+/// AXIS.
+fn add_tangent(k: &mut [f64], g: &[VGrad], mt: &[[f64; MAX_DOFS]], dv: f64, axis: bool) {
+    let n = g.len();
+    for (ga, row) in g.iter().zip(k.chunks_exact_mut(n)) {
+        let i = ga.i;
+        let [r0, r1, r2] = ga.row;
+        let c0 = &mt[3 * i][..n];
+        let c1 = &mt[3 * i + 1][..n];
+        if !axis {
+            let c2 = &mt[3 * i + 2][..n];
+            for (((kb, &x0), &x1), &x2) in row.iter_mut().zip(c0).zip(c1).zip(c2) {
+                *kb += dv * ((r0 * x0 + r1 * x1) + r2 * x2);
+            }
+        } else if ga.hoop != 0.0 {
+            let h = ga.hoop;
+            let c8 = &mt[8][..n];
+            for (((kb, &x0), &x1), &x8) in row.iter_mut().zip(c0).zip(c1).zip(c8) {
+                *kb += dv * ((r0 * x0 + r1 * x1) + h * x8);
+            }
+        } else {
+            for ((kb, &x0), &x1) in row.iter_mut().zip(c0).zip(c1) {
+                *kb += dv * (r0 * x0 + r1 * x1);
+            }
+        }
+    }
+}
+
+/// The columns of ∂τ/∂F (bit 3k + l for ∂/∂F_kl) the element reads: in
+/// AXIS a virtual gradient has no θ row or column besides θθ, so only
+/// rr, rz, zr, zz and θθ.
+fn tangent_columns(axis: bool) -> u16 {
+    if axis {
+        0b1_0001_1011
+    } else {
+        0b1_1111_1111
+    }
 }
 
 /// Where the initial geometry of an element is invalid: a non-positive
@@ -671,36 +781,40 @@ impl VGrad {
     /// The SIMO_MIEHE tangent partner of `self` = G⁰ (initial virtual
     /// gradient) with `sp` = G⁰F⁻¹: M = (∂τ/∂F : G⁰) − τ spᵀ, where
     /// `c` holds ∂τ/∂F (row 3i+j, column 3k+l). Only the columns of `c`
-    /// that G⁰ selects are read.
-    fn tangent_partner(
+    /// that G⁰ selects are read. Written into `mt[·][k]`; in AXIS only
+    /// the components [`add_tangent`] reads (rr, rz, zr, zz, θθ).
+    fn tangent_partner_into(
         &self,
         sp: &VGrad,
         c: &SMatrix<f64, 9, 9>,
         tau: &Matrix3<f64>,
-    ) -> Matrix3<f64> {
-        let mut dtau = [0.0; 9];
-        for l in 0..3 {
-            let w = self.row[l];
-            if w != 0.0 {
-                let col = c.column(3 * self.i + l);
-                for (r, v) in dtau.iter_mut().enumerate() {
-                    *v += col[r] * w;
+        axis: bool,
+        mt: &mut [[f64; MAX_DOFS]],
+        k: usize,
+    ) {
+        const AXIS_COMPONENTS: [usize; 5] = [0, 1, 3, 4, 8];
+        const ALL: [usize; 9] = [0, 1, 2, 3, 4, 5, 6, 7, 8];
+        let comps: &[usize] = if axis { &AXIS_COMPONENTS } else { &ALL };
+        for &rc in comps {
+            let mut v = 0.0;
+            for l in 0..3 {
+                let w = self.row[l];
+                if w != 0.0 {
+                    v += c[(rc, 3 * self.i + l)] * w;
                 }
             }
-        }
-        if self.hoop != 0.0 {
-            let col = c.column(8);
-            for (r, v) in dtau.iter_mut().enumerate() {
-                *v += col[r] * self.hoop;
+            if self.hoop != 0.0 {
+                v += c[(rc, 8)] * self.hoop;
             }
+            let (j, col) = (rc / 3, rc % 3);
+            if col == sp.i {
+                v -= tau[(j, 0)] * sp.row[0] + tau[(j, 1)] * sp.row[1] + tau[(j, 2)] * sp.row[2];
+            }
+            if col == 2 {
+                v -= tau[(j, 2)] * sp.hoop;
+            }
+            mt[rc][k] = v;
         }
-        let mut m = Matrix3::from_fn(|i, j| dtau[3 * i + j]);
-        for j in 0..3 {
-            m[(j, sp.i)] -=
-                tau[(j, 0)] * sp.row[0] + tau[(j, 1)] * sp.row[1] + tau[(j, 2)] * sp.row[2];
-            m[(j, 2)] -= tau[(j, 2)] * sp.hoop;
-        }
-        m
     }
 }
 

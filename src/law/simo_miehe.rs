@@ -123,6 +123,18 @@ impl SimoMiehe {
         &self,
         input: &FiniteStrainInput,
     ) -> Result<FiniteStrainOutput, IntegrationFailure> {
+        self.integrate_columns(input, 0x1ff)
+    }
+
+    /// [`SimoMiehe::integrate`] computing only the columns 3k + l of
+    /// ∂τ/∂F whose bit is set in `columns` (the others are zero): an
+    /// axisymmetric element reads 5 of the 9, and each column costs as
+    /// much as the stress update.
+    pub fn integrate_columns(
+        &self,
+        input: &FiniteStrainInput,
+        columns: u16,
+    ) -> Result<FiniteStrainOutput, IntegrationFailure> {
         let name = METADATA.name;
         self.check(input)?;
         let (mu, k, h) = (self.mu, self.bulk, self.h);
@@ -188,6 +200,9 @@ impl SimoMiehe {
                 let aft = a * f.transpose();
                 for kk in 0..3 {
                     for ll in 0..3 {
+                        if columns & (1 << (3 * kk + ll)) == 0 {
+                            continue;
+                        }
                         // F⁻ᵀ : dF, i.e. dJ/J.
                         let tr_df = f_inv[(ll, kk)];
                         let mut dbe = b * (-2.0 / 3.0 * tr_df);

@@ -15,8 +15,8 @@ use rayon::prelude::*;
 use super::behaviour::{BehaviourField, CellLaw};
 use super::dofs::{DofNumbering, NONE};
 use crate::element::{
-    initial_states, internal_forces, mass, ElementFailure, ElementResponse, Kinematics, PointState,
-    MAX_DOFS,
+    initial_states, internal_forces_into, mass, ElementBuffers, ElementFailure, Kinematics,
+    PointState, MAX_DOFS,
 };
 use crate::law::TangentKind;
 use crate::mesh::Mesh;
@@ -70,7 +70,9 @@ pub struct Assembler {
     pub cell_state_offsets: Vec<usize>,
     /// Extra free entries beyond the elements' (sorted, unique).
     extra: Vec<(usize, usize)>,
-    responses: Vec<Result<ElementResponse, ElementFailure>>,
+    /// One output buffer per element, reused by every evaluation.
+    buffers: Vec<ElementBuffers>,
+    results: Vec<Result<(), ElementFailure>>,
 }
 
 impl Assembler {
@@ -157,6 +159,7 @@ impl Assembler {
                 }
             }
         }
+        let buffers = vec![ElementBuffers::default(); elements.len()];
         Ok(Assembler {
             numbering,
             elements,
@@ -167,7 +170,8 @@ impl Assembler {
             nstates,
             cell_state_offsets,
             extra: Vec::new(),
-            responses: Vec::new(),
+            buffers,
+            results: Vec::new(),
         })
     }
 
@@ -240,7 +244,7 @@ impl Assembler {
     ) -> Result<(), CellFailure> {
         let _elements = crate::profile::span(crate::profile::Phase::ElementAssembly);
         let laws = &self.laws;
-        let integrate = |e: &ElementData| {
+        let integrate = |(e, out): (&ElementData, &mut ElementBuffers)| {
             let n = e.full.len();
             let mut lu_n = [0.0; MAX_DOFS];
             let mut lu = [0.0; MAX_DOFS];
@@ -248,7 +252,7 @@ impl Assembler {
                 lu_n[k] = u_n[e.full[k]];
                 lu[k] = u[e.full[k]];
             }
-            internal_forces(
+            internal_forces_into(
                 &e.spec,
                 e.kin,
                 &e.coords,
@@ -258,6 +262,7 @@ impl Assembler {
                 laws[e.law].law_ref(),
                 dt,
                 tangent,
+                out,
             )
         };
         // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
@@ -265,33 +270,40 @@ impl Assembler {
         if self.elements.len() >= PARALLEL_MIN_ELEMENTS {
             self.elements
                 .par_iter()
+                .zip(self.buffers.par_iter_mut())
                 .map(integrate)
-                .collect_into_vec(&mut self.responses);
+                .collect_into_vec(&mut self.results);
         } else {
-            self.responses.clear();
-            self.responses.extend(self.elements.iter().map(integrate));
+            self.results.clear();
+            self.results.extend(
+                self.elements
+                    .iter()
+                    .zip(self.buffers.iter_mut())
+                    .map(integrate),
+            );
         }
         fint.iter_mut().for_each(|v| *v = 0.0);
         let mut stiffness = stiffness;
         if let Some(k) = stiffness.as_deref_mut() {
             k.fill_zero();
         }
-        for (e, r) in self.elements.iter().zip(&self.responses) {
-            let r = r.as_ref().map_err(|f| CellFailure {
+        for ((e, r), out) in self.elements.iter().zip(&self.results).zip(&self.buffers) {
+            r.as_ref().map_err(|f| CellFailure {
                 cell: e.cell,
                 failure: f.clone(),
             })?;
-            let n = e.full.len();
-            for k in 0..n {
-                fint[e.full[k]] += r.forces[k];
+            for (&f, &v) in e.full.iter().zip(&out.forces) {
+                fint[f] += v;
             }
-            states_out[e.state_offset..e.state_offset + e.npg].copy_from_slice(&r.states);
-            if let (Some(kmat), Some(ke)) = (stiffness.as_deref_mut(), r.stiffness.as_ref()) {
-                for b in 0..n {
-                    for a in 0..n {
-                        let p = e.pos[a * n + b];
+            states_out[e.state_offset..e.state_offset + e.npg].copy_from_slice(&out.states);
+            if let Some(kmat) = stiffness.as_deref_mut() {
+                if !out.stiffness.is_empty() {
+                    // Both row-major: entry (a, b) at a·n + b. Each global
+                    // entry receives one term per element, so the order of
+                    // the entries does not change the sums.
+                    for (&p, &v) in e.pos.iter().zip(&out.stiffness) {
                         if p != NONE {
-                            kmat.values[p] += ke[(a, b)];
+                            kmat.values[p] += v;
                         }
                     }
                 }
