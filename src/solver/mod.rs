@@ -14,9 +14,10 @@ use std::sync::Arc;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
+use faer::sparse::utils::{permute_self_adjoint_scratch, permute_self_adjoint_to_unsorted};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
@@ -236,6 +237,10 @@ enum Kind {
 
 struct LltFactor {
     symbolic: SymbolicCholesky<usize>,
+    /// Set when faer chose its simplicial factorization (the matrices of
+    /// the axisymmetric studies): the numeric factorization is then
+    /// [`SimplicialPlan::factorize`].
+    plan: Option<SimplicialPlan>,
     values: Vec<f64>,
     /// The matrix factorized, for one step of iterative refinement.
     matrix: Option<SparseMatrix>,
@@ -270,31 +275,36 @@ impl DirectLu {
             )
             .map_err(|e| SolverError::Singular(format!("symbolic factorization: {e:?}")))?;
             let values = vec![0.0; symbolic.len_val()];
+            let plan = SimplicialPlan::new(&symbolic, &a.pattern);
             self.llt = Some(LltFactor {
                 symbolic,
+                plan,
                 values,
                 matrix: None,
             });
             self.symbolic_count += 1;
         }
         let f = self.llt.as_mut().expect("set above");
-        let req = f
-            .symbolic
-            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
-            .or(f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
-        let stack = Self::stack(&mut self.mem, req);
-        let ok = f
-            .symbolic
-            .factorize_numeric_llt(
-                &mut f.values,
-                a.faer(),
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                stack,
-                Default::default(),
-            )
-            .is_ok();
+        let ok = if let Some(plan) = &mut f.plan {
+            plan.factorize(&a.values, &mut f.values)
+        } else {
+            let req = f
+                .symbolic
+                .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+                .or(f.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+            let stack = Self::stack(&mut self.mem, req);
+            f.symbolic
+                .factorize_numeric_llt(
+                    &mut f.values,
+                    a.faer(),
+                    Side::Lower,
+                    LltRegularization::default(),
+                    Par::Seq,
+                    stack,
+                    Default::default(),
+                )
+                .is_ok()
+        };
         if ok {
             match &mut f.matrix {
                 Some(m) if Arc::ptr_eq(&m.pattern, &a.pattern) => {
@@ -333,6 +343,160 @@ impl DirectLu {
             .map_err(|e| SolverError::Singular(format!("numeric factorization: {e:?}")))?;
         self.lu_count += 1;
         Ok(())
+    }
+}
+
+/// faer's simplicial up-looking LLᵀ (`factorize_simplicial_numeric_llt`,
+/// which faer's `factorize_numeric_llt` runs on its permuted upper
+/// triangle), replayed with everything that depends only on the pattern
+/// computed once per pattern instead of at every factorization: the
+/// permutation of the matrix (here a map from its entries to ours) and the
+/// elimination reach of every row (the order in which the columns of L
+/// update row k, with the position of each L(k, j)). The arithmetic is
+/// faer's, operation for operation and in the same order, so the factor is
+/// the same to the last bit; faer's own solve then reads it.
+struct SimplicialPlan {
+    /// Column k of the permuted upper triangle: rows `a_row[e]`, values
+    /// `a[a_src[e]]`, for e in `a_ptr[k]..a_ptr[k + 1]`.
+    a_ptr: Vec<usize>,
+    a_row: Vec<usize>,
+    a_src: Vec<usize>,
+    /// faer's structure of L (column-major, diagonal first).
+    l_ptr: Vec<usize>,
+    l_row: Vec<usize>,
+    /// Reach of row k, in faer's order: column `r_col[t]` of L gives
+    /// L(k, j) at position `r_pos[t]`, for t in `r_ptr[k]..r_ptr[k + 1]`.
+    r_ptr: Vec<usize>,
+    r_col: Vec<usize>,
+    r_pos: Vec<usize>,
+    /// Dense work row, all zeros between calls.
+    x: Vec<f64>,
+}
+
+impl SimplicialPlan {
+    /// `None` when faer chose a supernodal factorization or no ordering.
+    fn new(symbolic: &SymbolicCholesky<usize>, pattern: &CscPattern) -> Option<SimplicialPlan> {
+        let SymbolicCholeskyRaw::Simplicial(simp) = symbolic.raw() else {
+            return None;
+        };
+        let perm = symbolic.perm()?;
+        let n = pattern.n;
+        let nnz = pattern.nnz();
+        // Permute the entry numbers exactly as faer permutes the values:
+        // the result says which of our entries lands where.
+        let ids: Vec<f64> = (0..nnz).map(|k| k as f64).collect();
+        let mut new_val = vec![0.0; nnz];
+        let mut new_ptr = vec![0usize; n + 1];
+        let mut new_row = vec![0usize; nnz];
+        let mut mem = MemBuffer::new(permute_self_adjoint_scratch::<usize>(n));
+        // The result lands in new_ptr/new_row/new_val (compressed).
+        permute_self_adjoint_to_unsorted(
+            &mut new_val,
+            &mut new_ptr,
+            &mut new_row,
+            SparseColMatRef::new(pattern.symbolic(), &ids),
+            perm,
+            Side::Lower,
+            Side::Upper,
+            MemStack::new(&mut mem),
+        );
+        let a_ptr = new_ptr;
+        let a_row = new_row[..a_ptr[n]].to_vec();
+        let a_src: Vec<usize> = new_val[..a_ptr[n]].iter().map(|&v| v as usize).collect();
+        let l_ptr = simp.col_ptr().to_vec();
+        let l_row = simp.row_idx().to_vec();
+        // The elimination tree: the parent of j is the first row below the
+        // diagonal in column j of L.
+        let parent: Vec<usize> = (0..n)
+            .map(|j| {
+                if l_ptr[j + 1] - l_ptr[j] > 1 {
+                    l_row[l_ptr[j] + 1]
+                } else {
+                    usize::MAX
+                }
+            })
+            .collect();
+        // faer's `ereach`, row by row.
+        let mut visited = vec![usize::MAX; n];
+        let mut stack = vec![0usize; n];
+        let mut next = l_ptr[..n].to_vec();
+        let mut r_ptr = Vec::with_capacity(n + 1);
+        let mut r_col = Vec::new();
+        let mut r_pos = Vec::new();
+        r_ptr.push(0);
+        for k in 0..n {
+            let mut top = n;
+            visited[k] = k;
+            for &i0 in &a_row[a_ptr[k]..a_ptr[k + 1]] {
+                if i0 >= k {
+                    continue;
+                }
+                let mut i = i0;
+                let mut len = 0;
+                while visited[i] != k {
+                    stack[len] = i;
+                    len += 1;
+                    visited[i] = k;
+                    i = parent[i];
+                }
+                stack.copy_within(..len, top - len);
+                top -= len;
+            }
+            for &j in &stack[top..] {
+                next[j] += 1;
+                if l_row.get(next[j]) != Some(&k) {
+                    return None;
+                }
+                r_col.push(j);
+                r_pos.push(next[j]);
+            }
+            r_ptr.push(r_col.len());
+        }
+        Some(SimplicialPlan {
+            a_ptr,
+            a_row,
+            a_src,
+            l_ptr,
+            l_row,
+            r_ptr,
+            r_col,
+            r_pos,
+            x: vec![0.0; n],
+        })
+    }
+
+    /// The numeric factorization of `a` (values on the plan's pattern)
+    /// into `l`; false on a pivot that is not positive.
+    fn factorize(&mut self, a: &[f64], l: &mut [f64]) -> bool {
+        let n = self.x.len();
+        let x = &mut self.x;
+        for k in 0..n {
+            for e in self.a_ptr[k]..self.a_ptr[k + 1] {
+                x[self.a_row[e]] += a[self.a_src[e]];
+            }
+            let mut d = x[k];
+            x[k] = 0.0;
+            for t in self.r_ptr[k]..self.r_ptr[k + 1] {
+                let (j, pos) = (self.r_col[t], self.r_pos[t]);
+                let j_start = self.l_ptr[j];
+                let xj = x[j];
+                x[j] = 0.0;
+                let dj = 1.0 / l[j_start];
+                let lkj = xj * dj;
+                for p in j_start + 1..pos {
+                    x[self.l_row[p]] -= l[p] * lkj;
+                }
+                d -= lkj * lkj;
+                l[pos] = lkj;
+            }
+            // `!(d > 0)`: NaN is not a positive pivot either.
+            if d.is_nan() || d <= 0.0 {
+                x.iter_mut().for_each(|v| *v = 0.0);
+                return false;
+            }
+            l[self.l_ptr[k]] = d.sqrt();
+        }
+        true
     }
 }
 
@@ -554,6 +718,84 @@ mod tests {
         }
         // One pattern: one symbolic Cholesky, then one symbolic LU.
         assert_eq!(s.symbolic_count, 2);
+    }
+
+    /// An SPD matrix on a 14 x 14 grid (9-point couplings, values varied
+    /// so that every entry's rounding matters), the pattern symmetric.
+    fn grid_spd() -> SparseMatrix {
+        let m = 14;
+        let n = m * m;
+        let mut entries = Vec::new();
+        for i in 0..m {
+            for j in 0..m {
+                for (di, dj) in [(0i64, 1i64), (1, 0), (1, 1), (1, -1)] {
+                    let (i2, j2) = (i as i64 + di, j as i64 + dj);
+                    if i2 < m as i64 && j2 >= 0 && j2 < m as i64 {
+                        let (a, b) = (i * m + j, (i2 * m as i64 + j2) as usize);
+                        entries.push((a, b));
+                        entries.push((b, a));
+                    }
+                }
+            }
+        }
+        let mut a = SparseMatrix::zeros(Arc::new(CscPattern::from_entries(n, entries)));
+        let p = a.pattern.clone();
+        for j in 0..n {
+            for k in p.col_ptr[j]..p.col_ptr[j + 1] {
+                let i = p.row_idx[k];
+                let (lo, hi) = (i.min(j) as f64, i.max(j) as f64);
+                a.values[k] = if i == j {
+                    9.0 + (0.37 * lo).sin()
+                } else {
+                    -0.5 - 0.3 * (0.11 * lo + 0.07 * hi).cos()
+                };
+            }
+        }
+        a
+    }
+
+    #[test]
+    fn simplicial_plan_gives_faers_factor_to_the_bit() {
+        let a = grid_spd();
+        let symbolic = factorize_symbolic_cholesky(
+            a.pattern.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .unwrap();
+        let mut plan = SimplicialPlan::new(&symbolic, &a.pattern)
+            .expect("faer is simplicial on this matrix, so the plan applies");
+        let mut ours = vec![0.0; symbolic.len_val()];
+        assert!(plan.factorize(&a.values, &mut ours));
+        let mut theirs = vec![0.0; symbolic.len_val()];
+        let req = symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default());
+        let mut mem = MemBuffer::new(req);
+        symbolic
+            .factorize_numeric_llt(
+                &mut theirs,
+                a.faer(),
+                Side::Lower,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .unwrap();
+        assert!(ours
+            .iter()
+            .zip(&theirs)
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+        // A matrix that is not positive definite is refused, and the work
+        // row is left clean for the next call.
+        let mut bad = a.clone();
+        bad.values.iter_mut().for_each(|v| *v = -*v);
+        assert!(!plan.factorize(&bad.values, &mut ours));
+        assert!(plan.factorize(&a.values, &mut ours));
+        assert!(ours
+            .iter()
+            .zip(&theirs)
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
     }
 
     #[test]
