@@ -245,6 +245,52 @@ pub struct ElementBuffers {
     /// M_b(r, c). One contiguous row per component lets the ndof² loop of
     /// the tangent run over b in SIMD lanes.
     partners: Vec<[f64; MAX_DOFS]>,
+    geometry: GeometryCache,
+}
+
+/// The Gauss-point geometry on the initial configuration of the last
+/// element a buffer served, with what it was computed from: the engine
+/// gives each element its own buffer, so the geometry (Jacobian, ∇N, dV)
+/// is computed once instead of at every iteration.
+#[derive(Debug, Clone, Default)]
+struct GeometryCache {
+    key: Option<(CellType, Fpg, Formulation)>,
+    coords: Vec<[f64; 3]>,
+    points: Vec<Result<PointGeometry, String>>,
+}
+
+impl GeometryCache {
+    /// The points of `tab` for `coords`, computed unless they are the
+    /// ones held (same cell, family, formulation, and coordinates to the
+    /// bit).
+    fn points(
+        &mut self,
+        tab: &Tabulated,
+        formulation: Formulation,
+        coords: &[[f64; 3]],
+    ) -> &[Result<PointGeometry, String>] {
+        let key = Some((tab.cell, tab.fpg, formulation));
+        let same = self.key == key
+            && self.coords.len() == coords.len()
+            && self
+                .coords
+                .iter()
+                .zip(coords)
+                .all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits));
+        if !same {
+            self.key = key;
+            self.coords.clear();
+            self.coords.extend_from_slice(coords);
+            self.points.clear();
+            self.points.extend(
+                tab.shapes
+                    .iter()
+                    .zip(&tab.weights)
+                    .map(|(shape, w)| point_geometry(formulation, shape, coords, *w)),
+            );
+        }
+        &self.points
+    }
 }
 
 /// Integrates the law at every RIGI point for the step u_n → u and
@@ -306,6 +352,7 @@ pub fn internal_forces_into(
         stiffness,
         states,
         partners,
+        geometry,
     } = buf;
     if spec.is_hexs8() {
         let r =
@@ -363,13 +410,27 @@ pub fn internal_forces_into(
     // Per-dof virtual gradients G_α (or G⁰_α F⁻¹) and tangent partners M_α.
     let mut g = [VGrad::ZERO; MAX_DOFS];
 
+    // The initial geometry, for every strain measure but PETIT_REAC.
+    let initial: &[Result<PointGeometry, String>] = if kin == Kinematics::PetitReac {
+        &[]
+    } else {
+        geometry.points(tab, spec.formulation, coords)
+    };
+    let mut current;
     for (p, (shape, w)) in tab.shapes.iter().zip(&tab.weights).enumerate() {
         let st = &states_n[p];
         let geom = match kin {
-            Kinematics::PetitReac => point_geometry(spec.formulation, shape, &x[..nn], *w)
-                .map_err(|message| ElementFailure::Inverted { point: p, message })?,
-            _ => point_geometry(spec.formulation, shape, coords, *w)
-                .map_err(|message| ElementFailure::BadGeometry { point: p, message })?,
+            Kinematics::PetitReac => {
+                current = point_geometry(spec.formulation, shape, &x[..nn], *w)
+                    .map_err(|message| ElementFailure::Inverted { point: p, message })?;
+                &current
+            }
+            _ => initial[p]
+                .as_ref()
+                .map_err(|message| ElementFailure::BadGeometry {
+                    point: p,
+                    message: message.clone(),
+                })?,
         };
         for a in 0..nn {
             for i in 0..d {
@@ -709,6 +770,7 @@ fn table(spec: &ElementSpec, fpg: Fpg) -> Result<&'static Tabulated, ElementFail
 }
 
 /// Geometry of one Gauss point on some configuration.
+#[derive(Debug, Clone)]
 struct PointGeometry {
     axis: bool,
     n: [f64; MAX_NODES],
@@ -792,28 +854,54 @@ impl VGrad {
         mt: &mut [[f64; MAX_DOFS]],
         k: usize,
     ) {
-        const AXIS_COMPONENTS: [usize; 5] = [0, 1, 3, 4, 8];
-        const ALL: [usize; 9] = [0, 1, 2, 3, 4, 5, 6, 7, 8];
-        let comps: &[usize] = if axis { &AXIS_COMPONENTS } else { &ALL };
-        for &rc in comps {
-            let mut v = 0.0;
-            for l in 0..3 {
-                let w = self.row[l];
-                if w != 0.0 {
-                    v += c[(rc, 3 * self.i + l)] * w;
+        // ∂τ/∂F : G⁰, the columns of c that G⁰ selects.
+        let mut dtau = [0.0; 9];
+        for l in 0..3 {
+            let w = self.row[l];
+            if w != 0.0 {
+                let col = c.column(3 * self.i + l);
+                for (r, v) in dtau.iter_mut().enumerate() {
+                    *v += col[r] * w;
                 }
             }
-            if self.hoop != 0.0 {
-                v += c[(rc, 8)] * self.hoop;
+        }
+        if self.hoop != 0.0 {
+            let col = c.column(8);
+            for (r, v) in dtau.iter_mut().enumerate() {
+                *v += col[r] * self.hoop;
             }
-            let (j, col) = (rc / 3, rc % 3);
-            if col == sp.i {
-                v -= tau[(j, 0)] * sp.row[0] + tau[(j, 1)] * sp.row[1] + tau[(j, 2)] * sp.row[2];
+        }
+        // − τ spᵀ: row j of τ against sp's row in column sp.i, and the
+        // hoop term in column 2.
+        let t =
+            |j: usize| tau[(j, 0)] * sp.row[0] + tau[(j, 1)] * sp.row[1] + tau[(j, 2)] * sp.row[2];
+        if axis {
+            // sp.i is r or z: the θ column only holds the hoop term.
+            for j in 0..2 {
+                let tj = t(j);
+                for col in 0..2 {
+                    let mut v = dtau[3 * j + col];
+                    if col == sp.i {
+                        v -= tj;
+                    }
+                    mt[3 * j + col][k] = v;
+                }
             }
-            if col == 2 {
-                v -= tau[(j, 2)] * sp.hoop;
+            mt[8][k] = dtau[8] - tau[(2, 2)] * sp.hoop;
+        } else {
+            for j in 0..3 {
+                let tj = t(j);
+                for col in 0..3 {
+                    let mut v = dtau[3 * j + col];
+                    if col == sp.i {
+                        v -= tj;
+                    }
+                    if col == 2 {
+                        v -= tau[(j, 2)] * sp.hoop;
+                    }
+                    mt[3 * j + col][k] = v;
+                }
             }
-            mt[rc][k] = v;
         }
     }
 }
