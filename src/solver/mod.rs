@@ -508,12 +508,17 @@ impl LinearSolver for DirectLu {
                 "the matrix holds a non-finite value ({v})"
             )));
         }
-        let same =
-            matches!(&self.pattern, Some(p) if Arc::ptr_eq(p, &a.pattern) || **p == *a.pattern);
-        if !same {
+        if !matches!(&self.pattern, Some(p) if Arc::ptr_eq(p, &a.pattern)) {
+            // A new pattern object, often equal to the one factorised
+            // (a contact pairing that couples the same dofs): keep the
+            // symbolic factorization then, and hold the new object so that
+            // the next calls compare pointers, not patterns.
+            let same = matches!(&self.pattern, Some(p) if **p == *a.pattern);
             self.pattern = Some(a.pattern.clone());
-            self.llt = None;
-            self.lu = None;
+            if !same {
+                self.llt = None;
+                self.lu = None;
+            }
         }
         self.current = None;
         self.numeric_count += 1;
