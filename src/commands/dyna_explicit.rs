@@ -4,12 +4,11 @@
 //! the CFL check of the time list.
 
 use super::dyna_non_line::{
-    archive_of, cell_comportement, etat_init, prepare_error, time_range, ModelData,
+    archive_of, cell_comportement, etat_init, prepare_error, result_of_run, time_range, ModelData,
 };
 use super::ExecResult;
 use crate::catalog::args::Args;
-use crate::concepts::{Concept, ConceptData, ConceptType as C};
-use crate::diag::Diagnostic;
+use crate::concepts::ConceptData;
 use crate::model::MechLoad;
 use crate::nonlinear::explicit::{self, Explicit, ExplicitSettings};
 use crate::nonlinear::explicit_contact::{Enforcement, ExplicitContact};
@@ -308,21 +307,5 @@ pub(crate) fn exec(
         &mut evol,
         &mut log,
     );
-    match outcome {
-        Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
-        Err(stopped) => {
-            if let Some(name) = result {
-                study.concepts.insert(Concept {
-                    name: name.to_string(),
-                    ty: C::EvolNoli,
-                    defined_at: args.span,
-                    command: args.command.clone(),
-                    data: ConceptData::Result(Box::new(evol)),
-                });
-            }
-            Err(Diagnostic::error(stopped.message)
-                .at(args.span)
-                .in_command(args.command.clone()))
-        }
-    }
+    result_of_run(study, args, result, evol, outcome)
 }

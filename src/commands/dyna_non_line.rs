@@ -1112,6 +1112,20 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             )),
         }
     }
+    result_of_run(study, args, result, evol, outcome)
+}
+
+/// The result concept of a run, implicit or explicit. A run stopped by a
+/// failed step or a signal still binds what it archived to the result's
+/// name before the stop is reported, so that what was computed stays
+/// available (docs/dynamics.md §2b).
+pub(crate) fn result_of_run<T>(
+    study: &mut Study,
+    args: &Args,
+    result: Option<&str>,
+    evol: EvolNoli,
+    outcome: Result<T, crate::nonlinear::dyna::Stopped>,
+) -> ExecResult {
     match outcome {
         Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
         Err(stopped) => {
