@@ -4,7 +4,7 @@
 //! the CFL check of the time list.
 
 use super::dyna_non_line::{
-    archive_of, cell_comportement, etat_init, prepare_error, result_of_run, time_range, ModelData,
+    archive_of, etat_init, prepare_error, result_of_run, result_to_fill, time_range, ModelData,
 };
 use super::ExecResult;
 use crate::catalog::args::Args;
@@ -15,7 +15,6 @@ use crate::nonlinear::explicit_contact::{Enforcement, ExplicitContact};
 use crate::nonlinear::{
     self, dyna, ConvergenceSettings, Engine, NewtonSettings, Occurrence, PrepareError, TimeLoop,
 };
-use crate::result::EvolNoli;
 use crate::study::Study;
 use crate::time::explicit::ExplicitScheme;
 use crate::time::list::Action;
@@ -149,15 +148,15 @@ pub(crate) fn exec(
         events: dyna::ContactEvents::default(),
         growth: None,
     };
-    let mut evol = match result.and_then(|r| study.concepts.data(r)) {
-        Some(ConceptData::Result(r)) => (**r).clone(),
-        _ => EvolNoli::default(),
-    };
-    evol.mesh = md.model.mesh.clone();
-    evol.model = model_name.clone();
-    evol.cham_mater = mat_name.clone();
-    evol.loads = load_names.clone();
-    evol.comportement = cell_comportement(&md.model, &occs);
+    let mut evol = result_to_fill(
+        study,
+        result,
+        &md.model,
+        &model_name,
+        &mat_name,
+        &load_names,
+        &occs,
+    );
 
     let has_acce = init.a.is_some();
     let mut state = nonlinear::initial_state(&asm, tl.instants[0], init.u, init.v, init.a);

@@ -1000,17 +1000,15 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         events,
         growth,
     };
-    // With reuse= the result is still in the table: new steps are appended
-    // to it (instants not after its last one are not stored again).
-    let mut evol = match result.and_then(|r| study.concepts.data(r)) {
-        Some(ConceptData::Result(r)) => (**r).clone(),
-        _ => EvolNoli::default(),
-    };
-    evol.mesh = md.model.mesh.clone();
-    evol.model = model_name.clone();
-    evol.cham_mater = mat_name.clone();
-    evol.loads = load_names.clone();
-    evol.comportement = cell_comportement(&md.model, &occs);
+    let mut evol = result_to_fill(
+        study,
+        result,
+        &md.model,
+        &model_name,
+        &mat_name,
+        &load_names,
+        &occs,
+    );
 
     let t_start = tl.instants[0];
     let has_acce = init.a.is_some();
@@ -1143,4 +1141,29 @@ pub(crate) fn result_of_run<T>(
                 .in_command(args.command.clone()))
         }
     }
+}
+
+/// The result a run fills, implicit or explicit. With reuse= the result is
+/// still in the table: new steps are appended to it (instants not after
+/// its last one are not stored again); otherwise a new one. Either way it
+/// takes the run's model, material field, loads and behaviours.
+pub(crate) fn result_to_fill(
+    study: &Study,
+    result: Option<&str>,
+    model: &Model,
+    model_name: &str,
+    mat_name: &str,
+    load_names: &[String],
+    occs: &[Occurrence],
+) -> EvolNoli {
+    let mut evol = match result.and_then(|r| study.concepts.data(r)) {
+        Some(ConceptData::Result(r)) => (**r).clone(),
+        _ => EvolNoli::default(),
+    };
+    evol.mesh = model.mesh.clone();
+    evol.model = model_name.to_string();
+    evol.cham_mater = mat_name.to_string();
+    evol.loads = load_names.to_vec();
+    evol.comportement = cell_comportement(model, occs);
+    evol
 }
