@@ -262,7 +262,9 @@ fn stable_for_1e5_steps_below_the_critical_step() {
     assert_eq!(h.len(), 1001);
     let dev = |s: &[f64]| s.iter().map(|e| (e - 1.0).abs()).fold(0.0, f64::max);
     let (first, second) = (dev(&h[..500]), dev(&h[500..]));
-    println!("DIFF_CENT, 1e5 steps: energy excursion {first:e} (first half), {second:e} (second half)");
+    println!(
+        "DIFF_CENT, 1e5 steps: energy excursion {first:e} (first half), {second:e} (second half)"
+    );
     assert!(first < 0.05 && second < 0.05, "{first} {second}");
     assert!(second < 1.2 * first, "energy grows: {first} then {second}");
     let h = energy_history(dt / 1.1f64.sqrt(), 100_000, 100, "OUI", "TCHAMWA").unwrap();
