@@ -166,11 +166,29 @@ struct StepOut {
     /// Per slave node: (node, LAGS_C, LAGS_F1, gap, slip in the step).
     points: Vec<(usize, f64, f64, f64, f64)>,
     iterations: usize,
+    /// Threshold updates of the friction fixed point (0 with NEWTON).
+    friction_loops: usize,
 }
 
 /// Applies the pressure P on TOP, then the radial tractions `ramp` on
 /// SZZ one step each (P kept), solving each step to equilibrium.
 fn run(coef_cont: f64, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
+    let extra = if friction {
+        "ALGO_RESO_FROT='NEWTON',"
+    } else {
+        ""
+    };
+    run_with(coef_cont, friction, ramp, extra).unwrap_or_else(|(k, e)| panic!("load step {k}: {e}"))
+}
+
+/// As [`run`] with `extra` keywords of DEFI_CONTACT; a failed step gives
+/// its index and message.
+fn run_with(
+    coef_cont: f64,
+    friction: bool,
+    ramp: &[f64],
+    extra: &str,
+) -> Result<Vec<StepOut>, (usize, String)> {
     let mesh = block_mesh();
     let vol = mesh.cell_groups["VOL"].clone();
     let mo = model(&mesh, "AXIS", &vol);
@@ -186,7 +204,7 @@ fn run(coef_cont: f64, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
     };
     let text = format!(
         "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION='CONTINUE', {frot}
-    ALGO_RESO_CONT='NEWTON', ALGO_RESO_GEOM='NEWTON',
+    ALGO_RESO_CONT='NEWTON', ALGO_RESO_GEOM='NEWTON', {extra}
     ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', COEF_CONT={coef_cont:e}{coulomb}))"
     );
     let def = ContactDef::from_args(&args_of(&text, "DEFI_CONTACT", 0), &mesh)
@@ -242,7 +260,7 @@ fn run(coef_cont: f64, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
         engine.fext = f;
         let rep = engine
             .solve_step(1.0, Some(&mut contact), &mut |_, _| {})
-            .unwrap_or_else(|e| panic!("load step {k} (t = {t_load}): {e}"));
+            .map_err(|e| (k, e.to_string()))?;
         engine.commit();
         contact.commit(1.0);
         let cc = contact.continuous.as_ref().unwrap();
@@ -271,9 +289,10 @@ fn run(coef_cont: f64, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
             t_load,
             points: pts,
             iterations: rep.iterations,
+            friction_loops: cc.friction_loops,
         });
     }
-    out
+    Ok(out)
 }
 
 /// LAGS_C = -p at every slave node to 1e-10 relative, gap 0 to 1e-10,
@@ -368,4 +387,86 @@ fn friction_semi_multiplier_goes_from_stick_to_slip_at_coulomb_times_the_load() 
     // The slip starts at the first load above mu p: within one increment.
     let t = first_slip.expect("the ramp passes mu p");
     assert!(t > MU * P && t - 0.03 < MU * P, "slip from t = {t}");
+}
+
+/// The friction fixed point (ALGO_RESO_FROT='POINT_FIXE': the threshold
+/// frozen during Newton, updated until LAGS_C moves by less than
+/// RESI_FROT) reaches the generalised Newton's answer over the whole
+/// stick -> slip ramp: LAGS_C, LAGS_F1 and the slip agree to the
+/// tolerance of its criterion at every slave node and every step.
+#[test]
+fn friction_fixed_point_reaches_the_newton_answer() {
+    let ramp: Vec<f64> = (1..=11).map(|k| 0.03 * k as f64).collect();
+    let newton = run(100.0, true, &ramp);
+    let pf = run_with(
+        100.0,
+        true,
+        &ramp,
+        "ALGO_RESO_FROT='POINT_FIXE', RESI_FROT=1.E-10, ITER_FROT_MAXI=30,",
+    )
+    .unwrap_or_else(|(k, e)| panic!("load step {k}: {e}"));
+    let (mut it_n, mut it_p, mut loops) = (0, 0, 0);
+    for (a, b) in pf.iter().zip(&newton) {
+        it_n += b.iterations;
+        it_p += a.iterations;
+        loops += a.friction_loops;
+        eprintln!(
+            "t = {:.2}: NEWTON {} iterations, POINT_FIXE {} iterations in {} threshold updates",
+            a.t_load, b.iterations, a.iterations, a.friction_loops
+        );
+        // Pressure on: at least two updates (the first compares with the
+        // LAGS_C = 0 of the step start).
+        assert!(a.friction_loops >= 2, "{a:?}");
+        for (p, q) in a.points.iter().zip(&b.points) {
+            assert_eq!(p.0, q.0);
+            assert!(
+                (p.1 - q.1).abs() <= 1e-8,
+                "t {}: LAGS_C {p:?} {q:?}",
+                a.t_load
+            );
+            assert!(
+                (p.2 - q.2).abs() <= 1e-8,
+                "t {}: LAGS_F1 {p:?} {q:?}",
+                a.t_load
+            );
+            assert!(
+                (p.3 - q.3).abs() <= 1e-12,
+                "t {}: gap {p:?} {q:?}",
+                a.t_load
+            );
+            assert!(
+                (p.4 - q.4).abs() <= 1e-8 * q.4.abs().max(1e-6),
+                "t {}: slip {p:?} {q:?}",
+                a.t_load
+            );
+        }
+    }
+    eprintln!("total: NEWTON {it_n} iterations, POINT_FIXE {it_p} in {loops} threshold updates");
+}
+
+/// A slip step needs several threshold updates (the sliding face's
+/// pressure depends on its friction); with ITER_FROT_MAXI = 2 the fixed
+/// point stops there with a message naming the keyword, the criterion
+/// and the node where LAGS_C still moves. The stick steps before it
+/// (pressure independent of the friction) converge in 2 updates.
+#[test]
+fn friction_fixed_point_stops_at_iter_frot_maxi() {
+    let ramp = [0.12, 0.3];
+    let err = run_with(
+        100.0,
+        true,
+        &ramp,
+        "ALGO_RESO_FROT='POINT_FIXE', RESI_FROT=1.E-6, ITER_FROT_MAXI=2,",
+    )
+    .expect_err("the slip step cannot converge in 2 updates");
+    eprintln!("{err:?}");
+    assert_eq!(err.0, 2, "the slip step fails, not the stick ones");
+    assert!(
+        err.1.contains("ALGO_RESO_FROT='POINT_FIXE'")
+            && err.1.contains("ITER_FROT_MAXI = 2")
+            && err.1.contains("at node N")
+            && err.1.contains("RESI_FROT"),
+        "{}",
+        err.1
+    );
 }

@@ -377,3 +377,30 @@ fn continuous_definition_of_f() {
     assert_eq!(z.slave_cells.len(), m.cell_groups["SZZ"].len());
     assert_eq!(d.zones[0].slave_nodes.len(), 5);
 }
+
+/// The friction fixed point: ITER_FROT_MAXI (default 10) and RESI_FROT
+/// read; ITER_FROT_MAXI below 1 refused, naming the keyword.
+#[test]
+fn friction_fixed_point_definition() {
+    use aster::contact::continuous::Resolution;
+    let m = mesh('D');
+    let text = |extra: &str| {
+        format!(
+            "FORMULATION='CONTINUE', FROTTEMENT='COULOMB', ALGO_RESO_FROT='POINT_FIXE', {extra} \
+             ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', COULOMB=0.25)"
+        )
+    };
+    let d = ContactDef::from_args(&defi_contact("AXIS", &text("")), &m).expect("definition");
+    let c = d.continuous.as_ref().expect("continuous");
+    assert_eq!(c.algo_reso_frot, Resolution::PointFixe);
+    assert_eq!((c.iter_frot_maxi, c.resi_frot), (10, 1e-4));
+    let d = ContactDef::from_args(
+        &defi_contact("AXIS", &text("ITER_FROT_MAXI=3, RESI_FROT=1.E-6,")),
+        &m,
+    )
+    .expect("definition");
+    let c = d.continuous.as_ref().expect("continuous");
+    assert_eq!((c.iter_frot_maxi, c.resi_frot), (3, 1e-6));
+    let e = error_of("AXIS", 'D', &text("ITER_FROT_MAXI=0,"));
+    assert!(e.message.contains("ITER_FROT_MAXI"), "{}", e.message);
+}

@@ -728,3 +728,73 @@ fn landing_with_the_contact_fixed_point() {
         totals(&newton_run.file("contact_landing_continue.mess"))
     );
 }
+
+/// The friction fixed point (ALGO_RESO_FROT='POINT_FIXE': the threshold
+/// frozen during Newton, updated until LAGS_C moves by less than
+/// RESI_FROT) on the sleeve of contact_friction_continue.comm: with the
+/// default RESI_FROT = 1e-4 every TEST_TABLE stays OK; with RESI_FROT =
+/// 1e-7, STICK, SLIDE and BRAKE end with the Newton run's statuses,
+/// normal and friction forces node by node to 1e-6 of the largest value
+/// (with 1e-4 the braking force, μ times a threshold known to 1e-4 at
+/// each step, leaves the stuck BRAKE forces 2e-4 apart).
+#[test]
+fn sleeve_with_the_friction_fixed_point() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("sleeve_frot_point_fixe_src");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("contact_friction_continue.comm")).unwrap();
+    let mut runs = Vec::new();
+    for (name, keywords) in [
+        ("pf", "ALGO_RESO_FROT='POINT_FIXE'"),
+        (
+            "pf7",
+            "ALGO_RESO_FROT='POINT_FIXE', RESI_FROT=1.E-7, ITER_FROT_MAXI=20",
+        ),
+    ] {
+        let pf = comm.replace("ALGO_RESO_FROT='NEWTON'", keywords);
+        assert_ne!(pf, comm);
+        std::fs::write(tmp.join(format!("{name}.comm")), pf).unwrap();
+        std::fs::write(
+            tmp.join(format!("{name}.export")),
+            format!("F mmed {} D 20\n", dir().join("sleeve.mmed").display()),
+        )
+        .unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{name}.comm")).to_str().unwrap(),
+            &format!("verif_sleeve_frot_{name}"),
+        );
+        let resu = common::assert_all_ok(&run, &format!("{name}.resu"));
+        runs.push((run, resu));
+    }
+    let newton_run = common::run_study(
+        "tests/verification/contact_friction_continue.comm",
+        "verif_sleeve_newton_for_frot_pf",
+    );
+    let newton_resu = common::assert_all_ok(&newton_run, "contact_friction_continue.resu");
+    for tab in ["T_STICK", "T_SLIDE", "T_BRAKE"] {
+        let a = printed_table(&runs[1].1, tab);
+        let b = printed_table(&newton_resu, tab);
+        assert_eq!((a.len(), b.len()), (5, 5), "{tab}");
+        for col in ["RN", "RTAY", "RTGY"] {
+            let scale = b.iter().map(|r| num(r, col).abs()).fold(0.0, f64::max);
+            for (x, y) in a.iter().zip(&b) {
+                assert_eq!(num(x, "CONT"), num(y, "CONT"), "{tab} {x:?} {y:?}");
+                assert!(
+                    (num(x, col) - num(y, col)).abs() <= 1e-6 * scale,
+                    "{tab} {col}: {x:?} {y:?}"
+                );
+            }
+        }
+    }
+    let totals = |mess: &str| {
+        mess.lines()
+            .filter(|l| l.contains(" steps (") && l.contains("Newton iterations"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    eprintln!(
+        "POINT_FIXE 1e-4:\n{}\nPOINT_FIXE 1e-7:\n{}\nNEWTON:\n{}",
+        totals(&runs[0].0.file("pf.mess")),
+        totals(&runs[1].0.file("pf7.mess")),
+        totals(&newton_run.file("contact_friction_continue.mess"))
+    );
+}

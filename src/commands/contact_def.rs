@@ -195,12 +195,18 @@ fn continuous_def(
     let algo_reso_cont = reso("ALGO_RESO_CONT")?;
     let algo_reso_frot = reso("ALGO_RESO_FROT")?;
     let algo_reso_geom = reso("ALGO_RESO_GEOM")?;
-    if algo_reso_frot == Resolution::PointFixe && args.text("FROTTEMENT") == Some("COULOMB") {
-        return Err(args.not_implemented(
-            "ALGO_RESO_FROT",
-            "the friction fixed point (ALGO_RESO_FROT='POINT_FIXE'); friction is solved inside Newton (NEWTON)",
-        ));
-    }
+    let iter_frot_maxi = if algo_reso_frot == Resolution::PointFixe {
+        let n = args.int("ITER_FROT_MAXI").unwrap_or(10);
+        if n < 1 {
+            return Err(args.error(
+                "ITER_FROT_MAXI",
+                format!("ITER_FROT_MAXI must be >= 1, got {n}"),
+            ));
+        }
+        n as usize
+    } else {
+        0
+    };
     let iter_cont_maxi = if algo_reso_cont == Resolution::PointFixe {
         match args.text("ITER_CONT_TYPE").unwrap_or("MAXI") {
             "MAXI" => {
@@ -240,6 +246,7 @@ fn continuous_def(
         resi_geom,
         resi_frot,
         iter_cont_maxi,
+        iter_frot_maxi,
         zones,
     })
 }

@@ -69,6 +69,9 @@ pub struct ContinuousDef {
     /// `ITER_CONT_MAXI`: status evaluations of the contact fixed point
     /// (`ALGO_RESO_CONT='POINT_FIXE'`) allowed in a step.
     pub iter_cont_maxi: usize,
+    /// `ITER_FROT_MAXI`: threshold updates of the friction fixed point
+    /// (`ALGO_RESO_FROT='POINT_FIXE'`) allowed in a step.
+    pub iter_frot_maxi: usize,
     /// One per zone of the definition, same order.
     pub zones: Vec<ContinuousZone>,
 }
@@ -170,6 +173,20 @@ pub struct PointInput {
     /// master): the friction force would be undetermined (it goes into
     /// the support reaction), so Λ is driven to 0 as without contact.
     pub slip_locked: bool,
+    /// `ALGO_RESO_FROT='POINT_FIXE'`: the friction threshold is λ_s,
+    /// frozen during the Newton iterations, even when λ ≠ 0 (`mmlagc`).
+    pub threshold_frozen: bool,
+}
+
+/// The friction threshold pressure λ̂ of a point and ∂λ̂/∂λ (`mmlagc`):
+/// with Newton friction the current λ (λ_s while λ is exactly 0), with
+/// the friction fixed point the frozen λ_s.
+fn threshold(p: &PointInput) -> (f64, f64) {
+    if p.lambda != 0.0 && !p.threshold_frozen {
+        (p.lambda, 1.0)
+    } else {
+        (p.lambda_s, 0.0)
+    }
 }
 
 /// The residual of a point and its exact derivatives at frozen pairing.
@@ -204,11 +221,7 @@ pub fn phase(p: &PointInput) -> Phase {
     let Some(_) = p.mu else {
         return Phase::Cont;
     };
-    let lh = if p.lambda != 0.0 {
-        p.lambda
-    } else {
-        p.lambda_s
-    };
+    let (lh, _) = threshold(p);
     if lh == 0.0 {
         return Phase::Ncon;
     }
@@ -249,13 +262,9 @@ pub fn evaluate_point(p: &PointInput) -> (Phase, PointOutput) {
         o.dc_dc = -w / p.rho_n;
     }
     if let Some(mu) = p.mu {
-        let lh = if p.lambda != 0.0 {
-            p.lambda
-        } else {
-            p.lambda_s
-        };
-        // ∂λ̂/∂λ: 1 unless λ̂ falls back on λ_s.
-        let dl = if p.lambda != 0.0 { 1.0 } else { 0.0 };
+        // ∂λ̂/∂λ: 1 unless λ̂ is λ_s (then no K_uλ friction block, and
+        // the fixed point's tangent is symmetric as code_aster's).
+        let (lh, dl) = threshold(p);
         match ph {
             _ if p.slip_locked => {
                 o.r_f = w * p.lambda_t;
@@ -331,6 +340,7 @@ mod tests {
             normal: [0.0, -1.0, 0.0],
             tangent: [-1.0, 0.0, 0.0],
             slip_locked: false,
+            threshold_frozen: false,
         }
     }
 
@@ -470,6 +480,48 @@ mod tests {
         p.status = true;
         p.mu = None;
         assert_eq!(phase(&p), Phase::Cont);
+    }
+
+    /// The friction fixed point (`ALGO_RESO_FROT='POINT_FIXE'`): the
+    /// threshold is the frozen λ_s whatever λ, so the friction force does
+    /// not depend on λ (no K_uλ friction block) and the tangent is still
+    /// the derivative of the residual.
+    #[test]
+    fn frozen_threshold_is_lambda_s() {
+        for (lt, gt) in [(0.3, 2e-3), (0.9, 5e-3)] {
+            let mut p = base();
+            p.threshold_frozen = true;
+            p.lambda_s = -2.0;
+            p.lambda_t = lt;
+            p.g_t = gt;
+            let (ph, o) = evaluate_point(&p);
+            let mut q = p;
+            q.lambda = p.lambda_s;
+            q.threshold_frozen = false;
+            let (qh, oq) = evaluate_point(&q);
+            assert_eq!(ph, qh);
+            // Same friction force as Newton friction at λ = λ_s.
+            assert!((o.f_t - oq.f_t).abs() < 1e-14, "{ph:?}");
+            let h = 1e-7;
+            let mut pp = p;
+            let mut pm = p;
+            pp.lambda += h;
+            pm.lambda -= h;
+            let (_, op) = evaluate_point(&pp);
+            let (_, om) = evaluate_point(&pm);
+            for i in 0..2 {
+                let fd = (op.f[i] - om.f[i]) / (2.0 * h);
+                assert!((fd - o.df_dc[i]).abs() < 1e-6, "{ph:?} {fd} {}", o.df_dc[i]);
+                // Only the contact part: −ω n.
+                assert!((o.df_dc[i] + p.omega * p.normal[i]).abs() < 1e-14);
+            }
+            assert_eq!((op.r_f - om.r_f) / (2.0 * h), 0.0);
+        }
+        // λ_s = 0: no friction (NCON) even though λ ≠ 0.
+        let mut p = base();
+        p.threshold_frozen = true;
+        p.lambda_s = 0.0;
+        assert_eq!(phase(&p), Phase::Ncon);
     }
 
     /// Slip: the tangential force on the slave is μ|λ|ω against the slip,

@@ -59,6 +59,12 @@ pub struct ContinuousContact {
     fixed_point_loops: usize,
     /// The last one changed a status (not yet seen by an iteration).
     fixed_point_changed: bool,
+    /// Threshold updates of the friction fixed point in this step
+    /// (`ALGO_RESO_FROT='POINT_FIXE'`).
+    pub friction_loops: usize,
+    /// LAGS_C per point at the previous threshold update (0 at the step
+    /// start, code_aster's `.DEPF`): the friction fixed point's reference.
+    friction_ref: Vec<f64>,
     /// Largest |δλ| (LAGS_C) of the last correction.
     last_dlam: f64,
     u_start: Vec<[f64; 3]>,
@@ -193,6 +199,8 @@ impl ContinuousContact {
             last_dlam: 0.0,
             fixed_point_loops: 0,
             fixed_point_changed: false,
+            friction_loops: 0,
+            friction_ref: vec![0.0; np],
             u_start: un,
             pairing,
             geom_move: 0.0,
@@ -281,6 +289,7 @@ impl ContinuousContact {
             .all(|n| (0..self.def.dim).all(|c| tangent[c] == 0.0 || !free(n, c)));
         PointInput {
             slip_locked,
+            threshold_frozen: self.friction_fixed_point(),
             omega: p.omega,
             rho_n: z.coef_cont,
             rho_t: z.coef_frot,
@@ -363,6 +372,8 @@ impl ContinuousContact {
         self.last_dlam = 0.0;
         self.fixed_point_loops = 0;
         self.fixed_point_changed = false;
+        self.friction_loops = 0;
+        self.friction_ref.iter_mut().for_each(|v| *v = 0.0);
         let u = self.u_start.clone();
         self.repair(&u);
     }
@@ -390,7 +401,7 @@ impl ContinuousContact {
         // iteration: at least one solve with it before convergence.
         self.changed = std::mem::take(&mut self.fixed_point_changed);
         if !self.first && self.cdef.algo_reso_cont == Resolution::Newton {
-            self.changed = self.update_statuses();
+            self.changed |= self.update_statuses();
         }
         let links = self.links();
         self.first = false;
@@ -504,12 +515,60 @@ impl ContinuousContact {
         }
     }
 
-    /// No status changed at the last evaluation and RESI_FROT holds.
+    /// No status changed at the last evaluation and RESI_FROT holds (with
+    /// Newton friction: with the friction fixed point RESI_FROT is the
+    /// criterion of its outer loop, `mmconv` computes none in Newton).
     pub fn settled(&self) -> bool {
-        !self.changed && self.resi_frot() <= self.cdef.resi_frot
+        !self.changed && (self.friction_fixed_point() || self.resi_frot() <= self.cdef.resi_frot)
     }
 
-    /// The statuses from the current λ and gaps (`mmstac`); λ_s := λ.
+    /// `ALGO_RESO_FROT='POINT_FIXE'` with friction: the threshold λ_s is
+    /// frozen during the Newton iterations and updated by an outer loop.
+    fn friction_fixed_point(&self) -> bool {
+        self.stride == 2 && self.cdef.algo_reso_frot == Resolution::PointFixe
+    }
+
+    /// One update of the friction fixed point after Newton converged
+    /// (`nmctcf`): λ_s := λ (`mmreas`), then the criterion of `mmmcri_frot`,
+    /// max |λ − λ_ref| / max |λ| over the LAGS_C of the points (0 when
+    /// every λ is 0), λ_ref being λ at the previous update (0 at the
+    /// first). Converged when it is below RESI_FROT; otherwise λ_ref := λ
+    /// and the Newton iterations go on with the new threshold, unless
+    /// this was update ITER_FROT_MAXI (the step fails, `ERRE_CTCF`).
+    fn friction_update(&mut self) -> Result<bool, String> {
+        self.friction_loops += 1;
+        let (mut dmax, mut lmax, mut at) = (0.0f64, 0.0f64, None);
+        for i in 0..self.points.len() {
+            let l = self.lam[i * self.stride];
+            let d = (l - self.friction_ref[i]).abs();
+            if d > dmax {
+                dmax = d;
+                at = Some(i);
+            }
+            lmax = lmax.max(l.abs());
+            self.lam_s[i] = l;
+        }
+        let crit = if lmax > 0.0 { dmax / lmax } else { 0.0 };
+        if crit < self.cdef.resi_frot {
+            return Ok(true);
+        }
+        if self.friction_loops >= self.cdef.iter_frot_maxi {
+            let node = at.map_or(String::new(), |i| {
+                format!(" at node N{}", self.points[i].node + 1)
+            });
+            return Err(format!(
+                "the friction fixed point (ALGO_RESO_FROT='POINT_FIXE') did not converge in ITER_FROT_MAXI = {} threshold updates: LAGS_C still changed by {crit:.3e} of its largest value{node} (RESI_FROT = {:e})",
+                self.friction_loops, self.cdef.resi_frot
+            ));
+        }
+        for i in 0..self.points.len() {
+            self.friction_ref[i] = self.lam[i * self.stride];
+        }
+        Ok(false)
+    }
+
+    /// The statuses from the current λ and gaps (`mmstac`); λ_s := λ
+    /// with Newton friction (the friction fixed point freezes it).
     /// Returns whether one changed.
     fn update_statuses(&mut self) -> bool {
         let links = self.links();
@@ -523,7 +582,9 @@ impl ContinuousContact {
             };
             changed |= s != self.status[i];
             self.status[i] = s;
-            self.lam_s[i] = lam;
+            if !self.friction_fixed_point() {
+                self.lam_s[i] = lam;
+            }
         }
         changed
     }
@@ -553,11 +614,25 @@ impl ContinuousContact {
                 return Ok(false);
             }
         }
+        // The loops are nested as code_aster's (`nmible`, `nmtble`):
+        // contact inside friction inside geometry; an outer update restarts
+        // the inner counters.
+        if self.friction_fixed_point() && !self.friction_update()? {
+            self.fixed_point_loops = 0;
+            // At least one solve with the new threshold before convergence.
+            self.fixed_point_changed = true;
+            return Ok(false);
+        }
         if self.cdef.algo_reso_geom == Resolution::Newton {
             return Ok(true);
         }
         self.repair(&un);
-        Ok(self.geom_move <= self.cdef.resi_geom)
+        let converged = self.geom_move <= self.cdef.resi_geom;
+        if !converged {
+            self.fixed_point_loops = 0;
+            self.friction_loops = 0;
+        }
+        Ok(converged)
     }
 
     /// Accepts the trial state of a converged step of length `dt`.
