@@ -6,7 +6,7 @@
 use crate::catalog::args::Args;
 use crate::contact::{continuous, is_contact_surface, ContactDef, ContactZone, Coulomb, ReacGeom};
 use crate::diag::Diagnostic;
-use crate::mesh::Mesh;
+use crate::mesh::{CellType, Mesh};
 use crate::nonlinear::explicit_contact::Enforcement;
 
 impl ContactDef {
@@ -86,12 +86,6 @@ fn build(args: &Args, mesh: &Mesh, explicit: bool) -> Result<ContactDef, Diagnos
         }
         let continuous = formulation == "CONTINUE";
         let czones = if continuous {
-            if mesh.dim != 2 {
-                return Err(args.not_implemented(
-                    "FORMULATION",
-                    "the continuous formulation in 3D (FORMULATION='CONTINUE' is available on 2D models)",
-                ));
-            }
             Some(
                 zones
                     .iter()
@@ -335,6 +329,21 @@ fn continuous_zone(
         .text("GROUP_MA_ESCL")
         .ok_or_else(|| z.error("GROUP_MA_ESCL", "GROUP_MA_ESCL is required"))?;
     let slave_cells = cell_group(z, "GROUP_MA_ESCL", name, mesh)?.to_vec();
+    // INTEGRATION='AUTO' on a quadratic face puts the contact points at
+    // Gauss (TRIA6) or Simpson (QUAD8, with its centre) points, which
+    // couple the multipliers of a cell: not built.
+    if let Some(&c) = slave_cells
+        .iter()
+        .find(|&&c| matches!(mesh.cells[c].kind, CellType::Tria6 | CellType::Quad8))
+    {
+        return Err(z.not_implemented(
+            "GROUP_MA_ESCL",
+            &format!(
+                "continuous contact on {} slave faces (their contact points are not the nodes); only TRIA3/QUAD4 slave faces in 3D",
+                mesh.cells[c].kind.aster_name()
+            ),
+        ));
+    }
     Ok(continuous::ContinuousZone {
         slave_cells,
         coef_cont,

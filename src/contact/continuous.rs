@@ -7,7 +7,7 @@
 //! of the master nodes of its projection, the contact pressure λ
 //! (`LAGS_C`, ≤ 0 in compression, a nominal pressure) and in 2D the
 //! friction semi-multiplier Λ (`LAGS_F1`, |Λ| < 1 stick, = 1 slip). With
-//! `INTEGRATION='AUTO'` on SEG2/SEG3 slave cells the points are the slave
+//! `INTEGRATION='AUTO'` on SEG2/SEG3 (TRIA3/QUAD4 in 3D) slave cells the points are the slave
 //! nodes, so a point couples only its own node's multipliers; the points
 //! of one node in two cells see the same λ, d and slip and are merged
 //! here into one point whose weight is the sum of theirs.
@@ -40,7 +40,7 @@ pub enum ContactInit {
 /// The continuous parameters of one `ZONE`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContinuousZone {
-    /// Slave cells (SEG2/SEG3): their nodes are the contact points.
+    /// Slave cells (SEG2/SEG3 in 2D, TRIA3/QUAD4 in 3D): their nodes are the contact points.
     pub slave_cells: Vec<usize>,
     /// `COEF_CONT` ρ_n (N/mm³).
     pub coef_cont: f64,
@@ -90,13 +90,23 @@ pub fn nodal_weights(
     for &c in cells {
         let cell = &mesh.cells[c];
         let x: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
+        if matches!(cell.kind, CellType::Tria3 | CellType::Quad4) {
+            face_nodal_weights(cell.kind, &cell.nodes, &x, &mut w);
+            continue;
+        }
         // (parametric coordinate, weight) of each node, MED order.
         let rule: &[(f64, f64)] = match cell.kind {
             CellType::Seg2 => &[(-1.0, 1.0), (1.0, 1.0)],
             CellType::Seg3 => &[(-1.0, 1.0 / 3.0), (1.0, 1.0 / 3.0), (0.0, 4.0 / 3.0)],
+            CellType::Tria6 | CellType::Quad8 => {
+                return Err(format!(
+                    "not implemented yet: continuous contact on {} slave cells (INTEGRATION='AUTO' puts the contact points of a quadratic face at Gauss or Simpson points, not at its nodes; only TRIA3/QUAD4 slave faces in 3D)",
+                    cell.kind.aster_name()
+                ))
+            }
             other => {
                 return Err(format!(
-                "not implemented yet: continuous contact on {} slave cells (only SEG2/SEG3 in 2D)",
+                "not implemented yet: continuous contact on {} slave cells (only SEG2/SEG3 in 2D, TRIA3/QUAD4 in 3D)",
                 other.aster_name()
             ))
             }
@@ -121,6 +131,32 @@ pub fn nodal_weights(
         }
     }
     Ok(w.into_iter().collect())
+}
+
+/// The nodal rule of a linear face in 3D (`INTEGRATION='AUTO'`): TRIA3
+/// 1/6 and QUAD4 1 at each vertex, times the area element |a1 × a2| of
+/// the initial geometry at the vertex, so a flat face's weights are A/3
+/// (TRIA3) and, on a parallelogram, A/4 (QUAD4): the consistent load of a
+/// uniform pressure.
+fn face_nodal_weights(
+    kind: CellType,
+    nodes: &[usize],
+    x: &[[f64; 3]],
+    w: &mut std::collections::BTreeMap<usize, f64>,
+) {
+    let wk = crate::mesh::shape::reference_measure(kind) / nodes.len() as f64;
+    for (k, xi) in crate::mesh::shape::reference_nodes(kind).iter().enumerate() {
+        let ev = crate::mesh::shape::eval(kind, *xi);
+        let (mut a1, mut a2) = ([0.0; 3], [0.0; 3]);
+        for (d, p) in ev.dn().iter().zip(x) {
+            for i in 0..3 {
+                a1[i] += d[0] * p[i];
+                a2[i] += d[1] * p[i];
+            }
+        }
+        let j = crate::mesh::vec3::norm(crate::mesh::vec3::cross(a1, a2));
+        *w.entry(nodes[k]).or_insert(0.0) += wk * j;
+    }
 }
 
 /// `mmstac`: a point is in contact iff the augmented multiplier

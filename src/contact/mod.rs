@@ -22,6 +22,7 @@
 
 pub mod cont_noeu;
 pub mod continuous;
+pub mod continuous3d;
 pub mod discrete;
 pub mod pairing;
 pub mod unilateral;

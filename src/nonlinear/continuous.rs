@@ -20,6 +20,7 @@ use crate::contact::continuous::{
     contact_status, evaluate_point, nodal_weights, ContactInit, ContinuousDef, PointInput,
     Resolution,
 };
+use crate::contact::continuous3d::{evaluate_point3, PointInput3, PointOutput3};
 use crate::contact::{pair, ContactDef, ContactState, Link, LinkState, LinkStatus, Pairing};
 use crate::mesh::Mesh;
 use crate::result::NodalField;
@@ -39,7 +40,8 @@ pub struct ContinuousContact {
     mesh: Mesh,
     ndpn: usize,
     pub points: Vec<Point>,
-    /// Unknowns per point: 1 (`LAGS_C`) or 2 with friction (+ `LAGS_F1`).
+    /// Unknowns per point: 1 (`LAGS_C`), or with friction 2 in 2D
+    /// (+ `LAGS_F1`) and 3 in 3D (+ `LAGS_F1`, `LAGS_F2`).
     stride: usize,
     neq: usize,
     /// Current multipliers (point-major).
@@ -102,9 +104,6 @@ impl ContinuousContact {
         u0: &[f64],
         axis: bool,
     ) -> Result<Self, String> {
-        if def.dim != 2 {
-            return Err("not implemented yet: continuous contact in 3D (FORMULATION='CONTINUE' is available on 2D models only)".into());
-        }
         let mut points = Vec::new();
         for (iz, z) in cdef.zones.iter().enumerate() {
             let slaves = &def.zones[iz].slave_nodes;
@@ -119,7 +118,8 @@ impl ContinuousContact {
             }
         }
         let friction = cdef.zones.iter().any(|z| z.mu.is_some());
-        let stride = if friction { 2 } else { 1 };
+        // LAGS_C, then LAGS_F1 (and LAGS_F2 in 3D) with friction.
+        let stride = if friction { def.dim } else { 1 };
         let nx = points.len() * stride;
         let neq = numbering.neq();
         let ndpn = numbering.ndpn;
@@ -324,6 +324,10 @@ impl ContinuousContact {
             let inp = self.input(i, link, u, &|n, c| self.free[n * self.ndpn + c]);
             let (_, o) = evaluate_point(&inp);
             let p = self.points[i];
+            if self.def.dim == 3 {
+                st.links.push(self.link_state3(i, link, u));
+                continue;
+            }
             if let Some(fs) = forces.as_deref_mut() {
                 fs[p.node] = crate::mesh::vec3::add(fs[p.node], o.f);
                 for (m, &n) in link.shape.iter().zip(&link.master_nodes) {
@@ -359,6 +363,138 @@ impl ContinuousContact {
             });
         }
         st
+    }
+
+    /// The input of 3D point i (two tangents, `LAGS_F1`, `LAGS_F2`).
+    fn input3(&self, i: usize, link: &Link, u: &[[f64; 3]]) -> PointInput3 {
+        use crate::mesh::vec3::{dot, scale, sub};
+        let p = self.points[i];
+        let z = &self.cdef.zones[p.zone];
+        let du = |n: usize| sub(u[n], self.u_start[n]);
+        let mut jump = du(p.node);
+        for (m, &n) in link.shape.iter().zip(&link.master_nodes) {
+            jump = sub(jump, scale(*m, du(n)));
+        }
+        let t = link.tangents;
+        let free = |n: usize, c: usize| self.free[n * self.ndpn + c];
+        let slip_locked = std::iter::once(p.node)
+            .chain(link.master_nodes.iter().copied())
+            .all(|n| (0..3).all(|c| (t[0][c] == 0.0 && t[1][c] == 0.0) || !free(n, c)));
+        let x = i * self.stride;
+        PointInput3 {
+            omega: p.omega,
+            rho_n: z.coef_cont,
+            rho_t: z.coef_frot,
+            mu: z.mu,
+            status: self.status[i],
+            lambda: self.lam[x],
+            lambda_s: self.lam_s[i],
+            threshold_frozen: self.cdef.algo_reso_frot == Resolution::PointFixe,
+            lambda_t: if self.stride == 3 {
+                [self.lam[x + 1], self.lam[x + 2]]
+            } else {
+                [0.0; 2]
+            },
+            d: -link.gap,
+            g_t: [dot(t[0], jump), dot(t[1], jump)],
+            normal: link.normal,
+            tangents: t,
+            slip_locked,
+        }
+    }
+
+    /// Adds 3D point i's forces and tangent: the slave node with
+    /// coefficient 1, the master nodes with −M_j, on the jump's blocks.
+    #[allow(clippy::too_many_arguments)]
+    fn assemble3(
+        &self,
+        i: usize,
+        link: &Link,
+        o: &PointOutput3,
+        residual: &mut [f64],
+        force: &mut [f64],
+        matrix: Option<&mut crate::solver::SparseMatrix>,
+        nb: &DofNumbering,
+    ) {
+        let p = self.points[i];
+        let ndpn = self.ndpn;
+        let xc = self.neq + i * self.stride;
+        let nodes: Vec<(usize, f64)> = std::iter::once((p.node, 1.0))
+            .chain(
+                link.master_nodes
+                    .iter()
+                    .zip(&link.shape)
+                    .map(|(&n, &m)| (n, -m)),
+            )
+            .collect();
+        for &(n, ca) in &nodes {
+            for c in 0..3 {
+                residual[n * ndpn + c] += ca * o.f[c];
+                force[n * ndpn + c] += ca * o.f[c];
+            }
+        }
+        let nf = self.stride - 1;
+        let Some(m) = matrix else { return };
+        let eq = |n: usize, c: usize| {
+            let e = nb.eq[n * ndpn + c];
+            (e != NONE).then_some(e)
+        };
+        for &(na, ca) in &nodes {
+            for c in 0..3 {
+                let Some(ea) = eq(na, c) else { continue };
+                for &(nb_, cb) in &nodes {
+                    for e in 0..3 {
+                        let Some(eb) = eq(nb_, e) else { continue };
+                        let v = ca * cb * o.df_du[c][e];
+                        if v != 0.0 {
+                            m.add(ea, eb, v);
+                        }
+                    }
+                }
+                m.add(ea, xc, ca * o.df_dc[c]);
+                m.add(xc, ea, ca * o.dc_du[c]);
+                for k in 0..nf {
+                    m.add(ea, xc + 1 + k, ca * o.df_df[c][k]);
+                    m.add(xc + 1 + k, ea, ca * o.dfr_du[k][c]);
+                }
+            }
+        }
+        m.add(xc, xc, o.dc_dc);
+        for k in 0..nf {
+            for l in 0..nf {
+                m.add(xc + 1 + k, xc + 1 + l, o.dfr_df[k][l]);
+            }
+        }
+    }
+
+    /// The CONT_NOEU state of 3D point i: slip and friction force along
+    /// τ1 and τ2; sliding when |Λ| ≥ 0.999 (code_aster's `CONT` = 2).
+    fn link_state3(&self, i: usize, link: &Link, u: &[[f64; 3]]) -> LinkState {
+        let inp = self.input3(i, link, u);
+        let (_, o) = evaluate_point3(&inp);
+        let lt = inp.lambda_t;
+        let status = if !self.status[i] {
+            LinkStatus::Open
+        } else if inp.mu.is_none() || (lt[0] * lt[0] + lt[1] * lt[1]).sqrt() >= 0.999 {
+            LinkStatus::Slip
+        } else {
+            LinkStatus::Stick
+        };
+        LinkState {
+            zone: self.points[i].zone,
+            slave: self.points[i].node,
+            status,
+            gap: link.gap,
+            lambda_n: crate::mesh::vec3::dot(o.f_n, link.normal),
+            normal: link.normal,
+            tangents: link.tangents,
+            ntangents: link.ntangents,
+            frictional: inp.mu.is_some(),
+            slip: inp.g_t,
+            friction: o.f_t,
+            proj: link.proj,
+            percussion: [0.0; 4],
+        }
     }
 
     /// Before the iterations of a step from `u_start` (full).
@@ -423,15 +559,33 @@ impl ContinuousContact {
                 if let Some(m) = matrix.as_deref_mut() {
                     m.add(xc, xc, -p.omega / z.coef_cont);
                 }
-                if self.stride == 2 {
-                    self.residual[i * self.stride + 1] = p.omega * self.lam[i * self.stride + 1];
+                for k in 1..self.stride {
+                    self.residual[i * self.stride + k] = p.omega * self.lam[i * self.stride + k];
                     if let Some(m) = matrix.as_deref_mut() {
-                        m.add(xf, xf, p.omega);
+                        m.add(xc + k, xc + k, p.omega);
                     }
                 }
                 continue;
             };
             let link = &self.pairing.links[*l];
+            if dim == 3 {
+                let inp = self.input3(i, link, &u);
+                let (_, o) = evaluate_point3(&inp);
+                self.assemble3(
+                    i,
+                    link,
+                    &o,
+                    it.residual,
+                    it.force,
+                    matrix.as_deref_mut(),
+                    nb,
+                );
+                self.residual[i * self.stride] = o.r_c;
+                for k in 1..self.stride {
+                    self.residual[i * self.stride + k] = o.r_f[k - 1];
+                }
+                continue;
+            }
             let inp = self.input(i, link, &u, &|n, c| self.free[n * self.ndpn + c]);
             let (_, o) = evaluate_point(&inp);
             // (node, C_a) of the point: the slave, then the master nodes.
@@ -651,8 +805,11 @@ impl ContinuousContact {
         let nnodes = depl.nnodes();
         let mut names = depl.components.clone();
         names.push("LAGS_C".into());
-        if self.stride == 2 {
+        if self.stride >= 2 {
             names.push("LAGS_F1".into());
+        }
+        if self.stride == 3 {
+            names.push("LAGS_F2".into());
         }
         let mut f = NodalField::absent(names, nnodes);
         let old = depl.ncmp();

@@ -1,0 +1,469 @@
+//! Continuous contact (FORMULATION='CONTINUE') in 3D: an elastic block
+//! (HEXA8, 3D model, NU = 0) pressed on a rigid plane, solved statically
+//! (the engine driven step by step with a negligible density) under loads
+//! applied as consistent nodal forces integrated here by Gauss quadrature,
+//! independently of the contact code.
+//!
+//! The block is [0, 2] x [0, 2] x [0, H], 2 x 2 x 1 HEXA8; its bottom face
+//! (four QUAD4, SZZ) is the slave; the master is the top face of a fixed
+//! foundation turned by BETA about z, so that the tangents tau1, tau2 of
+//! the plane are oblique to the block's edges and to the loads. The
+//! block's top face carries a uniform pressure p and is held laterally
+//! (DX = DY = 0), which removes the rigid-body modes without stressing the
+//! block (NU = 0: sigma_zz = -p is uniform, HEXA8 represent it exactly).
+//!
+//! - Frictionless: LAGS_C = -p exactly at every slave node (nodal QUAD4
+//!   weights are the consistent load of a uniform pressure), zero gap.
+//! - Friction: a uniform traction q along the block's diagonal, on the
+//!   slave face itself, is balanced node by node by friction while the
+//!   block sticks: (LAGS_F1, LAGS_F2) = q/(mu p) in the tangent basis,
+//!   exactly. Beyond q = mu p every node slides: |(LAGS_F1, LAGS_F2)| = 1
+//!   along the node's slip (Coulomb's law), the block being sheared
+//!   against its held top. The diagonal is a symmetry plane of the whole
+//!   problem, so the total friction force is along the load, exactly.
+#![allow(clippy::needless_range_loop)]
+
+mod dynamics_support;
+
+use aster::contact::{ContactDef, LinkState};
+use aster::mesh::ops::{orie_peau, OrieDim};
+use aster::mesh::shape::{eval, reference_nodes};
+use aster::mesh::{Cell, CellType, Mesh};
+use aster::model::{Dof, MaterialField, MechLoad};
+use aster::nonlinear::{
+    discretize, initial_state, ConvergenceSettings, DiscreteContact, Engine, NewtonSettings,
+    Occurrence,
+};
+use aster::time::Scheme;
+use dynamics_support::*;
+
+const P: f64 = 1.0;
+const MU: f64 = 0.25;
+const E: f64 = 1000.0;
+const H: f64 = 0.5;
+/// Turn of the master plane about z (degrees).
+const BETA: f64 = 20.0;
+
+fn block_mesh() -> Mesh {
+    let mut coords = Vec::new();
+    let mut id = [[[0usize; 2]; 3]; 3];
+    for k in 0..2 {
+        for j in 0..3 {
+            for i in 0..3 {
+                id[i][j][k] = coords.len();
+                coords.push([i as f64, j as f64, k as f64 * H]);
+            }
+        }
+    }
+    let mut cells = Vec::new();
+    // HEXA8 in MED order, built from the reference coordinates.
+    for ci in 0..2 {
+        for cj in 0..2 {
+            let nodes = reference_nodes(CellType::Hexa8)
+                .iter()
+                .map(|x| {
+                    let a = |v: f64| usize::from(v > 0.0);
+                    id[ci + a(x[0])][cj + a(x[1])][a(x[2])]
+                })
+                .collect();
+            cells.push(Cell {
+                kind: CellType::Hexa8,
+                nodes,
+            });
+        }
+    }
+    let quad = |k: usize, ci: usize, cj: usize| -> Vec<usize> {
+        reference_nodes(CellType::Quad4)
+            .iter()
+            .map(|x| id[ci + usize::from(x[0] > 0.0)][cj + usize::from(x[1] > 0.0)][k])
+            .collect()
+    };
+    let (mut szz, mut top) = (Vec::new(), Vec::new());
+    for ci in 0..2 {
+        for cj in 0..2 {
+            szz.push(cells.len());
+            cells.push(Cell {
+                kind: CellType::Quad4,
+                nodes: quad(0, ci, cj),
+            });
+            top.push(cells.len());
+            cells.push(Cell {
+                kind: CellType::Quad4,
+                nodes: quad(1, ci, cj),
+            });
+        }
+    }
+    // Foundation: a HEXA8 below z = 0, turned by BETA about (1, 1).
+    let (s, c) = BETA.to_radians().sin_cos();
+    let f0 = coords.len();
+    let mut fid = std::collections::HashMap::new();
+    for x in reference_nodes(CellType::Hexa8) {
+        let (a, b) = (2.5 * x[0], 2.5 * x[1]);
+        fid.insert([x[0] as i32, x[1] as i32, x[2] as i32], coords.len());
+        coords.push([1.0 + c * a - s * b, 1.0 + s * a + c * b, 0.5 * (x[2] - 1.0)]);
+    }
+    let found = cells.len();
+    cells.push(Cell {
+        kind: CellType::Hexa8,
+        nodes: (f0..f0 + 8).collect(),
+    });
+    let rigid = cells.len();
+    cells.push(Cell {
+        kind: CellType::Quad4,
+        nodes: reference_nodes(CellType::Quad4)
+            .iter()
+            .map(|x| fid[&[x[0] as i32, x[1] as i32, 1]])
+            .collect(),
+    });
+    let mut mesh = Mesh {
+        name: "MAIL".into(),
+        dim: 3,
+        coords,
+        cells,
+        ..Default::default()
+    };
+    mesh.cell_groups.insert("VOL".into(), vec![0, 1, 2, 3]);
+    mesh.cell_groups.insert("SZZ".into(), szz);
+    mesh.cell_groups.insert("TOP".into(), top);
+    mesh.cell_groups.insert("VOL_RIG".into(), vec![found]);
+    mesh.cell_groups.insert("RIGID".into(), vec![rigid]);
+    orie_peau(&mut mesh, OrieDim::D3, &["SZZ", "RIGID"], None).unwrap();
+    mesh
+}
+
+/// Consistent nodal forces of a uniform traction `t` on the QUAD4 of
+/// `group` (2 x 2 Gauss, exact on these flat parallelograms), added to
+/// `f` (full, 3 dofs per node).
+fn traction(mesh: &Mesh, group: &str, t: [f64; 3], f: &mut [f64]) {
+    let g = 1.0 / 3.0f64.sqrt();
+    for &c in &mesh.cell_groups[group] {
+        let n = &mesh.cells[c].nodes;
+        for (xi, eta) in [(-g, -g), (g, -g), (g, g), (-g, g)] {
+            let ev = eval(CellType::Quad4, [xi, eta, 0.0]);
+            let (mut a1, mut a2) = ([0.0; 3], [0.0; 3]);
+            for (k, d) in ev.dn().iter().enumerate() {
+                for i in 0..3 {
+                    a1[i] += d[0] * mesh.coords[n[k]][i];
+                    a2[i] += d[1] * mesh.coords[n[k]][i];
+                }
+            }
+            let cr = [
+                a1[1] * a2[2] - a1[2] * a2[1],
+                a1[2] * a2[0] - a1[0] * a2[2],
+                a1[0] * a2[1] - a1[1] * a2[0],
+            ];
+            let jac = (cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]).sqrt();
+            for k in 0..4 {
+                for d in 0..3 {
+                    f[3 * n[k] + d] += t[d] * ev.n()[k] * jac;
+                }
+            }
+        }
+    }
+}
+
+/// One converged load step.
+#[derive(Debug)]
+struct StepOut {
+    q: f64,
+    /// Per slave node: (node, LAGS_C, (LAGS_F1, LAGS_F2), its link state).
+    points: Vec<(usize, f64, [f64; 2], LinkState)>,
+    /// RESI_GLOB_MAXI of each Newton iteration of the step.
+    residuals: Vec<f64>,
+}
+
+/// The load direction: the block's diagonal.
+fn load_dir() -> [f64; 3] {
+    let r = 0.5f64.sqrt();
+    [r, r, 0.0]
+}
+
+/// Applies P on TOP, then the tractions `ramp` along the diagonal on SZZ,
+/// one step each; `formulation` is the DEFI_CONTACT text of the zone.
+fn run(contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
+    let mesh = block_mesh();
+    let vol = mesh.cell_groups["VOL"].clone();
+    let mo = model(&mesh, "3D", &vol);
+    let def = ContactDef::from_args(&args_of(contact_text, "DEFI_CONTACT", 0), &mesh)
+        .unwrap_or_else(|d| panic!("{}", d.render(None)));
+    let mut materials = indexmap::IndexMap::new();
+    materials.insert("MAT".to_string(), material(E, 0.0, 1e-20, None));
+    let top_nodes: Vec<usize> = {
+        let mut v: Vec<usize> = mesh.cell_groups["TOP"]
+            .iter()
+            .flat_map(|&c| mesh.cells[c].nodes.clone())
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let mut held = imposed(&top_nodes, Dof::Dx, 0.0);
+    held.extend(imposed(&top_nodes, Dof::Dy, 0.0));
+    let (asm, _) = discretize(
+        &mesh,
+        &mo,
+        &MaterialField {
+            mesh: "MAIL".into(),
+            cell_material: vec![Some("MAT".into()); mesh.ncells()],
+        },
+        &materials,
+        &[Occurrence {
+            cells: None,
+            relation: "ELAS".into(),
+            deformation: "PETIT".into(),
+            controls: Default::default(),
+        }],
+        &[&MechLoad {
+            model: "MO".into(),
+            imposed: held,
+            gravity: None,
+        }],
+    )
+    .unwrap();
+    let state = initial_state(&asm, 0.0, None, None, None);
+    let nfull = asm.numbering.nfull();
+    let conv = ConvergenceSettings {
+        resi_glob_rela: Some(1e-13),
+        resi_glob_maxi: None,
+        iter_glob_maxi: 100,
+        arret: true,
+    };
+    let mut engine = Engine::new(
+        asm,
+        Scheme::newmark(0.25, 0.5).unwrap(),
+        NewtonSettings::default(),
+        conv,
+        state,
+    );
+    engine.initialize(true).unwrap();
+    let u0 = vec![0.0; nfull];
+    let mut contact =
+        DiscreteContact::build(def, &mesh, &engine.asm.numbering, &u0, false).unwrap();
+    let mut out = Vec::new();
+    let loads: Vec<f64> = std::iter::once(0.0).chain(ramp.iter().copied()).collect();
+    for (k, &q) in loads.iter().enumerate() {
+        let mut f = vec![0.0; nfull];
+        traction(&mesh, "TOP", [0.0, 0.0, -P], &mut f);
+        let d = load_dir();
+        traction(&mesh, "SZZ", [q * d[0], q * d[1], 0.0], &mut f);
+        engine.fext = f;
+        let rep = engine
+            .solve_step(1.0, Some(&mut contact), &mut |_, _| {})
+            .unwrap_or_else(|e| panic!("load step {k} (q = {q}): {e}"));
+        engine.commit();
+        contact.commit(1.0);
+        let mut pts = Vec::new();
+        let links = &contact.committed.links;
+        match &contact.continuous {
+            Some(cc) => {
+                let stride = if friction { 3 } else { 1 };
+                for (i, p) in cc.points.iter().enumerate() {
+                    let l = links
+                        .iter()
+                        .find(|l| l.slave == p.node)
+                        .expect("every slave node paired");
+                    let lf = if friction {
+                        [
+                            cc.committed_lam[i * stride + 1],
+                            cc.committed_lam[i * stride + 2],
+                        ]
+                    } else {
+                        [0.0; 2]
+                    };
+                    pts.push((p.node, cc.committed_lam[i * stride], lf, l.clone()));
+                }
+            }
+            None => {
+                for l in links {
+                    pts.push((l.slave, f64::NAN, [f64::NAN; 2], l.clone()));
+                }
+            }
+        }
+        out.push(StepOut {
+            q,
+            points: pts,
+            residuals: rep.history.iter().map(|h| h.resi_maxi).collect(),
+        });
+    }
+    out
+}
+
+fn continue_text(coef_cont: f64, friction: bool) -> String {
+    let (frot, coulomb) = if friction {
+        ("FROTTEMENT='COULOMB', ", format!(", COULOMB={MU}"))
+    } else {
+        ("", String::new())
+    };
+    format!(
+        "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION='CONTINUE', {frot}
+    ALGO_RESO_CONT='NEWTON', ALGO_RESO_GEOM='NEWTON',
+    ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', COEF_CONT={coef_cont:e}{coulomb}))"
+    )
+}
+
+/// LAGS_C = -p at every slave node to 1e-10, gap 0 to 1e-10, whatever
+/// COEF_CONT (no penalty); the contact force of each node is its share
+/// p A_node of the load (corner 1/4, edge 1/2, centre 1).
+#[test]
+fn pressed_block_3d_lags_c_is_minus_the_pressure() {
+    let mut by_coef = Vec::new();
+    for coef in [100.0, 1e4] {
+        let steps = run(&continue_text(coef, false), false, &[]);
+        let s = &steps[0];
+        assert_eq!(s.points.len(), 9, "{s:?}");
+        let mut worst: (f64, f64) = (0.0, 0.0);
+        for (node, lc, _, l) in &s.points {
+            let err = (lc + P).abs() / P;
+            assert!(err <= 1e-10, "COEF_CONT {coef}: node {node} LAGS_C {lc:e}");
+            assert!(l.gap.abs() <= 1e-10, "node {node} gap {:e}", l.gap);
+            // Nodal area: 1/4 per adjacent unit face.
+            let x = [node % 3, (node / 3) % 3];
+            let share = x
+                .iter()
+                .map(|&i| if i == 1 { 1.0 } else { 0.5 })
+                .product::<f64>();
+            let rz = l.reaction()[2];
+            assert!((rz - P * share).abs() <= 1e-10, "node {node} RZ {rz:e}");
+            worst = (worst.0.max(err), worst.1.max(l.gap.abs()));
+        }
+        eprintln!(
+            "3D COEF_CONT {coef:e}: max |LAGS_C + p|/p {:.2e}, max |gap| {:.2e} mm, residuals {:?}",
+            worst.0, worst.1, s.residuals
+        );
+        by_coef.push(s.points.iter().map(|p| p.1).collect::<Vec<f64>>());
+    }
+    for (a, b) in by_coef[0].iter().zip(&by_coef[1]) {
+        assert!((a - b).abs() <= 1e-12 * P, "{a:e} vs {b:e}");
+    }
+}
+
+/// The load direction in the tangent basis of a link.
+fn in_tangents(l: &LinkState, v: [f64; 3]) -> [f64; 2] {
+    let d = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    [d(l.tangents[0], v), d(l.tangents[1], v)]
+}
+
+/// |(LAGS_F1, LAGS_F2)| = q/(mu p) < 1 along the load while q < mu p
+/// (stick, no slip), = 1 along each node's slip from the first load step
+/// above mu p; the total friction force is along the load.
+#[test]
+fn friction_3d_semi_multiplier_goes_from_stick_to_slip_at_coulomb_times_the_load() {
+    let ramp: Vec<f64> = (1..=11).map(|k| 0.03 * k as f64).collect();
+    let steps = run(&continue_text(100.0, true), true, &ramp);
+    let mut first_slip = None;
+    let d = load_dir();
+    for s in &steps {
+        eprintln!(
+            "q = {:.2}: (LAGS_F1, LAGS_F2) {:?}, LAGS_C {:?}, residuals {:?}",
+            s.q,
+            s.points.iter().map(|p| p.2).collect::<Vec<_>>(),
+            s.points.iter().map(|p| p.1).collect::<Vec<_>>(),
+            s.residuals
+        );
+        assert_eq!(s.points.len(), 9);
+        for (node, lc, _, l) in &s.points {
+            assert!(
+                l.gap.abs() <= 1e-10,
+                "q {}: node {node} gap {:e}",
+                s.q,
+                l.gap
+            );
+            assert!(*lc < 0.0, "q {}: node {node} LAGS_C {lc:e}", s.q);
+        }
+        if s.q < MU * P {
+            for (node, lc, lf, l) in &s.points {
+                let e = in_tangents(l, d);
+                // Oblique: both tangents carry a part of the load.
+                assert!(e[0].abs() > 0.2 && e[1].abs() > 0.2, "{e:?}");
+                for k in 0..2 {
+                    let expected = s.q / (MU * P) * e[k];
+                    assert!(
+                        (lf[k] - expected).abs() <= 1e-10,
+                        "stick at q {}: node {node} LAGS_F{} {:e}, expected {expected:e}",
+                        s.q,
+                        k + 1,
+                        lf[k]
+                    );
+                    assert!(l.slip[k].abs() <= 1e-12, "node {node} slip {:?}", l.slip);
+                }
+                assert!(lf[0].hypot(lf[1]) < 1.0);
+                assert!((lc + P).abs() <= 1e-10 * P, "node {node} LAGS_C {lc:e}");
+            }
+        } else {
+            first_slip.get_or_insert(s.q);
+            let mut total = [0.0; 3];
+            for (node, _, lf, l) in &s.points {
+                let norm = lf[0].hypot(lf[1]);
+                assert!(
+                    (norm - 1.0).abs() <= 1e-8,
+                    "slip at q {}: node {node} |LAGS_F| {norm:e}",
+                    s.q
+                );
+                let g = l.slip;
+                let gn = g[0].hypot(g[1]);
+                assert!(gn > 1e-9, "slip at q {}: node {node} slip {g:?}", s.q);
+                // Coulomb's direction: Λ along the slip.
+                let cross = (lf[0] * g[1] - lf[1] * g[0]) / gn;
+                assert!(
+                    cross.abs() <= 1e-8 && lf[0] * g[0] + lf[1] * g[1] > 0.0,
+                    "node {node}: {lf:?} vs slip {g:?}"
+                );
+                let fr = l.friction_force();
+                for i in 0..3 {
+                    total[i] += fr[i];
+                }
+                // Nodes on the diagonal (the symmetry plane): along the load.
+                if [0, 4, 8].contains(node) {
+                    let e = in_tangents(l, d);
+                    assert!(
+                        (lf[0] * e[1] - lf[1] * e[0]).abs() <= 1e-8,
+                        "node {node}: {lf:?} vs {e:?}"
+                    );
+                }
+            }
+            // The total friction force on the block opposes the load.
+            let tn = total[0].hypot(total[1]);
+            assert!(
+                (total[0] * d[1] - total[1] * d[0]).abs() <= 1e-10 * tn,
+                "{total:?}"
+            );
+            assert!(total[0] * d[0] + total[1] * d[1] < 0.0);
+        }
+    }
+    let q = first_slip.expect("the ramp passes mu p");
+    assert!(q > MU * P && q - 0.03 < MU * P, "slip from q = {q}");
+}
+
+/// The generalised Newton converges quadratically on a 3D step with
+/// friction that takes every node from stick (or the pressed state) to
+/// slip along a direction oblique to the tangents. Measured (RESI_GLOB_MAXI,
+/// N): q 0.15 -> 0.3: 3.5e-2, 2.2e-6, 1.6e-8, 1.3e-15; 0 -> 0.5: 1.8e-1,
+/// 1.4e-5, 1.9e-7, 1.1e-13, 2e-16. The second iteration is slower (the
+/// friction rows' λ-derivative is left out, src/contact/continuous3d.rs),
+/// then the residual squares: the last residual that follows one above
+/// the round-off floor (1e-12 N) is at most C = 10 /N times its square; a
+/// linear rate at the step's earlier ratio (1e-2) would leave ~1e-9 N.
+#[test]
+fn friction_3d_slip_step_converges_quadratically() {
+    for ramp in [vec![0.15, 0.3], vec![0.5], vec![0.2, 0.6]] {
+        let steps = run(&continue_text(100.0, true), true, &ramp);
+        let r = &steps.last().unwrap().residuals;
+        eprintln!("{ramp:?}: slip step residuals {r:?}");
+        assert!(r.len() <= 6, "{r:?}");
+        assert!(*r.last().unwrap() <= 1e-14, "{r:?}");
+        let pairs: Vec<(f64, f64)> = r
+            .windows(2)
+            .map(|w| (w[0], w[1]))
+            .filter(|&(a, _)| a > 1e-12)
+            .collect();
+        let &(a, b) = pairs.last().expect("at least one pair above the floor");
+        assert!(a < 1e-6 && b <= 10.0 * a * a, "{a:e} -> {b:e} in {r:?}");
+        // Every node slides at the end of the step.
+        for (node, _, lf, _) in &steps.last().unwrap().points {
+            assert!(
+                (lf[0].hypot(lf[1]) - 1.0).abs() <= 1e-8,
+                "node {node} {lf:?}"
+            );
+        }
+    }
+}
