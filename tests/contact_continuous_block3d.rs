@@ -270,12 +270,12 @@ fn run(contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
                     } else {
                         [0.0; 2]
                     };
-                    pts.push((p.node, cc.committed_lam[i * stride], lf, l.clone()));
+                    pts.push((p.node, cc.committed_lam[i * stride], lf, *l));
                 }
             }
             None => {
                 for l in links {
-                    pts.push((l.slave, f64::NAN, [f64::NAN; 2], l.clone()));
+                    pts.push((l.slave, f64::NAN, [f64::NAN; 2], *l));
                 }
             }
         }
