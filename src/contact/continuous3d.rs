@@ -380,6 +380,7 @@ mod tests {
                 normal: p.normal,
                 tangent: p.tangents[0],
                 slip_locked: false,
+                threshold_frozen: false,
             };
             let (qh, oq) = evaluate_point(&q);
             assert_eq!(ph, qh);
