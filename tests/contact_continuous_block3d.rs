@@ -289,6 +289,10 @@ fn run(contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
 }
 
 fn continue_text(coef_cont: f64, friction: bool) -> String {
+    continue_text_with(coef_cont, friction, "")
+}
+
+fn continue_text_with(coef_cont: f64, friction: bool, extra: &str) -> String {
     let (frot, coulomb) = if friction {
         ("FROTTEMENT='COULOMB', ", format!(", COULOMB={MU}"))
     } else {
@@ -296,7 +300,7 @@ fn continue_text(coef_cont: f64, friction: bool) -> String {
     };
     format!(
         "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION='CONTINUE', {frot}
-    ALGO_RESO_CONT='NEWTON', ALGO_RESO_GEOM='NEWTON',
+    ALGO_RESO_CONT='NEWTON', ALGO_RESO_GEOM='NEWTON', {extra}
     ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', COEF_CONT={coef_cont:e}{coulomb}))"
     )
 }
@@ -464,6 +468,51 @@ fn friction_3d_slip_step_converges_quadratically() {
                 (lf[0].hypot(lf[1]) - 1.0).abs() <= 1e-8,
                 "node {node} {lf:?}"
             );
+        }
+    }
+}
+
+/// The friction fixed point (ALGO_RESO_FROT='POINT_FIXE') in 3D reaches
+/// the generalised Newton's answer, stick and slip, to the tolerance of
+/// its criterion (RESI_FROT = 1e-10).
+#[test]
+fn friction_3d_fixed_point_reaches_the_newton_answer() {
+    let ramp = [0.15, 0.3, 0.33];
+    let newton = run(&continue_text(100.0, true), true, &ramp);
+    let pf = run(
+        &continue_text_with(
+            100.0,
+            true,
+            "ALGO_RESO_FROT='POINT_FIXE', RESI_FROT=1.E-10, ITER_FROT_MAXI=30,",
+        ),
+        true,
+        &ramp,
+    );
+    for (a, b) in pf.iter().zip(&newton) {
+        eprintln!(
+            "q {}: NEWTON {} iterations, POINT_FIXE {}",
+            a.q,
+            b.residuals.len(),
+            a.residuals.len()
+        );
+        for (p, q) in a.points.iter().zip(&b.points) {
+            assert_eq!(p.0, q.0);
+            assert!(
+                (p.1 - q.1).abs() <= 1e-8,
+                "q {}: LAGS_C {} {}",
+                a.q,
+                p.1,
+                q.1
+            );
+            for k in 0..2 {
+                assert!(
+                    (p.2[k] - q.2[k]).abs() <= 1e-8,
+                    "q {}: LAGS_F {:?} {:?}",
+                    a.q,
+                    p.2,
+                    q.2
+                );
+            }
         }
     }
 }

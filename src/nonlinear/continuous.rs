@@ -389,7 +389,7 @@ impl ContinuousContact {
             status: self.status[i],
             lambda: self.lam[x],
             lambda_s: self.lam_s[i],
-            threshold_frozen: self.cdef.algo_reso_frot == Resolution::PointFixe,
+            threshold_frozen: self.friction_fixed_point(),
             lambda_t: if self.stride == 3 {
                 [self.lam[x + 1], self.lam[x + 2]]
             } else {
@@ -679,7 +679,7 @@ impl ContinuousContact {
     /// `ALGO_RESO_FROT='POINT_FIXE'` with friction: the threshold λ_s is
     /// frozen during the Newton iterations and updated by an outer loop.
     fn friction_fixed_point(&self) -> bool {
-        self.stride == 2 && self.cdef.algo_reso_frot == Resolution::PointFixe
+        self.stride >= 2 && self.cdef.algo_reso_frot == Resolution::PointFixe
     }
 
     /// One update of the friction fixed point after Newton converged
