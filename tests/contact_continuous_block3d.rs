@@ -34,6 +34,7 @@ use aster::nonlinear::{
     discretize, initial_state, ConvergenceSettings, DiscreteContact, Engine, NewtonSettings,
     Occurrence,
 };
+use aster::result::NodalField;
 use aster::time::Scheme;
 use dynamics_support::*;
 
@@ -170,6 +171,10 @@ struct StepOut {
     points: Vec<(usize, f64, [f64; 2], LinkState)>,
     /// RESI_GLOB_MAXI of each Newton iteration of the step.
     residuals: Vec<f64>,
+    /// CONT_NOEU of the step.
+    cont: NodalField,
+    /// A DEPL field (DX, DY, DZ absent) extended with the multipliers.
+    depl: NodalField,
 }
 
 /// The load direction: the block's diagonal.
@@ -279,8 +284,13 @@ fn run(contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
                 }
             }
         }
+        let mut depl =
+            NodalField::absent(vec!["DX".into(), "DY".into(), "DZ".into()], mesh.nnodes());
+        contact.extend_depl(&mut depl);
         out.push(StepOut {
             q,
+            cont: contact.cont_noeu(),
+            depl,
             points: pts,
             residuals: rep.history.iter().map(|h| h.resi_maxi).collect(),
         });
@@ -514,5 +524,104 @@ fn friction_3d_fixed_point_reaches_the_newton_answer() {
                 );
             }
         }
+    }
+}
+fn discrete_text(e_n: f64) -> String {
+    format!(
+        "CONT = DEFI_CONTACT(MODELE=MO, FORMULATION='DISCRETE', FROTTEMENT='COULOMB',
+    ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', ALGO_CONT='PENALISATION', E_N={e_n:e},
+            ALGO_FROT='PENALISATION', E_T={e_n:e}, COULOMB={MU}))"
+    )
+}
+
+/// The 3D discrete penalised method (E_N = E_T) tends to the continuous
+/// one as the penalty grows, at the first order of a penalty (the
+/// interpenetration and the stick slip are force / E_N), on the pressed
+/// state, in stick (q = 0.15) and in slip (q = 0.33, non-uniform
+/// pressure): the largest difference of a nodal reaction (RX, RY, RZ)
+/// over the largest reaction is divided by 10 when E_N is multiplied by
+/// 10. Measured: 3.05e-3, 3.07e-4, 3.07e-5 (pressed and stick),
+/// 2.31e-3, 2.32e-4, 2.32e-5 (slip) for E_N = 1e5, 1e6, 1e7 N/mm; the
+/// discrete slip step takes 38 to 54 iterations, the continuous one 4.
+#[test]
+fn continuous_and_discrete_3d_agree_on_reactions() {
+    let ramp = [0.15, 0.33];
+    let cont = run(&continue_text(100.0, true), true, &ramp);
+    let mut errs: Vec<Vec<f64>> = Vec::new();
+    for e_n in [1e5, 1e6, 1e7] {
+        let disc = run(&discrete_text(e_n), true, &ramp);
+        let mut row = Vec::new();
+        for (c, d) in cont.iter().zip(&disc) {
+            assert_eq!(c.points.len(), d.points.len());
+            let mut err: f64 = 0.0;
+            let mut big: f64 = 0.0;
+            for (node, _, _, lc) in &c.points {
+                let ld = &d.points.iter().find(|p| p.0 == *node).unwrap().3;
+                let (rc, rd) = (lc.reaction(), ld.reaction());
+                for i in 0..3 {
+                    err = err.max((rc[i] - rd[i]).abs());
+                    big = big.max(rc[i].abs());
+                }
+            }
+            eprintln!(
+                "E_N {e_n:e} q {}: max |R_disc - R_cont| / max |R| = {:.3e} ({} iterations, continuous {})",
+                c.q,
+                err / big,
+                d.residuals.len(),
+                c.residuals.len()
+            );
+            row.push(err / big);
+        }
+        errs.push(row);
+    }
+    for s in 0..errs[0].len() {
+        assert!(errs[2][s] <= 1e-4, "{errs:?}");
+        for k in 0..2 {
+            let ratio = errs[k][s] / errs[k + 1][s];
+            assert!((9.0..=11.0).contains(&ratio), "{errs:?}");
+        }
+    }
+}
+
+/// DEPL holds LAGS_C, LAGS_F1 and LAGS_F2 at the slave nodes (absent
+/// elsewhere); CONT_NOEU has the discrete method's components: in stick
+/// CONT = 1, JEU = 0, RZ = p A_node, (RTAX, RTAY) the friction force
+/// against the load, (q A_node) along it, R the norm; in slip CONT = 2.
+#[test]
+fn depl_and_cont_noeu_3d() {
+    let steps = run(&continue_text(100.0, true), true, &[0.15, 0.33]);
+    let d = load_dir();
+    for s in &steps[1..] {
+        for (node, lc, lf, _) in &s.points {
+            let get = |f: &NodalField, c: &str| {
+                f.get(*node, c).unwrap_or_else(|| panic!("{c} at {node}"))
+            };
+            assert_eq!(get(&s.depl, "LAGS_C"), *lc);
+            assert_eq!(get(&s.depl, "LAGS_F1"), lf[0]);
+            assert_eq!(get(&s.depl, "LAGS_F2"), lf[1]);
+            let c = &s.cont;
+            assert!(get(c, "JEU").abs() <= 1e-12);
+            let x = [node % 3, (node / 3) % 3];
+            let share = x
+                .iter()
+                .map(|&i| if i == 1 { 1.0 } else { 0.5 })
+                .product::<f64>();
+            if s.q < MU * P {
+                assert_eq!(get(c, "CONT"), 1.0);
+                assert!((get(c, "RZ") - P * share).abs() <= 1e-10);
+                for (k, cmp) in ["RTAX", "RTAY"].iter().enumerate() {
+                    assert!(
+                        (get(c, cmp) + s.q * share * d[k]).abs() <= 1e-10,
+                        "{cmp} at {node}"
+                    );
+                }
+                let r = (P * P + s.q * s.q).sqrt() * share;
+                assert!((get(c, "R") - r).abs() <= 1e-10);
+            } else {
+                assert_eq!(get(c, "CONT"), 2.0);
+            }
+        }
+        // Not a slave node: no multiplier.
+        assert_eq!(s.depl.get(9, "LAGS_C"), None);
     }
 }

@@ -404,3 +404,22 @@ fn friction_fixed_point_definition() {
     let e = error_of("AXIS", 'D', &text("ITER_FROT_MAXI=0,"));
     assert!(e.message.contains("ITER_FROT_MAXI"), "{}", e.message);
 }
+
+/// The continuous formulation in 3D takes linear slave faces only: the
+/// quadratic faces of the 3D Taylor bar (QUAD8, TRIA6) are refused at
+/// DEFI_CONTACT, naming GROUP_MA_ESCL and the face type.
+#[test]
+fn continuous_3d_refuses_quadratic_slave_faces() {
+    let e = error_of(
+        "3D",
+        'H',
+        "FORMULATION='CONTINUE', ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(
+        e.message.starts_with("not implemented yet")
+            && (e.message.contains("QUAD8") || e.message.contains("TRIA6")),
+        "{}",
+        e.message
+    );
+    assert!(e.message.contains("ZONE/GROUP_MA_ESCL"), "{}", e.message);
+}
