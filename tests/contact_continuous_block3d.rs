@@ -625,3 +625,185 @@ fn depl_and_cont_noeu_3d() {
         assert_eq!(s.depl.get(9, "LAGS_C"), None);
     }
 }
+
+/// A 3D landing in CONTINUE: the block (lifted by G0, elastic, free) flies
+/// obliquely at (VX, VY, VZ) onto the turned plane and bounces, with
+/// Coulomb friction. The time integral of the CONT_NOEU reactions
+/// (RX, RY, RZ summed over the slave nodes, with the weights of Newmark's
+/// velocity update) equals the change of the block's momentum Σ M v,
+/// computed from the consistent mass and the velocities only: no load and
+/// no imposed dof act on the block, and its internal forces sum to zero.
+///
+/// Measured (momentum, N s): p0 = (4e-4, 2e-4, -2e-3), the impulse equals
+/// the change to 4e-11 of the normal change (2e-11 for the discrete). The block leaves the plane at 3.2e-5 s
+/// with p = (-1.6e-4, -1.8e-4, 2.51e-3): its centre of mass rebounds
+/// faster than it came (1255 against 1000 mm/s), an energy gain that
+/// Newmark's trapezoidal rule with an exact impact constraint allows and
+/// that this test does not judge (the discrete method gives 1.80e-3; a
+/// vertical landing 1.85e-3 with friction and 1.62e-3 without). Open.
+#[test]
+fn landing_3d_contact_impulse_equals_the_momentum_change() {
+    landing(&format!(
+        "FORMULATION='CONTINUE', FROTTEMENT='COULOMB',
+    ALGO_RESO_CONT='NEWTON', ALGO_RESO_FROT='NEWTON', ALGO_RESO_GEOM='NEWTON',
+    ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', COULOMB={MU})"
+    ));
+}
+
+/// The same landing with the 3D discrete method (E_N = E_T = 1e5): the
+/// identity holds for it too.
+#[test]
+fn landing_3d_discrete_contact_impulse_equals_the_momentum_change() {
+    landing(&format!(
+        "FORMULATION='DISCRETE', FROTTEMENT='COULOMB',
+    ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', ALGO_CONT='PENALISATION', E_N=1e5,
+            ALGO_FROT='PENALISATION', E_T=1e5, COULOMB={MU})"
+    ));
+}
+
+fn landing(contact: &str) {
+    use aster::concepts::{ConceptData, ConceptType};
+    const G0: f64 = 1.5e-3;
+    const VEL: [f64; 3] = [200.0, 100.0, -1000.0];
+    const GAMMA: f64 = 0.5;
+    let mut mesh = block_mesh();
+    for n in 0..18 {
+        mesh.coords[n][2] += G0;
+    }
+    let vol = mesh.cell_groups["VOL"].clone();
+    let block_nodes: Vec<usize> = (0..18).collect();
+    let slaves: Vec<usize> = (0..9).collect();
+    let mo = model(&mesh, "3D", &vol);
+    let mut v0 = NodalField::absent(vec!["DX".into(), "DY".into(), "DZ".into()], mesh.nnodes());
+    for &n in &block_nodes {
+        for c in 0..3 {
+            v0.set(n, c, VEL[c]);
+        }
+    }
+    let t: Vec<f64> = (0..=60).map(|k| k as f64 * 1e-6).collect();
+    let mat = material(E, 0.3, 1e-6, None);
+    let mut st = study(
+        mesh.clone(),
+        mo.clone(),
+        mat.clone(),
+        vec![],
+        Some(v0),
+        t,
+        None,
+    );
+    let text = format!(
+        "CONT = DEFI_CONTACT(MODELE=MO, {contact})
+RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT=CONT,
+    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'),
+    ETAT_INIT=_F(VITE=V0),
+    INCREMENT=_F(LIST_INST=L_INST),
+    SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', BETA=0.25, GAMMA={GAMMA}, FORMULATION='DEPLACEMENT'),
+    NEWTON=_F(MATRICE='TANGENTE', REAC_ITER=1),
+    CONVERGENCE=_F(RESI_GLOB_RELA=1.E-10, ITER_GLOB_MAXI=50))"
+    );
+    insert(
+        &mut st,
+        "CONT",
+        ConceptType::CharContact,
+        ConceptData::Contact(Box::new(args_of(&text, "DEFI_CONTACT", 0))),
+    );
+    exec(
+        &mut st,
+        "DYNA_NON_LINE",
+        &args_of(&text, "DYNA_NON_LINE", 0),
+        "RESU",
+    )
+    .unwrap();
+    let result = result(&st, "RESU").clone();
+    let mut materials = indexmap::IndexMap::new();
+    materials.insert("MAT".to_string(), mat);
+    let (asm, _) = discretize(
+        &mesh,
+        &mo,
+        &MaterialField {
+            mesh: "MAIL".into(),
+            cell_material: vec![Some("MAT".into()); mesh.ncells()],
+        },
+        &materials,
+        &[Occurrence {
+            cells: None,
+            relation: "ELAS".into(),
+            deformation: "PETIT".into(),
+            controls: Default::default(),
+        }],
+        &[&MechLoad {
+            model: "MO".into(),
+            imposed: vec![],
+            gravity: None,
+        }],
+    )
+    .unwrap();
+    let n = mesh.nnodes();
+    let momentum = |s: usize| {
+        let vite = &result.steps[s].nodal["VITE"];
+        let mut v = vec![0.0; 3 * n];
+        for node in 0..n {
+            for (c, name) in ["DX", "DY", "DZ"].iter().enumerate() {
+                v[3 * node + c] = vite.get(node, name).filter(|x| !x.is_nan()).unwrap_or(0.0);
+            }
+        }
+        let mut mv = vec![0.0; 3 * n];
+        asm.mass_full.mul_vec(&v, &mut mv);
+        let mut p = [0.0; 3];
+        for i in 0..n {
+            for c in 0..3 {
+                p[c] += mv[3 * i + c];
+            }
+        }
+        p
+    };
+    let total = |s: usize, cmp: &str| -> f64 {
+        slaves
+            .iter()
+            .map(|&node| result.steps[s].nodal["CONT_NOEU"].get(node, cmp).unwrap())
+            .sum()
+    };
+    let last = result.steps.len() - 1;
+    assert!((result.steps[last].inst - 6e-5).abs() < 1e-15);
+    let mut impulse = [0.0; 3];
+    let mut peak: f64 = 0.0;
+    let mut first_contact = None;
+    for s in 1..=last {
+        let dt = result.steps[s].inst - result.steps[s - 1].inst;
+        for (c, cmp) in ["RX", "RY", "RZ"].iter().enumerate() {
+            impulse[c] += dt * (GAMMA * total(s, cmp) + (1.0 - GAMMA) * total(s - 1, cmp));
+        }
+        let rn = total(s, "RN");
+        if rn > 0.0 {
+            first_contact.get_or_insert(result.steps[s].inst);
+        }
+        peak = peak.max(rn);
+    }
+    let (p0, p1) = (momentum(0), momentum(last));
+    let dp = [p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]];
+    eprintln!(
+        "3D landing: p0 {p0:?}, p1 {p1:?}, dp {dp:?}, impulse {impulse:?}, peak Σ RN {peak:.4e} N, first contact at {first_contact:?}"
+    );
+    // Free flight over G0 first (1.5 steps at 1000 mm/s), then the plane
+    // pushes the block up: the normal momentum changes by a good part.
+    assert!(
+        first_contact.is_some_and(|t| t > 1.5e-6),
+        "{first_contact:?}"
+    );
+    assert!(dp[2] > 0.5 * p0[2].abs(), "dp {dp:?} of p0 {p0:?}");
+    for c in 0..3 {
+        let rel = (impulse[c] - dp[c]).abs() / dp[2].abs();
+        assert!(
+            rel < 1e-8,
+            "component {c}: impulse {} vs momentum change {}",
+            impulse[c],
+            dp[c]
+        );
+    }
+    // Friction took some of the tangential momentum, within Coulomb's bound.
+    let dt_norm = dp[0].hypot(dp[1]);
+    assert!(
+        dt_norm > 0.0 && dt_norm <= MU * dp[2] * (1.0 + 1e-8),
+        "{dp:?}"
+    );
+}
