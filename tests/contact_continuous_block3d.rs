@@ -6,8 +6,9 @@
 //!
 //! The block is [0, 2] x [0, 2] x [0, H], 2 x 2 x 1 HEXA8; its bottom face
 //! (four QUAD4, SZZ) is the slave; the master is the top face of a fixed
-//! foundation turned by BETA about z, so that the tangents tau1, tau2 of
-//! the plane are oblique to the block's edges and to the loads. The
+//! foundation turned by BETA about z (the pairing on a turned cell; the
+//! tangents are code_aster's, rebuilt from the normal: tau1 = e_y,
+//! tau2 = -e_x, oblique to the diagonal loads). The
 //! block's top face carries a uniform pressure p and is held laterally
 //! (DX = DY = 0), which removes the rigid-body modes without stressing the
 //! block (NU = 0: sigma_zz = -p is uniform, HEXA8 represent it exactly).
@@ -386,6 +387,18 @@ fn friction_3d_semi_multiplier_goes_from_stick_to_slip_at_coulomb_times_the_load
         }
         if s.q < MU * P {
             for (node, lc, lf, l) in &s.points {
+                // code_aster's tangents from the normal −e_z (`mmmron`),
+                // whatever the turn of the master cell.
+                let expect = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]];
+                for k in 0..2 {
+                    for i in 0..3 {
+                        assert!(
+                            (l.tangents[k][i] - expect[k][i]).abs() <= 1e-15,
+                            "{:?}",
+                            l.tangents
+                        );
+                    }
+                }
                 let e = in_tangents(l, d);
                 // Oblique: both tangents carry a part of the load.
                 assert!(e[0].abs() > 0.2 && e[1].abs() > 0.2, "{e:?}");

@@ -73,6 +73,28 @@ pub struct PointOutput3 {
     pub f_t: [f64; 2],
 }
 
+/// The tangents of the continuous method, rebuilt from the inward normal
+/// n as code_aster does (`mmmron`, note §2.3): τ1 is the normalised
+/// (−n_y/n_x, 1, 0) if n_x ≠ 0, else (1, −n_x/n_y, 0) if n_y ≠ 0, else
+/// (0, 1, −n_y/n_z); τ2 = τ1 × n (so that (τ1, τ2, −n) is right-handed,
+/// as the pairing's basis). They fix the meaning of `LAGS_F1`/`LAGS_F2`
+/// whatever the master cell's node order: on a plane z = const with the
+/// master below, τ1 = e_y and τ2 = −e_x.
+pub fn tangents_from_normal(n: [f64; 3]) -> [[f64; 3]; 2] {
+    use crate::mesh::vec3::{cross, norm, scale};
+    let eps = f64::EPSILON;
+    let t = if n[0].abs() > eps {
+        [-n[1] / n[0], 1.0, 0.0]
+    } else if n[1].abs() > eps {
+        [1.0, -n[0] / n[1], 0.0]
+    } else {
+        [0.0, 1.0, -n[1] / n[2]]
+    };
+    let t1 = scale(1.0 / norm(t), t);
+    let t2 = cross(t1, n);
+    [t1, scale(1.0 / norm(t2), t2)]
+}
+
 /// λ̂ and ∂λ̂/∂λ (`mmlagc`).
 fn threshold(p: &PointInput3) -> (f64, f64) {
     if p.lambda != 0.0 && !p.threshold_frozen {
@@ -392,6 +414,28 @@ mod tests {
             assert!((o.r_f[0] - oq.r_f).abs() < 1e-14);
             assert!((o.r_c - oq.r_c).abs() < 1e-14);
             assert!((o.f_t[0] - oq.f_t).abs() < 1e-14);
+        }
+    }
+
+    /// code_aster's rule: the Taylor bar's foundation (n = −e_z) gives
+    /// τ1 = e_y, τ2 = −e_x (note §2.3); a tilted normal an orthonormal
+    /// basis with τ2 = τ1 × n.
+    #[test]
+    fn tangents_follow_code_aster_rule() {
+        let t = tangents_from_normal([0.0, 0.0, -1.0]);
+        assert_eq!(t, [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]);
+        for n in [[0.6, 0.0, -0.8], [0.0, 0.6, 0.8], [0.48, 0.6, -0.64]] {
+            let t = tangents_from_normal(n);
+            let d = crate::mesh::vec3::dot;
+            for k in 0..2 {
+                assert!((d(t[k], t[k]) - 1.0).abs() < 1e-15);
+                assert!(d(t[k], n).abs() < 1e-15);
+            }
+            assert!(d(t[0], t[1]).abs() < 1e-15);
+            let c = crate::mesh::vec3::cross(t[0], n);
+            for i in 0..3 {
+                assert!((c[i] - t[1][i]).abs() < 1e-15);
+            }
         }
     }
 

@@ -20,7 +20,9 @@ use crate::contact::continuous::{
     contact_status, evaluate_point, nodal_weights, ContactInit, ContinuousDef, PointInput,
     Resolution,
 };
-use crate::contact::continuous3d::{evaluate_point3, PointInput3, PointOutput3};
+use crate::contact::continuous3d::{
+    evaluate_point3, tangents_from_normal, PointInput3, PointOutput3,
+};
 use crate::contact::{pair, ContactDef, ContactState, Link, LinkState, LinkStatus, Pairing};
 use crate::mesh::Mesh;
 use crate::result::NodalField;
@@ -375,7 +377,7 @@ impl ContinuousContact {
         for (m, &n) in link.shape.iter().zip(&link.master_nodes) {
             jump = sub(jump, scale(*m, du(n)));
         }
-        let t = link.tangents;
+        let t = tangents_from_normal(link.normal);
         let free = |n: usize, c: usize| self.free[n * self.ndpn + c];
         let slip_locked = std::iter::once(p.node)
             .chain(link.master_nodes.iter().copied())
@@ -487,7 +489,7 @@ impl ContinuousContact {
             gap: link.gap,
             lambda_n: crate::mesh::vec3::dot(o.f_n, link.normal),
             normal: link.normal,
-            tangents: link.tangents,
+            tangents: inp.tangents,
             ntangents: link.ntangents,
             frictional: inp.mu.is_some(),
             slip: inp.g_t,
