@@ -655,8 +655,9 @@ fn depl_and_cont_noeu_3d() {
 /// constraint's, not friction's: the end-of-step friction power is <= 0
 /// at every node and step (asserted here), and frictionless with a 4
 /// times shorter step the total reaches 4.93 (TRAV_LIAI -3.88): an exact
-/// impact constraint under Newmark's trapezoidal rule (docs/contact.md
-/// §10, 3D). This test judges the forces, not the energy.
+/// impact constraint under Newmark's trapezoidal rule, which the 2D
+/// landing study shows as well (docs/contact.md §10, 3D). This test
+/// judges the forces, not the energy.
 #[test]
 fn landing_3d_contact_impulse_equals_the_momentum_change() {
     landing(
