@@ -31,6 +31,30 @@ fn committed_meshes_are_the_generated_ones() {
     }
 }
 
+/// The 10 x 40 axisymmetric mesh of comm/sdnv103b_explicit_10x40.comm.
+#[test]
+fn committed_10x40_mesh_is_the_generated_one() {
+    use aster::mesh::taylor::TaylorKind;
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let committed = read_mesh(&med("sdnv103b_10x40.mmed"), None).unwrap();
+    let fresh = generate(&TaylorParams {
+        kind: TaylorKind::Axis,
+        n1: 10,
+        n2: 40,
+        n3: 0,
+        linear: false,
+    })
+    .unwrap();
+    let again = tmp.join("regen_b_10x40.mmed");
+    write_mesh(&again, &fresh).unwrap();
+    let fresh = read_mesh(&again, None).unwrap();
+    assert_eq!(committed, fresh, "med/sdnv103b_10x40.mmed differs from the generator's mesh; regenerate it with `aster mesh taylor --kind axis --n1 10 --n2 40 -o med/sdnv103b_10x40.mmed`");
+    assert_eq!(
+        (committed.nnodes(), count(&committed, CellType::Quad8)),
+        (1309, 401)
+    );
+}
+
 #[test]
 fn section_3_counts() {
     let b = read_mesh(&med("sdnv103b.mmed"), None).unwrap();

@@ -1,6 +1,6 @@
 //! Modellings E and K of SDNV103 (LIAISON_UNIL, active set and penalty),
-//! and B run explicitly (comm/sdnv103b_explicit.comm, B1 DX NOOK against the
-//! implicit B), run to FIN; their POST_RELEVE_T tables and the verdict of every check
+//! and B run explicitly (comm/sdnv103b_explicit.comm and its 10 x 40 variant,
+//! B1 DX NOOK against the implicit answer), run to FIN; their POST_RELEVE_T tables and the verdict of every check
 //! are snapshotted. Not every check is OK: A1 DZ (both) and B1 VY (E)
 //! fail honestly, for the reasons docs/contact.md §9 gives; the
 //! snapshot keeps the NOOK lines visible, and any change of a verdict or a
@@ -40,4 +40,11 @@ fn sdnv103k_tables() {
 #[test]
 fn sdnv103b_explicit_tables() {
     insta::assert_snapshot!(run("b_explicit"));
+}
+
+/// B explicitly on the 10 x 40 mesh: about 15000 explicit steps (15 to
+/// 35 s).
+#[test]
+fn sdnv103b_explicit_10x40_tables() {
+    insta::assert_snapshot!(run("b_explicit_10x40"));
 }
