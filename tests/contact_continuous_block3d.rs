@@ -695,26 +695,36 @@ fn landing(contact: &str, continuous: bool) {
         mesh.coords[n][2] += G0;
     }
     let vol = mesh.cell_groups["VOL"].clone();
-    let block_nodes: Vec<usize> = (0..18).collect();
     let slaves: Vec<usize> = (0..9).collect();
     let mo = model(&mesh, "3D", &vol);
-    let mut v0 = NodalField::absent(vec!["DX".into(), "DY".into(), "DZ".into()], mesh.nnodes());
-    for &n in &block_nodes {
-        for c in 0..3 {
-            v0.set(n, c, VEL[c]);
-        }
-    }
     let t: Vec<f64> = (0..=60).map(|k| k as f64 * 1e-6).collect();
     let mat = material(E, 0.3, 1e-6, None);
-    let mut st = study(
-        mesh.clone(),
-        mo.clone(),
-        mat.clone(),
-        vec![],
-        Some(v0),
-        t,
-        None,
+    let mut st = study(mesh.clone(), mo.clone(), mat.clone(), vec![], None, t, None);
+    // The initial velocity as F builds it: CREA_CHAMP AFFE with the
+    // contact unknowns on the slave face (LAGS_F2 in 3D), ignored. (The
+    // preamble has a CREA_CHAMP: this one is the second.)
+    let crea = format!(
+        "V0 = CREA_CHAMP(TYPE_CHAM='NOEU_DEPL_R', OPERATION='AFFE', MODELE=MO,
+    AFFE=(_F(GROUP_MA='VOL', NOM_CMP=('DX', 'DY', 'DZ'), VALE=({:e}, {:e}, {:e})),
+          _F(GROUP_MA='SZZ', NOM_CMP=('LAGS_C', 'LAGS_F1', 'LAGS_F2'), VALE=(0., 0., 0.))))",
+        VEL[0], VEL[1], VEL[2]
     );
+    exec(
+        &mut st,
+        "CREA_CHAMP",
+        &args_of(&crea, "CREA_CHAMP", 1),
+        "V0",
+    )
+    .unwrap();
+    // exec files every result as an EVOL_NOLI: file the field as a CHAM_NO.
+    let ConceptData::Field(f) = st.concepts.get("V0").unwrap().data.clone() else {
+        panic!("CREA_CHAMP gives a field")
+    };
+    assert_eq!(
+        f.components,
+        ["DX", "DY", "DZ", "LAGS_C", "LAGS_F1", "LAGS_F2"]
+    );
+    insert(&mut st, "V0", ConceptType::ChamNo, ConceptData::Field(f));
     let text = format!(
         "CONT = DEFI_CONTACT(MODELE=MO, {contact})
 RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT=CONT,
@@ -789,6 +799,13 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
     };
     let last = result.steps.len() - 1;
     assert!((result.steps[last].inst - 6e-5).abs() < 1e-15);
+    if continuous {
+        let depl = &result.steps[last].nodal["DEPL"];
+        for cmp in ["LAGS_C", "LAGS_F1", "LAGS_F2"] {
+            assert!(slaves.iter().all(|&n| depl.get(n, cmp).is_some()), "{cmp}");
+            assert_eq!(depl.get(9, cmp), None, "{cmp} off the slave face");
+        }
+    }
     // Coulomb: the friction force at the end of a step does no positive
     // work on the step's slip, at every node (CONTINUE's tangents are
     // e_y, -e_x here: the slip is (-GLIY, GLIX, 0)).
