@@ -137,6 +137,9 @@ fn block_mesh() -> Mesh {
 /// `group` (2 x 2 Gauss, exact on these flat parallelograms), added to
 /// `f` (full, 3 dofs per node).
 fn traction(mesh: &Mesh, group: &str, t: [f64; 3], f: &mut [f64]) {
+    if t == [0.0; 3] {
+        return;
+    }
     let g = 1.0 / 3.0f64.sqrt();
     for &c in &mesh.cell_groups[group] {
         let n = &mesh.cells[c].nodes;
@@ -187,7 +190,34 @@ fn load_dir() -> [f64; 3] {
 /// Applies P on TOP, then the tractions `ramp` along the diagonal on SZZ,
 /// one step each; `formulation` is the DEFI_CONTACT text of the zone.
 fn run(contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
-    let mesh = block_mesh();
+    run_on(block_mesh(), contact_text, friction, ramp)
+}
+
+/// The block with its slave face made of TRIA3: each bottom QUAD4 split
+/// along its (0,0)-(1,1) diagonal direction.
+fn block_mesh_tria3() -> Mesh {
+    let mut mesh = block_mesh();
+    let mut szz = Vec::new();
+    for &c in &mesh.cell_groups["SZZ"].clone() {
+        let n = mesh.cells[c].nodes.clone();
+        // The quad's corner nearest the origin and its opposite.
+        let key = |k: usize| mesh.coords[n[k]][0] + mesh.coords[n[k]][1];
+        let a = (0..4).min_by(|&i, &j| key(i).total_cmp(&key(j))).unwrap();
+        let (b, c2, d) = ((a + 1) % 4, (a + 2) % 4, (a + 3) % 4);
+        for tri in [[n[a], n[b], n[c2]], [n[a], n[c2], n[d]]] {
+            szz.push(mesh.cells.len());
+            mesh.cells.push(Cell {
+                kind: CellType::Tria3,
+                nodes: tri.to_vec(),
+            });
+        }
+    }
+    mesh.cell_groups.insert("SZZ".into(), szz);
+    orie_peau(&mut mesh, OrieDim::D3, &["SZZ"], None).unwrap();
+    mesh
+}
+
+fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<StepOut> {
     let vol = mesh.cell_groups["VOL"].clone();
     let mo = model(&mesh, "3D", &vol);
     let def = ContactDef::from_args(&args_of(contact_text, "DEFI_CONTACT", 0), &mesh)
@@ -875,4 +905,36 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
         dt_norm > 0.0 && dt_norm <= MU * dp[2] * (1.0 + 1e-8),
         "{dp:?}"
     );
+}
+
+/// TRIA3 slave faces: the nodal weights are then A/3 per triangle, not
+/// the quadrilateral's A/4, so LAGS_C is not uniform, but every node's
+/// contact force ω LAGS_C is its share of the load (the HEXA8's bottom
+/// reactions under the uniform stress -p: p A/4 per adjacent unit
+/// square), with zero gap.
+#[test]
+fn pressed_block_3d_on_tria3_slave_faces() {
+    let mesh = block_mesh_tria3();
+    let steps = run_on(mesh, &continue_text(100.0, false), false, &[]);
+    let s = &steps[0];
+    assert_eq!(s.points.len(), 9);
+    let mut lcs = Vec::new();
+    for (node, lc, _, l) in &s.points {
+        assert!(l.gap.abs() <= 1e-10, "node {node} gap {:e}", l.gap);
+        let x = [node % 3, (node / 3) % 3];
+        let share = x
+            .iter()
+            .map(|&i| if i == 1 { 1.0 } else { 0.5 })
+            .product::<f64>();
+        let rz = l.reaction()[2];
+        assert!((rz - P * share).abs() <= 1e-10, "node {node} RZ {rz:e}");
+        assert!(*lc < 0.0);
+        lcs.push(*lc);
+    }
+    eprintln!("TRIA3 slave faces: LAGS_C {lcs:?}");
+    // Not uniform: the triangle weights differ from the quad shares.
+    let (lo, hi) = lcs
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+    assert!(hi - lo > 0.1 * P);
 }
