@@ -364,14 +364,24 @@ struct SimplicialPlan {
     /// faer's structure of L (column-major, diagonal first).
     l_ptr: Vec<usize>,
     l_row: Vec<usize>,
-    /// Reach of row k, in faer's order: column `r_col[t]` of L gives
-    /// L(k, j) at position `r_pos[t]`, for t in `r_ptr[k]..r_ptr[k + 1]`.
-    r_ptr: Vec<usize>,
-    r_col: Vec<usize>,
-    r_pos: Vec<usize>,
+    /// Reach of row k, in faer's order, cut into runs: run q (for q in
+    /// `run_ptr[k]..run_ptr[k + 1]`) is the `run_len[q]` consecutive
+    /// columns from `run_col[q]`, a chain of the elimination tree with
+    /// nested structures (a piece of a supernode), and `run_cnt[q]` rows
+    /// of their common structure lie between them and k. A single column
+    /// is a run of one.
+    run_ptr: Vec<usize>,
+    run_col: Vec<u32>,
+    run_len: Vec<u8>,
+    run_cnt: Vec<u32>,
+    /// 1 / L(j, j), set when column j is finished.
+    inv_diag: Vec<f64>,
     /// Dense work row, all zeros between calls.
     x: Vec<f64>,
 }
+
+/// The longest run of columns the factorization fuses.
+const MAX_RUN: usize = 16;
 
 impl SimplicialPlan {
     /// `None` when faer chose a supernodal factorization or no ordering.
@@ -452,49 +462,150 @@ impl SimplicialPlan {
             }
             r_ptr.push(r_col.len());
         }
+        // Column c and c + 1 chain when c + 1 is the parent of c and the
+        // structure of c is that of c + 1 plus c itself.
+        let chains = |c: usize| {
+            c + 1 < n
+                && parent[c] == c + 1
+                && l_ptr[c + 1] - l_ptr[c] == l_ptr[c + 2] - l_ptr[c + 1] + 1
+        };
+        let mut run_ptr = Vec::with_capacity(n + 1);
+        let (mut run_col, mut run_len, mut run_cnt) = (Vec::new(), Vec::new(), Vec::new());
+        run_ptr.push(0);
+        for k in 0..n {
+            let reach = r_ptr[k]..r_ptr[k + 1];
+            let mut t = reach.start;
+            while t < reach.end {
+                let j = r_col[t];
+                let mut m = 1;
+                while t + m < reach.end && m < MAX_RUN && r_col[t + m] == j + m && chains(j + m - 1)
+                {
+                    m += 1;
+                }
+                // k's position in each column of the run, as the fused
+                // loop computes it, must be the one the reach found.
+                let last = j + m - 1;
+                let cnt = r_pos[t + m - 1] - l_ptr[last] - 1;
+                if (0..m).any(|a| r_pos[t + a] != l_ptr[j + a] + m - a + cnt) {
+                    return None;
+                }
+                run_col.push(u32::try_from(j).ok()?);
+                run_len.push(m as u8);
+                run_cnt.push(u32::try_from(cnt).ok()?);
+                t += m;
+            }
+            run_ptr.push(run_col.len());
+        }
         Some(SimplicialPlan {
             a_ptr,
             a_row,
             a_src,
             l_ptr,
             l_row,
-            r_ptr,
-            r_col,
-            r_pos,
+            run_ptr,
+            run_col,
+            run_len,
+            run_cnt,
+            inv_diag: vec![0.0; n],
             x: vec![0.0; n],
         })
     }
 
     /// The numeric factorization of `a` (values on the plan's pattern)
     /// into `l`; false on a pivot that is not positive.
+    ///
+    /// faer's loop updates the work row column by column of the reach:
+    /// x(i) -= L(i, j) L(k, j) for the rows i of column j above k. A run
+    /// of chained columns j..j+m shares its rows below the run, so those
+    /// rows are read and written once per run, each receiving the same
+    /// subtractions in the same order (column j first); the rows inside
+    /// the run (the triangle) are updated column by column as before.
+    /// Every value is therefore the same to the bit.
     fn factorize(&mut self, a: &[f64], l: &mut [f64]) -> bool {
         let n = self.x.len();
         let x = &mut self.x;
+        let (l_ptr, l_row, inv) = (&self.l_ptr, &self.l_row, &mut self.inv_diag);
         for k in 0..n {
             for e in self.a_ptr[k]..self.a_ptr[k + 1] {
                 x[self.a_row[e]] += a[self.a_src[e]];
             }
             let mut d = x[k];
             x[k] = 0.0;
-            for t in self.r_ptr[k]..self.r_ptr[k + 1] {
-                let (j, pos) = (self.r_col[t], self.r_pos[t]);
-                let j_start = self.l_ptr[j];
-                let xj = x[j];
-                x[j] = 0.0;
-                let dj = 1.0 / l[j_start];
-                let lkj = xj * dj;
-                for p in j_start + 1..pos {
-                    x[self.l_row[p]] -= l[p] * lkj;
+            for q in self.run_ptr[k]..self.run_ptr[k + 1] {
+                let j = self.run_col[q] as usize;
+                let m = self.run_len[q] as usize;
+                let cnt = self.run_cnt[q] as usize;
+                let mut lk = [0.0; MAX_RUN];
+                let mut base = [0usize; MAX_RUN];
+                for a in 0..m {
+                    let c = j + a;
+                    let cs = l_ptr[c];
+                    let lkc = x[c] * inv[c];
+                    x[c] = 0.0;
+                    // The triangle: rows c + 1 .. j + m of column c.
+                    let tri = &l[cs + 1..cs + m - a];
+                    for (xv, &lv) in x[c + 1..j + m].iter_mut().zip(tri) {
+                        *xv -= lv * lkc;
+                    }
+                    d -= lkc * lkc;
+                    base[a] = cs + m - a;
+                    l[base[a] + cnt] = lkc;
+                    lk[a] = lkc;
                 }
-                d -= lkj * lkj;
-                l[pos] = lkj;
+                let rows = &l_row[base[m - 1]..base[m - 1] + cnt];
+                // Blocks of up to four columns, in column order: each row
+                // still sees column j first.
+                let col = |a: usize| &l[base[a]..base[a] + cnt];
+                let mut a = 0;
+                while a < m {
+                    match m - a {
+                        1 => {
+                            let (l0, k0) = (col(a), lk[a]);
+                            for (&r, &v0) in rows.iter().zip(l0) {
+                                x[r] -= v0 * k0;
+                            }
+                            a += 1;
+                        }
+                        2 => {
+                            let (l0, k0) = (col(a), lk[a]);
+                            let (l1, k1) = (col(a + 1), lk[a + 1]);
+                            for ((&r, &v0), &v1) in rows.iter().zip(l0).zip(l1) {
+                                x[r] = (x[r] - v0 * k0) - v1 * k1;
+                            }
+                            a += 2;
+                        }
+                        3 => {
+                            let (l0, k0) = (col(a), lk[a]);
+                            let (l1, k1) = (col(a + 1), lk[a + 1]);
+                            let (l2, k2) = (col(a + 2), lk[a + 2]);
+                            for (((&r, &v0), &v1), &v2) in rows.iter().zip(l0).zip(l1).zip(l2) {
+                                x[r] = ((x[r] - v0 * k0) - v1 * k1) - v2 * k2;
+                            }
+                            a += 3;
+                        }
+                        _ => {
+                            let (l0, k0) = (col(a), lk[a]);
+                            let (l1, k1) = (col(a + 1), lk[a + 1]);
+                            let (l2, k2) = (col(a + 2), lk[a + 2]);
+                            let (l3, k3) = (col(a + 3), lk[a + 3]);
+                            for ((((&r, &v0), &v1), &v2), &v3) in
+                                rows.iter().zip(l0).zip(l1).zip(l2).zip(l3)
+                            {
+                                x[r] = (((x[r] - v0 * k0) - v1 * k1) - v2 * k2) - v3 * k3;
+                            }
+                            a += 4;
+                        }
+                    }
+                }
             }
             // `!(d > 0)`: NaN is not a positive pivot either.
             if d.is_nan() || d <= 0.0 {
                 x.iter_mut().for_each(|v| *v = 0.0);
                 return false;
             }
-            l[self.l_ptr[k]] = d.sqrt();
+            let lkk = d.sqrt();
+            l[l_ptr[k]] = lkk;
+            inv[k] = 1.0 / lkk;
         }
         true
     }
@@ -726,19 +837,23 @@ mod tests {
     }
 
     /// An SPD matrix on a 14 x 14 grid (9-point couplings, values varied
-    /// so that every entry's rounding matters), the pattern symmetric.
-    fn grid_spd() -> SparseMatrix {
+    /// so that every entry's rounding matters), the pattern symmetric,
+    /// with `d` coupled unknowns per grid node (as the two or three
+    /// displacements of a mesh node: chains of columns appear).
+    fn grid_spd_dofs(d: usize) -> SparseMatrix {
         let m = 14;
-        let n = m * m;
+        let n = m * m * d;
         let mut entries = Vec::new();
         for i in 0..m {
             for j in 0..m {
-                for (di, dj) in [(0i64, 1i64), (1, 0), (1, 1), (1, -1)] {
+                for (di, dj) in [(0i64, 0i64), (0, 1), (1, 0), (1, 1), (1, -1)] {
                     let (i2, j2) = (i as i64 + di, j as i64 + dj);
                     if i2 < m as i64 && j2 >= 0 && j2 < m as i64 {
                         let (a, b) = (i * m + j, (i2 * m as i64 + j2) as usize);
-                        entries.push((a, b));
-                        entries.push((b, a));
+                        for (p, q) in (0..d).flat_map(|p| (0..d).map(move |q| (p, q))) {
+                            entries.push((a * d + p, b * d + q));
+                            entries.push((b * d + q, a * d + p));
+                        }
                     }
                 }
             }
@@ -750,7 +865,7 @@ mod tests {
                 let i = p.row_idx[k];
                 let (lo, hi) = (i.min(j) as f64, i.max(j) as f64);
                 a.values[k] = if i == j {
-                    9.0 + (0.37 * lo).sin()
+                    9.0 * d as f64 + (0.37 * lo).sin()
                 } else {
                     -0.5 - 0.3 * (0.11 * lo + 0.07 * hi).cos()
                 };
@@ -761,7 +876,12 @@ mod tests {
 
     #[test]
     fn simplicial_plan_gives_faers_factor_to_the_bit() {
-        let a = grid_spd();
+        for d in [1, 2, 3] {
+            plan_matches_faer(grid_spd_dofs(d), d);
+        }
+    }
+
+    fn plan_matches_faer(a: SparseMatrix, d: usize) {
         let symbolic = factorize_symbolic_cholesky(
             a.pattern.symbolic(),
             Side::Lower,
@@ -771,6 +891,10 @@ mod tests {
         .unwrap();
         let mut plan = SimplicialPlan::new(&symbolic, &a.pattern)
             .expect("faer is simplicial on this matrix, so the plan applies");
+        // With several unknowns per node the fused runs are exercised,
+        // including those longer than one block of four columns.
+        let longest = plan.run_len.iter().copied().max().unwrap_or(0);
+        assert!(d == 1 || longest > 4, "d = {d}: longest run {longest}");
         let mut ours = vec![0.0; symbolic.len_val()];
         assert!(plan.factorize(&a.values, &mut ours));
         let mut theirs = vec![0.0; symbolic.len_val()];
