@@ -798,3 +798,60 @@ fn sleeve_with_the_friction_fixed_point() {
         totals(&newton_run.file("contact_friction_continue.mess"))
     );
 }
+
+/// A case built to cycle: the sleeve's SLIDE with the default COEF_FROT
+/// = 100 (docs/contact.md §10: the end node N5 re-enters contact stuck,
+/// is pulled off, released, re-enters, with period 3). Without cycling
+/// treatment (ADAPTATION='NON') Newton repeats the cycle until
+/// ITER_GLOB_MAXI = 30 (the residual history shows it); with
+/// ADAPTATION='CYCLAGE' the detectors see the contact status of N5 come
+/// back again and again, and the step stops at Newton iteration 10 with
+/// a message naming the node and the cycles instead of running to 30.
+#[test]
+fn a_cycling_point_is_detected_and_reported() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("sleeve_cycling_src");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("contact_friction_continue.comm")).unwrap();
+    let mut terms = Vec::new();
+    for (name, adaptation) in [
+        ("non", "ADAPTATION='NON'"),
+        ("cyclage", "ADAPTATION='CYCLAGE'"),
+    ] {
+        let text = comm.replace("COEF_FROT=1.E5", &format!("COEF_FROT=100., {adaptation}"));
+        assert_ne!(text, comm);
+        std::fs::write(tmp.join(format!("{name}.comm")), text).unwrap();
+        std::fs::write(
+            tmp.join(format!("{name}.export")),
+            format!("F mmed {} D 20\n", dir().join("sleeve.mmed").display()),
+        )
+        .unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{name}.comm")).to_str().unwrap(),
+            &format!("verif_sleeve_cycling_{name}"),
+        );
+        assert_eq!(run.code, 1, "{name}: {}", run.term);
+        assert!(
+            run.term
+                .contains("DYNA_NON_LINE stopped at the step from t = 0e0 to t = 1e-5"),
+            "{name}: {}",
+            run.term
+        );
+        terms.push(run.term);
+    }
+    // NEWTON alone: the period-3 cycle of the residual up to iteration 30.
+    assert!(
+        terms[0].contains("Newton did not converge in 30 iterations"),
+        "{}",
+        terms[0]
+    );
+    assert!(terms[0].contains("[27] 7.140e-5") && terms[0].contains("[29] 7.395e-1"));
+    assert!(!terms[0].contains("contact cycling"));
+    // CYCLAGE: detected and reported at iteration 10.
+    let t = &terms[1];
+    assert!(
+        t.contains("contact cycling (ADAPTATION='CYCLAGE'): the contact status of slave node N5 still changes at Newton iteration 10")
+            && t.contains("contact/no contact ×"),
+        "{t}"
+    );
+    assert!(!t.contains("Newton did not converge"), "{t}");
+}

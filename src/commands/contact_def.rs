@@ -281,7 +281,7 @@ fn continuous_zone(
         if a != "CYCLAGE" && a != "NON" {
             return Err(z.not_implemented(
                 "ADAPTATION",
-                &format!("ADAPTATION='{a}' (automatic coefficients); only 'CYCLAGE' (without effect here, docs/contact.md) and 'NON' are available"),
+                &format!("ADAPTATION='{a}' (automatic coefficients); only 'CYCLAGE' and 'NON' are available"),
             ));
         }
     }
@@ -351,6 +351,7 @@ fn continuous_zone(
         mu,
         seuil_init: z.real("SEUIL_INIT"),
         contact_init,
+        cyclage: z.text("ADAPTATION").unwrap_or("CYCLAGE") == "CYCLAGE",
     })
 }
 

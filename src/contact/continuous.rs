@@ -52,6 +52,9 @@ pub struct ContinuousZone {
     /// (None: the initial `LAGS_C`).
     pub seuil_init: Option<f64>,
     pub contact_init: ContactInit,
+    /// `ADAPTATION='CYCLAGE'` (the default): cycling detection and
+    /// treatment (nonlinear::cycling); 'NON': none.
+    pub cyclage: bool,
 }
 
 /// The top-level continuous keywords.

@@ -14,14 +14,15 @@
 //! criteria hold **and** no status changed at that iteration **and** the
 //! last correction of `LAGS_C` satisfies `RESI_FROT`.
 
+use super::cycling::{Cycling, Observation, CYCLING_ITERATIONS};
 use super::dofs::{DofNumbering, NONE};
 use super::newton::ContactIteration;
 use crate::contact::continuous::{
-    contact_status, evaluate_point, nodal_weights, ContactInit, ContinuousDef, PointInput,
-    Resolution,
+    contact_status, evaluate_point, nodal_weights, phase, ContactInit, ContinuousDef, Phase,
+    PointInput, Resolution,
 };
 use crate::contact::continuous3d::{
-    evaluate_point3, tangents_from_normal, PointInput3, PointOutput3,
+    evaluate_point3, phase3, tangents_from_normal, PointInput3, PointOutput3,
 };
 use crate::contact::{pair, ContactDef, ContactState, Link, LinkState, LinkStatus, Pairing};
 use crate::mesh::Mesh;
@@ -77,6 +78,11 @@ pub struct ContinuousContact {
     geom_move: f64,
     /// Largest master edge (`arete_max`), the RESI_GEOM denominator.
     a_max: f64,
+    /// The cycling detectors (`ADAPTATION='CYCLAGE'`).
+    pub cycling: Cycling,
+    /// λ per point at the last status evaluation of the step (None before
+    /// the first): the cycling treatment's pressure residual.
+    eval_lam: Vec<Option<f64>>,
     entries: Vec<(usize, usize)>,
     /// Whether each full dof is an equation (not imposed).
     free: Vec<bool>,
@@ -156,6 +162,7 @@ impl ContinuousContact {
         entries.sort_unstable();
         entries.dedup();
         let mut a_max: f64 = 0.0;
+        let mut a_min = f64::INFINITY;
         let mut h_mesh = f64::INFINITY;
         for z in &def.zones {
             for &c in &z.master_cells {
@@ -165,6 +172,9 @@ impl ContinuousContact {
                     mesh.coords[ns[0]],
                 ));
                 a_max = a_max.max(e);
+                if e > 0.0 {
+                    a_min = a_min.min(e);
+                }
             }
         }
         for cell in &mesh.cells {
@@ -207,6 +217,8 @@ impl ContinuousContact {
             pairing,
             geom_move: 0.0,
             a_max: if a_max > 0.0 { a_max } else { 1.0 },
+            cycling: Cycling::new(np, if a_min.is_finite() { a_min } else { 1.0 }),
+            eval_lam: vec![None; np],
             entries,
             free: numbering.eq.iter().map(|&e| e != NONE).collect(),
             residual: vec![0.0; nx],
@@ -512,6 +524,8 @@ impl ContinuousContact {
         self.fixed_point_changed = false;
         self.friction_loops = 0;
         self.friction_ref.iter_mut().for_each(|v| *v = 0.0);
+        self.cycling.begin_step();
+        self.eval_lam.iter_mut().for_each(|v| *v = None);
         let u = self.u_start.clone();
         self.repair(&u);
     }
@@ -539,7 +553,7 @@ impl ContinuousContact {
         // iteration: at least one solve with it before convergence.
         self.changed = std::mem::take(&mut self.fixed_point_changed);
         if !self.first && self.cdef.algo_reso_cont == Resolution::Newton {
-            self.changed |= self.update_statuses();
+            self.changed |= self.update_statuses(&u, Some(it.iteration))?;
         }
         let links = self.links();
         self.first = false;
@@ -723,26 +737,118 @@ impl ContinuousContact {
         Ok(false)
     }
 
-    /// The statuses from the current λ and gaps (`mmstac`); λ_s := λ
-    /// with Newton friction (the friction fixed point freezes it).
-    /// Returns whether one changed.
-    fn update_statuses(&mut self) -> bool {
+    /// The statuses from the current λ and gaps (`mmstac`) at `u`; λ_s :=
+    /// λ with Newton friction (the friction fixed point freezes it).
+    /// Returns whether a change blocks convergence. `iteration`: the
+    /// Newton iteration of an evaluation inside Newton, None for the
+    /// contact fixed point's. With `ADAPTATION='CYCLAGE'` the cycling
+    /// detectors see every evaluation, a flip-flop's change does not block
+    /// convergence once the pressures have settled, and a point still
+    /// cycling after iteration 9 fails the step (module `cycling`).
+    fn update_statuses(
+        &mut self,
+        u: &[[f64; 3]],
+        iteration: Option<usize>,
+    ) -> Result<bool, String> {
         let links = self.links();
-        let mut changed = false;
+        let np = self.points.len();
+        let mut new = vec![false; np];
         for (i, l) in links.iter().enumerate() {
             let z = &self.cdef.zones[self.points[i].zone];
             let lam = self.lam[i * self.stride];
-            let s = match l {
+            new[i] = match l {
                 Some(l) => contact_status(lam, -self.pairing.links[*l].gap, z.coef_cont),
                 None => false,
             };
-            changed |= s != self.status[i];
+        }
+        // The pressures have settled (`resi_pressure` < 1e-4
+        // `cont_pressure`): the largest change of λ since the last
+        // evaluation over the points in contact at both, against the mean
+        // |λ| of the points in contact.
+        let (mut resi, mut sum) = (0.0f64, 0.0f64);
+        for i in 0..np {
+            let lam = self.lam[i * self.stride];
+            if new[i] {
+                sum += lam;
+                if self.status[i] {
+                    if let Some(prev) = self.eval_lam[i] {
+                        resi = resi.max((lam - prev).abs());
+                    }
+                }
+            }
+        }
+        let settled_pressure = resi < 1e-4 * sum.abs() / np.max(1) as f64;
+        let mut changed = false;
+        for (i, l) in links.iter().enumerate() {
+            let p = self.points[i];
+            let lam = self.lam[i * self.stride];
+            let s = new[i];
+            let mut counts = s != self.status[i];
+            if self.cdef.zones[p.zone].cyclage {
+                // The friction phase the point would have with its new
+                // status, and its slip direction (r/|r| in the tangent basis).
+                let (mut stick, mut slip_dir) = (None, [0.0; 2]);
+                if let (true, Some(l)) = (s, l) {
+                    let link = &self.pairing.links[*l];
+                    let (ph, r) = if self.def.dim == 3 {
+                        let mut inp = self.input3(i, link, u);
+                        inp.status = true;
+                        let r = [
+                            inp.lambda_t[0] + inp.rho_t * inp.g_t[0],
+                            inp.lambda_t[1] + inp.rho_t * inp.g_t[1],
+                        ];
+                        (phase3(&inp), r)
+                    } else {
+                        let mut inp = self.input(i, link, u, &|n, c| self.free[n * self.ndpn + c]);
+                        inp.status = true;
+                        (phase(&inp), [inp.lambda_t + inp.rho_t * inp.g_t, 0.0])
+                    };
+                    match ph {
+                        Phase::Adhe => stick = Some(true),
+                        Phase::Glis => {
+                            stick = Some(false);
+                            let n = (r[0] * r[0] + r[1] * r[1]).sqrt();
+                            slip_dir = [r[0] / n, r[1] / n];
+                        }
+                        _ => {}
+                    }
+                }
+                let hit = self.cycling.observe(
+                    i,
+                    self.status[i],
+                    Observation {
+                        status: s,
+                        stick,
+                        slip_dir,
+                        lambda: lam,
+                    },
+                );
+                let cycled = self.cycling.found(i)[0] > 0;
+                let flip_flop_treated = match iteration {
+                    None => hit[3],
+                    Some(k) => k >= 3 && hit[3] && cycled,
+                };
+                if counts && flip_flop_treated && settled_pressure {
+                    counts = false;
+                }
+                if let Some(k) = iteration {
+                    if counts && cycled && k > CYCLING_ITERATIONS {
+                        return Err(format!(
+                            "contact cycling (ADAPTATION='CYCLAGE'): the contact status of slave node N{} still changes at Newton iteration {k} (cycles detected in this step: {}); code_aster would switch this point to a penalised contact for the rest of the step, which is not reproduced: the step fails (the ERREUR rule of DEFI_LIST_INST may cut it)",
+                            p.node + 1,
+                            Cycling::summary(self.cycling.found(i))
+                        ));
+                    }
+                }
+            }
+            changed |= counts;
             self.status[i] = s;
+            self.eval_lam[i] = Some(lam);
             if !self.friction_fixed_point() {
                 self.lam_s[i] = lam;
             }
         }
-        changed
+        Ok(changed)
     }
 
     /// After Newton converged at `u`. The contact fixed point
@@ -759,7 +865,7 @@ impl ContinuousContact {
                 self.repair(&un);
             }
             self.fixed_point_loops += 1;
-            if self.update_statuses() {
+            if self.update_statuses(&un, None)? {
                 if self.fixed_point_loops >= self.cdef.iter_cont_maxi {
                     return Err(format!(
                         "the contact fixed point (ALGO_RESO_CONT='POINT_FIXE') changed statuses at each of its {} evaluations (ITER_CONT_MAXI)",

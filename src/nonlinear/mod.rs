@@ -13,6 +13,7 @@ pub mod assembly;
 pub mod behaviour;
 pub mod contact;
 pub mod continuous;
+pub mod cycling;
 pub mod dofs;
 pub mod dyna;
 pub mod energy;
