@@ -24,8 +24,13 @@ use crate::model::spec::ElementSpec;
 use crate::model::{CellRole, Model};
 use crate::solver::{CscPattern, SparseMatrix};
 
-/// Element count from which the element loop runs on the thread pool.
-pub const PARALLEL_MIN_ELEMENTS: usize = 256;
+/// Element count from which the element loop runs on the thread pool
+/// (when it has more than one thread). Each thread takes one contiguous
+/// block of elements, so a loop costs one wake-up per extra thread: on B
+/// (101 quadratic elements, about 3 µs each with the tangent) that is
+/// small against the half loop it saves (docs/performance.md). Below,
+/// the loop is too short to share.
+pub const PARALLEL_MIN_ELEMENTS: usize = 32;
 
 /// One element of the model with its precomputed maps.
 #[derive(Debug, Clone)]
@@ -266,11 +271,17 @@ impl Assembler {
             )
         };
         // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
-        // than the work they share (docs/performance.md).
-        if self.elements.len() >= PARALLEL_MIN_ELEMENTS {
+        // than the work they share (docs/performance.md). The elements
+        // are integrated in parallel into their own buffers and assembled
+        // below in element order, so the sums, hence the results, are the
+        // same to the bit whatever the thread count.
+        let threads = rayon::current_num_threads();
+        if threads > 1 && self.elements.len() >= PARALLEL_MIN_ELEMENTS {
+            let block = self.elements.len().div_ceil(threads);
             self.elements
                 .par_iter()
                 .zip(self.buffers.par_iter_mut())
+                .with_min_len(block)
                 .map(integrate)
                 .collect_into_vec(&mut self.results);
         } else {
