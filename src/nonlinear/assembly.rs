@@ -249,7 +249,20 @@ impl Assembler {
     ) -> Result<(), CellFailure> {
         let _elements = crate::profile::span(crate::profile::Phase::ElementAssembly);
         let laws = &self.laws;
-        let integrate = |(e, out): (&ElementData, &mut ElementBuffers)| {
+        // Each element's slice of the new states (the elements hold
+        // consecutive ranges in order): the states are copied there by the
+        // thread that computed them, while they are in its cache.
+        let mut chunks: Vec<&mut [PointState]> = Vec::with_capacity(self.elements.len());
+        let mut rest = states_out;
+        let mut at = 0;
+        for e in &self.elements {
+            let (_, tail) = std::mem::take(&mut rest).split_at_mut(e.state_offset - at);
+            let (mine, tail) = tail.split_at_mut(e.npg);
+            chunks.push(mine);
+            rest = tail;
+            at = e.state_offset + e.npg;
+        }
+        let integrate = |((e, out), chunk): ((&ElementData, &mut ElementBuffers), &mut &mut [PointState])| {
             let n = e.full.len();
             let mut lu_n = [0.0; MAX_DOFS];
             let mut lu = [0.0; MAX_DOFS];
@@ -268,7 +281,9 @@ impl Assembler {
                 dt,
                 tangent,
                 out,
-            )
+            )?;
+            chunk.copy_from_slice(&out.states);
+            Ok(())
         };
         // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
         // than the work they share (docs/performance.md). The elements
@@ -281,6 +296,7 @@ impl Assembler {
             self.elements
                 .par_iter()
                 .zip(self.buffers.par_iter_mut())
+                .zip(chunks.par_iter_mut())
                 .with_min_len(block)
                 .map(integrate)
                 .collect_into_vec(&mut self.results);
@@ -290,6 +306,7 @@ impl Assembler {
                 self.elements
                     .iter()
                     .zip(self.buffers.iter_mut())
+                    .zip(chunks.iter_mut())
                     .map(integrate),
             );
         }
@@ -306,7 +323,6 @@ impl Assembler {
             for (&f, &v) in e.full.iter().zip(&out.forces) {
                 fint[f] += v;
             }
-            states_out[e.state_offset..e.state_offset + e.npg].copy_from_slice(&out.states);
             if let Some(kmat) = stiffness.as_deref_mut() {
                 if !out.stiffness.is_empty() {
                     // Both row-major: entry (a, b) at a·n + b. Each global

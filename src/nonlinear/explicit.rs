@@ -93,6 +93,11 @@ pub struct Explicit {
     prev_fc: Vec<f64>,
     prev_u: Vec<f64>,
     work: Vec<f64>,
+    /// M a of the committed state (consistent mass only; the lumped
+    /// product is taken dof by dof).
+    ma: Vec<f64>,
+    /// Zero contact forces (a run without contact), allocated once.
+    zero: Vec<f64>,
 }
 
 /// The explicit run's settings besides the time loop's.
@@ -183,6 +188,8 @@ impl Explicit {
             prev_fc: vec![0.0; nfull],
             prev_u: vec![0.0; nfull],
             work: vec![0.0; nfull],
+            ma: vec![0.0; nfull],
+            zero: vec![0.0; nfull],
         })
     }
 
@@ -358,19 +365,20 @@ impl Explicit {
         )
         .map_err(|f| format!("cell {}: {}", f.cell + 1, f.failure))?;
         let nb = &asm.numbering;
-        let mut fc_zero = Vec::new();
-        let fc: &[f64] = match contact {
+        match contact {
             Some(ct) if !ct.kinematic() => {
                 ct.penalty_forces(nb, &cm.motion.u, &tr.motion.u);
-                &ct.force_on_fint_side
+                let fc = &ct.force_on_fint_side;
+                for (e, &f) in nb.free.iter().enumerate() {
+                    self.rhs[e] = fext[f] - tr.fint[f] - fc[f];
+                }
             }
             _ => {
-                fc_zero.resize(n, 0.0);
-                &fc_zero
+                // No contact force: the same sums with a zero term.
+                for (e, &f) in nb.free.iter().enumerate() {
+                    self.rhs[e] = fext[f] - tr.fint[f] - self.zero[f];
+                }
             }
-        };
-        for (e, &f) in nb.free.iter().enumerate() {
-            self.rhs[e] = fext[f] - tr.fint[f] - fc[f];
         }
         self.solve_into(&mut tr.motion.a, asm)?;
         match self.scheme {
@@ -452,11 +460,18 @@ impl Explicit {
     /// reactions at imposed dofs, M a + F_int + F_c − F_ext there).
     fn external_of(&mut self, engine: &Engine, fc: &[f64]) {
         let st = &engine.committed;
-        let mut ma = vec![0.0; self.work.len()];
-        engine.asm.mass_mul(&st.motion.a, &mut ma);
         self.work.copy_from_slice(&engine.fext);
-        for &(f, _) in &engine.asm.numbering.imposed {
-            self.work[f] = ma[f] + st.fint[f] + fc[f];
+        if self.lumped {
+            // The assembled mass is this diagonal (`Explicit::new`): only
+            // the imposed rows of M a are read, at their cost.
+            for &(f, _) in &engine.asm.numbering.imposed {
+                self.work[f] = self.mass[f] * st.motion.a[f] + st.fint[f] + fc[f];
+            }
+        } else {
+            engine.asm.mass_mul(&st.motion.a, &mut self.ma);
+            for &(f, _) in &engine.asm.numbering.imposed {
+                self.work[f] = self.ma[f] + st.fint[f] + fc[f];
+            }
         }
     }
 
@@ -482,14 +497,20 @@ impl Explicit {
         self.prev_fint.copy_from_slice(&st.fint);
         self.prev_fc.copy_from_slice(fc);
         self.prev_ext.copy_from_slice(&self.work);
-        engine.asm.mass_mul(&st.motion.v, &mut self.work);
-        energy.kinetic = 0.5
-            * st.motion
-                .v
-                .iter()
-                .zip(&self.work)
-                .map(|(a, b)| a * b)
-                .sum::<f64>();
+        energy.kinetic = 0.5 * self.kinetic_sum(engine);
+    }
+
+    /// Σ v·(M v) of the committed state, the lumped product dof by dof
+    /// (the same terms in the same order as the sparse product over the
+    /// diagonal pattern).
+    fn kinetic_sum(&mut self, engine: &Engine) -> f64 {
+        let v = &engine.committed.motion.v;
+        if self.lumped {
+            v.iter().zip(&self.mass).map(|(x, m)| x * (m * x)).sum()
+        } else {
+            engine.asm.mass_mul(v, &mut self.work);
+            v.iter().zip(&self.work).map(|(a, b)| a * b).sum()
+        }
     }
 }
 
@@ -700,9 +721,8 @@ pub fn run(
         }
         let fc = contact
             .as_deref()
-            .map_or(&zero[..], |c| &c.force_on_fint_side[..])
-            .to_vec();
-        ex.energy_step(&mut energy, engine, &fc);
+            .map_or(&zero[..], |c| &c.force_on_fint_side[..]);
+        ex.energy_step(&mut energy, engine, fc);
         if let Some(ct) = contact.as_deref() {
             energy.friction = ct.friction_dissipation;
         }
