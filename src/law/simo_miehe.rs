@@ -136,23 +136,18 @@ impl SimoMiehe {
         columns: u16,
     ) -> Result<FiniteStrainOutput, IntegrationFailure> {
         let name = METADATA.name;
-        self.check(input)?;
+        let f = input.f_np1;
+        // Computed once: the checks read them too.
+        let j = f.determinant();
+        let j_n = input.f_n.determinant();
+        self.check(input, j_n, j)?;
         let (mu, k, h) = (self.mu, self.bulk, self.h);
         let p_n = input.internal[0];
         let be_n = Self::elastic_left_cauchy_green(input.internal);
-        let f = input.f_np1;
-        let j = f.determinant();
-        let j_n = input.f_n.determinant();
         let fn_inv = input.f_n.try_inverse().ok_or_else(|| {
             IntegrationFailure::invalid(
                 name,
                 "singular deformation gradient at the start of the step",
-            )
-        })?;
-        let f_inv = f.try_inverse().ok_or_else(|| {
-            IntegrationFailure::invalid(
-                name,
-                "singular deformation gradient at the end of the step",
             )
         })?;
         // b̄ᵉ_tr = (J_n/J)^{2/3} F A Fᵀ with A = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ.
@@ -193,6 +188,14 @@ impl SimoMiehe {
         let dtau_df = match input.tangent {
             TangentKind::None => None,
             kind => {
+                // F⁻¹ only here: the stress does not need it (J > 0 was
+                // checked, so F is invertible).
+                let f_inv = f.try_inverse().ok_or_else(|| {
+                    IntegrationFailure::invalid(
+                        name,
+                        "singular deformation gradient at the end of the step",
+                    )
+                })?;
                 let with_return = plastic && kind == TangentKind::Consistent;
                 let mut d = Mat9::zeros();
                 // dF = e_k ⊗ e_l: dF A Fᵀ = e_k ⊗ (A Fᵀ)_{l·}, and
@@ -248,7 +251,8 @@ impl SimoMiehe {
         })
     }
 
-    fn check(&self, input: &FiniteStrainInput) -> Result<(), IntegrationFailure> {
+    /// `j_n`, `j`: det F_n and det F of `input`.
+    fn check(&self, input: &FiniteStrainInput, j_n: f64, j: f64) -> Result<(), IntegrationFailure> {
         let name = METADATA.name;
         if input
             .f_n
@@ -291,7 +295,7 @@ impl SimoMiehe {
         }
         // An inverted element (J ≤ 0) is a step that went too far, not a
         // material state: ask for a smaller step.
-        if input.f_n.determinant() <= 0.0 || input.f_np1.determinant() <= 0.0 {
+        if j_n <= 0.0 || j <= 0.0 {
             return Err(IntegrationFailure::not_converged(
                 name,
                 "non-positive volume change J",
