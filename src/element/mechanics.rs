@@ -246,6 +246,12 @@ pub struct ElementBuffers {
     /// the tangent run over b in SIMD lanes.
     partners: Vec<[f64; MAX_DOFS]>,
     geometry: GeometryCache,
+    /// Finite-strain forces without a tangent through τF⁻ᵀ, one product
+    /// per Gauss point, instead of the spatial gradient G⁰F⁻¹ of every
+    /// dof (explicit dynamics, where this evaluation is the whole step).
+    /// The two sums differ by round-off only; the implicit runs keep the
+    /// per-dof form, so that their recorded answers stay bit-identical.
+    pub conjugate_forces: bool,
 }
 
 /// The Gauss-point geometry on the initial configuration of the last
@@ -353,6 +359,7 @@ pub fn internal_forces_into(
         states,
         partners,
         geometry,
+        conjugate_forces,
     } = buf;
     if spec.is_hexs8() {
         let r =
@@ -432,9 +439,15 @@ pub fn internal_forces_into(
                     message: message.clone(),
                 })?,
         };
-        for a in 0..nn {
-            for i in 0..d {
-                g[a * d + i] = geom.virtual_gradient(a, i);
+        // Without a tangent, the finite-strain forces read ∇N directly
+        // (below): the per-dof gradients are not built.
+        let finite = matches!(kin, Kinematics::SimoMiehe | Kinematics::GdefLog);
+        let use_g = want_k || !finite || !*conjugate_forces;
+        if use_g {
+            for a in 0..nn {
+                for i in 0..d {
+                    g[a * d + i] = geom.virtual_gradient(a, i);
+                }
             }
         }
         // S: the stress conjugate to the virtual gradients g.
@@ -517,20 +530,29 @@ pub fn internal_forces_into(
                 .map_err(|failure| ElementFailure::Law { point: p, failure })?;
                 drop(law_span);
                 let tau = out.kirchhoff;
-                let c = if want_k {
-                    Some(out.dtau_df.ok_or_else(|| missing_tangent(law))?)
-                } else {
-                    None
-                };
-                for k in 0..ndof {
-                    let sp = g[k].times(&f_inv, geom.axis);
-                    if let Some(c) = &c {
-                        g[k].tangent_partner_into(&sp, c, &tau, axis, mt, k);
+                let conjugate = if use_g {
+                    let c = if want_k {
+                        Some(out.dtau_df.ok_or_else(|| missing_tangent(law))?)
+                    } else {
+                        None
+                    };
+                    for k in 0..ndof {
+                        let sp = g[k].times(&f_inv, geom.axis);
+                        if let Some(c) = &c {
+                            g[k].tangent_partner_into(&sp, c, &tau, axis, mt, k);
+                        }
+                        g[k] = sp;
                     }
-                    g[k] = sp;
-                }
+                    tau
+                } else {
+                    // Without a tangent the spatial gradients G⁰F⁻¹ are
+                    // not needed: (G⁰F⁻¹) : τ = G⁰ : (τF⁻ᵀ), one product
+                    // per point instead of one per dof (the same sum up
+                    // to round-off).
+                    tau * f_inv.transpose()
+                };
                 (
-                    tau,
+                    conjugate,
                     PointState {
                         stress: tensor_to_stress(&out.cauchy),
                         internal: out.internal,
@@ -539,8 +561,25 @@ pub fn internal_forces_into(
             }
             _ => unreachable!("check_law rejects other pairs"),
         };
-        for k in 0..ndof {
-            forces[k] += geom.dv * g[k].dot(&s);
+        if use_g {
+            for k in 0..ndof {
+                forces[k] += geom.dv * g[k].dot(&s);
+            }
+        } else {
+            // G⁰ : S with G⁰ = e_i ⊗ ∇N_a (+ N_a/r e_θ ⊗ e_θ for the
+            // radial dof of AXIS), the terms in the order of VGrad::dot.
+            for a in 0..nn {
+                let ga = &geom.grad[a];
+                for i in 0..d {
+                    let mut v = ga[0] * s[(i, 0)] + ga[1] * s[(i, 1)] + ga[2] * s[(i, 2)];
+                    v += if geom.axis && i == 0 {
+                        geom.n[a] / geom.r * s[(2, 2)]
+                    } else {
+                        0.0 * s[(2, 2)]
+                    };
+                    forces[a * d + i] += geom.dv * v;
+                }
+            }
         }
         if want_k {
             add_tangent(stiffness, &g[..ndof], mt, geom.dv, axis);

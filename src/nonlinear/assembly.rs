@@ -339,6 +339,15 @@ impl Assembler {
         Ok(())
     }
 
+    /// Finite-strain internal forces without a tangent through τF⁻ᵀ
+    /// (`ElementBuffers::conjugate_forces`): the explicit time loop, whose
+    /// step is one such evaluation, turns it on.
+    pub fn set_conjugate_forces(&mut self, on: bool) {
+        for b in &mut self.buffers {
+            b.conjugate_forces = on;
+        }
+    }
+
     /// y = M x on full vectors.
     pub fn mass_mul(&self, x: &[f64], y: &mut [f64]) {
         self.mass_full.mul_vec(x, y);

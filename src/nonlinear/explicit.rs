@@ -125,6 +125,7 @@ impl Explicit {
     ) -> Result<Explicit, String> {
         let nfull = asm.numbering.nfull();
         let d = asm.numbering.ndpn;
+        asm.set_conjugate_forces(true);
         let mut diag = vec![0.0; nfull];
         let mut elem_mass = Vec::with_capacity(asm.elements.len());
         for e in &asm.elements {
