@@ -501,8 +501,9 @@ pub fn internal_forces_into(
                 Kinematics::SimoMiehe | Kinematics::GdefLog,
                 LawRef::SimoMiehe(_) | LawRef::GdefLog(_),
             ) => {
-                let f_n = Matrix3::identity() + geom.gradient(&u_n[..ndof], d);
-                let f = Matrix3::identity() + geom.gradient(&u[..ndof], d);
+                let (h_n, h) = geom.gradients(&u_n[..ndof], &u[..ndof], d);
+                let f_n = Matrix3::identity() + h_n;
+                let f = Matrix3::identity() + h;
                 let (j_n, j) = (f_n.determinant(), f.determinant());
                 if !(j_n > 0.0 && j > 0.0) {
                     return Err(ElementFailure::Inverted {
@@ -522,23 +523,34 @@ pub fn internal_forces_into(
                     dt,
                     tangent,
                 };
-                let out = match law {
+                let result = match law {
                     LawRef::SimoMiehe(l) => l.integrate_columns(&input, tangent_columns(axis)),
                     LawRef::GdefLog(l) => l.integrate(&input),
                     LawRef::Small(_) => unreachable!("check_law rejects small laws here"),
-                }
-                .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                };
+                // Read in place: the output holds the 9 × 9 tangent slot,
+                // which moving it out of the Result would copy at every
+                // point.
+                let out = match &result {
+                    Ok(out) => out,
+                    Err(failure) => {
+                        return Err(ElementFailure::Law {
+                            point: p,
+                            failure: failure.clone(),
+                        })
+                    }
+                };
                 drop(law_span);
                 let tau = out.kirchhoff;
                 let conjugate = if use_g {
                     let c = if want_k {
-                        Some(out.dtau_df.ok_or_else(|| missing_tangent(law))?)
+                        Some(out.dtau_df.as_ref().ok_or_else(|| missing_tangent(law))?)
                     } else {
                         None
                     };
                     for k in 0..ndof {
                         let sp = g[k].times(&f_inv, geom.axis);
-                        if let Some(c) = &c {
+                        if let Some(c) = c {
                             g[k].tangent_partner_into(&sp, c, &tau, axis, mt, k);
                         }
                         g[k] = sp;
@@ -957,6 +969,27 @@ impl PointGeometry {
                 0.0
             },
         }
+    }
+
+    /// [`PointGeometry::gradient`] of two fields in one pass over the
+    /// nodes (each sum in the same order).
+    fn gradients(&self, v: &[f64], w: &[f64], d: usize) -> (Matrix3<f64>, Matrix3<f64>) {
+        let mut hv = Matrix3::zeros();
+        let mut hw = Matrix3::zeros();
+        for a in 0..v.len() / d {
+            let ga = &self.grad[a];
+            for i in 0..d {
+                for k in 0..3 {
+                    hv[(i, k)] += v[a * d + i] * ga[k];
+                    hw[(i, k)] += w[a * d + i] * ga[k];
+                }
+            }
+            if self.axis {
+                hv[(2, 2)] += v[a * d] * self.n[a] / self.r;
+                hw[(2, 2)] += w[a * d] * self.n[a] / self.r;
+            }
+        }
+        (hv, hw)
     }
 
     /// Gradient of the interpolated field `v` (node-major, `d` per node).

@@ -262,29 +262,30 @@ impl Assembler {
             rest = tail;
             at = e.state_offset + e.npg;
         }
-        let integrate = |((e, out), chunk): ((&ElementData, &mut ElementBuffers), &mut &mut [PointState])| {
-            let n = e.full.len();
-            let mut lu_n = [0.0; MAX_DOFS];
-            let mut lu = [0.0; MAX_DOFS];
-            for k in 0..n {
-                lu_n[k] = u_n[e.full[k]];
-                lu[k] = u[e.full[k]];
-            }
-            internal_forces_into(
-                &e.spec,
-                e.kin,
-                &e.coords,
-                &lu_n[..n],
-                &lu[..n],
-                &states_n[e.state_offset..e.state_offset + e.npg],
-                laws[e.law].law_ref(),
-                dt,
-                tangent,
-                out,
-            )?;
-            chunk.copy_from_slice(&out.states);
-            Ok(())
-        };
+        let integrate =
+            |((e, out), chunk): ((&ElementData, &mut ElementBuffers), &mut &mut [PointState])| {
+                let n = e.full.len();
+                let mut lu_n = [0.0; MAX_DOFS];
+                let mut lu = [0.0; MAX_DOFS];
+                for k in 0..n {
+                    lu_n[k] = u_n[e.full[k]];
+                    lu[k] = u[e.full[k]];
+                }
+                internal_forces_into(
+                    &e.spec,
+                    e.kin,
+                    &e.coords,
+                    &lu_n[..n],
+                    &lu[..n],
+                    &states_n[e.state_offset..e.state_offset + e.npg],
+                    laws[e.law].law_ref(),
+                    dt,
+                    tangent,
+                    out,
+                )?;
+                chunk.copy_from_slice(&out.states);
+                Ok(())
+            };
         // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
         // than the work they share (docs/performance.md). The elements
         // are integrated in parallel into their own buffers and assembled
