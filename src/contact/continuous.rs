@@ -271,6 +271,53 @@ pub fn phase(p: &PointInput) -> Phase {
     }
 }
 
+/// The contact (normal) part of a point's residual and tangent, the same
+/// whatever the number of friction directions (contact-continue.md §4.2,
+/// §5): closed, the augmented pressure λ − ρ_n d acts along n; open, the
+/// row only drives λ to 0.
+pub(crate) struct NormalTerms {
+    pub f: [f64; 3],
+    pub df_dc: [f64; 3],
+    pub dc_du: [f64; 3],
+    pub df_du: [[f64; 3]; 3],
+    pub r_c: f64,
+    pub dc_dc: f64,
+}
+
+pub(crate) fn normal_terms(
+    status: bool,
+    lambda: f64,
+    rho_n: f64,
+    d: f64,
+    w: f64,
+    n: [f64; 3],
+) -> NormalTerms {
+    let mut c = NormalTerms {
+        f: [0.0; 3],
+        df_dc: [0.0; 3],
+        dc_du: [0.0; 3],
+        df_du: [[0.0; 3]; 3],
+        r_c: 0.0,
+        dc_dc: 0.0,
+    };
+    if status {
+        let fn_ = lambda - rho_n * d;
+        for i in 0..3 {
+            c.f[i] = -w * fn_ * n[i];
+            c.df_dc[i] = -w * n[i];
+            c.dc_du[i] = -w * n[i];
+            for j in 0..3 {
+                c.df_du[i][j] = rho_n * w * n[i] * n[j];
+            }
+        }
+        c.r_c = -w * d;
+    } else {
+        c.r_c = -w / rho_n * lambda;
+        c.dc_dc = -w / rho_n;
+    }
+    c
+}
+
 /// Residual and tangent of one point (contact-continue.md §4.2, §5).
 ///
 /// The tangent is the exact derivative at frozen pairing except, as in
@@ -284,22 +331,9 @@ pub fn evaluate_point(p: &PointInput) -> (Phase, PointOutput) {
     let ph = phase(p);
     let mut o = PointOutput::default();
     let (w, n, t) = (p.omega, p.normal, p.tangent);
-    if p.status {
-        let fn_ = p.lambda - p.rho_n * p.d;
-        for i in 0..3 {
-            o.f[i] = -w * fn_ * n[i];
-            o.df_dc[i] = -w * n[i];
-            o.dc_du[i] = -w * n[i];
-            for j in 0..3 {
-                o.df_du[i][j] = p.rho_n * w * n[i] * n[j];
-            }
-        }
-        o.f_n = o.f;
-        o.r_c = -w * p.d;
-    } else {
-        o.r_c = -w / p.rho_n * p.lambda;
-        o.dc_dc = -w / p.rho_n;
-    }
+    let c = normal_terms(p.status, p.lambda, p.rho_n, p.d, w, n);
+    (o.f, o.f_n, o.df_dc, o.dc_du, o.df_du) = (c.f, c.f, c.df_dc, c.dc_du, c.df_du);
+    (o.r_c, o.dc_dc) = (c.r_c, c.dc_dc);
     if let Some(mu) = p.mu {
         // ∂λ̂/∂λ: 1 unless λ̂ is λ_s (then no K_uλ friction block, and
         // the fixed point's tangent is symmetric as code_aster's).

@@ -16,7 +16,7 @@
 //! step went back and forth between stick and slip (8 iterations against
 //! 4, tests/contact_continuous_block3d.rs).
 
-use super::continuous::Phase;
+use super::continuous::{normal_terms, Phase};
 
 /// What a 3D point needs at one evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -135,22 +135,9 @@ pub fn evaluate_point3(p: &PointInput3) -> (Phase, PointOutput3) {
     let ph = phase3(p);
     let mut o = PointOutput3::default();
     let (w, n, t) = (p.omega, p.normal, p.tangents);
-    if p.status {
-        let fn_ = p.lambda - p.rho_n * p.d;
-        for i in 0..3 {
-            o.f[i] = -w * fn_ * n[i];
-            o.df_dc[i] = -w * n[i];
-            o.dc_du[i] = -w * n[i];
-            for j in 0..3 {
-                o.df_du[i][j] = p.rho_n * w * n[i] * n[j];
-            }
-        }
-        o.f_n = o.f;
-        o.r_c = -w * p.d;
-    } else {
-        o.r_c = -w / p.rho_n * p.lambda;
-        o.dc_dc = -w / p.rho_n;
-    }
+    let c = normal_terms(p.status, p.lambda, p.rho_n, p.d, w, n);
+    (o.f, o.f_n, o.df_dc, o.dc_du, o.df_du) = (c.f, c.f, c.df_dc, c.dc_du, c.df_du);
+    (o.r_c, o.dc_dc) = (c.r_c, c.dc_dc);
     let Some(mu) = p.mu else {
         return (ph, o);
     };
