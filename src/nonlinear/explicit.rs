@@ -601,6 +601,7 @@ pub fn run(
         if ct.kinematic() {
             ex.correct(engine, ct, 0.0, first_dt, false);
         }
+        ct.start();
     }
     let p0 = momentum(engine);
     let fc0 = contact

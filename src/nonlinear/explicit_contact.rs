@@ -357,11 +357,25 @@ impl ExplicitContact {
         self.max_active = self.max_active.max(self.active);
     }
 
+    /// The initial state's contact forces (its kinematic correction, or
+    /// the penalty at u_0) become the start of the first step's trapezoid:
+    /// without this the impulse and the friction dissipation of a run
+    /// whose bodies touch at the initial state miss the first half step
+    /// (measured: the impulse of tests/verification/explicit_oblique_impact
+    /// was short of Σ M Δv by the contact layer's normal momentum).
+    pub fn start(&mut self) {
+        self.body_force_prev = self.body_force;
+        self.ft_prev = self.ft.clone();
+    }
+
     /// After the step of length `dt` ending at the committed `u`: the
     /// impulse of the reactions (trapezoidal, as DIFF_CENT updates the
-    /// momentum) and the friction dissipation (the force that acted on the
-    /// step's slip: the trapezoid for the penalty, the correction of the
-    /// step's start for the kinematic enforcement).
+    /// momentum) and the friction dissipation (the trapezoid of the
+    /// friction forces on the step's slip, the rule of TRAV_LIAI, so that
+    /// DISS_FROT is the tangential part of TRAV_LIAI for both enforcements;
+    /// with the kinematic correction of the step's start alone, DISS_FROT
+    /// of the oblique-impact block exceeded TRAV_LIAI by a third: the
+    /// initial state's correction acts over half a step only).
     pub fn commit(&mut self, u: &[f64], dt: f64) {
         for k in 0..3 {
             self.impulse[k] += 0.5 * dt * (self.body_force_prev[k] + self.body_force[k]);
@@ -375,10 +389,7 @@ impl ExplicitContact {
             let new = self.ft.get(&key).copied().unwrap_or([0.0; 3]);
             for k in 0..self.dim {
                 let d = u[s * nd + k] - self.u_prev[s * nd + k];
-                let f = match self.enforcement {
-                    Enforcement::Penalty => 0.5 * (old[k] + new[k]),
-                    Enforcement::Kinematic => old[k],
-                };
+                let f = 0.5 * (old[k] + new[k]);
                 self.friction_dissipation -= f * d;
             }
         }
