@@ -101,24 +101,25 @@ fn stiff_penalty_step_is_reported_with_an_alarm() {
 /// every bottom node and every step, so the momentum it exchanges with the
 /// foundation (Σ M Δv over the model, not the contact's own sum) has
 /// ΔP_x = -MU ΔP_z. The kinematic enforcement is Coulomb's impulse law
-/// node by node: exact to round-off. The penalised one differs by its
-/// stick onset (the elastic predictor's first steps): measured 8e-5
-/// relative, bounded here by 1e-3. The impulse of the reactions equals the
-/// momentum change although the block touches at the initial state.
-/// STICK_K (VT = VN / 10): |ΔP_x| stays within MU ΔP_z; its TEST_TABLE
-/// checks that the bottom nodes do not move along x while pressed.
+/// node by node: exact to round-off, also when the step changes in contact
+/// (SLIDE_KV). The penalised one differs by its stick onset (the elastic
+/// predictor's first steps): measured 8e-5 relative, bounded here by 1e-3.
+/// The impulse of the reactions equals the momentum change although the
+/// block touches at the initial state. STICK_K (VT = VN / 10): |ΔP_x| stays
+/// within MU ΔP_z and the bottom nodes do not move along x while pressed.
 #[test]
 fn oblique_impact_tangential_impulse_is_mu_times_the_normal_one() {
     let run = common::run_study(
         "tests/verification/explicit_oblique_impact.comm",
         "explicit_oblique_impact",
     );
-    common::assert_all_ok(&run, "explicit_oblique_impact.resu");
+    let resu = common::assert_all_ok(&run, "explicit_oblique_impact.resu");
     let mess = run.file("explicit_oblique_impact.mess");
     let impulse = tuples(&mess, "impulse of the contact reactions on the bodies ");
     let momentum = tuples(&mess, "momentum of the model (M v): change over the run ");
-    assert_eq!(momentum.len(), 3, "{mess}");
-    assert_eq!(impulse.len(), 3);
+    // SLIDE_K, SLIDE_P, SLIDE_KV, STICK_K.
+    assert_eq!(momentum.len(), 4, "{mess}");
+    assert_eq!(impulse.len(), 4);
     let mu = 0.25;
     // M VN, M = rho * 4 mm^3.
     let p_n = 7.8e-9 * 4.0 * 1000.0;
@@ -140,16 +141,28 @@ fn oblique_impact_tangential_impulse_is_mu_times_the_normal_one() {
         );
         assert!(m[1].abs() <= 1e-12 * m[2], "run {k}: ΔP_y = {}", m[1]);
     }
-    let slide_k = -momentum[0][0] / momentum[0][2];
-    assert!(
-        (slide_k - mu).abs() <= 1e-8 * mu,
-        "kinematic: -ΔP_x / ΔP_z = {slide_k}"
-    );
+    for k in [0, 2] {
+        let r = -momentum[k][0] / momentum[k][2];
+        assert!(
+            (r - mu).abs() <= 1e-8 * mu,
+            "kinematic run {k}: -ΔP_x / ΔP_z = {r}"
+        );
+    }
     let slide_p = -momentum[1][0] / momentum[1][2];
     assert!(
         (slide_p - mu).abs() <= 1e-3 * mu,
         "penalty: -ΔP_x / ΔP_z = {slide_p}"
     );
-    let stick = -momentum[2][0] / momentum[2][2];
+    let stick = -momentum[3][0] / momentum[3][2];
     assert!(stick > 0.0 && stick <= mu, "stick: -ΔP_x / ΔP_z = {stick}");
+    // T_STICK: DX (column 10) of the 9 bottom nodes at 0.2 us.
+    let dx: Vec<f64> = resu
+        .lines()
+        .filter(|l| l.starts_with("ESCL ") && l.contains("STICK_K"))
+        .map(|l| l.split_whitespace().nth(9).unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(dx.len(), 9, "{resu}");
+    for x in dx {
+        assert!(x.abs() <= 1e-12, "a sticking bottom node moved by {x}");
+    }
 }
