@@ -25,12 +25,19 @@ use crate::model::{CellRole, Model};
 use crate::solver::{CscPattern, SparseMatrix};
 
 /// Element count from which the element loop runs on the thread pool
-/// (when it has more than one thread). Each thread takes one contiguous
-/// block of elements, so a loop costs one wake-up per extra thread: on B
-/// (101 quadratic elements, about 3 µs each with the tangent) that is
-/// small against the half loop it saves (docs/performance.md). Below,
-/// the loop is too short to share.
+/// (when it has more than one thread): on B (101 quadratic elements,
+/// about 4 µs each with the tangent) a loop costs a wake-up of the other
+/// thread, small against the half loop it saves (docs/performance.md).
+/// Below, the loop is too short to share.
 pub const PARALLEL_MIN_ELEMENTS: usize = 32;
+
+/// The fewest elements rayon hands out as one piece of the loop. Rayon
+/// splits a range in halves while each half keeps at least this many, and
+/// splits again the pieces a thread takes from another, so a thread that
+/// wakes late still takes its share of what is left. (The block was the
+/// rounded-up share of each thread, 51 of B's 101 elements: no half could
+/// hold that many, rayon never split, and the loop ran on one thread.)
+const PARALLEL_MIN_BLOCK: usize = 8;
 
 /// One element of the model with its precomputed maps.
 #[derive(Debug, Clone)]
@@ -293,12 +300,11 @@ impl Assembler {
         // same to the bit whatever the thread count.
         let threads = rayon::current_num_threads();
         if threads > 1 && self.elements.len() >= PARALLEL_MIN_ELEMENTS {
-            let block = self.elements.len().div_ceil(threads);
             self.elements
                 .par_iter()
                 .zip(self.buffers.par_iter_mut())
                 .zip(chunks.par_iter_mut())
-                .with_min_len(block)
+                .with_min_len(PARALLEL_MIN_BLOCK)
                 .map(integrate)
                 .collect_into_vec(&mut self.results);
         } else {
