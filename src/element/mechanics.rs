@@ -45,7 +45,7 @@ use std::sync::OnceLock;
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 
 use crate::law::gdef_log::FiniteStrainBehaviour;
-use crate::law::simo_miehe::{FiniteStrainInput, SimoMiehe};
+use crate::law::simo_miehe::{FiniteStrainInput, SimoMiehe, StepStart};
 use crate::law::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
 use crate::law::{
     IntegrationFailure, InternalVars, SmallStrainBehaviour, SmallStrainInput, StrainMeasure,
@@ -246,6 +246,7 @@ pub struct ElementBuffers {
     /// the tangent run over b in SIMD lanes.
     partners: Vec<[f64; MAX_DOFS]>,
     geometry: GeometryCache,
+    starts: StartCache,
     /// Finite-strain forces without a tangent through τF⁻ᵀ, one product
     /// per Gauss point, instead of the spatial gradient G⁰F⁻¹ of every
     /// dof (explicit dynamics, where this evaluation is the whole step).
@@ -263,6 +264,60 @@ struct GeometryCache {
     key: Option<(CellType, Fpg, Formulation)>,
     coords: Vec<[f64; 3]>,
     points: Vec<Result<PointGeometry, String>>,
+    /// Counts the recomputations, so that what was derived from the
+    /// points ([`StartCache`]) knows whether they changed.
+    generation: u64,
+}
+
+/// SIMO_MIEHE's quantities of the start of the step at each Gauss point
+/// (F_n, det F_n, A = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ), kept for the Newton iterations of
+/// the step with what they were computed from: the element's u_n and
+/// geometry, and each point's internal variables, compared to the bit.
+#[derive(Debug, Clone, Default)]
+struct StartCache {
+    u_n: Vec<f64>,
+    geometry: u64,
+    points: Vec<Option<PointStart>>,
+}
+
+#[derive(Debug, Clone)]
+struct PointStart {
+    internal: InternalVars,
+    f_n: Matrix3<f64>,
+    start: StepStart,
+}
+
+impl StartCache {
+    /// Forgets every point unless `u_n` and the geometry are those the
+    /// points were computed with.
+    fn validate(&mut self, u_n: &[f64], geometry: u64, npoints: usize) {
+        let same = self.geometry == geometry
+            && self.u_n.len() == u_n.len()
+            && self
+                .u_n
+                .iter()
+                .zip(u_n)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+        if !same {
+            self.u_n.clear();
+            self.u_n.extend_from_slice(u_n);
+            self.geometry = geometry;
+            self.points.clear();
+        }
+        self.points.resize(npoints, None);
+    }
+
+    /// The start of point `p` if it was computed from `internal`.
+    fn get(&self, p: usize, internal: &[f64]) -> Option<&PointStart> {
+        self.points[p].as_ref().filter(|s| {
+            let held = s.internal.as_slice();
+            held.len() == internal.len()
+                && held
+                    .iter()
+                    .zip(internal)
+                    .all(|(a, b)| a.to_bits() == b.to_bits())
+        })
+    }
 }
 
 impl GeometryCache {
@@ -274,7 +329,7 @@ impl GeometryCache {
         tab: &Tabulated,
         formulation: Formulation,
         coords: &[[f64; 3]],
-    ) -> &[Result<PointGeometry, String>] {
+    ) -> (&[Result<PointGeometry, String>], u64) {
         let key = Some((tab.cell, tab.fpg, formulation));
         let same = self.key == key
             && self.coords.len() == coords.len()
@@ -294,8 +349,9 @@ impl GeometryCache {
                     .zip(&tab.weights)
                     .map(|(shape, w)| point_geometry(formulation, shape, coords, *w)),
             );
+            self.generation += 1;
         }
-        &self.points
+        (&self.points, self.generation)
     }
 }
 
@@ -359,6 +415,7 @@ pub fn internal_forces_into(
         states,
         partners,
         geometry,
+        starts,
         conjugate_forces,
     } = buf;
     if spec.is_hexs8() {
@@ -418,11 +475,21 @@ pub fn internal_forces_into(
     let mut g = [VGrad::ZERO; MAX_DOFS];
 
     // The initial geometry, for every strain measure but PETIT_REAC.
-    let initial: &[Result<PointGeometry, String>] = if kin == Kinematics::PetitReac {
-        &[]
-    } else {
-        geometry.points(tab, spec.formulation, coords)
-    };
+    let (initial, generation): (&[Result<PointGeometry, String>], u64) =
+        if kin == Kinematics::PetitReac {
+            (&[], 0)
+        } else {
+            geometry.points(tab, spec.formulation, coords)
+        };
+    // SIMO_MIEHE keeps the start of the step per point (F_n and the
+    // internal variables are those of every iteration of a step).
+    // Not in explicit dynamics (`conjugate_forces`), where every
+    // evaluation starts a new step.
+    let keep_start =
+        kin == Kinematics::SimoMiehe && matches!(law, LawRef::SimoMiehe(_)) && !*conjugate_forces;
+    if keep_start {
+        starts.validate(&u_n[..ndof], generation, tab.weights.len());
+    }
     let mut current;
     for (p, (shape, w)) in tab.shapes.iter().zip(&tab.weights).enumerate() {
         let st = &states_n[p];
@@ -501,10 +568,28 @@ pub fn internal_forces_into(
                 Kinematics::SimoMiehe | Kinematics::GdefLog,
                 LawRef::SimoMiehe(_) | LawRef::GdefLog(_),
             ) => {
-                let (h_n, h) = geom.gradients(&u_n[..ndof], &u[..ndof], d);
-                let f_n = Matrix3::identity() + h_n;
-                let f = Matrix3::identity() + h;
-                let (j_n, j) = (f_n.determinant(), f.determinant());
+                let held = if keep_start {
+                    starts
+                        .get(p, st.internal.as_slice())
+                        .map(|k| (k.f_n, k.start))
+                } else {
+                    None
+                };
+                // F_n and det F_n as computed when the start was kept
+                // (each gradient's sums are those of `gradients`).
+                let (f_n, f, j_n) = match &held {
+                    Some((f_n, start)) => (
+                        *f_n,
+                        Matrix3::identity() + geom.gradient(&u[..ndof], d),
+                        start.j_n,
+                    ),
+                    None => {
+                        let (h_n, h) = geom.gradients(&u_n[..ndof], &u[..ndof], d);
+                        let f_n = Matrix3::identity() + h_n;
+                        (f_n, Matrix3::identity() + h, f_n.determinant())
+                    }
+                };
+                let j = f.determinant();
                 if !(j_n > 0.0 && j > 0.0) {
                     return Err(ElementFailure::Inverted {
                         point: p,
@@ -524,6 +609,21 @@ pub fn internal_forces_into(
                     tangent,
                 };
                 let result = match law {
+                    LawRef::SimoMiehe(l) if keep_start => {
+                        let start = match &held {
+                            Some((_, start)) => Ok(*start),
+                            None => l.step_start(&input).inspect(|start| {
+                                starts.points[p] = Some(PointStart {
+                                    internal: st.internal,
+                                    f_n,
+                                    start: *start,
+                                });
+                            }),
+                        };
+                        start.and_then(|start| {
+                            l.integrate_with_start(&input, &start, tangent_columns(axis))
+                        })
+                    }
                     LawRef::SimoMiehe(l) => l.integrate_columns(&input, tangent_columns(axis)),
                     LawRef::GdefLog(l) => l.integrate(&input),
                     LawRef::Small(_) => unreachable!("check_law rejects small laws here"),

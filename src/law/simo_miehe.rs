@@ -75,6 +75,16 @@ pub struct FiniteStrainOutput {
     pub regime: Regime,
 }
 
+/// What the update needs from the start of the step alone (F_n and the
+/// internal variables), the same at every Newton iteration of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepStart {
+    /// det F_n.
+    pub j_n: f64,
+    /// A = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ.
+    pub a: Matrix3<f64>,
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SimoMiehe {
     pub elas: ElasParams,
@@ -135,23 +145,90 @@ impl SimoMiehe {
         input: &FiniteStrainInput,
         columns: u16,
     ) -> Result<FiniteStrainOutput, IntegrationFailure> {
-        let name = METADATA.name;
-        let f = input.f_np1;
         // Computed once: the checks read them too.
-        let j = f.determinant();
+        let j = input.f_np1.determinant();
         let j_n = input.f_n.determinant();
         self.check(input, j_n, j)?;
-        let (mu, k, h) = (self.mu, self.bulk, self.h);
-        let p_n = input.internal[0];
+        let start = Self::start(input, j_n)?;
+        self.finish(input, j, &start, columns)
+    }
+
+    /// The quantities of the start of the step, after every check of
+    /// [`SimoMiehe::integrate_columns`] on `input`: an element keeps them
+    /// per Gauss point for the Newton iterations of a step (F_n and the
+    /// internal variables do not change there) and passes them to
+    /// [`SimoMiehe::integrate_with_start`].
+    pub fn step_start(&self, input: &FiniteStrainInput) -> Result<StepStart, IntegrationFailure> {
+        let j = input.f_np1.determinant();
+        let j_n = input.f_n.determinant();
+        self.check(input, j_n, j)?;
+        Self::start(input, j_n)
+    }
+
+    /// [`SimoMiehe::integrate_columns`] with the start of the step
+    /// `start` computed by [`SimoMiehe::step_start`] from the same F_n and
+    /// internal variables as `input`'s: the same result to the bit, and
+    /// the same failures (those of the start of the step were checked
+    /// when `start` was computed; these are F's and the time step's, in
+    /// the order of the full check).
+    pub fn integrate_with_start(
+        &self,
+        input: &FiniteStrainInput,
+        start: &StepStart,
+        columns: u16,
+    ) -> Result<FiniteStrainOutput, IntegrationFailure> {
+        let name = METADATA.name;
+        let j = input.f_np1.determinant();
+        if input.f_np1.iter().any(|v| !v.is_finite()) {
+            return Err(IntegrationFailure::invalid(
+                name,
+                "non-finite deformation gradient",
+            ));
+        }
+        if !(input.dt.is_finite() && input.dt >= 0.0) {
+            return Err(IntegrationFailure::invalid(
+                name,
+                format!("invalid time step {}", input.dt),
+            ));
+        }
+        if j <= 0.0 {
+            return Err(IntegrationFailure::not_converged(
+                name,
+                "non-positive volume change J",
+            ));
+        }
+        self.finish(input, j, start, columns)
+    }
+
+    /// b̄ᵉ_n, F_n⁻¹ and A = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ (`input` checked).
+    fn start(input: &FiniteStrainInput, j_n: f64) -> Result<StepStart, IntegrationFailure> {
         let be_n = Self::elastic_left_cauchy_green(input.internal);
         let fn_inv = input.f_n.try_inverse().ok_or_else(|| {
             IntegrationFailure::invalid(
-                name,
+                METADATA.name,
                 "singular deformation gradient at the start of the step",
             )
         })?;
+        Ok(StepStart {
+            j_n,
+            a: fn_inv * be_n * fn_inv.transpose(),
+        })
+    }
+
+    /// The update and its tangent from the start of the step (`j` = det F).
+    fn finish(
+        &self,
+        input: &FiniteStrainInput,
+        j: f64,
+        start: &StepStart,
+        columns: u16,
+    ) -> Result<FiniteStrainOutput, IntegrationFailure> {
+        let name = METADATA.name;
+        let f = input.f_np1;
+        let (j_n, a) = (start.j_n, start.a);
+        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let p_n = input.internal[0];
         // b̄ᵉ_tr = (J_n/J)^{2/3} F A Fᵀ with A = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ.
-        let a = fn_inv * be_n * fn_inv.transpose();
         let b = f * a * f.transpose();
         let c = (j_n / j).powf(2.0 / 3.0);
         let be_tr = b * c;
