@@ -4,7 +4,8 @@
 //! (`aster bench`) is [`crate::bench`], at the top.
 //!
 //! The profiler is a process-wide set of atomic accumulators: nanoseconds
-//! and call counts per [`Phase`], plus event [`Counter`]s. It is off unless
+//! and call counts per [`Phase`] (one set per thread, summed when read),
+//! plus event [`Counter`]s. It is off unless
 //! the bench turns it on, and the hot paths carry one-line guards
 //! (`let _g = profile::span(Phase::FactorSolve);`): when off, a guard costs
 //! one relaxed atomic load and no clock read, so normal runs do not pay
@@ -16,7 +17,7 @@
 //! contains it. Spans opened on the calling thread around a parallel
 //! region (element integration and assembly) measure its wall time.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::time::Instant;
 
 /// A part of the computation whose time is accumulated.
@@ -94,10 +95,45 @@ const NCOUNTERS: usize = Counter::ALL.len();
 /// A set of accumulators. The process has one ([`span`], [`count`]...
 /// use it); separate instances exist so that tests do not share state
 /// with whatever else runs in the test process.
-pub struct Profiler {
-    enabled: AtomicBool,
+/// Accumulator sets: each thread adds its spans' times to one set
+/// ([`shard`]), so that threads timing spans at the same moment (the law
+/// integrations of the parallel element loop, one per Gauss point) do not
+/// write to the same cache line; a snapshot sums the sets.
+const SHARDS: usize = 8;
+
+/// One set of phase accumulators, on cache lines of its own.
+#[repr(align(128))]
+struct Shard {
     nanos: [AtomicU64; NPHASES],
     calls: [AtomicU64; NPHASES],
+}
+
+impl Shard {
+    const fn new() -> Shard {
+        Shard {
+            nanos: [const { AtomicU64::new(0) }; NPHASES],
+            calls: [const { AtomicU64::new(0) }; NPHASES],
+        }
+    }
+}
+
+/// The on/off flag, read by every span, away from the written lines.
+#[repr(align(128))]
+struct Flag(AtomicBool);
+
+/// The accumulator set of the calling thread (threads take the sets in
+/// turn as they first time a span).
+fn shard() -> usize {
+    static NEXT: AtomicUsize = AtomicUsize::new(0);
+    thread_local! {
+        static SHARD: usize = NEXT.fetch_add(1, Ordering::Relaxed) % SHARDS;
+    }
+    SHARD.with(|s| *s)
+}
+
+pub struct Profiler {
+    enabled: Flag,
+    shards: [Shard; SHARDS],
     counters: [AtomicU64; NCOUNTERS],
 }
 
@@ -130,25 +166,28 @@ impl Default for Profiler {
 impl Profiler {
     pub const fn new() -> Profiler {
         Profiler {
-            enabled: AtomicBool::new(false),
-            nanos: [const { AtomicU64::new(0) }; NPHASES],
-            calls: [const { AtomicU64::new(0) }; NPHASES],
+            enabled: Flag(AtomicBool::new(false)),
+            shards: [const { Shard::new() }; SHARDS],
             counters: [const { AtomicU64::new(0) }; NCOUNTERS],
         }
     }
 
     #[inline]
     pub fn is_enabled(&self) -> bool {
-        self.enabled.load(Ordering::Relaxed)
+        self.enabled.0.load(Ordering::Relaxed)
     }
 
     pub fn set_enabled(&self, on: bool) {
-        self.enabled.store(on, Ordering::Relaxed);
+        self.enabled.0.store(on, Ordering::Relaxed);
     }
 
     /// Zeroes every accumulator (the enabled flag is kept).
     pub fn reset(&self) {
-        for a in self.nanos.iter().chain(&self.calls).chain(&self.counters) {
+        let phases = self
+            .shards
+            .iter()
+            .flat_map(|s| s.nanos.iter().chain(&s.calls));
+        for a in phases.chain(&self.counters) {
             a.store(0, Ordering::Relaxed);
         }
     }
@@ -156,8 +195,8 @@ impl Profiler {
     pub fn snapshot(&self) -> Profile {
         let load = |a: &AtomicU64| a.load(Ordering::Relaxed);
         Profile {
-            nanos: self.nanos.each_ref().map(load),
-            calls: self.calls.each_ref().map(load),
+            nanos: std::array::from_fn(|p| self.shards.iter().map(|s| load(&s.nanos[p])).sum()),
+            calls: std::array::from_fn(|p| self.shards.iter().map(|s| load(&s.calls[p])).sum()),
             counters: self.counters.each_ref().map(load),
         }
     }
@@ -180,8 +219,9 @@ impl Profiler {
     }
 
     pub fn add_time(&self, phase: Phase, nanos: u64) {
-        self.nanos[phase as usize].fetch_add(nanos, Ordering::Relaxed);
-        self.calls[phase as usize].fetch_add(1, Ordering::Relaxed);
+        let s = &self.shards[shard()];
+        s.nanos[phase as usize].fetch_add(nanos, Ordering::Relaxed);
+        s.calls[phase as usize].fetch_add(1, Ordering::Relaxed);
     }
 
     #[inline]
