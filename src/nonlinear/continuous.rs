@@ -91,6 +91,19 @@ pub struct ContinuousContact {
     pub committed: ContactState,
 }
 
+/// (node, C_a) of a contact point: the slave with 1, then the master
+/// nodes with minus their shape values (the gap's coefficients).
+fn point_nodes(slave: usize, link: &Link) -> Vec<(usize, f64)> {
+    std::iter::once((slave, 1.0))
+        .chain(
+            link.master_nodes
+                .iter()
+                .zip(&link.shape)
+                .map(|(&n, &m)| (n, -m)),
+        )
+        .collect()
+}
+
 fn per_node(ndpn: usize, u: &[f64]) -> Vec<[f64; 3]> {
     u.chunks(ndpn)
         .map(|c| {
@@ -433,14 +446,7 @@ impl ContinuousContact {
         let p = self.points[i];
         let ndpn = self.ndpn;
         let xc = self.neq + i * self.stride;
-        let nodes: Vec<(usize, f64)> = std::iter::once((p.node, 1.0))
-            .chain(
-                link.master_nodes
-                    .iter()
-                    .zip(&link.shape)
-                    .map(|(&n, &m)| (n, -m)),
-            )
-            .collect();
+        let nodes = point_nodes(p.node, link);
         for &(n, ca) in &nodes {
             for c in 0..3 {
                 residual[n * ndpn + c] += ca * o.f[c];
@@ -604,15 +610,7 @@ impl ContinuousContact {
             }
             let inp = self.input(i, link, &u, &|n, c| self.free[n * self.ndpn + c]);
             let (_, o) = evaluate_point(&inp);
-            // (node, C_a) of the point: the slave, then the master nodes.
-            let nodes: Vec<(usize, f64)> = std::iter::once((p.node, 1.0))
-                .chain(
-                    link.master_nodes
-                        .iter()
-                        .zip(&link.shape)
-                        .map(|(&n, &m)| (n, -m)),
-                )
-                .collect();
+            let nodes = point_nodes(p.node, link);
             for &(n, ca) in &nodes {
                 for c in 0..dim {
                     let f = n * ndpn + c;
