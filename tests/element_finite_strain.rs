@@ -555,3 +555,86 @@ fn axis_mass_is_per_radian() {
         assert!((per_radian * PI / 2.0 - rho * exact_ring_volume()).abs() < 1e-15 * per_radian);
     }
 }
+
+/// The explicit step's evaluation (`conjugate_forces`: no tangent, the
+/// forces through τF⁻ᵀ, F_n of the previous evaluation kept) on a
+/// plastic SIMO_MIEHE step of AXIS_SI QUAD8 and 3D_SI HEXA20: a second
+/// step from a buffer that computed the first equals the same step from a
+/// fresh buffer to the bit (the kept F_n, det F_n and F_n⁻¹ are the
+/// recomputed ones), its states equal the per-dof evaluation's to the bit
+/// and its forces within round-off.
+#[test]
+fn explicit_evaluation_keeps_f_n_to_the_bit() {
+    use aster::element::{internal_forces_into, ElementBuffers};
+    let copper = simo(soft_ecro());
+    let law = LawRef::SimoMiehe(&copper);
+    for (m, cell) in [("AXIS_SI", CellType::Quad8), ("3D_SI", CellType::Hexa20)] {
+        let s = spec(m, cell);
+        let x = distorted_cell(cell);
+        let d = s.ndofs() / x.len();
+        let field = |scale: f64| -> Vec<f64> {
+            (0..s.ndofs())
+                .map(|k| scale * (0.02 * ((k % d) as f64 + 1.0) * (0.7 * k as f64).sin()))
+                .collect()
+        };
+        let (u0, u1, u2) = (vec![0.0; s.ndofs()], field(1.0), field(1.6));
+        let virgin = initial_states(&s, law);
+        let first = run(
+            &s,
+            Kinematics::SimoMiehe,
+            &x,
+            &u0,
+            &u1,
+            &virgin,
+            law,
+            TangentKind::None,
+        );
+        assert!(first.states.iter().all(|p| p.internal.as_slice()[1] == 1.0));
+        let eval = |buf: &mut ElementBuffers, u_n: &[f64], u: &[f64], st: &[PointState]| {
+            internal_forces_into(
+                &s,
+                Kinematics::SimoMiehe,
+                &x,
+                u_n,
+                u,
+                st,
+                law,
+                1e-6,
+                TangentKind::None,
+                buf,
+            )
+            .unwrap();
+        };
+        let mut kept = ElementBuffers {
+            conjugate_forces: true,
+            ..ElementBuffers::default()
+        };
+        eval(&mut kept, &u0, &u1, &virgin);
+        assert_eq!(kept.states, first.states, "{m}");
+        eval(&mut kept, &u1, &u2, &first.states);
+        let mut fresh = ElementBuffers {
+            conjugate_forces: true,
+            ..ElementBuffers::default()
+        };
+        eval(&mut fresh, &u1, &u2, &first.states);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&kept.forces), bits(&fresh.forces), "{m}");
+        assert_eq!(kept.states, fresh.states, "{m}");
+        let per_dof = run(
+            &s,
+            Kinematics::SimoMiehe,
+            &x,
+            &u1,
+            &u2,
+            &first.states,
+            law,
+            TangentKind::None,
+        );
+        assert_eq!(kept.states, per_dof.states, "{m}");
+        let scale = per_dof.forces.amax();
+        assert!(scale > 0.0);
+        for (a, b) in kept.forces.iter().zip(per_dof.forces.iter()) {
+            assert!((a - b).abs() <= 1e-12 * scale, "{m}: {a} against {b}");
+        }
+    }
+}

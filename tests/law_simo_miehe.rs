@@ -463,3 +463,52 @@ fn update_from_a_kept_start_of_step_is_the_same_to_the_bit() {
         }
     }
 }
+
+/// The explicit step's stress update (`integrate_stress`, no tangent slot,
+/// det F_n, det F and optionally F_n⁻¹ given by the element) is
+/// `integrate_columns`' with `TangentKind::None` to the bit, elastic and
+/// plastic, and fails as it does on an inverted F.
+#[test]
+fn stress_update_alone_is_the_full_update_to_the_bit() {
+    let law = copper();
+    let (f_n, internal) = deformed_state(&law);
+    for (k, scale) in [1.0 + 1e-5, 1.03].into_iter().enumerate() {
+        let f = f_n * Matrix3::new(scale, 0.01, 0.0, -0.02, 1.0 / scale, 0.0, 0.0, 0.0, 1.0);
+        let input = FiniteStrainInput {
+            f_n,
+            f_np1: f,
+            internal: &internal,
+            dt: 1e-6,
+            tangent: TangentKind::None,
+        };
+        let full = law.integrate_columns(&input, 0x1ff).unwrap();
+        assert!(full.dtau_df.is_none());
+        let fn_inv = f_n.try_inverse().unwrap();
+        for given in [None, Some(&fn_inv)] {
+            let s = law
+                .integrate_stress(&input, f_n.determinant(), f.determinant(), given)
+                .unwrap();
+            assert_eq!(s.regime, full.regime, "case {k}");
+            for (a, b) in s
+                .kirchhoff
+                .iter()
+                .chain(s.cauchy.iter())
+                .chain(s.internal.as_slice())
+                .zip(
+                    full.kirchhoff
+                        .iter()
+                        .chain(full.cauchy.iter())
+                        .chain(full.internal.as_slice()),
+                )
+            {
+                assert_eq!(a.to_bits(), b.to_bits(), "case {k}");
+            }
+        }
+        let bad = FiniteStrainInput { f_np1: -f, ..input };
+        assert_eq!(
+            law.integrate_stress(&bad, f_n.determinant(), (-f).determinant(), None)
+                .unwrap_err(),
+            law.integrate_columns(&bad, 0x1ff).unwrap_err()
+        );
+    }
+}

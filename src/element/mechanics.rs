@@ -253,6 +253,34 @@ pub struct ElementBuffers {
     /// The two sums differ by round-off only; the implicit runs keep the
     /// per-dof form, so that their recorded answers stay bit-identical.
     pub conjugate_forces: bool,
+    /// The deformation gradients of the last explicit evaluation
+    /// (`conjugate_forces` with SIMO_MIEHE): the next step's F_n.
+    previous: PreviousGradients,
+}
+
+/// F, det F and F⁻¹ at each Gauss point of the last explicit evaluation,
+/// with the u and the geometry they were computed from: in explicit
+/// dynamics the next step starts where this one ends, so its F_n, det F_n
+/// and F_n⁻¹ are these to the bit (the same sums on the same u) and are
+/// not recomputed (`u_n` is compared to the bit, as [`StartCache`] does).
+#[derive(Debug, Clone, Default)]
+struct PreviousGradients {
+    u: Vec<f64>,
+    geometry: u64,
+    points: Vec<(Matrix3<f64>, f64, Matrix3<f64>)>,
+}
+
+impl PreviousGradients {
+    fn holds(&self, u_n: &[f64], geometry: u64, npoints: usize) -> bool {
+        self.geometry == geometry
+            && self.points.len() == npoints
+            && self.u.len() == u_n.len()
+            && self
+                .u
+                .iter()
+                .zip(u_n)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
 }
 
 /// The Gauss-point geometry on the initial configuration of the last
@@ -417,6 +445,7 @@ pub fn internal_forces_into(
         geometry,
         starts,
         conjugate_forces,
+        previous,
     } = buf;
     if spec.is_hexs8() {
         let r =
@@ -453,6 +482,23 @@ pub fn internal_forces_into(
         stiffness.resize(ndof * ndof, 0.0);
     }
     states.clear();
+    if let (Kinematics::SimoMiehe, LawRef::SimoMiehe(l), false, true) =
+        (kin, law, want_k, *conjugate_forces)
+    {
+        let (initial, generation) = geometry.points(tab, spec.formulation, coords);
+        return simo_miehe_explicit(
+            l,
+            initial,
+            generation,
+            (nn, d),
+            (&u_n[..ndof], &u[..ndof]),
+            states_n,
+            dt,
+            forces,
+            states,
+            previous,
+        );
+    }
     partners.resize(9, [0.0; MAX_DOFS]);
     let mt = &mut partners[..];
     let axis = spec.formulation == Formulation::Axis;
@@ -698,6 +744,105 @@ pub fn internal_forces_into(
         }
         states.push(new_state);
     }
+    Ok(())
+}
+
+/// The explicit step's SIMO_MIEHE evaluation (no tangent, forces through
+/// τF⁻ᵀ): the arithmetic of the general loop of [`internal_forces_into`]
+/// for this case, to the bit, without its per-dof gradients, with the
+/// law's stress update alone ([`SimoMiehe::integrate_stress`]) and F_n,
+/// det F_n, F_n⁻¹ taken from the previous evaluation when it ended at
+/// this u_n ([`PreviousGradients`]).
+#[allow(clippy::too_many_arguments)]
+fn simo_miehe_explicit(
+    law: &SimoMiehe,
+    initial: &[Result<PointGeometry, String>],
+    generation: u64,
+    (nn, d): (usize, usize),
+    (u_n, u): (&[f64], &[f64]),
+    states_n: &[PointState],
+    dt: f64,
+    forces: &mut [f64],
+    states: &mut Vec<PointState>,
+    previous: &mut PreviousGradients,
+) -> Result<(), ElementFailure> {
+    let npg = initial.len();
+    let reuse = previous.holds(u_n, generation, npg);
+    if !reuse {
+        previous.points.clear();
+        previous
+            .points
+            .resize(npg, (Matrix3::zeros(), 0.0, Matrix3::zeros()));
+        previous.geometry = generation;
+    }
+    // Invalid until every point is done.
+    previous.u.clear();
+    for (p, st) in states_n.iter().enumerate() {
+        let geom = initial[p]
+            .as_ref()
+            .map_err(|message| ElementFailure::BadGeometry {
+                point: p,
+                message: message.clone(),
+            })?;
+        let (f_n, f, j_n, fn_inv) = if reuse {
+            let (f_n, j_n, fn_inv) = previous.points[p];
+            (
+                f_n,
+                Matrix3::identity() + geom.gradient(u, d),
+                j_n,
+                Some(fn_inv),
+            )
+        } else {
+            let (h_n, h) = geom.gradients(u_n, u, d);
+            let f_n = Matrix3::identity() + h_n;
+            (f_n, Matrix3::identity() + h, f_n.determinant(), None)
+        };
+        let j = f.determinant();
+        if !(j_n > 0.0 && j > 0.0) {
+            return Err(ElementFailure::Inverted {
+                point: p,
+                message: format!("det F = {j} (start of step {j_n})"),
+            });
+        }
+        let f_inv = f.try_inverse().ok_or_else(|| ElementFailure::Inverted {
+            point: p,
+            message: "singular deformation gradient".into(),
+        })?;
+        let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
+        let input = FiniteStrainInput {
+            f_n,
+            f_np1: f,
+            internal: st.internal.as_slice(),
+            dt,
+            tangent: TangentKind::None,
+        };
+        let out = law
+            .integrate_stress(&input, j_n, j, fn_inv.as_ref())
+            .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+        drop(law_span);
+        previous.points[p] = (f, j, f_inv);
+        // (G⁰F⁻¹) : τ = G⁰ : (τF⁻ᵀ), G⁰ = e_i ⊗ ∇N_a (+ N_a/r e_θ ⊗ e_θ
+        // for the radial dof of AXIS), the terms in the order of
+        // VGrad::dot.
+        let s = out.kirchhoff * f_inv.transpose();
+        for a in 0..nn {
+            let ga = &geom.grad[a];
+            for i in 0..d {
+                let mut v = ga[0] * s[(i, 0)] + ga[1] * s[(i, 1)] + ga[2] * s[(i, 2)];
+                v += if geom.axis && i == 0 {
+                    geom.n[a] / geom.r * s[(2, 2)]
+                } else {
+                    0.0 * s[(2, 2)]
+                };
+                forces[a * d + i] += geom.dv * v;
+            }
+        }
+        states.push(PointState {
+            stress: tensor_to_stress(&out.cauchy),
+            internal: out.internal,
+        });
+    }
+    previous.u.extend_from_slice(u);
     Ok(())
 }
 

@@ -85,6 +85,29 @@ pub struct StepStart {
     pub a: Matrix3<f64>,
 }
 
+/// [`FiniteStrainOutput`] without the tangent: what the explicit step
+/// reads at each Gauss point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StressUpdate {
+    pub kirchhoff: Matrix3<f64>,
+    pub cauchy: Matrix3<f64>,
+    pub internal: InternalVars,
+    pub regime: Regime,
+}
+
+/// The trial state and the return's scalars, which the tangent derives.
+struct Trial {
+    b: Matrix3<f64>,
+    c: f64,
+    i_e: f64,
+    s_tr: Matrix3<f64>,
+    q: f64,
+    c0: f64,
+    plastic: bool,
+    beta: f64,
+    m: f64,
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SimoMiehe {
     pub elas: ElasParams,
@@ -215,14 +238,45 @@ impl SimoMiehe {
         })
     }
 
-    /// The update and its tangent from the start of the step (`j` = det F).
-    fn finish(
+    /// The stress update alone, for the explicit step (one evaluation per
+    /// step, no tangent): the same checks and the same arithmetic as
+    /// [`SimoMiehe::integrate_columns`] with [`TangentKind::None`], so the
+    /// same result to the bit, without the 9 × 9 tangent slot in the
+    /// output. `j_n` and `j` are `f_n.determinant()` and
+    /// `f_np1.determinant()` of `input` (the element computed them for its
+    /// own check); `fn_inv`, when given, is `f_n.try_inverse()` (the
+    /// element's F⁻¹ of the previous step, whose F is this step's F_n).
+    pub fn integrate_stress(
+        &self,
+        input: &FiniteStrainInput,
+        j_n: f64,
+        j: f64,
+        fn_inv: Option<&Matrix3<f64>>,
+    ) -> Result<StressUpdate, IntegrationFailure> {
+        debug_assert_eq!(j_n.to_bits(), input.f_n.determinant().to_bits());
+        debug_assert_eq!(j.to_bits(), input.f_np1.determinant().to_bits());
+        self.check(input, j_n, j)?;
+        let start = match fn_inv {
+            Some(fn_inv) => {
+                let be_n = Self::elastic_left_cauchy_green(input.internal);
+                StepStart {
+                    j_n,
+                    a: fn_inv * be_n * fn_inv.transpose(),
+                }
+            }
+            None => Self::start(input, j_n)?,
+        };
+        self.update(input, j, &start).map(|(out, _)| out)
+    }
+
+    /// The stress update from the start of the step (`j` = det F), with
+    /// what the tangent is derived from.
+    fn update(
         &self,
         input: &FiniteStrainInput,
         j: f64,
         start: &StepStart,
-        columns: u16,
-    ) -> Result<FiniteStrainOutput, IntegrationFailure> {
+    ) -> Result<(StressUpdate, Trial), IntegrationFailure> {
         let name = METADATA.name;
         let f = input.f_np1;
         let (j_n, a) = (start.j_n, start.a);
@@ -261,6 +315,55 @@ impl SimoMiehe {
         v[0] = p_new;
         v[1] = if plastic { 1.0 } else { 0.0 };
         v[2..8].copy_from_slice(tensor_to_stress(&(be_new - Matrix3::identity())).as_slice());
+        Ok((
+            StressUpdate {
+                kirchhoff: tau,
+                cauchy: tau / j,
+                internal,
+                regime: if plastic {
+                    Regime::Plastic
+                } else {
+                    Regime::Elastic
+                },
+            },
+            Trial {
+                b,
+                c,
+                i_e,
+                s_tr,
+                q,
+                c0,
+                plastic,
+                beta,
+                m,
+            },
+        ))
+    }
+
+    /// The update and its tangent from the start of the step (`j` = det F).
+    fn finish(
+        &self,
+        input: &FiniteStrainInput,
+        j: f64,
+        start: &StepStart,
+        columns: u16,
+    ) -> Result<FiniteStrainOutput, IntegrationFailure> {
+        let name = METADATA.name;
+        let f = input.f_np1;
+        let a = start.a;
+        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let (out, trial) = self.update(input, j, start)?;
+        let Trial {
+            b,
+            c,
+            i_e,
+            s_tr,
+            q,
+            c0,
+            plastic,
+            beta,
+            m,
+        } = trial;
 
         let dtau_df = match input.tangent {
             TangentKind::None => None,
@@ -316,15 +419,11 @@ impl SimoMiehe {
         };
 
         Ok(FiniteStrainOutput {
-            kirchhoff: tau,
-            cauchy: tau / j,
-            internal,
+            kirchhoff: out.kirchhoff,
+            cauchy: out.cauchy,
+            internal: out.internal,
             dtau_df,
-            regime: if plastic {
-                Regime::Plastic
-            } else {
-                Regime::Elastic
-            },
+            regime: out.regime,
         })
     }
 

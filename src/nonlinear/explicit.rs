@@ -644,8 +644,15 @@ pub fn run(
                 signal: Some(signal),
             });
         }
+        // The penalty needs the pairing of the step's start. The kinematic
+        // enforcement pairs at the end of each step (below) and before the
+        // loop, on the u that is the next step's start (its correction
+        // changes a and v, not u): pairing again here would give the same
+        // pairing.
         if let Some(ct) = contact.as_deref_mut() {
-            ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
+            if !ct.kinematic() {
+                ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
+            }
         }
         let outcome = ex.step(engine, dt, contact.as_deref_mut());
         if let Err(why) = outcome {
