@@ -605,17 +605,13 @@ fn explicit_evaluation_keeps_f_n_to_the_bit() {
             )
             .unwrap();
         };
-        let mut kept = ElementBuffers {
-            conjugate_forces: true,
-            ..ElementBuffers::default()
-        };
+        let mut kept = ElementBuffers::default();
+        kept.conjugate_forces = true;
         eval(&mut kept, &u0, &u1, &virgin);
         assert_eq!(kept.states, first.states, "{m}");
         eval(&mut kept, &u1, &u2, &first.states);
-        let mut fresh = ElementBuffers {
-            conjugate_forces: true,
-            ..ElementBuffers::default()
-        };
+        let mut fresh = ElementBuffers::default();
+        fresh.conjugate_forces = true;
         eval(&mut fresh, &u1, &u2, &first.states);
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&kept.forces), bits(&fresh.forces), "{m}");

@@ -437,6 +437,73 @@ pub fn internal_forces_into(
     tangent: TangentKind,
     buf: &mut ElementBuffers,
 ) -> Result<(), ElementFailure> {
+    evaluate(
+        spec, kin, coords, u_n, u, states_n, law, dt, tangent, buf, None,
+    )
+    .map(|_| ())
+}
+
+/// [`internal_forces_into`] with the new states written into
+/// `states_out` (one per state row) instead of `buf.states`, which is
+/// left empty: the engine's element loop gives each element its slice of
+/// the state array, so the states are written once.
+#[allow(clippy::too_many_arguments)]
+pub fn internal_forces_to(
+    spec: &ElementSpec,
+    kin: Kinematics,
+    coords: &[[f64; 3]],
+    u_n: &[f64],
+    u: &[f64],
+    states_n: &[PointState],
+    law: LawRef,
+    dt: f64,
+    tangent: TangentKind,
+    buf: &mut ElementBuffers,
+    states_out: &mut [PointState],
+) -> Result<(), ElementFailure> {
+    let direct = evaluate(
+        spec,
+        kin,
+        coords,
+        u_n,
+        u,
+        states_n,
+        law,
+        dt,
+        tangent,
+        buf,
+        Some(&mut *states_out),
+    )?;
+    if !direct {
+        if buf.states.len() != states_out.len() {
+            return Err(ElementFailure::StateCount {
+                expected: states_out.len(),
+                got: buf.states.len(),
+            });
+        }
+        states_out.copy_from_slice(&buf.states);
+        buf.states.clear();
+    }
+    Ok(())
+}
+
+/// The body of [`internal_forces_into`]; true when the states were
+/// written into `direct` (the explicit SIMO_MIEHE path), else they are in
+/// `buf.states`.
+#[allow(clippy::too_many_arguments)]
+fn evaluate(
+    spec: &ElementSpec,
+    kin: Kinematics,
+    coords: &[[f64; 3]],
+    u_n: &[f64],
+    u: &[f64],
+    states_n: &[PointState],
+    law: LawRef,
+    dt: f64,
+    tangent: TangentKind,
+    buf: &mut ElementBuffers,
+    direct: Option<&mut [PointState]>,
+) -> Result<bool, ElementFailure> {
     let ElementBuffers {
         forces,
         stiffness,
@@ -459,7 +526,7 @@ pub fn internal_forces_into(
         }
         states.clear();
         states.extend_from_slice(&r.states);
-        return Ok(());
+        return Ok(false);
     }
     let tab = table(spec, spec.rigi)?;
     let nn = spec.nnodes();
@@ -486,7 +553,12 @@ pub fn internal_forces_into(
         (kin, law, want_k, *conjugate_forces)
     {
         let (initial, generation) = geometry.points(tab, spec.formulation, coords);
-        return simo_miehe_explicit(
+        let out = match direct {
+            Some(o) if o.len() == states_n.len() => StatesOut::Slice(o),
+            _ => StatesOut::Vec(states),
+        };
+        let direct = matches!(out, StatesOut::Slice(_));
+        simo_miehe_explicit(
             l,
             initial,
             generation,
@@ -495,9 +567,10 @@ pub fn internal_forces_into(
             states_n,
             dt,
             forces,
-            states,
+            out,
             previous,
-        );
+        )?;
+        return Ok(direct);
     }
     partners.resize(9, [0.0; MAX_DOFS]);
     let mt = &mut partners[..];
@@ -744,7 +817,13 @@ pub fn internal_forces_into(
         }
         states.push(new_state);
     }
-    Ok(())
+    Ok(false)
+}
+
+/// Where [`simo_miehe_explicit`] writes the new states.
+enum StatesOut<'a> {
+    Vec(&'a mut Vec<PointState>),
+    Slice(&'a mut [PointState]),
 }
 
 /// The explicit step's SIMO_MIEHE evaluation (no tangent, forces through
@@ -763,7 +842,7 @@ fn simo_miehe_explicit(
     states_n: &[PointState],
     dt: f64,
     forces: &mut [f64],
-    states: &mut Vec<PointState>,
+    mut states: StatesOut,
     previous: &mut PreviousGradients,
 ) -> Result<(), ElementFailure> {
     let npg = initial.len();
@@ -837,10 +916,14 @@ fn simo_miehe_explicit(
                 forces[a * d + i] += geom.dv * v;
             }
         }
-        states.push(PointState {
+        let new = PointState {
             stress: tensor_to_stress(&out.cauchy),
             internal: out.internal,
-        });
+        };
+        match &mut states {
+            StatesOut::Vec(v) => v.push(new),
+            StatesOut::Slice(o) => o[p] = new,
+        }
     }
     previous.u.extend_from_slice(u);
     Ok(())
@@ -1221,10 +1304,12 @@ impl PointGeometry {
     fn gradients(&self, v: &[f64], w: &[f64], d: usize) -> (Matrix3<f64>, Matrix3<f64>) {
         let mut hv = Matrix3::zeros();
         let mut hw = Matrix3::zeros();
+        // As in `gradient`: AXIS skips ∇N's θ component (exact zeros).
+        let nk = if self.axis { 2 } else { 3 };
         for a in 0..v.len() / d {
             let ga = &self.grad[a];
             for i in 0..d {
-                for k in 0..3 {
+                for k in 0..nk {
                     hv[(i, k)] += v[a * d + i] * ga[k];
                     hw[(i, k)] += w[a * d + i] * ga[k];
                 }
@@ -1240,9 +1325,12 @@ impl PointGeometry {
     /// Gradient of the interpolated field `v` (node-major, `d` per node).
     fn gradient(&self, v: &[f64], d: usize) -> Matrix3<f64> {
         let mut h = Matrix3::zeros();
+        // In AXIS ∇N has no θ component: the terms skipped are v·0 added
+        // to +0 (+0 whatever the sign of v), so the sums are unchanged.
+        let nk = if self.axis { 2 } else { 3 };
         for a in 0..v.len() / d {
             for i in 0..d {
-                for k in 0..3 {
+                for k in 0..nk {
                     h[(i, k)] += v[a * d + i] * self.grad[a][k];
                 }
             }

@@ -13,7 +13,7 @@ pub mod hexs8;
 pub mod mechanics;
 
 pub use mechanics::{
-    check_initial_geometry, initial_states, internal_forces, internal_forces_into, mass,
-    output_points, rigi_points, BadPoint, ElementBuffers, ElementFailure, ElementResponse,
-    Kinematics, LawRef, PointState, MAX_DOFS,
+    check_initial_geometry, initial_states, internal_forces, internal_forces_into,
+    internal_forces_to, mass, output_points, rigi_points, BadPoint, ElementBuffers, ElementFailure,
+    ElementResponse, Kinematics, LawRef, PointState, MAX_DOFS,
 };

@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use super::behaviour::{BehaviourField, CellLaw};
 use super::dofs::{DofNumbering, NONE};
 use crate::element::{
-    initial_states, internal_forces_into, mass, ElementBuffers, ElementFailure, Kinematics,
+    initial_states, internal_forces_to, mass, ElementBuffers, ElementFailure, Kinematics,
     PointState, MAX_DOFS,
 };
 use crate::law::TangentKind;
@@ -278,7 +278,7 @@ impl Assembler {
                     lu_n[k] = u_n[e.full[k]];
                     lu[k] = u[e.full[k]];
                 }
-                internal_forces_into(
+                internal_forces_to(
                     &e.spec,
                     e.kin,
                     &e.coords,
@@ -289,9 +289,8 @@ impl Assembler {
                     dt,
                     tangent,
                     out,
-                )?;
-                chunk.copy_from_slice(&out.states);
-                Ok(())
+                    chunk,
+                )
             };
         // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
         // than the work they share (docs/performance.md). The elements
