@@ -804,7 +804,7 @@ fn evaluate(
                 for i in 0..d {
                     let mut v = ga[0] * s[(i, 0)] + ga[1] * s[(i, 1)] + ga[2] * s[(i, 2)];
                     v += if geom.axis && i == 0 {
-                        geom.n[a] / geom.r * s[(2, 2)]
+                        geom.n_over_r[a] * s[(2, 2)]
                     } else {
                         0.0 * s[(2, 2)]
                     };
@@ -909,7 +909,7 @@ fn simo_miehe_explicit(
             for i in 0..d {
                 let mut v = ga[0] * s[(i, 0)] + ga[1] * s[(i, 1)] + ga[2] * s[(i, 2)];
                 v += if geom.axis && i == 0 {
-                    geom.n[a] / geom.r * s[(2, 2)]
+                    geom.n_over_r[a] * s[(2, 2)]
                 } else {
                     0.0 * s[(2, 2)]
                 };
@@ -1158,6 +1158,9 @@ struct PointGeometry {
     grad: [[f64; 3]; MAX_NODES],
     /// Radius of the point (AXIS), 0 in 3D.
     r: f64,
+    /// N_a / r (AXIS; 0 in 3D): the hoop term of the radial virtual
+    /// gradients, divided once here rather than at every use.
+    n_over_r: [f64; MAX_NODES],
     /// Weight × det J (× r in AXIS).
     dv: f64,
 }
@@ -1292,7 +1295,7 @@ impl PointGeometry {
             i,
             row: self.grad[a],
             hoop: if self.axis && i == 0 {
-                self.n[a] / self.r
+                self.n_over_r[a]
             } else {
                 0.0
             },
@@ -1377,6 +1380,7 @@ fn point_geometry(
     let mut out = PointGeometry {
         axis: formulation == Formulation::Axis,
         n: [0.0; MAX_NODES],
+        n_over_r: [0.0; MAX_NODES],
         grad: [[0.0; 3]; MAX_NODES],
         r: 0.0,
         dv: 0.0,
@@ -1422,6 +1426,9 @@ fn point_geometry(
                 }
             }
             out.r = r;
+            for a in 0..nn {
+                out.n_over_r[a] = out.n[a] / r;
+            }
             out.dv = w * det * r;
         }
     }
