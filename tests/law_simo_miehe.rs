@@ -512,3 +512,91 @@ fn stress_update_alone_is_the_full_update_to_the_bit() {
         );
     }
 }
+
+/// The axisymmetric stress update (`integrate_stress_axi`, the (r, z)
+/// block and θθ only) gives the 3 × 3 update's values to the bit, on
+/// elastic and plastic steps from an axisymmetric plastic state (the
+/// components that are exactly zero compare equal whatever their sign).
+#[test]
+fn axisymmetric_stress_update_is_the_3x3_update_to_the_bit() {
+    use aster::law::simo_miehe::Axi;
+    let law = copper();
+    let axi =
+        |a: f64, b: f64, c: f64, d: f64, t: f64| Matrix3::new(a, b, 0.0, c, d, 0.0, 0.0, 0.0, t);
+    // An axisymmetric plastic history.
+    let mut f_n = Matrix3::identity();
+    let mut internal = law.initial_internal();
+    for i in 1..=4 {
+        let s = i as f64 / 4.0;
+        let f = axi(
+            1.0 + 0.06 * s,
+            0.04 * s,
+            -0.02 * s,
+            1.0 - 0.08 * s,
+            1.0 + 0.03 * s,
+        );
+        let out = run(&law, f_n, f, internal.as_slice(), TangentKind::None);
+        f_n = f;
+        internal = out.internal;
+    }
+    assert!(internal.as_slice()[0] > 0.0);
+    for (k, f) in [
+        f_n * axi(1.0 + 1e-6, 1e-7, 0.0, 1.0, 1.0),
+        f_n * axi(1.02, 0.01, -0.015, 0.97, 1.01),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let input = FiniteStrainInput {
+            f_n,
+            f_np1: f,
+            internal: internal.as_slice(),
+            dt: 1e-6,
+            tangent: TangentKind::None,
+        };
+        let (j_n, j) = (f_n.determinant(), f.determinant());
+        let full = law.integrate_stress(&input, j_n, j, None).unwrap();
+        let (fa, fna) = (Axi::of(&f), Axi::of(&f_n));
+        assert_eq!(fa.determinant().to_bits(), j.to_bits());
+        let inv = fa.inverse(j).matrix();
+        assert_eq!(inv, f.try_inverse().unwrap(), "case {k}");
+        let ax = law
+            .integrate_stress_axi(
+                &fna,
+                &fa,
+                j_n,
+                j,
+                &fna.inverse(j_n),
+                internal.as_slice(),
+                1e-6,
+            )
+            .unwrap()
+            .unwrap();
+        assert_eq!(ax.regime, full.regime, "case {k}");
+        let bits = |m: &Matrix3<f64>| m.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let nz = |m: Matrix3<f64>| m.map(|x| if x == 0.0 { 0.0 } else { x });
+        assert_eq!(
+            bits(&nz(ax.kirchhoff.matrix())),
+            bits(&nz(full.kirchhoff)),
+            "case {k}"
+        );
+        assert_eq!(
+            bits(&nz(ax.cauchy.matrix())),
+            bits(&nz(full.cauchy)),
+            "case {k}"
+        );
+        for (a, b) in ax.internal.as_slice().iter().zip(full.internal.as_slice()) {
+            assert!(
+                a.to_bits() == b.to_bits() || (*a == 0.0 && *b == 0.0),
+                "case {k}"
+            );
+        }
+    }
+    // Not an axisymmetric state: the caller takes the 3 × 3 path.
+    let mut skew = internal.as_slice().to_vec();
+    skew[6] = 1e-3;
+    let fa = Axi::of(&f_n);
+    assert!(law
+        .integrate_stress_axi(&fa, &fa, 1.0, 1.0, &fa, &skew, 1e-6)
+        .is_none());
+}

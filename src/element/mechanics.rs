@@ -45,7 +45,7 @@ use std::sync::OnceLock;
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 
 use crate::law::gdef_log::FiniteStrainBehaviour;
-use crate::law::simo_miehe::{FiniteStrainInput, SimoMiehe, StepStart};
+use crate::law::simo_miehe::{Axi, FiniteStrainInput, SimoMiehe, StepStart};
 use crate::law::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
 use crate::law::{
     IntegrationFailure, InternalVars, SmallStrainBehaviour, SmallStrainInput, StrainMeasure,
@@ -876,12 +876,53 @@ fn simo_miehe_explicit(
             let f_n = Matrix3::identity() + h_n;
             (f_n, Matrix3::identity() + h, f_n.determinant(), None)
         };
-        let j = f.determinant();
+        let j = if geom.axis {
+            Axi::of(&f).determinant()
+        } else {
+            f.determinant()
+        };
         if !(j_n > 0.0 && j > 0.0) {
             return Err(ElementFailure::Inverted {
                 point: p,
                 message: format!("det F = {j} (start of step {j_n})"),
             });
+        }
+        if geom.axis {
+            // The (r, z) block and θθ only (`Axi`): the same nonzero
+            // values to the bit at a fraction of the 3 × 3 arithmetic.
+            let (fa, fna) = (Axi::of(&f), Axi::of(&f_n));
+            let fa_inv = fa.inverse(j);
+            let fna_inv = match &fn_inv {
+                Some(m) => Axi::of(m),
+                None => fna.inverse(j_n),
+            };
+            let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
+            let r =
+                law.integrate_stress_axi(&fna, &fa, j_n, j, &fna_inv, st.internal.as_slice(), dt);
+            drop(law_span);
+            if let Some(r) = r {
+                let out = r.map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                previous.points[p] = (f, j, fa_inv.matrix());
+                // G⁰ : (τF⁻ᵀ) as below, less the products with the exact
+                // zeros of the θ coupling.
+                let s = out.kirchhoff.mul_t(&fa_inv);
+                for a in 0..nn {
+                    let ga = &geom.grad[a];
+                    let v0 = (ga[0] * s.m[0][0] + ga[1] * s.m[0][1]) + geom.n_over_r[a] * s.t;
+                    let v1 = ga[0] * s.m[1][0] + ga[1] * s.m[1][1];
+                    forces[a * 2] += geom.dv * v0;
+                    forces[a * 2 + 1] += geom.dv * v1;
+                }
+                let new = PointState {
+                    stress: out.cauchy.to_stress(),
+                    internal: out.internal,
+                };
+                match &mut states {
+                    StatesOut::Vec(v) => v.push(new),
+                    StatesOut::Slice(o) => o[p] = new,
+                }
+                continue;
+            }
         }
         let f_inv = f.try_inverse().ok_or_else(|| ElementFailure::Inverted {
             point: p,

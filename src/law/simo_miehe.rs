@@ -493,6 +493,11 @@ impl SimoMiehe {
 fn unit_determinant_shift(d: &Matrix3<f64>, x0: f64) -> Option<f64> {
     let i2 = -0.5 * (d * d).trace();
     let i3 = d.determinant();
+    shift_newton(i2, i3, x0)
+}
+
+/// The Newton iteration of [`unit_determinant_shift`] on the invariants.
+fn shift_newton(i2: f64, i3: f64, x0: f64) -> Option<f64> {
     let mut x = x0;
     for _ in 0..50 {
         let g = x * x * x + i2 * x + i3 - 1.0;
@@ -507,4 +512,290 @@ fn unit_determinant_shift(d: &Matrix3<f64>, x0: f64) -> Option<f64> {
         }
     }
     None
+}
+
+/// An axisymmetric tensor: its (r, z) block `m` and its hoop component
+/// `t` (θθ); the rθ and zθ components are zero. The explicit AXIS step
+/// computes with these instead of 3 × 3 matrices: each operation below
+/// sums the same nonzero terms in the order nalgebra sums them for the
+/// 3 × 3 matrix (products column by column with k = 0, 1, 2, traces and
+/// norms from the first entry, the cofactor determinant and inverse),
+/// the terms dropped being products with the exact zeros of the θ
+/// coupling, so the nonzero components are the 3 × 3 ones to the bit
+/// (only the sign of a component that is exactly zero may differ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Axi {
+    pub m: [[f64; 2]; 2],
+    pub t: f64,
+}
+
+impl Axi {
+    /// The (r, z) block and θθ of a 3 × 3 matrix.
+    pub fn of(a: &Matrix3<f64>) -> Axi {
+        Axi {
+            m: [[a[(0, 0)], a[(0, 1)]], [a[(1, 0)], a[(1, 1)]]],
+            t: a[(2, 2)],
+        }
+    }
+
+    pub fn matrix(&self) -> Matrix3<f64> {
+        Matrix3::new(
+            self.m[0][0],
+            self.m[0][1],
+            0.0,
+            self.m[1][0],
+            self.m[1][1],
+            0.0,
+            0.0,
+            0.0,
+            self.t,
+        )
+    }
+
+    /// self · o
+    #[inline]
+    pub fn mul(&self, o: &Axi) -> Axi {
+        let (a, b) = (&self.m, &o.m);
+        Axi {
+            m: [
+                [
+                    a[0][0] * b[0][0] + a[0][1] * b[1][0],
+                    a[0][0] * b[0][1] + a[0][1] * b[1][1],
+                ],
+                [
+                    a[1][0] * b[0][0] + a[1][1] * b[1][0],
+                    a[1][0] * b[0][1] + a[1][1] * b[1][1],
+                ],
+            ],
+            t: self.t * o.t,
+        }
+    }
+
+    /// self · oᵀ
+    #[inline]
+    pub fn mul_t(&self, o: &Axi) -> Axi {
+        let (a, b) = (&self.m, &o.m);
+        Axi {
+            m: [
+                [
+                    a[0][0] * b[0][0] + a[0][1] * b[0][1],
+                    a[0][0] * b[1][0] + a[0][1] * b[1][1],
+                ],
+                [
+                    a[1][0] * b[0][0] + a[1][1] * b[0][1],
+                    a[1][0] * b[1][0] + a[1][1] * b[1][1],
+                ],
+            ],
+            t: self.t * o.t,
+        }
+    }
+
+    #[inline]
+    fn map(&self, f: impl Fn(f64) -> f64) -> Axi {
+        Axi {
+            m: [
+                [f(self.m[0][0]), f(self.m[0][1])],
+                [f(self.m[1][0]), f(self.m[1][1])],
+            ],
+            t: f(self.t),
+        }
+    }
+
+    pub fn trace(&self) -> f64 {
+        (self.m[0][0] + self.m[1][1]) + self.t
+    }
+
+    /// nalgebra's cofactor determinant.
+    pub fn determinant(&self) -> f64 {
+        let m = &self.m;
+        m[0][0] * (m[1][1] * self.t) - m[0][1] * (m[1][0] * self.t)
+    }
+
+    /// nalgebra's `try_inverse` with its determinant `det` (nonzero).
+    pub fn inverse(&self, det: f64) -> Axi {
+        let m = &self.m;
+        Axi {
+            m: [
+                [(m[1][1] * self.t) / det, -(self.t * m[0][1]) / det],
+                [-(m[1][0] * self.t) / det, (m[0][0] * self.t) / det],
+            ],
+            t: (m[0][0] * m[1][1] - m[1][0] * m[0][1]) / det,
+        }
+    }
+
+    fn norm_squared(&self) -> f64 {
+        let m = &self.m;
+        let c0 = m[0][0] * m[0][0] + m[1][0] * m[1][0];
+        let c1 = m[0][1] * m[0][1] + m[1][1] * m[1][1];
+        (c0 + c1) + self.t * self.t
+    }
+
+    /// [`tensor_to_stress`] (rr, zz, θθ, rz, 0, 0).
+    pub fn to_stress(&self) -> super::Vec6 {
+        let m = &self.m;
+        super::Vec6::new(
+            0.5 * (m[0][0] + m[0][0]),
+            0.5 * (m[1][1] + m[1][1]),
+            0.5 * (self.t + self.t),
+            0.5 * (m[0][1] + m[1][0]),
+            0.0,
+            0.0,
+        )
+    }
+}
+
+/// [`StressUpdate`] of an axisymmetric point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxiUpdate {
+    pub kirchhoff: Axi,
+    pub cauchy: Axi,
+    pub internal: InternalVars,
+    pub regime: Regime,
+}
+
+impl SimoMiehe {
+    /// [`SimoMiehe::integrate_stress`] for an axisymmetric point (F and
+    /// F_n without θ coupling, b̄ᵉ_n without rθ, zθ components), computed
+    /// on the (r, z) block and θθ ([`Axi`]): the same checks, the same
+    /// nonzero results to the bit. `fn_inv` is F_n⁻¹ (`f_n.inverse(j_n)`).
+    /// `None` when the internal variables hold rθ or zθ components of
+    /// b̄ᵉ (not an axisymmetric state: the caller takes the 3 × 3 path).
+    #[allow(clippy::too_many_arguments)]
+    pub fn integrate_stress_axi(
+        &self,
+        f_n: &Axi,
+        f: &Axi,
+        j_n: f64,
+        j: f64,
+        fn_inv: &Axi,
+        internal: &[f64],
+        dt: f64,
+    ) -> Option<Result<AxiUpdate, IntegrationFailure>> {
+        let name = METADATA.name;
+        if internal.len() != METADATA.internal_variables.len()
+            || internal[6] != 0.0
+            || internal[7] != 0.0
+        {
+            return None;
+        }
+        let finite = |a: &Axi| a.m.iter().flatten().all(|v| v.is_finite()) && a.t.is_finite();
+        if !(finite(f_n) && finite(f)) {
+            return Some(Err(IntegrationFailure::invalid(
+                name,
+                "non-finite deformation gradient",
+            )));
+        }
+        if internal.iter().any(|v| !v.is_finite()) {
+            return Some(Err(IntegrationFailure::invalid(
+                name,
+                "non-finite internal variable",
+            )));
+        }
+        if !(dt.is_finite() && dt >= 0.0) {
+            return Some(Err(IntegrationFailure::invalid(
+                name,
+                format!("invalid time step {dt}"),
+            )));
+        }
+        if internal[0] < 0.0 {
+            return Some(Err(IntegrationFailure::invalid(
+                name,
+                "negative cumulative plastic strain V1",
+            )));
+        }
+        if j_n <= 0.0 || j <= 0.0 {
+            return Some(Err(IntegrationFailure::not_converged(
+                name,
+                "non-positive volume change J",
+            )));
+        }
+        // b̄ᵉ_n = stress_to_tensor(V3..V8) + 1.
+        let be_n = Axi {
+            m: [
+                [internal[2] + 1.0, internal[5]],
+                [internal[5], internal[3] + 1.0],
+            ],
+            t: internal[4] + 1.0,
+        };
+        if be_n.determinant() <= 0.0 {
+            return Some(Err(IntegrationFailure::invalid(
+                name,
+                "b̄ᵉ in V3..V8 is not positive definite",
+            )));
+        }
+        Some(self.update_axi(f, j_n, j, &fn_inv.mul(&be_n).mul_t(fn_inv), internal))
+    }
+
+    /// [`SimoMiehe::update`]'s stress on [`Axi`] tensors (`a` = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ).
+    fn update_axi(
+        &self,
+        f: &Axi,
+        j_n: f64,
+        j: f64,
+        a: &Axi,
+        internal: &[f64],
+    ) -> Result<AxiUpdate, IntegrationFailure> {
+        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let p_n = internal[0];
+        let b = f.mul(a).mul_t(f);
+        let c = (j_n / j).powf(2.0 / 3.0);
+        let be_tr = b.map(|x| x * c);
+        let i_e = be_tr.trace() / 3.0;
+        let s_tr = Axi {
+            m: [
+                [(be_tr.m[0][0] - i_e) * mu, be_tr.m[0][1] * mu],
+                [be_tr.m[1][0] * mu, (be_tr.m[1][1] - i_e) * mu],
+            ],
+            t: (be_tr.t - i_e) * mu,
+        };
+        let q = s_tr.norm_squared().sqrt();
+        let c0 = (2.0f64 / 3.0).sqrt() * self.yield_stress(p_n);
+        let pressure = 0.5 * k * (j * j - 1.0);
+        let plastic = q > c0;
+        let (s, be_new, p_new) = if plastic {
+            let mu_bar = mu * i_e;
+            let dgamma = (q - c0) / (2.0 * mu_bar + 2.0 * h / 3.0);
+            let beta = 1.0 - 2.0 * mu_bar * dgamma / q;
+            let s = s_tr.map(|x| x * beta);
+            let dev_be = s.map(|x| x / mu);
+            let i2 = -0.5 * dev_be.mul(&dev_be).trace();
+            let x = shift_newton(i2, dev_be.determinant(), i_e).ok_or_else(|| {
+                IntegrationFailure::not_converged(
+                    METADATA.name,
+                    "trace correction of b̄ᵉ did not converge",
+                )
+            })?;
+            let p = p_n + (2.0f64 / 3.0).sqrt() * dgamma;
+            let mut be_new = dev_be;
+            be_new.m[0][0] += x;
+            be_new.m[1][1] += x;
+            be_new.t += x;
+            (s, be_new, p)
+        } else {
+            (s_tr, be_tr, p_n)
+        };
+        let mut tau = s;
+        tau.m[0][0] = pressure + s.m[0][0];
+        tau.m[1][1] = pressure + s.m[1][1];
+        tau.t = pressure + s.t;
+        let mut out = self.initial_internal();
+        let v = out.as_mut_slice();
+        v[0] = p_new;
+        v[1] = if plastic { 1.0 } else { 0.0 };
+        let mut e = be_new;
+        e.m[0][0] -= 1.0;
+        e.m[1][1] -= 1.0;
+        e.t -= 1.0;
+        v[2..8].copy_from_slice(e.to_stress().as_slice());
+        Ok(AxiUpdate {
+            kirchhoff: tau,
+            cauchy: tau.map(|x| x / j),
+            internal: out,
+            regime: if plastic {
+                Regime::Plastic
+            } else {
+                Regime::Elastic
+            },
+        })
+    }
 }
