@@ -11,7 +11,9 @@ use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
 use crate::model::MechLoad;
 use crate::nonlinear::explicit::{self, Explicit, ExplicitSettings};
-use crate::nonlinear::explicit_contact::{Enforcement, ExplicitContact};
+use crate::nonlinear::explicit_contact::{
+    mid_nodes_free_on_a_held_edge, Enforcement, ExplicitContact,
+};
 use crate::nonlinear::{
     self, dyna, ConvergenceSettings, Engine, NewtonSettings, Occurrence, PrepareError, TimeLoop,
 };
@@ -205,6 +207,12 @@ pub(crate) fn exec(
             .map_err(|m| args.error("CONTACT", m))?,
         ),
     };
+    if let Some(c) = contact.as_ref().filter(|c| c.kinematic()) {
+        let free = mid_nodes_free_on_a_held_edge(&c.def, &md.mesh, &engine.asm.numbering);
+        if !free.is_empty() {
+            notes.push(untied_alarm(&free));
+        }
+    }
     let w2c = contact.as_ref().map_or(0.0, |c| c.penalty_omega2(&ex.mass));
     let bound = ex
         .step_bound(
@@ -307,4 +315,23 @@ pub(crate) fn exec(
         &mut log,
     );
     result_of_run(study, args, result, evol, outcome)
+}
+
+/// The alarm for slave mid-side nodes left free where both vertices of
+/// their edge are held (`mid_nodes_free_on_a_held_edge`).
+fn untied_alarm(free: &[(usize, usize)]) -> String {
+    const CMP: [&str; 3] = ["DX", "DY", "DZ"];
+    let mut listed: Vec<String> = free
+        .iter()
+        .take(10)
+        .map(|&(n, k)| format!("N{} {}", n + 1, CMP[k]))
+        .collect();
+    if free.len() > 10 {
+        listed.push(format!("and {} more", free.len() - 10));
+    }
+    format!(
+        "alarm: {} mid-side slave node component(s) are free although both vertices of their edge are imposed ({}): code_aster's ALGO_CONT='CONTRAINTE' ties the mid-side nodes of QUAD8 slave cells to their vertices, which is why a command file may leave them out of its DDL_IMPO (SDNV103 A's group MILIEU); aster's kinematic contact ties nothing, so these nodes can leave the plane their edge is held in. Impose the same components on them (in A: the symmetry conditions on all of SXX and SYY; docs/performance.md, \"The 3D quarter against the axisymmetric bar\")",
+        free.len(),
+        listed.join(", ")
+    )
 }

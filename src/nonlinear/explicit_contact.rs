@@ -27,6 +27,7 @@ use std::collections::HashMap;
 
 use super::dofs::{DofNumbering, NONE};
 use crate::contact::{pair, ContactDef, Pairing};
+use crate::mesh::CellType;
 use crate::mesh::Mesh;
 use crate::time::Kinematics as Motion;
 
@@ -37,6 +38,55 @@ pub enum Enforcement {
     Penalty,
     /// ALGO_CONT='CONTRAINTE': kinematic correction.
     Kinematic,
+}
+
+/// The mid-side nodes of the slave cells that are free along a component
+/// in which both vertices of their edge are imposed, as (node, component),
+/// ascending. code_aster's ALGO_CONT='CONTRAINTE' ties the mid-side nodes
+/// of QUAD8 slave cells to their vertices (u_mid = (u_v1 + u_v2)/2,
+/// `cacoeq`), so a command file written for it leaves them out of its
+/// DDL_IMPO (SDNV103 A's group MILIEU: SXX1 = SXX - MILIEU) to avoid a
+/// double condition, and the tie keeps them on the plane. The kinematic
+/// contact here ties nothing: such a node is free to leave the plane its
+/// edge is held in, and the quarter of A is then not a symmetric quarter
+/// (its edge radius off by up to a third, docs/performance.md, "The 3D
+/// quarter against the axisymmetric bar"). Every quadratic slave cell is
+/// looked at, not QUAD8 only: a free mid-side node on a symmetry plane is
+/// wrong whichever cell carries it.
+pub fn mid_nodes_free_on_a_held_edge(
+    def: &ContactDef,
+    mesh: &Mesh,
+    numbering: &DofNumbering,
+) -> Vec<(usize, usize)> {
+    let nd = numbering.ndpn;
+    let dim = def.dim.min(nd);
+    let held = |n: usize, k: usize| numbering.eq[n * nd + k] == NONE;
+    let mut out = Vec::new();
+    for z in &def.zones {
+        let Some(cells) = mesh.cell_groups.get(&z.slave_group) else {
+            continue;
+        };
+        for &c in cells {
+            let cell = &mesh.cells[c];
+            let kind: CellType = cell.kind;
+            let nv = kind.nvertices();
+            for (j, &(a, b)) in kind.mid_edges().iter().enumerate() {
+                let m = cell.nodes[nv + j];
+                if z.slave_nodes.binary_search(&m).is_err() {
+                    continue;
+                }
+                let (va, vb) = (cell.nodes[a], cell.nodes[b]);
+                for k in 0..dim {
+                    if held(va, k) && held(vb, k) && !held(m, k) {
+                        out.push((m, k));
+                    }
+                }
+            }
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
 }
 
 pub struct ExplicitContact {
