@@ -283,12 +283,28 @@ impl PreviousGradients {
     }
 }
 
+impl ElementBuffers {
+    /// Promises that every later evaluation with this buffer passes the
+    /// same node coordinates (the engine keeps one buffer per element of
+    /// a computation, whose initial coordinates never change): they are
+    /// checked and the geometry computed at the first evaluation, and
+    /// later ones skip the finiteness check and the comparison to the bit
+    /// that a buffer shared between cells needs.
+    pub fn set_fixed_coordinates(&mut self) {
+        self.geometry.fixed = true;
+    }
+}
+
 /// The Gauss-point geometry on the initial configuration of the last
 /// element a buffer served, with what it was computed from: the engine
 /// gives each element its own buffer, so the geometry (Jacobian, ∇N, dV)
 /// is computed once instead of at every iteration.
 #[derive(Debug, Clone, Default)]
 struct GeometryCache {
+    /// The owner passes the same coordinates at every evaluation
+    /// ([`ElementBuffers::set_fixed_coordinates`]): once the points are
+    /// computed, the coordinates are neither compared nor checked again.
+    fixed: bool,
     key: Option<(CellType, Fpg, Formulation)>,
     coords: Vec<[f64; 3]>,
     points: Vec<Result<PointGeometry, String>>,
@@ -361,11 +377,12 @@ impl GeometryCache {
         let key = Some((tab.cell, tab.fpg, formulation));
         let same = self.key == key
             && self.coords.len() == coords.len()
-            && self
+            && (self.fixed
+                || self
                 .coords
                 .iter()
                 .zip(coords)
-                .all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits));
+                    .all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits)));
         if !same {
             self.key = key;
             self.coords.clear();
@@ -532,7 +549,8 @@ fn evaluate(
     let nn = spec.nnodes();
     let d = spec.formulation.dofs_per_node();
     let ndof = nn * d;
-    check_sizes(spec, coords, ndof, &[("u_n", u_n), ("u", u)])?;
+    let known = geometry.fixed && geometry.key.is_some() && kin != Kinematics::PetitReac;
+    check_sizes(spec, coords, !known, ndof, &[("u_n", u_n), ("u", u)])?;
     if states_n.len() != tab.weights.len() {
         return Err(ElementFailure::StateCount {
             expected: tab.weights.len(),
@@ -1053,7 +1071,7 @@ pub fn mass(
     let tab = table(spec, spec.mass)?;
     let nn = spec.nnodes();
     let d = spec.formulation.dofs_per_node();
-    check_sizes(spec, coords, nn * d, &[])?;
+    check_sizes(spec, coords, true, nn * d, &[])?;
     if !(rho.is_finite() && rho >= 0.0) {
         return Err(ElementFailure::BadInput {
             message: format!("{}: density RHO = {rho} must be finite and >= 0", spec.name),
@@ -1105,9 +1123,12 @@ fn check_law(kin: Kinematics, law: LawRef) -> Result<(), ElementFailure> {
     }
 }
 
+/// `coords_finite`: check that the coordinates are finite (not when
+/// they are those of the geometry already computed and checked).
 fn check_sizes(
     spec: &ElementSpec,
     coords: &[[f64; 3]],
+    coords_finite: bool,
     ndof: usize,
     fields: &[(&str, &[f64])],
 ) -> Result<(), ElementFailure> {
@@ -1121,7 +1142,7 @@ fn check_sizes(
             ),
         });
     }
-    if coords.iter().flatten().any(|v| !v.is_finite()) {
+    if coords_finite && coords.iter().flatten().any(|v| !v.is_finite()) {
         return Err(ElementFailure::BadInput {
             message: format!("{}: non-finite node coordinate", spec.name),
         });

@@ -171,7 +171,11 @@ impl Assembler {
                 }
             }
         }
-        let buffers = vec![ElementBuffers::default(); elements.len()];
+        // One buffer per element, whose coordinates never change.
+        let mut buffers = vec![ElementBuffers::default(); elements.len()];
+        buffers
+            .iter_mut()
+            .for_each(ElementBuffers::set_fixed_coordinates);
         Ok(Assembler {
             numbering,
             elements,
