@@ -253,6 +253,9 @@ pub struct ElementBuffers {
     /// The two sums differ by round-off only; the implicit runs keep the
     /// per-dof form, so that their recorded answers stay bit-identical.
     pub conjugate_forces: bool,
+    /// Room for the element's u_n and u, gathered by the engine.
+    pub gather_n: Vec<f64>,
+    pub gather: Vec<f64>,
     /// The deformation gradients of the last explicit evaluation
     /// (`conjugate_forces` with SIMO_MIEHE): the next step's F_n.
     previous: PreviousGradients,
@@ -305,6 +308,9 @@ struct GeometryCache {
     /// ([`ElementBuffers::set_fixed_coordinates`]): once the points are
     /// computed, the coordinates are neither compared nor checked again.
     fixed: bool,
+    /// The table of the last evaluation's RIGI family (looked up once
+    /// when `fixed`).
+    table: Option<&'static Tabulated>,
     key: Option<(CellType, Fpg, Formulation)>,
     coords: Vec<[f64; 3]>,
     points: Vec<Result<PointGeometry, String>>,
@@ -379,9 +385,9 @@ impl GeometryCache {
             && self.coords.len() == coords.len()
             && (self.fixed
                 || self
-                .coords
-                .iter()
-                .zip(coords)
+                    .coords
+                    .iter()
+                    .zip(coords)
                     .all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits)));
         if !same {
             self.key = key;
@@ -530,6 +536,7 @@ fn evaluate(
         starts,
         conjugate_forces,
         previous,
+        ..
     } = buf;
     if spec.is_hexs8() {
         let r =
@@ -545,7 +552,14 @@ fn evaluate(
         states.extend_from_slice(&r.states);
         return Ok(false);
     }
-    let tab = table(spec, spec.rigi)?;
+    let tab = match geometry.table {
+        Some(t) if geometry.fixed && t.cell == spec.cell && t.fpg == spec.rigi => t,
+        _ => {
+            let t = table(spec, spec.rigi)?;
+            geometry.table = Some(t);
+            t
+        }
+    };
     let nn = spec.nnodes();
     let d = spec.formulation.dofs_per_node();
     let ndof = nn * d;
@@ -1142,7 +1156,7 @@ fn check_sizes(
             ),
         });
     }
-    if coords_finite && coords.iter().flatten().any(|v| !v.is_finite()) {
+    if coords_finite && !all_finite(coords.as_flattened()) {
         return Err(ElementFailure::BadInput {
             message: format!("{}: non-finite node coordinate", spec.name),
         });
@@ -1157,7 +1171,7 @@ fn check_sizes(
                 ),
             });
         }
-        if f.iter().any(|v| !v.is_finite()) {
+        if !all_finite(f) {
             return Err(ElementFailure::BadInput {
                 message: format!("{}: non-finite value in {name}", spec.name),
             });
@@ -1166,7 +1180,26 @@ fn check_sizes(
     Ok(())
 }
 
+/// Whether every value is finite: x − x is +0 for a finite x and NaN for
+/// an infinite or NaN one, summed in four independent lanes (a branch
+/// per value cost as much as a Gauss point's hoop terms at every step).
+fn all_finite(v: &[f64]) -> bool {
+    let mut acc = [0.0f64; 4];
+    let mut chunks = v.chunks_exact(4);
+    for c in &mut chunks {
+        for k in 0..4 {
+            acc[k] += c[k] - c[k];
+        }
+    }
+    let mut r = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for x in chunks.remainder() {
+        r += x - x;
+    }
+    r == 0.0
+}
+
 /// Shape functions tabulated at the points of one Gauss family.
+#[derive(Debug)]
 struct Tabulated {
     cell: CellType,
     fpg: Fpg,

@@ -16,7 +16,7 @@ use super::behaviour::{BehaviourField, CellLaw};
 use super::dofs::{DofNumbering, NONE};
 use crate::element::{
     initial_states, internal_forces_to, mass, ElementBuffers, ElementFailure, Kinematics,
-    PointState, MAX_DOFS,
+    PointState,
 };
 use crate::law::TangentKind;
 use crate::mesh::Mesh;
@@ -275,26 +275,30 @@ impl Assembler {
         }
         let integrate =
             |((e, out), chunk): ((&ElementData, &mut ElementBuffers), &mut &mut [PointState])| {
-                let n = e.full.len();
-                let mut lu_n = [0.0; MAX_DOFS];
-                let mut lu = [0.0; MAX_DOFS];
-                for k in 0..n {
-                    lu_n[k] = u_n[e.full[k]];
-                    lu[k] = u[e.full[k]];
-                }
-                internal_forces_to(
+                // The element's dofs gathered into its buffer's own
+                // vectors (no 2 x MAX_DOFS arrays zeroed per element).
+                let mut lu_n = std::mem::take(&mut out.gather_n);
+                let mut lu = std::mem::take(&mut out.gather);
+                lu_n.clear();
+                lu.clear();
+                lu_n.extend(e.full.iter().map(|&f| u_n[f]));
+                lu.extend(e.full.iter().map(|&f| u[f]));
+                let r = internal_forces_to(
                     &e.spec,
                     e.kin,
                     &e.coords,
-                    &lu_n[..n],
-                    &lu[..n],
+                    &lu_n,
+                    &lu,
                     &states_n[e.state_offset..e.state_offset + e.npg],
                     laws[e.law].law_ref(),
                     dt,
                     tangent,
                     out,
                     chunk,
-                )
+                );
+                out.gather_n = lu_n;
+                out.gather = lu;
+                r
             };
         // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
         // than the work they share (docs/performance.md). The elements
