@@ -897,12 +897,12 @@ fn simo_miehe_explicit(
             })?;
         let (f_n, f, j_n, fn_inv) = if reuse {
             let (f_n, j_n, fn_inv) = previous.points[p];
-            (
-                f_n,
-                Matrix3::identity() + geom.gradient(u, d),
-                j_n,
-                Some(fn_inv),
-            )
+            let f = if geom.axis {
+                geom.deformation_axi(u)
+            } else {
+                Matrix3::identity() + geom.gradient(u, d)
+            };
+            (f_n, f, j_n, Some(fn_inv))
         } else {
             let (h_n, h) = geom.gradients(u_n, u, d);
             let f_n = Matrix3::identity() + h_n;
@@ -1418,6 +1418,22 @@ impl PointGeometry {
             }
         }
         (hv, hw)
+    }
+
+    /// 1 + [`PointGeometry::gradient`] of an AXIS displacement (2 per
+    /// node), written out for the (r, z) block and θθ: the same sums in
+    /// the same order.
+    fn deformation_axi(&self, v: &[f64]) -> Matrix3<f64> {
+        let (mut h00, mut h01, mut h10, mut h11, mut ht) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for (a, x) in v.chunks_exact(2).enumerate() {
+            let g = &self.grad[a];
+            h00 += x[0] * g[0];
+            h01 += x[0] * g[1];
+            h10 += x[1] * g[0];
+            h11 += x[1] * g[1];
+            ht += x[0] * self.n[a] / self.r;
+        }
+        Matrix3::new(1.0 + h00, h01, 0.0, h10, 1.0 + h11, 0.0, 0.0, 0.0, 1.0 + ht)
     }
 
     /// Gradient of the interpolated field `v` (node-major, `d` per node).
