@@ -366,31 +366,53 @@ impl Explicit {
         )
         .map_err(|f| format!("cell {}: {}", f.cell + 1, f.failure))?;
         let nb = &asm.numbering;
-        match contact {
+        let fc: &[f64] = match contact {
             Some(ct) if !ct.kinematic() => {
                 ct.penalty_forces(nb, &cm.motion.u, &tr.motion.u);
-                let fc = &ct.force_on_fint_side;
-                for (e, &f) in nb.free.iter().enumerate() {
-                    self.rhs[e] = fext[f] - tr.fint[f] - fc[f];
+                &ct.force_on_fint_side
+            }
+            // No contact force: the same sums with a zero term.
+            _ => &self.zero,
+        };
+        if self.solver.is_none() {
+            // The lumped mass: the right-hand side, the division by the
+            // mass and the velocity update of each free dof in one pass
+            // (the expressions of the consistent-mass branch below).
+            tr.motion.a.iter_mut().for_each(|x| *x = 0.0);
+            let (m, a_n, v_n) = (&self.mass, &cm.motion.a, &cm.motion.v);
+            let (a, v) = (&mut tr.motion.a, &mut tr.motion.v);
+            match self.scheme {
+                ExplicitScheme::DiffCent => {
+                    for &f in &nb.free {
+                        let rhs = fext[f] - tr.fint[f] - fc[f];
+                        a[f] = rhs / m[f];
+                        v[f] = v_n[f] + 0.5 * dt * (a_n[f] + a[f]);
+                    }
+                }
+                ExplicitScheme::Tchamwa { .. } => {
+                    for &f in &nb.free {
+                        let rhs = fext[f] - tr.fint[f] - fc[f];
+                        a[f] = rhs / m[f];
+                        v[f] = v_n[f] + dt * a_n[f];
+                    }
                 }
             }
-            _ => {
-                // No contact force: the same sums with a zero term.
-                for (e, &f) in nb.free.iter().enumerate() {
-                    self.rhs[e] = fext[f] - tr.fint[f] - self.zero[f];
-                }
+        } else {
+            for (e, &f) in nb.free.iter().enumerate() {
+                self.rhs[e] = fext[f] - tr.fint[f] - fc[f];
             }
-        }
-        self.solve_into(&mut tr.motion.a, asm)?;
-        match self.scheme {
-            ExplicitScheme::DiffCent => {
-                for &f in &nb.free {
-                    tr.motion.v[f] = cm.motion.v[f] + 0.5 * dt * (cm.motion.a[f] + tr.motion.a[f]);
+            self.solve_into(&mut tr.motion.a, asm)?;
+            match self.scheme {
+                ExplicitScheme::DiffCent => {
+                    for &f in &nb.free {
+                        tr.motion.v[f] =
+                            cm.motion.v[f] + 0.5 * dt * (cm.motion.a[f] + tr.motion.a[f]);
+                    }
                 }
-            }
-            ExplicitScheme::Tchamwa { .. } => {
-                for &f in &nb.free {
-                    tr.motion.v[f] = cm.motion.v[f] + dt * cm.motion.a[f];
+                ExplicitScheme::Tchamwa { .. } => {
+                    for &f in &nb.free {
+                        tr.motion.v[f] = cm.motion.v[f] + dt * cm.motion.a[f];
+                    }
                 }
             }
         }
