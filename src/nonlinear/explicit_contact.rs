@@ -314,9 +314,8 @@ impl ExplicitContact {
         let links = std::mem::take(&mut self.pairing.links);
         for l in &links {
             let s = l.slave;
-            let free: Vec<bool> = (0..3)
-                .map(|k| k < dim && numbering.eq[s * nd + k] != NONE)
-                .collect();
+            let free: [bool; 3] =
+                std::array::from_fn(|k| k < dim && numbering.eq[s * nd + k] != NONE);
             let Some(first) = (0..dim).find(|&k| free[k]) else {
                 continue;
             };
