@@ -420,6 +420,10 @@ fn parse_unit(s: &str) -> Result<(i64, PathBuf), String> {
     Ok((u, PathBuf::from(p)))
 }
 
+/// The stack of the pool threads that run a study: the main thread's
+/// usual 8 MiB (a pool thread's default is 2 MiB).
+const RUN_STACK_BYTES: usize = 8 << 20;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let mut stdout = std::io::stdout();
@@ -437,16 +441,32 @@ fn main() -> ExitCode {
             if let Err(e) = aster::interrupt::install() {
                 eprintln!("warning: {e}; a signal will kill the run without saving it");
             }
-            driver::run_file(
-                &RunOptions {
-                    comm: file,
-                    units,
-                    export,
-                    out_dir: out,
-                    verbose: !quiet,
-                },
-                &mut stdout,
-            )
+            let opts = RunOptions {
+                comm: file,
+                units,
+                export,
+                out_dir: out,
+                verbose: !quiet,
+            };
+            // The study runs on a thread of the pool, as `aster bench`
+            // runs it: an element loop started from a pool thread shares
+            // its work with the other threads directly, where one started
+            // from outside the pool hands the whole loop over and sleeps
+            // until it is done (a wake-up of two threads per loop, and
+            // three threads on two cores). docs/performance.md, "The
+            // explicit step's cost".
+            match rayon::ThreadPoolBuilder::new()
+                .stack_size(RUN_STACK_BYTES)
+                .build()
+            {
+                Ok(pool) => pool.install(|| driver::run_file(&opts, &mut stdout)),
+                Err(e) => {
+                    eprintln!(
+                        "warning: cannot start the thread pool ({e}); running from the main thread"
+                    );
+                    driver::run_file(&opts, &mut stdout)
+                }
+            }
         }
         Command::Bench {
             file,
