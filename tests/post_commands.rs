@@ -539,10 +539,56 @@ fn post_releve_t_refuses_other_operations() {
     );
     let e = run_err(
         "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,
-                NOM_CHAM='DEPL', GROUP_NO='B', RESULTANTE='DY'))\n",
+                NOM_CHAM='DEPL', GROUP_NO='B', RESULTANTE='DY', MOMENT='DRZ', POINT=(0., 0.)))\n",
     );
     assert!(
-        e.contains("not implemented yet: POST_RELEVE_T/ACTION/RESULTANTE"),
+        e.contains("not implemented yet: POST_RELEVE_T/ACTION/MOMENT"),
         "{e}"
     );
+}
+
+/// RESULTANTE: one row per stored step, each component summed over the
+/// nodes of GROUP_NO and NOEUD (a node named twice counts once), in a
+/// column named after it; a component absent at a node adds nothing.
+#[test]
+fn post_releve_t_resultante_sums_over_the_nodes() {
+    let s = run(
+        "resultante",
+        "TAB = POST_RELEVE_T(ACTION=(
+             _F(OPERATION='EXTRACTION', INTITULE='DEPL_B', RESULTAT=RESU, NOM_CHAM='DEPL',
+                GROUP_NO='B', NOEUD=('N3', 'N1'), RESULTANTE=('DX', 'DY')),
+             _F(OPERATION='EXTRACTION', INTITULE='VITE', RESULTAT=RESU, NOM_CHAM='VITE',
+                NOEUD=('N1', 'N2'), RESULTANTE='DX', INST=0.),))
+         FIN()\n",
+    );
+    let t = table(&s, "TAB");
+    assert_eq!(
+        t.columns,
+        [
+            "INTITULE",
+            "RESU",
+            "NOM_CHAM",
+            "NUME_ORDRE",
+            "INST",
+            "DX",
+            "DY"
+        ]
+    );
+    assert_eq!(t.n_rows(), INSTS.len() + 1);
+    let m = mesh();
+    for (k, &t_k) in INSTS.iter().enumerate() {
+        let nodes = [0usize, 1, 2];
+        let sx: f64 = nodes.iter().map(|&n| dx(t_k, m.coords[n][0])).sum();
+        let sy: f64 = nodes.iter().map(|&n| dy(t_k, n)).sum();
+        let (TCell::Real(gx), TCell::Real(gy)) =
+            (t.cell(k, "DX").unwrap(), t.cell(k, "DY").unwrap())
+        else {
+            panic!("real cells expected");
+        };
+        assert!((gx - sx).abs() <= 1e-12 * sx.abs().max(1.0), "{gx} {sx}");
+        assert!((gy - sy).abs() <= 1e-12 * sy.abs().max(1.0), "{gy} {sy}");
+    }
+    // VITE DX is absent at N1 and 0 at N2.
+    assert_eq!(t.cell(INSTS.len(), "DX"), Some(&TCell::Real(0.0)));
+    assert_eq!(t.cell(INSTS.len(), "DY"), None);
 }

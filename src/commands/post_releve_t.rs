@@ -61,7 +61,7 @@ pub fn def() -> CommandDef {
                     text("RESULTANTE")
                         .many()
                         .into(&["DX", "DY", "DZ"])
-                        .doc("sum of these components over the nodes")
+                        .doc("sum of these components over the nodes: one row per field, a column per component")
                         .kw(),
                     text("MOMENT").many().into(&["DRX", "DRY", "DRZ"]).kw(),
                     real("POINT").many().kw(),
@@ -137,8 +137,7 @@ const LEADING: [(&str, ColumnType); 10] = [
 
 /// Keywords of ACTION whose operation is not built: refused rather than
 /// ignored, since ignoring them would change the numbers.
-const UNSUPPORTED: [&str; 12] = [
-    "RESULTANTE",
+const UNSUPPORTED: [&str; 11] = [
     "MOMENT",
     "INVARIANT",
     "ELEM_PRINCIPAUX",
@@ -240,7 +239,11 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
                 ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre as i64)),
                 ("INST".to_string(), Cell::Real(step.inst)),
             ];
-            node_rows(occ, mesh, field, nom_cham, &nodes, &lead, rows)?;
+            if occ.has("RESULTANTE") {
+                resultant_row(occ, field, nom_cham, &nodes, lead, rows)?;
+            } else {
+                node_rows(occ, mesh, field, nom_cham, &nodes, &lead, rows)?;
+            }
         }
     } else {
         let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
@@ -251,8 +254,40 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
             ("INTITULE".to_string(), Cell::Text(intitule.clone())),
             ("CHAM_GD".to_string(), Cell::Text(fname.to_string())),
         ];
-        node_rows(occ, mesh, field, fname, &nodes, &lead, rows)?;
+        if occ.has("RESULTANTE") {
+            resultant_row(occ, field, fname, &nodes, lead, rows)?;
+        } else {
+            node_rows(occ, mesh, field, fname, &nodes, &lead, rows)?;
+        }
     }
+    Ok(())
+}
+
+/// RESULTANTE: one row per field, each component asked summed over the
+/// selected nodes (the total force of REAC_NODA or FORC_NODA on a
+/// support, for instance), in a column named after the component, as
+/// code_aster's table has it; nodes where the component is absent add
+/// nothing.
+fn resultant_row(
+    occ: &Args,
+    field: &NodalField,
+    field_name: &str,
+    nodes: &[usize],
+    lead: Row,
+    rows: &mut Vec<Row>,
+) -> Result<(), Diagnostic> {
+    let mut row = lead;
+    for c in occ.texts("RESULTANTE") {
+        let i =
+            super::post_args::component_index(&field.components, c, occ, "RESULTANTE", field_name)?;
+        let sum: f64 = nodes
+            .iter()
+            .map(|&n| field.values[n * field.ncmp() + i])
+            .filter(|v| !v.is_nan())
+            .sum();
+        row.push((c.to_string(), Cell::Real(sum)));
+    }
+    rows.push(row);
     Ok(())
 }
 
