@@ -67,6 +67,16 @@ fn free_flight_3d() {
     run_study("free_flight_3d");
 }
 
+/// LIAISON_UNIL as a user writes it beyond SDNV103 E/K: a zone by
+/// GROUP_MA with COEF_IMPO a function of Z, two zones by GROUP_MA minus
+/// SANS_NOEUD and by NOEUD, two components with a COEF_MULT list, both
+/// algorithms, on HEXS8 + PENTA6: the floor reactions summed by
+/// POST_RELEVE_T RESULTANTE equal the weight.
+#[test]
+fn unilateral_zones_3d_carry_the_weight() {
+    run_study("unil_zones_3d");
+}
+
 #[test]
 fn elastic_wave_in_a_rod() {
     run_study("wave_rod");

@@ -244,15 +244,23 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let zones = args.facts("ZONE");
     let mut lines = Vec::new();
     for (k, zone) in zones.iter().enumerate() {
-        for key in [
-            "MAILLE_MAIT",
-            "MAILLE_ESCL",
-            "MAILLE",
-            "NOEUD",
-            "SANS_NOEUD",
-            "SANS_MAILLE",
-            "SANS_NOEUD_FR",
-        ] {
+        // A LIAISON_UNIL zone selects its nodes like DDL_IMPO does, names
+        // included (select_nodes); the pairing of the contact formulations
+        // works on cell groups only.
+        let by_name: &[&str] = if formulation == "LIAISON_UNIL" {
+            &[]
+        } else {
+            &[
+                "MAILLE_MAIT",
+                "MAILLE_ESCL",
+                "MAILLE",
+                "NOEUD",
+                "SANS_NOEUD",
+                "SANS_MAILLE",
+                "SANS_NOEUD_FR",
+            ]
+        };
+        for &key in by_name {
             if zone.has(key) {
                 return Err(zone.not_implemented(key, "cells and nodes by name; use groups"));
             }

@@ -1,9 +1,12 @@
 //! What the model-building commands share: fetching the model and mesh a
 //! command works on, and turning `TOUT`/`GROUP_MA`/`GROUP_NO` selections
 //! into cells and nodes with the same checks everywhere (unknown groups
-//! named with a suggestion, deprecated by-name selectors refused clearly).
+//! named with a suggestion). The deprecated by-name selectors MAILLE,
+//! NOEUD, SANS_MAILLE and SANS_NOEUD read code_aster's default names
+//! (`M3`, `N12`: aster meshes carry no names, see post_args).
 
 use super::mesh_args::{check_groups, GroupKind};
+use super::post_args::{cell_by_name, node_by_name};
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
 use crate::diag::Diagnostic;
@@ -63,42 +66,32 @@ pub fn mesh_of_model<'s>(
 /// The cells an occurrence selects with `TOUT='OUI'` or `GROUP_MA`
 /// (the union of the groups), in increasing order.
 pub fn select_cells(mesh: &Mesh, occ: &Args) -> Result<Vec<usize>, Diagnostic> {
-    if occ.has("MAILLE") {
-        return Err(occ.not_implemented("MAILLE", "cells by name; use GROUP_MA"));
-    }
     if occ.has("TOUT") {
         return Ok((0..mesh.ncells()).collect());
     }
-    if occ.has("GROUP_MA") {
+    if occ.has("GROUP_MA") || occ.has("MAILLE") {
         check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
         let mut cells: Vec<usize> = occ
             .texts("GROUP_MA")
             .iter()
             .flat_map(|g| mesh.cell_groups[*g].iter().copied())
             .collect();
+        for name in occ.texts("MAILLE") {
+            cells.push(cell_by_name(mesh, occ, "MAILLE", name)?);
+        }
         cells.sort_unstable();
         cells.dedup();
         return Ok(cells);
     }
-    Err(occ.error("", "one of TOUT or GROUP_MA is required"))
+    Err(occ.error("", "one of TOUT, GROUP_MA or MAILLE is required"))
 }
 
 /// The nodes an occurrence selects: the union of `TOUT` (the nodes given
-/// in `tout`), all nodes of the cells of `GROUP_MA` and the nodes of
-/// `GROUP_NO`, minus those of `SANS_GROUP_NO` and of the cells of
-/// `SANS_GROUP_MA` when the level declares them. Increasing order, no
-/// duplicates.
+/// in `tout`), all nodes of the cells of `GROUP_MA` and `MAILLE` and the
+/// nodes of `GROUP_NO` and `NOEUD`, minus those of `SANS_GROUP_NO`,
+/// `SANS_NOEUD` and of the cells of `SANS_GROUP_MA`, `SANS_MAILLE` when
+/// the level declares them. Increasing order, no duplicates.
 pub fn select_nodes(mesh: &Mesh, occ: &Args, tout: &[usize]) -> Result<Vec<usize>, Diagnostic> {
-    for (key, what) in [
-        ("MAILLE", "cells by name; use GROUP_MA"),
-        ("NOEUD", "nodes by name; use GROUP_NO"),
-        ("SANS_MAILLE", "cells by name; use SANS_GROUP_MA"),
-        ("SANS_NOEUD", "nodes by name; use SANS_GROUP_NO"),
-    ] {
-        if occ.has(key) {
-            return Err(occ.not_implemented(key, what));
-        }
-    }
     let mut mask = vec![false; mesh.nnodes()];
     if occ.has("TOUT") {
         for &n in tout {
@@ -123,6 +116,14 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, tout: &[usize]) -> Result<Vec<usize
             }
         }
     }
+    for name in occ.texts("MAILLE") {
+        for &n in &mesh.cells[cell_by_name(mesh, occ, "MAILLE", name)?].nodes {
+            mask[n] = true;
+        }
+    }
+    for name in occ.texts("NOEUD") {
+        mask[node_by_name(mesh, occ, "NOEUD", name)?] = true;
+    }
     if occ.has("SANS_GROUP_MA") {
         check_groups(mesh, occ, "SANS_GROUP_MA", GroupKind::Cells)?;
         for g in occ.texts("SANS_GROUP_MA") {
@@ -140,6 +141,14 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, tout: &[usize]) -> Result<Vec<usize
                 mask[n] = false;
             }
         }
+    }
+    for name in occ.texts("SANS_MAILLE") {
+        for &n in &mesh.cells[cell_by_name(mesh, occ, "SANS_MAILLE", name)?].nodes {
+            mask[n] = false;
+        }
+    }
+    for name in occ.texts("SANS_NOEUD") {
+        mask[node_by_name(mesh, occ, "SANS_NOEUD", name)?] = false;
     }
     Ok(mask
         .iter()
@@ -160,7 +169,7 @@ pub fn selection_label(occ: &Args) -> String {
     if occ.has("TOUT") {
         parts.push("TOUT='OUI'".to_string());
     }
-    for key in ["GROUP_MA", "GROUP_NO"] {
+    for key in ["GROUP_MA", "GROUP_NO", "MAILLE", "NOEUD"] {
         let g = occ.texts(key);
         if !g.is_empty() {
             parts.push(format!("{key}={}", g.join(",")));

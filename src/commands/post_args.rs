@@ -252,19 +252,39 @@ pub fn nodes_of(mesh: &Mesh, args: &Args) -> Result<Vec<usize>, Diagnostic> {
         }
     }
     for name in args.texts("NOEUD") {
-        let i = parse_name(name, 'N', mesh.nnodes()).ok_or_else(|| {
-            args.error(
-                "NOEUD",
-                format!(
-                    "'{name}' is not a node of the mesh: nodes are named N1 to N{} \
-                     (aster meshes have no node names)",
-                    mesh.nnodes()
-                ),
-            )
-        })?;
-        push(i, &mut out);
+        push(node_by_name(mesh, args, "NOEUD", name)?, &mut out);
     }
     Ok(out)
+}
+
+/// The node called `name` (`N12`), read under keyword `key` (NOEUD,
+/// SANS_NOEUD...); an unknown name is an error naming the valid range.
+pub fn node_by_name(mesh: &Mesh, args: &Args, key: &str, name: &str) -> Result<usize, Diagnostic> {
+    parse_name(name, 'N', mesh.nnodes()).ok_or_else(|| {
+        args.error(
+            key,
+            format!(
+                "'{name}' is not a node of the mesh: nodes are named N1 to N{} \
+                 (aster meshes have no node names)",
+                mesh.nnodes()
+            ),
+        )
+    })
+}
+
+/// The cell called `name` (`M3`), read under keyword `key` (MAILLE,
+/// SANS_MAILLE...); an unknown name is an error naming the valid range.
+pub fn cell_by_name(mesh: &Mesh, args: &Args, key: &str, name: &str) -> Result<usize, Diagnostic> {
+    parse_name(name, 'M', mesh.ncells()).ok_or_else(|| {
+        args.error(
+            key,
+            format!(
+                "'{name}' is not a cell of the mesh: cells are named M1 to M{} \
+                 (aster meshes have no cell names)",
+                mesh.ncells()
+            ),
+        )
+    })
 }
 
 /// The single node of GROUP_NO / NOEUD (TEST_RESU): more or fewer is an
