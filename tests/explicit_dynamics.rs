@@ -206,6 +206,44 @@ fn measured_stability_limit_lies_above_the_element_bound() {
     }
 }
 
+/// A run far above the stability limit (STOP_CFL='NON') stops on
+/// non-finite values with the last converged state archived, and its
+/// message counts the steps the result really keeps and names the last
+/// instant stored.
+#[test]
+fn unstable_run_stops_and_says_what_the_result_keeps() {
+    let (mesh, mo, imp, top) = setup();
+    let (_, exact) = limits(&mesh, &mo, &imp);
+    let nn = mesh.nnodes();
+    let dt = 3.0 * exact;
+    let steps = 2000;
+    let mut st = study(
+        mesh,
+        mo,
+        material(E, NU, RHO, None),
+        imp,
+        Some(velocity(nn, &[top], 1000.0)),
+        linspace(0.0, dt * steps as f64, steps),
+        None,
+    );
+    let text =
+        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
+    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
+    INCREMENT=_F(LIST_INST=L_INST), ARCHIVAGE=_F(PAS_ARCH=1000),
+    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION', STOP_CFL='NON'))";
+    let args = args_of(text, "DYNA_NON_LINE", 0);
+    let m = exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap_err();
+    assert!(m.contains("not finite"), "{m}");
+    let r = result(&st, "RESU");
+    let last = r.steps.last().unwrap().inst;
+    assert!(last > 0.0, "the last converged state is archived: {last}");
+    let said = format!(
+        "The {} steps archived so far (last instant {last:e})",
+        r.steps.len()
+    );
+    assert!(m.contains(&said), "{m}\nexpected: {said}");
+}
+
 /// STOP_CFL='OUI' (the default): a list step above the bound is an error
 /// naming the step, the critical step and the cell; 'NON' runs it with an
 /// alarm.

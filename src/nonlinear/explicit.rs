@@ -678,16 +678,18 @@ pub fn run(
         }
         let outcome = ex.step(engine, dt, contact.as_deref_mut());
         if let Err(why) = outcome {
+            // The last converged state is archived first, so that the
+            // message counts what the result really keeps.
+            if archive(engine, tl, result, &engine.committed.clone(), None) {
+                summary.archived += 1;
+            }
+            store_energy(&energy, result);
             let message = format!(
                 "DYNA_NON_LINE stopped at the step from t = {t0:e} to t = {:e}: {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
                 t0 + dt,
                 result.steps.len(),
                 result.steps.last().map_or(t0, |s| s.inst)
             );
-            if archive(engine, tl, result, &engine.committed.clone(), None) {
-                summary.archived += 1;
-            }
-            store_energy(&energy, result);
             log(&message);
             summary.seconds = started.elapsed().as_secs_f64();
             crate::profile::count(crate::profile::Counter::Steps, summary.steps);
