@@ -14,6 +14,7 @@ use rayon::prelude::*;
 
 use super::behaviour::{BehaviourField, CellLaw};
 use super::dofs::{DofNumbering, NONE};
+use super::team::{Parts, Team};
 use crate::element::{
     initial_states, internal_forces_to, mass, ElementBuffers, ElementFailure, Kinematics,
     PointState,
@@ -85,6 +86,12 @@ pub struct Assembler {
     /// One output buffer per element, reused by every evaluation.
     buffers: Vec<ElementBuffers>,
     results: Vec<Result<(), ElementFailure>>,
+    /// For each full dof, the (element, local dof) pairs that add to it,
+    /// in element order (`gather_ptr` its CSR offsets): the forces are
+    /// assembled dof by dof (`assemble_forces`), each dof's sum in the
+    /// order of the element loop's scatter. Built by `prepare_gather`.
+    gather_ptr: Vec<usize>,
+    gather_src: Vec<(u32, u32)>,
 }
 
 impl Assembler {
@@ -188,6 +195,8 @@ impl Assembler {
             extra: Vec::new(),
             buffers,
             results: Vec::new(),
+            gather_ptr: Vec::new(),
+            gather_src: Vec::new(),
         })
     }
 
@@ -275,30 +284,7 @@ impl Assembler {
         }
         let integrate =
             |((e, out), chunk): ((&ElementData, &mut ElementBuffers), &mut &mut [PointState])| {
-                // The element's dofs gathered into its buffer's own
-                // vectors (no 2 x MAX_DOFS arrays zeroed per element).
-                let mut lu_n = std::mem::take(&mut out.gather_n);
-                let mut lu = std::mem::take(&mut out.gather);
-                lu_n.clear();
-                lu.clear();
-                lu_n.extend(e.full.iter().map(|&f| u_n[f]));
-                lu.extend(e.full.iter().map(|&f| u[f]));
-                let r = internal_forces_to(
-                    &e.spec,
-                    e.kin,
-                    &e.coords,
-                    &lu_n,
-                    &lu,
-                    &states_n[e.state_offset..e.state_offset + e.npg],
-                    laws[e.law].law_ref(),
-                    dt,
-                    tangent,
-                    out,
-                    chunk,
-                );
-                out.gather_n = lu_n;
-                out.gather = lu;
-                r
+                integrate_one(e, laws, (u_n, u), states_n, dt, tangent, out, chunk)
             };
         // Below PARALLEL_MIN_ELEMENTS the thread pool's wake-ups cost more
         // than the work they share (docs/performance.md). The elements
@@ -353,6 +339,115 @@ impl Assembler {
         Ok(())
     }
 
+    /// The element pass of an explicit step (no tangent) on the team's
+    /// threads: the new states into `states_out`, each element's forces
+    /// left in its buffer for [`Assembler::assemble_forces`]. Blocks of
+    /// [`PARALLEL_MIN_BLOCK`] elements are the pieces the threads take.
+    /// The first failing element in element order is the one reported,
+    /// as in `compute`.
+    pub fn integrate_explicit(
+        &mut self,
+        team: &Team,
+        u_n: &[f64],
+        u: &[f64],
+        states_n: &[PointState],
+        states_out: &mut [PointState],
+        dt: f64,
+    ) -> Result<(), CellFailure> {
+        let _elements = crate::profile::span(crate::profile::Phase::ElementAssembly);
+        let laws = &self.laws;
+        let n = self.elements.len();
+        self.results.clear();
+        self.results.resize_with(n, || Ok(()));
+        let mut pieces = Vec::with_capacity(n.div_ceil(PARALLEL_MIN_BLOCK));
+        let mut rest = states_out;
+        let mut at = 0;
+        for ((els, bufs), res) in self
+            .elements
+            .chunks(PARALLEL_MIN_BLOCK)
+            .zip(self.buffers.chunks_mut(PARALLEL_MIN_BLOCK))
+            .zip(self.results.chunks_mut(PARALLEL_MIN_BLOCK))
+        {
+            // The elements hold consecutive ranges of states in order.
+            let first = els[0].state_offset;
+            let last = &els[els.len() - 1];
+            let end = last.state_offset + last.npg;
+            let (_, tail) = std::mem::take(&mut rest).split_at_mut(first - at);
+            let (mine, tail) = tail.split_at_mut(end - first);
+            rest = tail;
+            at = end;
+            pieces.push((els, bufs, res, mine));
+        }
+        let parts = Parts::new(pieces);
+        team.for_each(parts.len(), &|i| {
+            let (els, bufs, res, states) = parts.take(i);
+            let base = els[0].state_offset;
+            for ((e, out), r) in els.iter().zip(bufs.iter_mut()).zip(res.iter_mut()) {
+                let chunk = &mut states[e.state_offset - base..e.state_offset - base + e.npg];
+                *r = integrate_one(
+                    e,
+                    laws,
+                    (u_n, u),
+                    states_n,
+                    dt,
+                    TangentKind::None,
+                    out,
+                    chunk,
+                );
+            }
+        });
+        for (e, r) in self.elements.iter().zip(&self.results) {
+            r.as_ref().map_err(|f| CellFailure {
+                cell: e.cell,
+                failure: f.clone(),
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Builds the table of [`Assembler::assemble_forces`] (once).
+    pub fn prepare_gather(&mut self) {
+        if !self.gather_ptr.is_empty() {
+            return;
+        }
+        let nfull = self.numbering.nfull();
+        let mut count = vec![0usize; nfull + 1];
+        for e in &self.elements {
+            for &f in &e.full {
+                count[f + 1] += 1;
+            }
+        }
+        for f in 0..nfull {
+            count[f + 1] += count[f];
+        }
+        let mut src = vec![(0u32, 0u32); count[nfull]];
+        let mut fill = count.clone();
+        for (ie, e) in self.elements.iter().enumerate() {
+            for (k, &f) in e.full.iter().enumerate() {
+                src[fill[f]] = (ie as u32, k as u32);
+                fill[f] += 1;
+            }
+        }
+        self.gather_ptr = count;
+        self.gather_src = src;
+    }
+
+    /// The internal forces of the full dofs `first..first + out.len()`
+    /// from the element buffers of the last `integrate_explicit`: each
+    /// dof's terms summed from +0 in element order, as the scatter of
+    /// `compute` sums them (the same value to the bit), so that dof
+    /// ranges can be assembled on different threads.
+    pub fn assemble_forces(&self, first: usize, out: &mut [f64]) {
+        let ptr = &self.gather_ptr[first..first + out.len() + 1];
+        for (o, w) in out.iter_mut().zip(ptr.windows(2)) {
+            let mut s = 0.0;
+            for &(e, k) in &self.gather_src[w[0]..w[1]] {
+                s += self.buffers[e as usize].forces[k as usize];
+            }
+            *o = s;
+        }
+    }
+
     /// Finite-strain internal forces without a tangent through τF⁻ᵀ
     /// (`ElementBuffers::conjugate_forces`): the explicit time loop, whose
     /// step is one such evaluation, turns it on.
@@ -366,6 +461,44 @@ impl Assembler {
     pub fn mass_mul(&self, x: &[f64], y: &mut [f64]) {
         self.mass_full.mul_vec(x, y);
     }
+}
+
+/// One element's integration into its buffer and its slice of the new
+/// states, its dofs gathered into the buffer's own vectors (no 2 x
+/// MAX_DOFS arrays zeroed per element).
+#[allow(clippy::too_many_arguments)]
+fn integrate_one(
+    e: &ElementData,
+    laws: &[CellLaw],
+    (u_n, u): (&[f64], &[f64]),
+    states_n: &[PointState],
+    dt: f64,
+    tangent: TangentKind,
+    out: &mut ElementBuffers,
+    chunk: &mut [PointState],
+) -> Result<(), ElementFailure> {
+    let mut lu_n = std::mem::take(&mut out.gather_n);
+    let mut lu = std::mem::take(&mut out.gather);
+    lu_n.clear();
+    lu.clear();
+    lu_n.extend(e.full.iter().map(|&f| u_n[f]));
+    lu.extend(e.full.iter().map(|&f| u[f]));
+    let r = internal_forces_to(
+        &e.spec,
+        e.kin,
+        &e.coords,
+        &lu_n,
+        &lu,
+        &states_n[e.state_offset..e.state_offset + e.npg],
+        laws[e.law].law_ref(),
+        dt,
+        tangent,
+        out,
+        chunk,
+    );
+    out.gather_n = lu_n;
+    out.gather = lu;
+    r
 }
 
 /// The pattern of the free equations: every coupling of an element plus

@@ -37,11 +37,15 @@
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
-use super::assembly::{Assembler, CellFailure};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use super::assembly::{Assembler, CellFailure, PARALLEL_MIN_ELEMENTS};
+use super::dofs::NONE;
 use super::dyna::{archive, RunSummary, Stopped, TimeLoop};
 use super::energy::EnergyBalance;
 use super::explicit_contact::ExplicitContact;
 use super::newton::Engine;
+use super::team::{with_team, Parts, Team};
 use crate::element::{internal_forces, mass, PointState, MAX_DOFS};
 use crate::law::TangentKind;
 use crate::result::EvolNoli;
@@ -50,6 +54,10 @@ use crate::time::explicit::{
     hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_lumped, max_eigenvalue_warm,
     scaled_lumped, ExplicitScheme,
 };
+
+/// Dofs per piece of the step's dof-wise phase (forces, acceleration,
+/// velocity) on the team.
+const DOF_PIECE: usize = 512;
 
 /// The mass of one element as the step estimate uses it.
 enum ElemMass {
@@ -87,11 +95,11 @@ pub struct Explicit {
     /// The consistent mass of the free equations, factorised once.
     solver: Option<DirectLu>,
     rhs: Vec<f64>,
-    /// Internal forces, state n (the energy balance's trapezoid).
-    prev_fint: Vec<f64>,
+    /// External forces with the reactions and contact forces of the
+    /// step's start (the energy balance's trapezoid; its u and F_int are
+    /// the engine's trial state after the commit).
     prev_ext: Vec<f64>,
     prev_fc: Vec<f64>,
-    prev_u: Vec<f64>,
     work: Vec<f64>,
     /// M a of the committed state (consistent mass only; the lumped
     /// product is taken dof by dof).
@@ -126,6 +134,7 @@ impl Explicit {
         let nfull = asm.numbering.nfull();
         let d = asm.numbering.ndpn;
         asm.set_conjugate_forces(true);
+        asm.prepare_gather();
         let mut diag = vec![0.0; nfull];
         let mut elem_mass = Vec::with_capacity(asm.elements.len());
         for e in &asm.elements {
@@ -184,10 +193,8 @@ impl Explicit {
             elem_mass,
             solver,
             rhs: vec![0.0; asm.numbering.neq()],
-            prev_fint: vec![0.0; nfull],
             prev_ext: vec![0.0; nfull],
             prev_fc: vec![0.0; nfull],
-            prev_u: vec![0.0; nfull],
             work: vec![0.0; nfull],
             ma: vec![0.0; nfull],
             zero: vec![0.0; nfull],
@@ -333,6 +340,7 @@ impl Explicit {
         engine: &mut Engine,
         dt: f64,
         contact: Option<&mut ExplicitContact>,
+        team: &Team,
     ) -> Result<(), String> {
         let c = self.scheme.displacement_coefficient();
         let Engine {
@@ -354,17 +362,16 @@ impl Explicit {
         for &(f, val) in &nb.imposed {
             tr.motion.u[f] = val;
         }
-        asm.compute(
+        asm.integrate_explicit(
+            team,
             &cm.motion.u,
             &tr.motion.u,
             &cm.points,
             &mut tr.points,
             dt,
-            TangentKind::None,
-            &mut tr.fint,
-            None,
         )
         .map_err(|f| format!("cell {}: {}", f.cell + 1, f.failure))?;
+        let asm: &Assembler = asm;
         let nb = &asm.numbering;
         let fc: &[f64] = match contact {
             Some(ct) if !ct.kinematic() => {
@@ -374,30 +381,54 @@ impl Explicit {
             // No contact force: the same sums with a zero term.
             _ => &self.zero,
         };
+        tr.fint.resize(n, 0.0);
+        // Set when a free dof's u + a is not finite (found again in the
+        // order of the free dofs below, for the message).
+        let diverged = AtomicBool::new(false);
         if self.solver.is_none() {
-            // The lumped mass: the right-hand side, the division by the
-            // mass and the velocity update of each free dof in one pass
-            // (the expressions of the consistent-mass branch below).
-            tr.motion.a.iter_mut().for_each(|x| *x = 0.0);
-            let (m, a_n, v_n) = (&self.mass, &cm.motion.a, &cm.motion.v);
-            let (a, v) = (&mut tr.motion.a, &mut tr.motion.v);
-            match self.scheme {
-                ExplicitScheme::DiffCent => {
-                    for &f in &nb.free {
-                        let rhs = fext[f] - tr.fint[f] - fc[f];
-                        a[f] = rhs / m[f];
-                        v[f] = v_n[f] + 0.5 * dt * (a_n[f] + a[f]);
+            // The lumped mass: each range of dofs assembles its forces,
+            // then the right-hand side, the division by the mass and the
+            // velocity update of each free dof (the expressions of the
+            // consistent-mass branch below), in one pass on the team.
+            let pieces = Parts::new(
+                tr.fint
+                    .chunks_mut(DOF_PIECE)
+                    .zip(tr.motion.a.chunks_mut(DOF_PIECE))
+                    .zip(tr.motion.v.chunks_mut(DOF_PIECE)),
+            );
+            let (m, a_n, v_n, u, eq) =
+                (&self.mass, &cm.motion.a, &cm.motion.v, &tr.motion.u, &nb.eq);
+            let diff_cent = matches!(self.scheme, ExplicitScheme::DiffCent);
+            let fext: &[f64] = fext;
+            team.for_each(pieces.len(), &|i| {
+                let ((fint, a), v) = pieces.take(i);
+                let first = i * DOF_PIECE;
+                asm.assemble_forces(first, fint);
+                let mut finite = true;
+                for (k, (a, v)) in a.iter_mut().zip(v.iter_mut()).enumerate() {
+                    let f = first + k;
+                    if eq[f] == NONE {
+                        *a = 0.0;
+                        continue;
                     }
+                    let rhs = fext[f] - fint[k] - fc[f];
+                    *a = rhs / m[f];
+                    *v = if diff_cent {
+                        v_n[f] + 0.5 * dt * (a_n[f] + *a)
+                    } else {
+                        v_n[f] + dt * a_n[f]
+                    };
+                    finite &= (u[f] + *a).is_finite();
                 }
-                ExplicitScheme::Tchamwa { .. } => {
-                    for &f in &nb.free {
-                        let rhs = fext[f] - tr.fint[f] - fc[f];
-                        a[f] = rhs / m[f];
-                        v[f] = v_n[f] + dt * a_n[f];
-                    }
+                if !finite {
+                    diverged.store(true, Ordering::Relaxed);
                 }
-            }
+            });
         } else {
+            let pieces = Parts::new(tr.fint.chunks_mut(DOF_PIECE));
+            team.for_each(pieces.len(), &|i| {
+                asm.assemble_forces(i * DOF_PIECE, pieces.take(i));
+            });
             for (e, &f) in nb.free.iter().enumerate() {
                 self.rhs[e] = fext[f] - tr.fint[f] - fc[f];
             }
@@ -415,14 +446,17 @@ impl Explicit {
                     }
                 }
             }
+            diverged.store(true, Ordering::Relaxed);
         }
         for &(f, _) in &nb.imposed {
             tr.motion.v[f] = 0.0;
             tr.motion.a[f] = 0.0;
         }
+        let diverged = diverged.into_inner();
         if let Some((f, x)) = nb
             .free
             .iter()
+            .filter(|_| diverged)
             .map(|&f| (f, tr.motion.u[f] + tr.motion.a[f]))
             .find(|(_, x)| !x.is_finite())
         {
@@ -471,8 +505,6 @@ impl Explicit {
     /// acceleration and correction): the trapezoid's state n.
     fn start_energy(&mut self, engine: &Engine, fc: &[f64]) -> EnergyBalance {
         let e = EnergyBalance::new(engine);
-        self.prev_u.copy_from_slice(&engine.committed.motion.u);
-        self.prev_fint.copy_from_slice(&engine.committed.fint);
         self.prev_fc.copy_from_slice(fc);
         self.external_of(engine, fc);
         self.prev_ext.copy_from_slice(&self.work);
@@ -502,24 +534,27 @@ impl Explicit {
     /// code_aster's nmener): internal, external with the reactions, contact.
     fn energy_step(&mut self, energy: &mut EnergyBalance, engine: &Engine, fc: &[f64]) {
         self.external_of(engine, fc);
-        let st = &engine.committed;
+        // The step's start is the engine's trial state: `Engine::commit`
+        // swaps the two, so after it the trial holds the state committed
+        // before, u and F_int as they were (the contact correction
+        // changes a and v only).
+        let (st, prev) = (&engine.committed, &engine.trial);
         let (mut wi, mut we, mut wc) = (0.0, 0.0, 0.0);
         for f in 0..st.motion.u.len() {
-            let du = st.motion.u[f] - self.prev_u[f];
+            let du = st.motion.u[f] - prev.motion.u[f];
             if du == 0.0 {
                 continue;
             }
-            wi += 0.5 * du * (self.prev_fint[f] + st.fint[f]);
+            wi += 0.5 * du * (prev.fint[f] + st.fint[f]);
             we += 0.5 * du * (self.prev_ext[f] + self.work[f]);
             wc += 0.5 * du * (self.prev_fc[f] + fc[f]);
         }
         energy.internal += wi;
         energy.external += we;
         energy.contact += wc;
-        self.prev_u.copy_from_slice(&st.motion.u);
-        self.prev_fint.copy_from_slice(&st.fint);
         self.prev_fc.copy_from_slice(fc);
-        self.prev_ext.copy_from_slice(&self.work);
+        // `work` is rewritten whole by the next `external_of`.
+        std::mem::swap(&mut self.prev_ext, &mut self.work);
         energy.kinetic = 0.5 * self.kinetic_sum(engine);
     }
 
@@ -552,6 +587,33 @@ pub fn first_step_above(instants: &[f64], bound: f64) -> Option<(usize, f64, f64
 /// the acceleration), archiving into `result`.
 #[allow(clippy::too_many_arguments)]
 pub fn run(
+    engine: &mut Engine,
+    ex: &mut Explicit,
+    contact: Option<&mut ExplicitContact>,
+    tl: &TimeLoop,
+    settings: &ExplicitSettings,
+    has_acce: bool,
+    result: &mut EvolNoli,
+    log: &mut dyn FnMut(&str),
+) -> Result<RunSummary, Stopped> {
+    // The steps' parallel phases run on a team kept for the whole loop
+    // (`nonlinear::team`), as many threads as the pool has; below
+    // PARALLEL_MIN_ELEMENTS elements the loop is too short to share.
+    let threads = if engine.asm.elements.len() >= PARALLEL_MIN_ELEMENTS {
+        rayon::current_num_threads()
+    } else {
+        1
+    };
+    with_team(threads, |team| {
+        run_on(
+            team, engine, ex, contact, tl, settings, has_acce, result, log,
+        )
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_on(
+    team: &Team,
     engine: &mut Engine,
     ex: &mut Explicit,
     mut contact: Option<&mut ExplicitContact>,
@@ -676,7 +738,7 @@ pub fn run(
                 ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
             }
         }
-        let outcome = ex.step(engine, dt, contact.as_deref_mut());
+        let outcome = ex.step(engine, dt, contact.as_deref_mut(), team);
         if let Err(why) = outcome {
             // The last converged state is archived first, so that the
             // message counts what the result really keeps.

@@ -21,6 +21,7 @@ pub mod explicit;
 pub mod explicit_contact;
 pub mod fields;
 pub mod newton;
+pub mod team;
 pub mod unilateral;
 
 use indexmap::IndexMap;

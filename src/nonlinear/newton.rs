@@ -615,7 +615,9 @@ impl Engine {
         }
     }
 
-    /// Accepts the trial state as the new committed state.
+    /// Accepts the trial state as the new committed state. A swap: the
+    /// trial then holds the state committed before, which the explicit
+    /// loop's energy balance reads as the step's start.
     pub fn commit(&mut self) {
         std::mem::swap(&mut self.committed, &mut self.trial);
         self.steps_done += 1;
