@@ -86,12 +86,16 @@ pub struct Assembler {
     /// One output buffer per element, reused by every evaluation.
     buffers: Vec<ElementBuffers>,
     results: Vec<Result<(), ElementFailure>>,
-    /// For each full dof, the (element, local dof) pairs that add to it,
-    /// in element order (`gather_ptr` its CSR offsets): the forces are
-    /// assembled dof by dof (`assemble_forces`), each dof's sum in the
-    /// order of the element loop's scatter. Built by `prepare_gather`.
+    /// For each full dof, the positions in `flat_forces` of the element
+    /// terms that add to it, in element order (`gather_ptr` its CSR
+    /// offsets): the forces are assembled dof by dof (`assemble_forces`),
+    /// each dof's sum in the order of the element loop's scatter. Built by
+    /// `prepare_gather`.
     gather_ptr: Vec<usize>,
-    gather_src: Vec<(u32, u32)>,
+    gather_src: Vec<u32>,
+    /// Every element's forces of the last `integrate_explicit`, one after
+    /// the other in element order.
+    flat_forces: Vec<f64>,
 }
 
 impl Assembler {
@@ -197,6 +201,7 @@ impl Assembler {
             results: Vec::new(),
             gather_ptr: Vec::new(),
             gather_src: Vec::new(),
+            flat_forces: Vec::new(),
         })
     }
 
@@ -355,6 +360,7 @@ impl Assembler {
         dt: f64,
     ) -> Result<(), CellFailure> {
         let _elements = crate::profile::span(crate::profile::Phase::ElementAssembly);
+        self.prepare_gather();
         let laws = &self.laws;
         let n = self.elements.len();
         self.results.clear();
@@ -362,6 +368,7 @@ impl Assembler {
         let mut pieces = Vec::with_capacity(n.div_ceil(PARALLEL_MIN_BLOCK));
         let mut rest = states_out;
         let mut at = 0;
+        let mut flat_rest = &mut self.flat_forces[..];
         for ((els, bufs), res) in self
             .elements
             .chunks(PARALLEL_MIN_BLOCK)
@@ -376,11 +383,14 @@ impl Assembler {
             let (mine, tail) = tail.split_at_mut(end - first);
             rest = tail;
             at = end;
-            pieces.push((els, bufs, res, mine));
+            let nflat = els.iter().map(|e| e.full.len()).sum();
+            let (flat, tail) = std::mem::take(&mut flat_rest).split_at_mut(nflat);
+            flat_rest = tail;
+            pieces.push((els, bufs, res, mine, flat));
         }
         let parts = Parts::new(pieces);
         team.for_each(parts.len(), &|i| {
-            let (els, bufs, res, states) = parts.take(i);
+            let (els, bufs, res, states, mut flat) = parts.take(i);
             let base = els[0].state_offset;
             for ((e, out), r) in els.iter().zip(bufs.iter_mut()).zip(res.iter_mut()) {
                 let chunk = &mut states[e.state_offset - base..e.state_offset - base + e.npg];
@@ -394,6 +404,13 @@ impl Assembler {
                     out,
                     chunk,
                 );
+                // The forces where the assembly reads them (a failed
+                // element's are never assembled: the step stops).
+                let (mine, tail) = std::mem::take(&mut flat).split_at_mut(e.full.len());
+                if r.is_ok() {
+                    mine.copy_from_slice(&out.forces);
+                }
+                flat = tail;
             }
         });
         for (e, r) in self.elements.iter().zip(&self.results) {
@@ -420,20 +437,23 @@ impl Assembler {
         for f in 0..nfull {
             count[f + 1] += count[f];
         }
-        let mut src = vec![(0u32, 0u32); count[nfull]];
+        let mut src = vec![0u32; count[nfull]];
         let mut fill = count.clone();
-        for (ie, e) in self.elements.iter().enumerate() {
+        let mut at = 0usize;
+        for e in &self.elements {
             for (k, &f) in e.full.iter().enumerate() {
-                src[fill[f]] = (ie as u32, k as u32);
+                src[fill[f]] = u32::try_from(at + k).expect("fewer than 2^32 element dofs");
                 fill[f] += 1;
             }
+            at += e.full.len();
         }
         self.gather_ptr = count;
         self.gather_src = src;
+        self.flat_forces = vec![0.0; at];
     }
 
     /// The internal forces of the full dofs `first..first + out.len()`
-    /// from the element buffers of the last `integrate_explicit`: each
+    /// from the element forces of the last `integrate_explicit`: each
     /// dof's terms summed from +0 in element order, as the scatter of
     /// `compute` sums them (the same value to the bit), so that dof
     /// ranges can be assembled on different threads.
@@ -441,8 +461,8 @@ impl Assembler {
         let ptr = &self.gather_ptr[first..first + out.len() + 1];
         for (o, w) in out.iter_mut().zip(ptr.windows(2)) {
             let mut s = 0.0;
-            for &(e, k) in &self.gather_src[w[0]..w[1]] {
-                s += self.buffers[e as usize].forces[k as usize];
+            for &k in &self.gather_src[w[0]..w[1]] {
+                s += self.flat_forces[k as usize];
             }
             *o = s;
         }
