@@ -230,6 +230,7 @@ fn run_with(
             model: "MO".into(),
             imposed: vec![],
             gravity: None,
+            nodal_forces: Vec::new(),
         }],
     )
     .unwrap();

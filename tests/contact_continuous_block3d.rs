@@ -253,6 +253,7 @@ fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<S
             model: "MO".into(),
             imposed: held,
             gravity: None,
+            nodal_forces: Vec::new(),
         }],
     )
     .unwrap();
@@ -799,6 +800,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             model: "MO".into(),
             imposed: vec![],
             gravity: None,
+            nodal_forces: Vec::new(),
         }],
     )
     .unwrap();

@@ -125,6 +125,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             model: "MO".into(),
             imposed: vec![],
             gravity: None,
+            nodal_forces: Vec::new(),
         }],
     )
     .unwrap();

@@ -85,6 +85,7 @@ fn lumped_system(mesh: &Mesh, mo: &Model, imp: &[aster::model::ImposedDof]) -> L
         model: "MO".into(),
         imposed: imp.to_vec(),
         gravity: None,
+        nodal_forces: Vec::new(),
     };
     let (mut asm, _) =
         aster::nonlinear::discretize(mesh, mo, &matfield, &materials, &occs, &[&load]).unwrap();

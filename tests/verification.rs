@@ -77,6 +77,92 @@ fn unilateral_zones_3d_carry_the_weight() {
     run_study("unil_zones_3d");
 }
 
+/// FORCE_NODALE with EXCIT FONC_MULT, implicit (a slow ramp: the static
+/// rod) and explicit (a step: the wave speed, the energy balance).
+#[test]
+fn nodal_force_with_a_multiplier_in_time() {
+    run_study("loads_fonc_mult");
+}
+
+/// A FONC_MULT that is not a function of INST, or that cannot be evaluated
+/// over the time list, or on a load imposing non-zero displacements, is a
+/// located error on FONC_MULT.
+#[test]
+fn bad_multipliers_and_nodal_forces_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("loads_fonc_mult_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("loads_fonc_mult.comm")).unwrap();
+    let cases = [
+        (
+            "of_x",
+            (
+                "RAMPE = DEFI_FONCTION(NOM_PARA='INST'",
+                "RAMPE = DEFI_FONCTION(NOM_PARA='X'",
+            ),
+            "is a function of X, not of INST",
+        ),
+        (
+            "short",
+            (
+                "VALE=(0., 0., 1.E-3, 1.), PROL_DROITE='CONSTANT'",
+                "VALE=(0., 0., 1.E-3, 1.)",
+            ),
+            "cannot be evaluated at INST = 1.05",
+        ),
+    ];
+    for (tag, (from, to), what) in cases {
+        let text = comm.replacen(from, to, 1);
+        assert_ne!(text, comm, "{tag}");
+        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+        std::fs::write(
+            tmp.join(format!("{tag}.export")),
+            format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display()),
+        )
+        .unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+            &format!("verif_fonc_mult_{tag}"),
+        );
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(
+            run.term.contains("DYNA_NON_LINE/EXCIT/FONC_MULT"),
+            "{tag}: {}",
+            run.term
+        );
+        assert!(run.term.contains(what), "{tag}: {}", run.term);
+    }
+    // BLOQ imposes zero displacements only: the multiplier changes nothing
+    // there, so only a non-zero imposed value is refused.
+    let text = comm
+        .replacen(
+            "_F(GROUP_MA='SZZ', DZ=0.)",
+            "_F(GROUP_MA='SZZ', DZ=1.E-3)",
+            1,
+        )
+        .replacen(
+            "_F(CHARGE=BLOQ), _F(CHARGE=TIRE, FONC_MULT=RAMPE)",
+            "_F(CHARGE=BLOQ, FONC_MULT=RAMPE), _F(CHARGE=TIRE)",
+            1,
+        );
+    std::fs::write(tmp.join("moving.comm"), text).unwrap();
+    std::fs::write(
+        tmp.join("moving.export"),
+        format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display()),
+    )
+    .unwrap();
+    let run = common::run_study(
+        tmp.join("moving.comm").to_str().unwrap(),
+        "verif_fonc_mult_moving",
+    );
+    assert_eq!(run.code, 1, "{}", run.term);
+    assert!(
+        run.term
+            .contains("not implemented yet: DYNA_NON_LINE/EXCIT/FONC_MULT"),
+        "{}",
+        run.term
+    );
+}
+
 #[test]
 fn elastic_wave_in_a_rod() {
     run_study("wave_rod");

@@ -64,7 +64,28 @@ pub fn def() -> CommandDef {
                         .kw(),
                 ],
             )
-            .doc("gravity: body force RHO*GRAVITE*DIRECTION/|DIRECTION| per unit volume on the volume elements of GROUP_MA (all of them without GROUP_MA); a dead load, constant in time")
+            .doc("gravity: body force RHO*GRAVITE*DIRECTION/|DIRECTION| per unit volume on the volume elements of GROUP_MA (all of them without GROUP_MA); a dead load, scaled in time by EXCIT/FONC_MULT")
+            .kw(),
+            fact(
+                "FORCE_NODALE",
+                vec![
+                    group_no(),
+                    noeud(),
+                    real("FX").doc("force along x on each node").kw(),
+                    real("FY").doc("force along y on each node").kw(),
+                    real("FZ").doc("force along z on each node").kw(),
+                    real("MX").kw(),
+                    real("MY").kw(),
+                    real("MZ").kw(),
+                    real("ANGL_NAUT").count(1, 3).kw(),
+                ],
+            )
+            .many()
+            .rules(vec![
+                au_moins_un(&["GROUP_NO", "NOEUD"]),
+                au_moins_un(&["FX", "FY", "FZ", "MX", "MY", "MZ"]),
+            ])
+            .doc("force on each node of the selection (not shared between them; per radian in AXIS), global frame; a dead load, scaled in time by EXCIT/FONC_MULT; a node given twice keeps its last value per component")
             .kw(),
             oui_non("VERI_NORM", "OUI")
                 .doc("check the orientation of skin cells carrying loads")
@@ -75,7 +96,7 @@ pub fn def() -> CommandDef {
             info(),
         ],
     )
-    .rules(vec![au_moins_un(&["DDL_IMPO", "PESANTEUR"])])
+    .rules(vec![au_moins_un(&["DDL_IMPO", "PESANTEUR", "FORCE_NODALE"])])
     .doc("Defines mechanical boundary conditions on a model.");
     CommandDef { spec, exec }
 }
@@ -159,6 +180,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 .join(" ")
         ));
     }
+    let nodal_forces = nodal_forces_of(args, mesh, &model, &model_name, &in_model, &mut lines)?;
     let gravity = match args.fact("PESANTEUR") {
         Some(occ) => Some(gravity_of(occ, mesh, &model, &mut lines)?),
         None => None,
@@ -175,7 +197,80 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         model: model_name,
         imposed,
         gravity,
+        nodal_forces,
     }))))
+}
+
+/// FORCE_NODALE: every node of an occurrence gets each given component
+/// (not shared out between the nodes); a node given again by a later
+/// occurrence keeps the later value of the components that occurrence
+/// gives. Moments and ANGL_NAUT need rotational dofs or a local frame,
+/// which no element here has.
+fn nodal_forces_of(
+    args: &Args,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    model_name: &str,
+    in_model: &[bool],
+    lines: &mut Vec<String>,
+) -> Result<Vec<(usize, Dof, f64)>, Diagnostic> {
+    let mut forces: Vec<(usize, Dof, f64)> = Vec::new();
+    for (k, occ) in args.facts("FORCE_NODALE").iter().enumerate() {
+        for key in ["MX", "MY", "MZ"] {
+            if occ.has(key) {
+                return Err(occ.not_implemented(
+                    key,
+                    "nodal moments (no element of aster has rotational dofs)",
+                ));
+            }
+        }
+        if occ.has("ANGL_NAUT") {
+            return Err(occ.not_implemented("ANGL_NAUT", "forces are given in the global frame"));
+        }
+        let mut given: Vec<(Dof, f64)> = Vec::new();
+        for (key, dof) in [("FX", Dof::Dx), ("FY", Dof::Dy), ("FZ", Dof::Dz)] {
+            let Some(v) = occ.real(key) else { continue };
+            if !model.has_dof(dof) {
+                return Err(occ.error(
+                    key,
+                    format!(
+                        "{key} acts along {}, which is not a degree of freedom of the model {model_name}",
+                        dof.name()
+                    ),
+                ));
+            }
+            given.push((dof, v));
+        }
+        let nodes = select_nodes(mesh, occ, &[])?;
+        if let Some(&n0) = nodes.iter().find(|&&n| !in_model[n]) {
+            return Err(occ.error(
+                "",
+                format!(
+                    "node N{} of {} belongs to no cell of the model {model_name}: a force there acts on nothing",
+                    n0 + 1,
+                    selection_label(occ)
+                ),
+            ));
+        }
+        for &n in &nodes {
+            for &(dof, v) in &given {
+                forces.retain(|&(m, d, _)| !(m == n && d == dof));
+                forces.push((n, dof, v));
+            }
+        }
+        lines.push(format!(
+            "      FORCE_NODALE {}: {} nodes of {}, {}",
+            k + 1,
+            nodes.len(),
+            selection_label(occ),
+            given
+                .iter()
+                .map(|(d, v)| format!("F{}={v}", &d.name()[1..]))
+                .collect::<Vec<_>>()
+                .join(" ")
+        ));
+    }
+    Ok(forces)
 }
 
 /// PESANTEUR: GRAVITE and DIRECTION normalised as code_aster's `capesa`

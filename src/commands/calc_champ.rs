@@ -141,18 +141,25 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         ("MODELE", &model_name),
         ("CHAM_MATER", &mat_name),
     )?;
-    let load_names: Vec<String> = if args.has("EXCIT") {
+    let (load_names, load_mults): (Vec<String>, Vec<Option<String>>) = if args.has("EXCIT") {
         for ex in args.facts("EXCIT") {
-            if ex.has("FONC_MULT") || ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {
-                return Err(ex.not_implemented("FONC_MULT", "only constant FIXE_CSTE loads"));
+            if ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {
+                return Err(ex.not_implemented("TYPE_CHARGE", "only FIXE_CSTE loads"));
             }
         }
         args.facts("EXCIT")
             .iter()
-            .map(|e| e.concept("CHARGE").unwrap_or("").to_string())
-            .collect()
+            .map(|e| {
+                (
+                    e.concept("CHARGE").unwrap_or("").to_string(),
+                    e.concept("FONC_MULT").map(str::to_string),
+                )
+            })
+            .unzip()
     } else {
-        evol.loads.clone()
+        let mut mults = evol.load_mults.clone();
+        mults.resize(evol.loads.len(), None);
+        (evol.loads.clone(), mults)
     };
     let loads = loads_of(study, args, "EXCIT", &load_names)?;
     // The behaviour the result was computed with, one occurrence per
@@ -184,6 +191,23 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         &refs,
     )
     .map_err(|e| prepare_error(args, e))?;
+    // A result of an explicit run with MASS_DIAG='OUI': M·a with the run's
+    // lumped (HRZ) mass, so that REAC_NODA is that run's residual (zero at
+    // free nodes, the support and contact forces elsewhere) and not the
+    // consistent mass's, which would leave spurious forces at free nodes.
+    if evol.mass_diag {
+        let rho =
+            nonlinear::explicit::cell_densities(&md.model, &md.matfield, &md.materials, &occs)
+                .map_err(|e| prepare_error(args, nonlinear::PrepareError::Behaviour(e)))?;
+        nonlinear::explicit::Explicit::new(
+            &mut asm,
+            &rho,
+            crate::time::explicit::ExplicitScheme::DiffCent,
+            true,
+        )
+        .map_err(|m| args.error("RESULTAT", m))?;
+        asm.set_conjugate_forces(false);
+    }
     let dofs: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
     // Selected steps.
     let relative = args.text("CRITERE").unwrap_or("RELATIF") == "RELATIF";
@@ -219,14 +243,33 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         selected = evol.steps.iter().map(|s| s.nume_ordre).collect();
     }
     let nfull = asm.numbering.nfull();
-    let fext = crate::element::body_force::gravity_forces(
-        &md.mesh,
-        &md.model,
-        &md.matfield,
-        &md.materials,
-        &refs,
-    )
-    .map_err(|m| args.error("RESULTAT", m))?;
+    // F_ext of each load and its FONC_MULT, evaluated at each step below.
+    let mut parts = Vec::new();
+    for (load, mult) in loads.iter().zip(&load_mults) {
+        let forces = crate::element::body_force::load_forces(
+            &md.mesh,
+            &md.model,
+            &md.matfield,
+            &md.materials,
+            load,
+        )
+        .map_err(|m| args.error("RESULTAT", m))?;
+        let f = match mult {
+            None => None,
+            Some(m) => match study.concepts.data(m) {
+                Some(ConceptData::Function(f)) => Some((**f).clone()),
+                _ => {
+                    return Err(args.error(
+                        "EXCIT",
+                        format!("the FONC_MULT {m} of the loads holds no function"),
+                    ))
+                }
+            },
+        };
+        parts.push((forces, f));
+    }
+    let history = crate::nonlinear::loads::LoadHistory::new(parts);
+    let mut fext = vec![0.0; asm.numbering.nfull()];
     let mut fint = vec![0.0; nfull];
     let mut ma = vec![0.0; nfull];
     let mut scratch = asm.initial_states();
@@ -282,6 +325,9 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
                 .insert("FORC_NODA".into(), fields::nodal(&asm, &dofs, &fint));
         }
         if options.contains(&"REAC_NODA") {
+            history.at(step.inst, &mut fext).map_err(|m| {
+                args.error("RESULTAT", format!("NUME_ORDRE {}: {m}", step.nume_ordre))
+            })?;
             let a = step
                 .nodal
                 .get("ACCE")

@@ -29,6 +29,7 @@ pub(crate) struct Prepared {
     pub occs: Vec<Occurrence>,
     pub loads: Vec<MechLoad>,
     pub load_names: Vec<String>,
+    pub load_mults: Vec<Option<String>>,
     pub asm: nonlinear::Assembler,
     pub notes: Vec<String>,
     pub model_name: String,
@@ -51,6 +52,7 @@ pub(crate) fn exec(
         occs,
         loads,
         load_names,
+        load_mults,
         asm,
         mut notes,
         model_name,
@@ -135,7 +137,6 @@ pub(crate) fn exec(
     if list.on_error() != &Action::Arret || list.rules.len() > 1 {
         notes.push("the time list's events and actions are not used in explicit: a failure stops the run (the sub-steps come from the critical step)".into());
     }
-    let load_refs: Vec<&MechLoad> = loads.iter().collect();
     let rho = explicit::cell_densities(&md.model, &md.matfield, &md.materials, &occs)
         .map_err(|e| prepare_error(args, PrepareError::Behaviour(e)))?;
     let tl = TimeLoop {
@@ -159,6 +160,8 @@ pub(crate) fn exec(
         &load_names,
         &occs,
     );
+    evol.load_mults = load_mults.clone();
+    evol.mass_diag = lumped;
 
     let has_acce = init.a.is_some();
     let mut state = nonlinear::initial_state(&asm, tl.instants[0], init.u, init.v, init.a);
@@ -175,14 +178,15 @@ pub(crate) fn exec(
         ConvergenceSettings::default(),
         state,
     );
-    engine.fext = crate::element::body_force::gravity_forces(
-        &md.mesh,
-        &md.model,
-        &md.matfield,
-        &md.materials,
-        &load_refs,
-    )
-    .map_err(|m| args.error("EXCIT", m))?;
+    super::dyna_non_line::set_loads(
+        args,
+        &md,
+        &loads,
+        &load_mults,
+        study,
+        &tl.instants,
+        &mut engine,
+    )?;
     let mut ex = Explicit::new(&mut engine.asm, &rho, scheme, lumped)
         .map_err(|m| args.error("MODELE", m))?;
     let clamped = ex.impose_initial(&mut engine);

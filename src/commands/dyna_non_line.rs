@@ -257,6 +257,91 @@ pub(crate) fn model_data(
     })
 }
 
+/// F_ext of the loads at the first instant into the engine, and, when a
+/// load has a FONC_MULT, the history the engine re-evaluates at each
+/// step. A FONC_MULT is a function of INST (or a constant) that can be
+/// evaluated at every instant of the list; it scales the load's forces
+/// (PESANTEUR, FORCE_NODALE); non-zero DDL_IMPO values under a FONC_MULT
+/// (a time-varying imposed displacement) are not built.
+pub(crate) fn set_loads(
+    args: &Args,
+    md: &ModelData,
+    loads: &[MechLoad],
+    mults: &[Option<String>],
+    study: &Study,
+    instants: &[f64],
+    engine: &mut crate::nonlinear::Engine,
+) -> Result<(), Diagnostic> {
+    let excits = args.facts("EXCIT");
+    let mut parts = Vec::new();
+    for (k, load) in loads.iter().enumerate() {
+        let forces = crate::element::body_force::load_forces(
+            &md.mesh,
+            &md.model,
+            &md.matfield,
+            &md.materials,
+            load,
+        )
+        .map_err(|m| args.error("EXCIT", m))?;
+        let mult = match (mults.get(k).and_then(|m| m.as_deref()), excits.get(k)) {
+            (Some(name), Some(ex)) => Some(fonc_mult(study, ex, name, load, instants)?),
+            _ => None,
+        };
+        parts.push((forces, mult));
+    }
+    let history = crate::nonlinear::loads::LoadHistory::new(parts);
+    let t0 = instants.first().copied().unwrap_or(0.0);
+    history
+        .at(t0, &mut engine.fext)
+        .map_err(|m| args.error("EXCIT", m))?;
+    if history.varies() {
+        engine.loads = Some(history);
+    }
+    Ok(())
+}
+
+/// The FONC_MULT function `name` of one EXCIT occurrence, checked.
+fn fonc_mult(
+    study: &Study,
+    ex: &Args,
+    name: &str,
+    load: &MechLoad,
+    instants: &[f64],
+) -> Result<crate::post::function::Function, Diagnostic> {
+    let Some(ConceptData::Function(f)) = study.concepts.data(name) else {
+        return Err(ex.error(
+            "FONC_MULT",
+            format!("{name} holds no function (its command did not run)"),
+        ));
+    };
+    if !f.is_constant() && f.para != "INST" {
+        return Err(ex.error(
+            "FONC_MULT",
+            format!(
+                "FONC_MULT multiplies the load by a function of time: {name} is a function of {}, not of INST",
+                f.para
+            ),
+        ));
+    }
+    if load.imposed.iter().any(|d| d.value != 0.0) {
+        return Err(ex.not_implemented(
+            "FONC_MULT",
+            "a FONC_MULT on a load with non-zero DDL_IMPO values (an imposed displacement varying in time); put the forces in a load of their own",
+        ));
+    }
+    for &t in instants {
+        f.eval(t).map_err(|e| {
+            ex.error(
+                "FONC_MULT",
+                format!(
+                    "{name} cannot be evaluated at INST = {t:e}, an instant of the time list: {e}"
+                ),
+            )
+        })?;
+    }
+    Ok((**f).clone())
+}
+
 /// The mechanical loads named in `names`.
 pub(crate) fn loads_of(
     study: &Study,
@@ -783,14 +868,13 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         ("CHAM_MATER", &mat_name),
     )?;
     let mut load_names = Vec::new();
+    let mut load_mults = Vec::new();
     for ex in args.facts("EXCIT") {
         if ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {
             return Err(ex.not_implemented("TYPE_CHARGE", "only FIXE_CSTE"));
         }
-        if ex.has("FONC_MULT") {
-            return Err(ex.not_implemented("FONC_MULT", ""));
-        }
         load_names.push(ex.concept("CHARGE").unwrap_or("").to_string());
+        load_mults.push(ex.concept("FONC_MULT").map(str::to_string));
     }
     let loads = loads_of(study, args, "EXCIT", &load_names)?;
     let occs = occurrences(&md.mesh, args)?;
@@ -823,6 +907,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                     occs,
                     loads,
                     load_names,
+                    load_mults,
                     asm,
                     notes,
                     model_name,
@@ -1009,6 +1094,8 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         &load_names,
         &occs,
     );
+    evol.load_mults = load_mults.clone();
+    evol.mass_diag = false;
 
     let t_start = tl.instants[0];
     let has_acce = init.a.is_some();
@@ -1017,15 +1104,16 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         state.points = p;
     }
     let mut engine = Engine::new(asm, scheme, newton, conv, state);
-    // PESANTEUR: a dead load, so the engine's constant F_ext holds it.
-    engine.fext = crate::element::body_force::gravity_forces(
-        &md.mesh,
-        &md.model,
-        &md.matfield,
-        &md.materials,
-        &load_refs,
-    )
-    .map_err(|m| args.error("EXCIT", m))?;
+    // PESANTEUR and FORCE_NODALE: dead loads, scaled by their FONC_MULT.
+    set_loads(
+        args,
+        &md,
+        &loads,
+        &load_mults,
+        study,
+        &tl.instants,
+        &mut engine,
+    )?;
     for n in &notes {
         study.log(format!("  {n}"));
     }

@@ -1,6 +1,7 @@
 //! Body forces of AFFE_CHAR_MECA/PESANTEUR: the nodal forces
 //! f_a = ∫ ρ b N_a dV of a volume element under a uniform acceleration
-//! field b = g·d, and their assembly into the external force vector.
+//! field b = g·d, and their assembly, with the FORCE_NODALE of the same
+//! load, into the external force vector.
 //!
 //! The integral uses the element's **mass** Gauss family, the one of the
 //! consistent mass M: then f = M·(b at every node) to round-off, so that a
@@ -158,6 +159,30 @@ pub fn gravity_forces(
                 }
             }
         }
+    }
+    Ok(out)
+}
+
+/// The external forces of one load (full vector, dof `node·ndpn +
+/// component`): its PESANTEUR ([`gravity_forces`]) plus its FORCE_NODALE,
+/// each node receiving the force given for it. DYNA_NON_LINE scales this
+/// vector by the load's FONC_MULT.
+pub fn load_forces(
+    mesh: &Mesh,
+    model: &Model,
+    matfield: &MaterialField,
+    materials: &IndexMap<String, Material>,
+    load: &MechLoad,
+) -> Result<Vec<f64>, String> {
+    let mut out = gravity_forces(mesh, model, matfield, materials, &[load])?;
+    let d = model.ndof_per_node();
+    for &(node, dof, f) in &load.nodal_forces {
+        let k = model
+            .dofs
+            .iter()
+            .position(|x| *x == dof)
+            .ok_or_else(|| format!("FORCE_NODALE: the model has no {}", dof.name()))?;
+        out[node * d + k] += f;
     }
     Ok(out)
 }

@@ -133,6 +133,10 @@ pub struct MechLoad {
     pub imposed: Vec<ImposedDof>,
     /// PESANTEUR, if given (at most once per load, as in code_aster).
     pub gravity: Option<Gravity>,
+    /// FORCE_NODALE: (node, dof, force) in the model's global frame, a
+    /// force on each node listed (per radian in AXIS, like every nodal
+    /// quantity there); a dead load.
+    pub nodal_forces: Vec<(usize, Dof, f64)>,
 }
 
 /// PESANTEUR: the body force ρ·g·d per unit volume of the element cells

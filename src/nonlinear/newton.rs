@@ -249,8 +249,12 @@ pub struct Engine {
     pub scheme: Scheme,
     pub newton: NewtonSettings,
     pub conv: ConvergenceSettings,
-    /// External forces (full); constant in time (no Neumann load yet).
+    /// External forces (full) at the end of the step being solved (at
+    /// the committed instant between steps).
     pub fext: Vec<f64>,
+    /// Loads with a FONC_MULT: `fext` is re-evaluated at each step from
+    /// them. `None`: `fext` is constant, as set by the caller.
+    pub loads: Option<super::loads::LoadHistory>,
     pub committed: State,
     pub trial: State,
     /// Converged steps so far (REAC_INCR, the swap rule).
@@ -288,6 +292,7 @@ impl Engine {
             newton,
             conv,
             fext: vec![0.0; nfull],
+            loads: None,
             trial: initial.clone(),
             committed: initial,
             steps_done: 0,
@@ -385,8 +390,18 @@ impl Engine {
         }
         let wp = s.previous_weight();
         let wi = s.inertia_weight();
+        // Time-varying loads: HHT's previous-step term takes F_ext at the
+        // step's start, the equilibrium at its end.
+        if let Some(h) = self.loads.as_ref().filter(|h| h.varies()) {
+            h.at(self.committed.t, &mut self.fext)
+                .map_err(StepFailure::NonFinite)?;
+        }
         for f in 0..self.prev_term.len() {
             self.prev_term[f] = wp * (self.committed.fint[f] - self.fext[f]);
+        }
+        if let Some(h) = self.loads.as_ref().filter(|h| h.varies()) {
+            h.at(self.trial.t, &mut self.fext)
+                .map_err(StepFailure::NonFinite)?;
         }
         if let Some(c) = contact.as_deref_mut() {
             c.begin_step(nb, &self.committed.motion.u, self.committed.t, dt);

@@ -115,6 +115,12 @@ pub struct EvolNoli {
     pub cham_mater: String,
     /// The loads (EXCIT/CHARGE) of the computation.
     pub loads: Vec<String>,
+    /// Their EXCIT/FONC_MULT function concepts (parallel to `loads`),
+    /// which CALC_CHAMP applies again when it rebuilds F_ext.
+    pub load_mults: Vec<Option<String>>,
+    /// The last run that filled the result used the lumped (HRZ) mass of
+    /// MASS_DIAG='OUI': CALC_CHAMP's M·a uses it too.
+    pub mass_diag: bool,
     /// (RELATION, DEFORMATION) of each mesh cell with an element.
     pub comportement: Vec<Option<(String, String)>>,
     pub steps: Vec<Step>,

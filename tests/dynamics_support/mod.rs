@@ -182,6 +182,7 @@ pub fn study(
             model: "MO".into(),
             imposed,
             gravity: None,
+            nodal_forces: Vec::new(),
         })),
     );
     if let Some(v) = vite {
