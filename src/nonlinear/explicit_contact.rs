@@ -109,6 +109,8 @@ pub struct ExplicitContact {
     body_force_prev: [f64; 3],
     /// Full displacement of the last committed state.
     u_prev: Vec<f64>,
+    /// Each node's displacement as `pair` reads it (reused).
+    node_u: Vec<[f64; 3]>,
     /// Impulse of the contact reactions on the bodies since the start.
     pub impulse: [f64; 3],
     /// Work dissipated by friction since the start.
@@ -159,6 +161,7 @@ impl ExplicitContact {
             body_force: [0.0; 3],
             body_force_prev: [0.0; 3],
             u_prev: u0.to_vec(),
+            node_u: Vec::new(),
             impulse: [0.0; 3],
             friction_dissipation: 0.0,
             max_penetration: 0.0,
@@ -175,15 +178,16 @@ impl ExplicitContact {
     /// Pairs the slave nodes on the geometry of `u` (full).
     pub fn pair(&mut self, numbering: &DofNumbering, u: &[f64]) {
         let nd = numbering.ndpn;
-        let un: Vec<[f64; 3]> = u
-            .chunks(nd)
-            .map(|c| {
-                let mut v = [0.0; 3];
-                v[..nd].copy_from_slice(c);
-                v
-            })
-            .collect();
+        // The nodes' displacements in a buffer kept across the steps.
+        let mut un = std::mem::take(&mut self.node_u);
+        un.clear();
+        un.extend(u.chunks(nd).map(|c| {
+            let mut v = [0.0; 3];
+            v[..nd].copy_from_slice(c);
+            v
+        }));
         self.pairing = pair(&self.def, &self.mesh, &un);
+        self.node_u = un;
         self.pairings += 1;
         crate::profile::count(crate::profile::Counter::Pairings, 1);
     }
