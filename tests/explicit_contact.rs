@@ -227,3 +227,48 @@ fn quarter_with_free_mid_side_nodes_on_its_symmetry_planes_is_alarmed() {
         "A's groups: {m0} against {m45}"
     );
 }
+
+/// An initial state whose slave nodes already penetrate the master is
+/// said in the .mess (an alarm with the count and the depth): the contact
+/// removes it in the first step, an impulse the user did not model. The
+/// landing study itself, which starts 0.01 mm above the plane, has none.
+#[test]
+fn initial_penetration_is_an_alarm() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = root.join("tests/verification");
+    let tmp =
+        std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("explicit_initial_penetration_src");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir.join("explicit_landing.comm")).unwrap();
+    let deep = comm.replace("VALE=(0., -2.26)", "VALE=(0., -2.28)");
+    assert_ne!(deep, comm);
+    std::fs::write(tmp.join("deep.comm"), deep).unwrap();
+    std::fs::write(
+        tmp.join("deep.export"),
+        format!("F mmed {} D 20\n", dir.join("bar_2x8.mmed").display()),
+    )
+    .unwrap();
+    let run = common::run_study(
+        tmp.join("deep.comm").to_str().unwrap(),
+        "explicit_initial_penetration_run",
+    );
+    let mess = run.file("deep.mess");
+    let alarms: Vec<&str> = mess
+        .lines()
+        .filter(|l| l.contains("penetrate the master at the initial state"))
+        .collect();
+    // RES_K (kinematic) and RES_P (penalty): the five slave nodes of SZZ
+    // (two SEG3), 0.01 mm deep.
+    assert_eq!(alarms.len(), 2, "{mess}");
+    assert!(alarms[0].contains("5 slave node(s)"), "{}", alarms[0]);
+    assert!(alarms[0].contains("deepest 1.0000e-2"), "{}", alarms[0]);
+    assert!(alarms[0].contains("kinematic"), "{}", alarms[0]);
+    assert!(alarms[1].contains("penalty"), "{}", alarms[1]);
+    let run = common::run_study(
+        "tests/verification/explicit_landing.comm",
+        "explicit_landing_no_penetration",
+    );
+    assert!(!run
+        .file("explicit_landing.mess")
+        .contains("penetrate the master at the initial state"));
+}

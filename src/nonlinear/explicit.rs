@@ -667,6 +667,21 @@ fn run_on(
     let first_dt = plan(tl.instants[0], tl.instants[1], &bound);
     if let Some(ct) = contact.as_deref_mut() {
         ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
+        // An initial state that already penetrates is removed in the
+        // first step (kinematic: the nodes are put back on the surface
+        // within one step, i.e. at a speed depth/dt; penalty: a force
+        // E_N depth), an impulse the user did not model.
+        let (n, depth) = ct.penetrations(&engine.committed.motion.u);
+        if n > 0 {
+            log(&format!(
+                "  alarm: {n} slave node(s) penetrate the master at the initial state (deepest {depth:.4e}): the contact pushes them out in the first step{}, an impulse of the initial state, not of the motion",
+                if ct.kinematic() {
+                    " (kinematic: onto the surface within one step)"
+                } else {
+                    " (penalty: a force E_N times the depth)"
+                }
+            ));
+        }
         if !has_acce && !ct.kinematic() {
             ct.penalty_forces(
                 &engine.asm.numbering,

@@ -192,6 +192,29 @@ impl ExplicitContact {
         crate::profile::count(crate::profile::Counter::Pairings, 1);
     }
 
+    /// The paired slave nodes that penetrate their master at the state `u`
+    /// (the last pairing's links): how many, and the deepest penetration.
+    pub fn penetrations(&self, u: &[f64]) -> (usize, f64) {
+        let mut count = 0;
+        let mut deepest: f64 = 0.0;
+        for l in &self.pairing.links {
+            let us = self.node_u(u, l.slave);
+            let mut um = [0.0; 3];
+            for (j, &mn) in l.master_nodes.iter().enumerate() {
+                let a = self.node_u(u, mn);
+                for c in 0..3 {
+                    um[c] += l.shape[j] * a[c];
+                }
+            }
+            let g = l.gap_ref + (0..3).map(|c| l.normal[c] * (um[c] - us[c])).sum::<f64>();
+            if g < 0.0 {
+                count += 1;
+                deepest = deepest.max(-g);
+            }
+        }
+        (count, deepest)
+    }
+
     /// The largest k/m of the penalty springs over the slave nodes
     /// (0 for the kinematic enforcement): what the contact adds to ω².
     pub fn penalty_omega2(&self, mass: &[f64]) -> f64 {
