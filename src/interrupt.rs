@@ -62,6 +62,22 @@ extern "C" fn on_signal(signal: libc::c_int) {
 /// Installs the handlers of SIGINT and SIGTERM for this process. With
 /// SA_RESTART, a file read or write interrupted by the signal resumes, so
 /// the outputs written after the stop are complete.
+/// Lets a closed output pipe end the process quietly, as Unix tools do.
+///
+/// Rust starts programs with SIGPIPE ignored, so `aster doc commands |
+/// head -1` made the next print fail with EPIPE, and `println!` turned that
+/// into a panic (exit 101 and a backtrace). With the default action the
+/// process ends by SIGPIPE at that print instead. A run writes its results
+/// (.mess, .resu, MED) before it prints its summary to stdout, so nothing
+/// computed is lost; its log goes to stderr.
+pub fn default_sigpipe() {
+    // SAFETY: setting a signal's disposition to SIG_DFL has no memory
+    // effects; it is done once, before any thread is started.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 pub fn install() -> Result<(), String> {
     for signal in [libc::SIGINT, libc::SIGTERM] {
         // SAFETY: a zeroed sigaction is valid (empty mask, no flags); the

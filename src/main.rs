@@ -425,6 +425,7 @@ fn parse_unit(s: &str) -> Result<(i64, PathBuf), String> {
 const RUN_STACK_BYTES: usize = 8 << 20;
 
 fn main() -> ExitCode {
+    aster::interrupt::default_sigpipe();
     let cli = Cli::parse();
     let mut stdout = std::io::stdout();
     let code = match cli.command {

@@ -273,3 +273,39 @@ fn a_stop_before_a_command_skips_the_rest_of_the_file() {
     assert!(out.join("free_flight.resu").is_file());
     assert!(term.contains("STOPPED by SIGTERM"), "{term}");
 }
+
+/// A reader that closes the pipe early (`aster doc commands | head -1`)
+/// ends aster quietly by SIGPIPE, as Unix tools end: no panic, no
+/// backtrace, no exit code 101. (Rust ignores SIGPIPE by default, and the
+/// next `println!` used to panic on the EPIPE.)
+#[test]
+fn a_closed_output_pipe_ends_aster_without_a_panic() {
+    use std::io::Read;
+    use std::os::unix::process::ExitStatusExt;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .args(["doc", "commands"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the aster binary starts");
+    let mut first = [0u8; 16];
+    child
+        .stdout
+        .take()
+        .expect("piped stdout")
+        .read_exact(&mut first)
+        .expect("the catalogue starts printing");
+    // The read end is dropped here: the rest of the catalogue (far more
+    // than a pipe buffer) meets a closed pipe.
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .expect("piped stderr")
+        .read_to_string(&mut err)
+        .expect("stderr readable");
+    let status = child.wait().expect("aster ends");
+    assert!(!err.contains("panicked"), "aster panicked: {err}");
+    assert_eq!(status.code(), None, "ended by a signal, got {status:?}");
+    assert_eq!(status.signal(), Some(libc::SIGPIPE), "{status:?}");
+}
