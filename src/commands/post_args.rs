@@ -260,28 +260,31 @@ pub fn nodes_of(mesh: &Mesh, args: &Args) -> Result<Vec<usize>, Diagnostic> {
 /// The node called `name` (`N12`), read under keyword `key` (NOEUD,
 /// SANS_NOEUD...); an unknown name is an error naming the valid range.
 pub fn node_by_name(mesh: &Mesh, args: &Args, key: &str, name: &str) -> Result<usize, Diagnostic> {
-    parse_name(name, 'N', mesh.nnodes()).ok_or_else(|| {
-        args.error(
-            key,
-            format!(
-                "'{name}' is not a node of the mesh: nodes are named N1 to N{} \
-                 (aster meshes have no node names)",
-                mesh.nnodes()
-            ),
-        )
-    })
+    entity_by_name(args, key, name, 'N', mesh.nnodes(), "node")
 }
 
 /// The cell called `name` (`M3`), read under keyword `key` (MAILLE,
 /// SANS_MAILLE...); an unknown name is an error naming the valid range.
 pub fn cell_by_name(mesh: &Mesh, args: &Args, key: &str, name: &str) -> Result<usize, Diagnostic> {
-    parse_name(name, 'M', mesh.ncells()).ok_or_else(|| {
+    entity_by_name(args, key, name, 'M', mesh.ncells(), "cell")
+}
+
+/// Entity `name` among `count` named `<prefix>1..<prefix><count>`, the
+/// only names aster meshes give.
+fn entity_by_name(
+    args: &Args,
+    key: &str,
+    name: &str,
+    prefix: char,
+    count: usize,
+    what: &str,
+) -> Result<usize, Diagnostic> {
+    parse_name(name, prefix, count).ok_or_else(|| {
         args.error(
             key,
             format!(
-                "'{name}' is not a cell of the mesh: cells are named M1 to M{} \
-                 (aster meshes have no cell names)",
-                mesh.ncells()
+                "'{name}' is not a {what} of the mesh: {what}s are named {prefix}1 to \
+                 {prefix}{count} (aster meshes have no {what} names)"
             ),
         )
     })
