@@ -231,6 +231,7 @@ fn run_with(
             imposed: vec![],
             gravity: None,
             nodal_forces: Vec::new(),
+            pressures: Vec::new(),
         }],
     )
     .unwrap();

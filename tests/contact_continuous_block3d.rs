@@ -254,6 +254,7 @@ fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<S
             imposed: held,
             gravity: None,
             nodal_forces: Vec::new(),
+            pressures: Vec::new(),
         }],
     )
     .unwrap();
@@ -801,6 +802,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             imposed: vec![],
             gravity: None,
             nodal_forces: Vec::new(),
+            pressures: Vec::new(),
         }],
     )
     .unwrap();

@@ -126,6 +126,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             imposed: vec![],
             gravity: None,
             nodal_forces: Vec::new(),
+            pressures: Vec::new(),
         }],
     )
     .unwrap();

@@ -86,6 +86,7 @@ fn lumped_system(mesh: &Mesh, mo: &Model, imp: &[aster::model::ImposedDof]) -> L
         imposed: imp.to_vec(),
         gravity: None,
         nodal_forces: Vec::new(),
+        pressures: Vec::new(),
     };
     let (mut asm, _) =
         aster::nonlinear::discretize(mesh, mo, &matfield, &materials, &occs, &[&load]).unwrap();

@@ -163,6 +163,67 @@ fn bad_multipliers_and_nodal_forces_are_located_errors() {
     );
 }
 
+/// PRES_REP on the bottom face of the rod with EXCIT FONC_MULT, implicit
+/// (a slow ramp: the static P L / E and the support reaction -P A) and
+/// explicit (a step: the velocity P / (rho c)).
+#[test]
+fn face_pressure_with_a_multiplier_in_time() {
+    run_study("pres_rep");
+}
+
+/// An inward skin under PRES_REP (VERI_NORM), a follower pressure
+/// (TYPE_CHARGE='SUIV') and a pressure on volume cells only are located
+/// errors.
+#[test]
+fn bad_face_pressures_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pres_rep_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("pres_rep.comm")).unwrap();
+    let cases = [
+        (
+            "inward",
+            (
+                "MAIL = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ORIE_PEAU_3D=_F(GROUP_MA='SZZ'))",
+                "",
+            ),
+            "AFFE_CHAR_MECA/PRES_REP",
+            "point into the body",
+        ),
+        (
+            "suiv",
+            (
+                "_F(CHARGE=PRES, FONC_MULT=RAMPE)",
+                "_F(CHARGE=PRES, FONC_MULT=RAMPE, TYPE_CHARGE='SUIV')",
+            ),
+            "not implemented yet: DYNA_NON_LINE/EXCIT/TYPE_CHARGE",
+            "FIXE_CSTE",
+        ),
+        (
+            "volume",
+            ("PRES_REP=_F(GROUP_MA='SZZ'", "PRES_REP=_F(GROUP_MA='VOL'"),
+            "AFFE_CHAR_MECA/PRES_REP",
+            "has no skin cell",
+        ),
+    ];
+    for (tag, (from, to), place, what) in cases {
+        let text = comm.replacen(from, to, 1);
+        assert_ne!(text, comm, "{tag}");
+        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+        std::fs::write(
+            tmp.join(format!("{tag}.export")),
+            format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display()),
+        )
+        .unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+            &format!("verif_pres_rep_{tag}"),
+        );
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(run.term.contains(place), "{tag}: {}", run.term);
+        assert!(run.term.contains(what), "{tag}: {}", run.term);
+    }
+}
+
 #[test]
 fn elastic_wave_in_a_rod() {
     run_study("wave_rod");

@@ -8,7 +8,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
-use crate::model::{CellRole, Dof, Gravity, ImposedDof, MechLoad};
+use crate::model::{CellRole, Dof, Gravity, ImposedDof, MechLoad, Pressure};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -87,6 +87,25 @@ pub fn def() -> CommandDef {
             ])
             .doc("force on each node of the selection (not shared between them; per radian in AXIS), global frame; a dead load, scaled in time by EXCIT/FONC_MULT; a node given twice keeps its last value per component")
             .kw(),
+            fact(
+                "PRES_REP",
+                vec![
+                    tout(),
+                    group_ma(),
+                    maille(),
+                    real("PRES")
+                        .doc("pressure (MPa), positive against the normal of the skin cell")
+                        .kw(),
+                    real("CISA_2D").kw(),
+                ],
+            )
+            .many()
+            .rules(vec![
+                au_moins_un(&["TOUT", "GROUP_MA", "MAILLE"]),
+                au_moins_un(&["PRES", "CISA_2D"]),
+            ])
+            .doc("uniform pressure on the skin cells of the selection (SEG in AXIS, per radian; TRIA/QUAD in 3D): the force -PRES*n per unit area, n the cell's normal as its nodes orient it (outward after MODI_MAILLAGE ORIE_PEAU_2D/3D); a dead load on the initial geometry, scaled in time by EXCIT/FONC_MULT")
+            .kw(),
             oui_non("VERI_NORM", "OUI")
                 .doc("check the orientation of skin cells carrying loads")
                 .kw(),
@@ -96,7 +115,12 @@ pub fn def() -> CommandDef {
             info(),
         ],
     )
-    .rules(vec![au_moins_un(&["DDL_IMPO", "PESANTEUR", "FORCE_NODALE"])])
+    .rules(vec![au_moins_un(&[
+        "DDL_IMPO",
+        "PESANTEUR",
+        "FORCE_NODALE",
+        "PRES_REP",
+    ])])
     .doc("Defines mechanical boundary conditions on a model.");
     CommandDef { spec, exec }
 }
@@ -181,6 +205,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         ));
     }
     let nodal_forces = nodal_forces_of(args, mesh, &model, &model_name, &in_model, &mut lines)?;
+    let pressures = pressures_of(args, mesh, &model, &model_name, &mut lines)?;
     let gravity = match args.fact("PESANTEUR") {
         Some(occ) => Some(gravity_of(occ, mesh, &model, &mut lines)?),
         None => None,
@@ -198,6 +223,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         imposed,
         gravity,
         nodal_forces,
+        pressures,
     }))))
 }
 
@@ -271,6 +297,113 @@ fn nodal_forces_of(
         ));
     }
     Ok(forces)
+}
+
+/// PRES_REP: each occurrence loads the skin cells of its selection (SEG
+/// in AXIS, TRIA/QUAD in 3D, assigned to the model by AFFE_MODELE);
+/// the volume cells of a TOUT or GROUP_MA selection carry no pressure and
+/// are skipped, as code_aster's volume elements have no PRES_REP option.
+/// A selected cell outside the model is an error (its nodes may carry no
+/// dof), and so is a selection with no skin cell. With VERI_NORM='OUI'
+/// (the default) a cell whose normal points into the body it bounds is an
+/// error: its pressure would pull.
+fn pressures_of(
+    args: &Args,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    model_name: &str,
+    lines: &mut Vec<String>,
+) -> Result<Vec<Pressure>, Diagnostic> {
+    let skin_dim = if model.ndof_per_node() == 2 { 1 } else { 2 };
+    let mut out = Vec::new();
+    for (k, occ) in args.facts("PRES_REP").iter().enumerate() {
+        if occ.has("CISA_2D") {
+            return Err(occ.not_implemented("CISA_2D", "only a normal pressure PRES"));
+        }
+        let p = occ.real("PRES").unwrap_or(0.0);
+        if !p.is_finite() {
+            return Err(occ.error("PRES", "PRES must be finite"));
+        }
+        let selected = select_cells(mesh, occ)?;
+        let mut cells = Vec::new();
+        for &c in &selected {
+            match model.cells.get(c) {
+                Some(CellRole::Skin { .. }) => {
+                    let kind = mesh.cells[c].kind;
+                    if kind.dim() != skin_dim {
+                        return Err(occ.error(
+                            "",
+                            format!(
+                                "cell {} of {} is a {}: a pressure on the model {model_name} acts on {} cells",
+                                c + 1,
+                                selection_label(occ),
+                                kind.aster_name(),
+                                if skin_dim == 1 { "SEG2/SEG3" } else { "TRIA3/TRIA6/QUAD4/QUAD8" }
+                            ),
+                        ));
+                    }
+                    cells.push(c);
+                }
+                Some(CellRole::Element(_)) => {}
+                _ if occ.has("TOUT") => {}
+                _ => {
+                    return Err(occ.error(
+                        "",
+                        format!(
+                            "cell {} of {} belongs to no element of the model {model_name}: assign the skin to the model (AFFE_MODELE) to load it",
+                            c + 1,
+                            selection_label(occ)
+                        ),
+                    ));
+                }
+            }
+        }
+        if cells.is_empty() {
+            return Err(occ.error(
+                "",
+                format!(
+                    "{} has no skin cell of the model {model_name} ({} in AXIS, {} in 3D): a pressure acts on nothing",
+                    selection_label(occ),
+                    "SEG2/SEG3",
+                    "TRIA3/TRIA6/QUAD4/QUAD8"
+                ),
+            ));
+        }
+        if args.text("VERI_NORM") != Some("NON") {
+            let inward = crate::mesh::ops::inward_skin_cells(mesh, &cells);
+            if let Some(first) = inward.first() {
+                let orie = if skin_dim == 1 {
+                    "ORIE_PEAU_2D"
+                } else {
+                    "ORIE_PEAU_3D"
+                };
+                return Err(occ.error(
+                    "",
+                    format!(
+                        "PRES_REP {}: the normals of {} of the {} cells of {} point into the body \
+                         (first: cell M{}, on cell M{}); a positive PRES pushes against the normal, \
+                         so it would pull: orient the skin with MODI_MAILLAGE(reuse=MAIL, \
+                         MAILLAGE=MAIL, {orie}=_F(GROUP_MA=...)) before AFFE_CHAR_MECA \
+                         (VERI_NORM='NON' skips this check)",
+                        k + 1,
+                        inward.len(),
+                        cells.len(),
+                        selection_label(occ),
+                        first.cell + 1,
+                        first.support + 1
+                    ),
+                ));
+            }
+        }
+        lines.push(format!(
+            "      PRES_REP {}: PRES = {p:e} on {} skin cells of {}",
+            k + 1,
+            cells.len(),
+            selection_label(occ)
+        ));
+        out.push(Pressure { p, cells });
+    }
+    Ok(out)
 }
 
 /// PESANTEUR: GRAVITE and DIRECTION normalised as code_aster's `capesa`

@@ -871,7 +871,10 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut load_mults = Vec::new();
     for ex in args.facts("EXCIT") {
         if ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {
-            return Err(ex.not_implemented("TYPE_CHARGE", "only FIXE_CSTE"));
+            return Err(ex.not_implemented(
+                "TYPE_CHARGE",
+                "only FIXE_CSTE: loads are dead, built on the initial geometry (a SUIV follower pressure is not)",
+            ));
         }
         load_names.push(ex.concept("CHARGE").unwrap_or("").to_string());
         load_mults.push(ex.concept("FONC_MULT").map(str::to_string));

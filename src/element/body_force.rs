@@ -165,7 +165,8 @@ pub fn gravity_forces(
 
 /// The external forces of one load (full vector, dof `node·ndpn +
 /// component`): its PESANTEUR ([`gravity_forces`]) plus its FORCE_NODALE,
-/// each node receiving the force given for it. DYNA_NON_LINE scales this
+/// each node receiving the force given for it, plus its PRES_REP
+/// ([`super::pressure`], on the initial geometry). DYNA_NON_LINE scales this
 /// vector by the load's FONC_MULT.
 pub fn load_forces(
     mesh: &Mesh,
@@ -183,6 +184,21 @@ pub fn load_forces(
             .position(|x| *x == dof)
             .ok_or_else(|| format!("FORCE_NODALE: the model has no {}", dof.name()))?;
         out[node * d + k] += f;
+    }
+    // the models are AXIS (DX, DY) or 3D (DX, DY, DZ)
+    let axis = d == 2;
+    for pr in &load.pressures {
+        for &c in &pr.cells {
+            let cell = &mesh.cells[c];
+            let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
+            let f = super::pressure::pressure_forces(cell.kind, axis, &coords, pr.p)
+                .map_err(|e| format!("PRES_REP: cell {}: {e}", c + 1))?;
+            for (a, &n) in cell.nodes.iter().enumerate() {
+                for i in 0..d {
+                    out[n * d + i] += f[a * d + i];
+                }
+            }
+        }
     }
     Ok(out)
 }

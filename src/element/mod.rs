@@ -11,6 +11,7 @@ pub mod axis;
 pub mod body_force;
 pub mod hexs8;
 pub mod mechanics;
+pub mod pressure;
 
 pub use mechanics::{
     check_initial_geometry, initial_states, internal_forces, internal_forces_into,

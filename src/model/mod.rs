@@ -137,6 +137,17 @@ pub struct MechLoad {
     /// force on each node listed (per radian in AXIS, like every nodal
     /// quantity there); a dead load.
     pub nodal_forces: Vec<(usize, Dof, f64)>,
+    /// PRES_REP: a uniform pressure on skin cells of the model, a dead
+    /// load on the initial geometry (`element::pressure`).
+    pub pressures: Vec<Pressure>,
+}
+
+/// PRES_REP: the pressure `p` on each of `cells` (skin cells of the model:
+/// SEG in AXIS, TRIA/QUAD in 3D), pushing against the cell's normal.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pressure {
+    pub p: f64,
+    pub cells: Vec<usize>,
 }
 
 /// PESANTEUR: the body force ρ·g·d per unit volume of the element cells

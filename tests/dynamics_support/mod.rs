@@ -183,6 +183,7 @@ pub fn study(
             imposed,
             gravity: None,
             nodal_forces: Vec::new(),
+            pressures: Vec::new(),
         })),
     );
     if let Some(v) = vite {
