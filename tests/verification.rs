@@ -171,6 +171,14 @@ fn face_pressure_with_a_multiplier_in_time() {
     run_study("pres_rep");
 }
 
+/// PRES_REP on SEG3 edges in AXIS (per radian, weighted by r): the end of
+/// the AXIS rod moves by P L / E at the axis and at the outer radius, the
+/// support reaction is -P R^2/2 per radian.
+#[test]
+fn axis_face_pressure_is_per_radian() {
+    run_study("pres_rep_axis");
+}
+
 /// An inward skin under PRES_REP (VERI_NORM), a follower pressure
 /// (TYPE_CHARGE='SUIV') and a pressure on volume cells only are located
 /// errors.
