@@ -21,7 +21,7 @@
 //! same to the bit whatever the team size.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::thread::{self, Thread};
 use std::time::{Duration, Instant};
@@ -35,7 +35,7 @@ const SPIN: Duration = Duration::from_micros(300);
 /// A phase with its lifetime erased (see [`Team::run`] for why a member
 /// never calls it after the phase is over).
 #[derive(Clone, Copy)]
-struct Job(*const (dyn Fn() + Sync + 'static));
+struct Job(*const (dyn Fn(bool) + Sync + 'static));
 
 // SAFETY: the pointee is `Sync` (called from several threads at once);
 // the pointer is only dereferenced while the leader waits in `Team::run`.
@@ -121,28 +121,45 @@ impl Team<'_> {
             (0..n).for_each(f);
             return;
         }
-        let next = AtomicUsize::new(0);
-        let job = || loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            if i >= n {
+        // The leader takes the pieces from the front, the members from the
+        // back, until the two ends meet: from one step to the next a
+        // thread takes mostly the same pieces, whose data (an element's
+        // states, kept gradients, geometry) are still in its core's cache.
+        // The two ends in one word (front << 32 | back).
+        let n32 = u32::try_from(n).expect("fewer than 2^32 pieces");
+        let ends = AtomicU64::new(u64::from(n32));
+        let job = |leader: bool| loop {
+            let cur = ends.load(Ordering::Relaxed);
+            let (front, back) = (cur >> 32, cur & 0xffff_ffff);
+            if front >= back {
                 break;
             }
-            f(i);
+            let (new, i) = if leader {
+                (cur + (1 << 32), front)
+            } else {
+                (cur - 1, back - 1)
+            };
+            if ends
+                .compare_exchange_weak(cur, new, Ordering::Relaxed, Ordering::Relaxed)
+                .is_ok()
+            {
+                f(i as usize);
+            }
         };
         self.run(&job);
     }
 
     /// Publishes `job`, runs it on the caller, then waits for the members
     /// that took it.
-    fn run(&self, job: &(dyn Fn() + Sync)) {
+    fn run(&self, job: &(dyn Fn(bool) + Sync)) {
         let sh = self.shared;
-        let ptr: *const (dyn Fn() + Sync + '_) = job;
+        let ptr: *const (dyn Fn(bool) + Sync + '_) = job;
         // SAFETY: only the lifetime is erased. A member calls the job only
         // after taking this phase's number (`taken` from e − 1 to e), and
         // this function returns only once every member has either finished
         // it (`done` = e) or can no longer take it (the leader set `taken`
         // to e itself): no call outlives `job`.
-        let ptr: *const (dyn Fn() + Sync + 'static) = unsafe { std::mem::transmute(ptr) };
+        let ptr: *const (dyn Fn(bool) + Sync + 'static) = unsafe { std::mem::transmute(ptr) };
         *sh.job.lock().unwrap_or_else(|e| e.into_inner()) = Some(Job(ptr));
         let e = sh.epoch.fetch_add(1, Ordering::SeqCst) + 1;
         for m in &sh.members {
@@ -154,7 +171,7 @@ impl Team<'_> {
         }
         // A panic of the leader's share is resumed only once no member
         // can still be in the job.
-        let mine = catch_unwind(AssertUnwindSafe(job));
+        let mine = catch_unwind(AssertUnwindSafe(|| job(true)));
         for m in &sh.members {
             if m.taken
                 .compare_exchange(e - 1, e, Ordering::SeqCst, Ordering::SeqCst)
@@ -242,7 +259,7 @@ fn work(sh: &Shared, k: usize) {
             // SAFETY: phase e is taken, so the leader waits in `run` for
             // `done` = e before the job goes out of scope.
             let f = unsafe { &*ptr };
-            if catch_unwind(AssertUnwindSafe(f)).is_err() {
+            if catch_unwind(AssertUnwindSafe(|| f(false))).is_err() {
                 sh.panicked.store(true, Ordering::SeqCst);
             }
         }
