@@ -77,6 +77,21 @@ fn unilateral_zones_3d_carry_the_weight() {
     run_study("unil_zones_3d");
 }
 
+/// Writes `text` as `<tag>.comm` in `tmp` on the rod_wedge mesh of the
+/// load studies and runs it (scratch tag `<prefix>_<tag>`).
+fn run_rod_variant(tmp: &Path, tag: &str, text: &str, prefix: &str) -> common::Run {
+    std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+    std::fs::write(
+        tmp.join(format!("{tag}.export")),
+        format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display()),
+    )
+    .unwrap();
+    common::run_study(
+        tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+        &format!("{prefix}_{tag}"),
+    )
+}
+
 /// FORCE_NODALE with EXCIT FONC_MULT, implicit (a slow ramp: the static
 /// rod) and explicit (a step: the wave speed, the energy balance).
 #[test]
@@ -113,16 +128,7 @@ fn bad_multipliers_and_nodal_forces_are_located_errors() {
     for (tag, (from, to), what) in cases {
         let text = comm.replacen(from, to, 1);
         assert_ne!(text, comm, "{tag}");
-        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
-        std::fs::write(
-            tmp.join(format!("{tag}.export")),
-            format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display()),
-        )
-        .unwrap();
-        let run = common::run_study(
-            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
-            &format!("verif_fonc_mult_{tag}"),
-        );
+        let run = run_rod_variant(&tmp, tag, &text, "verif_fonc_mult");
         assert_eq!(run.code, 1, "{tag}: {}", run.term);
         assert!(
             run.term.contains("DYNA_NON_LINE/EXCIT/FONC_MULT"),
@@ -144,16 +150,7 @@ fn bad_multipliers_and_nodal_forces_are_located_errors() {
             "_F(CHARGE=BLOQ, FONC_MULT=RAMPE), _F(CHARGE=TIRE)",
             1,
         );
-    std::fs::write(tmp.join("moving.comm"), text).unwrap();
-    std::fs::write(
-        tmp.join("moving.export"),
-        format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display()),
-    )
-    .unwrap();
-    let run = common::run_study(
-        tmp.join("moving.comm").to_str().unwrap(),
-        "verif_fonc_mult_moving",
-    );
+    let run = run_rod_variant(&tmp, "moving", &text, "verif_fonc_mult");
     assert_eq!(run.code, 1, "{}", run.term);
     assert!(
         run.term
@@ -216,16 +213,7 @@ fn bad_face_pressures_are_located_errors() {
     for (tag, (from, to), place, what) in cases {
         let text = comm.replacen(from, to, 1);
         assert_ne!(text, comm, "{tag}");
-        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
-        std::fs::write(
-            tmp.join(format!("{tag}.export")),
-            format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display()),
-        )
-        .unwrap();
-        let run = common::run_study(
-            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
-            &format!("verif_pres_rep_{tag}"),
-        );
+        let run = run_rod_variant(&tmp, tag, &text, "verif_pres_rep");
         assert_eq!(run.code, 1, "{tag}: {}", run.term);
         assert!(run.term.contains(place), "{tag}: {}", run.term);
         assert!(run.term.contains(what), "{tag}: {}", run.term);

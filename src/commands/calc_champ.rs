@@ -246,14 +246,9 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     // F_ext of each load and its FONC_MULT, evaluated at each step below.
     let mut parts = Vec::new();
     for (load, mult) in loads.iter().zip(&load_mults) {
-        let forces = crate::element::body_force::load_forces(
-            &md.mesh,
-            &md.model,
-            &md.matfield,
-            &md.materials,
-            load,
-        )
-        .map_err(|m| args.error("RESULTAT", m))?;
+        let forces = md
+            .load_forces(load)
+            .map_err(|m| args.error("RESULTAT", m))?;
         let f = match mult {
             None => None,
             Some(m) => match study.concepts.data(m) {

@@ -202,6 +202,20 @@ pub(crate) struct ModelData {
     pub materials: IndexMap<String, Material>,
 }
 
+impl ModelData {
+    /// The nodal forces of one load (PESANTEUR, FORCE_NODALE, PRES_REP),
+    /// full dof numbering, before any FONC_MULT.
+    pub fn load_forces(&self, load: &MechLoad) -> Result<Vec<f64>, String> {
+        crate::element::body_force::load_forces(
+            &self.mesh,
+            &self.model,
+            &self.matfield,
+            &self.materials,
+            load,
+        )
+    }
+}
+
 /// Fetches MODELE (`model_name`) and CHAM_MATER (`mat_name`) data;
 /// `key_model`/`key_mat` are the keywords to blame.
 pub(crate) fn model_data(
@@ -275,14 +289,7 @@ pub(crate) fn set_loads(
     let excits = args.facts("EXCIT");
     let mut parts = Vec::new();
     for (k, load) in loads.iter().enumerate() {
-        let forces = crate::element::body_force::load_forces(
-            &md.mesh,
-            &md.model,
-            &md.matfield,
-            &md.materials,
-            load,
-        )
-        .map_err(|m| args.error("EXCIT", m))?;
+        let forces = md.load_forces(load).map_err(|m| args.error("EXCIT", m))?;
         let mult = match (mults.get(k).and_then(|m| m.as_deref()), excits.get(k)) {
             (Some(name), Some(ex)) => Some(fonc_mult(study, ex, name, load, instants)?),
             _ => None,
