@@ -77,6 +77,38 @@ fn unilateral_zones_3d_carry_the_weight() {
     run_study("unil_zones_3d");
 }
 
+/// A node name the mesh does not have, in a LIAISON_UNIL zone, is an
+/// error located on its keyword and line that gives the valid names.
+#[test]
+fn unknown_node_name_is_a_located_error() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("unil_zones_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("unil_zones_3d.comm")).unwrap();
+    let text = comm.replacen("BAS = ('N1',", "BAS = ('N99999', 'N1',", 1);
+    assert_ne!(text, comm);
+    std::fs::write(tmp.join("unknown.comm"), text).unwrap();
+    std::fs::write(
+        tmp.join("unknown.export"),
+        format!(
+            "F mmed {} D 20\n",
+            dir().join("../../med/sdnv103h.mmed").display()
+        ),
+    )
+    .unwrap();
+    let run = common::run_study(
+        tmp.join("unknown.comm").to_str().unwrap(),
+        "verif_unil_unknown_node",
+    );
+    assert_eq!(run.code, 1, "{}", run.term);
+    for what in [
+        "DEFI_CONTACT/ZONE/SANS_NOEUD",
+        "'N99999' is not a node of the mesh: nodes are named N1 to N",
+        "unknown.comm:75:",
+    ] {
+        assert!(run.term.contains(what), "{what}: {}", run.term);
+    }
+}
+
 /// Writes `text` as `<tag>.comm` in `tmp` on the rod_wedge mesh of the
 /// load studies and runs it (scratch tag `<prefix>_<tag>`).
 fn run_rod_variant(tmp: &Path, tag: &str, text: &str, prefix: &str) -> common::Run {
