@@ -162,8 +162,13 @@ fn energy_history(
     );
     let args = args_of(&text, "DYNA_NON_LINE", 0);
     exec(&mut st, "DYNA_NON_LINE", &args, "RESU")?;
-    let r = result(&st, "RESU");
-    let t = &r.tables["PARA_CALC"];
+    Ok(total_energy(&st))
+}
+
+/// ENER_CIN + ENER_TOT of RESU's PARA_CALC at each archived instant, over
+/// the initial kinetic energy.
+fn total_energy(st: &aster::study::Study) -> Vec<f64> {
+    let t = &result(st, "RESU").tables["PARA_CALC"];
     let col = |name: &str| -> Vec<f64> {
         let k = t.columns.iter().position(|c| c == name).unwrap();
         t.rows
@@ -176,7 +181,7 @@ fn energy_history(
     };
     let (ek, ei) = (col("ENER_CIN"), col("ENER_TOT"));
     let e0 = ek[0];
-    Ok(ek.iter().zip(&ei).map(|(a, b)| (a + b) / e0).collect())
+    ek.iter().zip(&ei).map(|(a, b)| (a + b) / e0).collect()
 }
 
 /// The worst relative change of the total energy over a run.
@@ -449,4 +454,121 @@ fn tchamwa_damps_the_highest_mode_as_documented() {
             }
         }
     }
+}
+
+/// One AUTO run on `setup`'s bar (DEFI_LIST_INST METHODE='AUTO' over
+/// `instants`, PAS_MAXI if given, every list instant archived): the study,
+/// and the number of steps its .mess reports.
+fn auto_run(instants: Vec<f64>, pas_maxi: Option<f64>) -> (aster::study::Study, usize) {
+    let (mesh, mo, imp, top) = setup();
+    let nn = mesh.nnodes();
+    let mut list = aster::time::list::TimeList::plain(instants.clone());
+    list.auto = true;
+    list.pas_maxi = pas_maxi;
+    let mut st = study(
+        mesh,
+        mo,
+        material(E, NU, RHO, None),
+        imp,
+        Some(velocity(nn, &[top], 1000.0)),
+        instants,
+        Some(list),
+    );
+    let text =
+        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
+    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
+    INCREMENT=_F(LIST_INST=LI),
+    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))";
+    let args = args_of(text, "DYNA_NON_LINE", 0);
+    exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap();
+    assert!(
+        st.mess.contains("METHODE='AUTO' in explicit dynamics"),
+        "{}",
+        st.mess
+    );
+    let steps: usize = st
+        .mess
+        .lines()
+        .find_map(|l| l.trim().split_once(" explicit steps"))
+        .and_then(|(n, _)| n.parse().ok())
+        .unwrap_or_else(|| panic!("no step count in\n{}", st.mess));
+    (st, steps)
+}
+
+/// The archived instants of RESU.
+fn instants_of(st: &aster::study::Study) -> Vec<f64> {
+    result(st, "RESU").steps.iter().map(|s| s.inst).collect()
+}
+
+/// DY of node `n` at the last archived instant of RESU.
+fn last_dy(st: &aster::study::Study, n: usize) -> f64 {
+    let r = result(st, "RESU");
+    r.steps.last().unwrap().nodal["DEPL"].get(n, "DY").unwrap()
+}
+
+/// DEFI_LIST_INST METHODE='AUTO' in explicit (an aster extension): the
+/// list's instants are reached exactly, and in between the steps are the
+/// critical step bound itself, cut into equal steps to land on each
+/// instant: ceil(span / bound) steps per span, ceil(span / PAS_MAXI) with a
+/// smaller PAS_MAXI. The run equals a manual list of those equal steps
+/// (the same scheme and steps, to the round-off of the instants) and is
+/// stable at the bound (the total energy kept over 20000 steps).
+#[test]
+fn auto_time_list_steps_at_the_critical_step_and_lands_on_the_instants() {
+    let (mesh, mo, imp, top) = setup();
+    let (bound, _) = limits(&mesh, &mo, &imp);
+    let (t1, t2) = (50.5 * bound, 100.0 * bound);
+    let (st, steps) = auto_run(vec![0.0, t1, t2], None);
+    assert_eq!(steps, 51 + 50, "steps of the bound: 51 to {t1:e}, 50 more");
+    assert_eq!(
+        instants_of(&st),
+        vec![0.0, t1, t2],
+        "list instants, exactly"
+    );
+    let dy = last_dy(&st, top);
+    // The same run on a manual list of the same equal steps.
+    let mut manual = linspace(0.0, t1, 51);
+    manual.extend(linspace(t1, t2, 50).into_iter().skip(1));
+    let (mesh, mo, imp, _) = setup();
+    let nn = mesh.nnodes();
+    let mut st = study(
+        mesh,
+        mo,
+        material(E, NU, RHO, None),
+        imp,
+        Some(velocity(nn, &[top], 1000.0)),
+        manual,
+        None,
+    );
+    let text =
+        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
+    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
+    INCREMENT=_F(LIST_INST=L_INST),
+    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))";
+    let args = args_of(text, "DYNA_NON_LINE", 0);
+    exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap();
+    let dy_manual = last_dy(&st, top);
+    println!("top DY: AUTO {dy:e}, manual {dy_manual:e}");
+    assert!(
+        (dy - dy_manual).abs() <= 1e-9 * dy_manual.abs(),
+        "AUTO {dy} against the manual list {dy_manual}"
+    );
+    // PAS_MAXI below the bound caps the step.
+    let (st, steps) = auto_run(vec![0.0, t1, t2], Some(bound / 3.0));
+    assert_eq!(
+        steps,
+        152 + 149,
+        "ceil(151.5) + ceil(148.5) steps of PAS_MAXI"
+    );
+    assert_eq!(instants_of(&st), vec![0.0, t1, t2]);
+    // Stable at the bound: 20000 steps of it, the total energy of the
+    // rough initial velocity (all modes excited) archived every 2000.
+    let list: Vec<f64> = (0..=10).map(|k| 2000.0 * k as f64 * bound).collect();
+    let (st, steps) = auto_run(list, None);
+    assert!((20_000..=20_010).contains(&steps), "{steps} steps");
+    let h = total_energy(&st);
+    assert_eq!(h.len(), 11);
+    let drift = h.iter().map(|e| (e - 1.0).abs()).fold(0.0, f64::max);
+    println!("AUTO at the bound, 20000 steps: energy drift {drift:e}");
+    assert!(drift < 0.05, "energy drift {drift}");
 }

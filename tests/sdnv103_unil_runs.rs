@@ -50,8 +50,8 @@ fn sdnv103b_explicit_tables() {
     insta::assert_snapshot!(run("b_explicit"));
 }
 
-/// B explicitly on the 10 x 40 mesh: about 15000 explicit steps (15 to
-/// 35 s).
+/// B explicitly on the 10 x 40 mesh: about 12900 explicit steps at the
+/// critical step (METHODE='AUTO'; 3 to 35 s with the machine's load).
 #[test]
 fn sdnv103b_explicit_10x40_tables() {
     insta::assert_snapshot!(run("b_explicit_10x40"));

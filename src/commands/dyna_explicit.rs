@@ -134,6 +134,7 @@ pub(crate) fn exec(
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
     let init = etat_init(study, args, &asm, &dof_names)?;
     let (list, instants) = time_range(study, args, init.t0)?;
+    let auto = super::dyna_non_line::growth_of(&list);
     if list.on_error() != &Action::Arret || list.rules.len() > 1 {
         notes.push("the time list's events and actions are not used in explicit: a failure stops the run (the sub-steps come from the critical step)".into());
     }
@@ -257,7 +258,16 @@ pub(crate) fn exec(
             bound.dt, bound.dt_elements
         ));
     }
-    if let Some((k, t, dt)) = explicit::first_step_above(&tl.instants, bound.dt) {
+    if let Some(g) = &auto {
+        notes.push(format!(
+            "METHODE='AUTO' in explicit dynamics (an aster extension): the list's instants are the instants to reach, and each step is the current critical step bound{} (at most {} times the previous one), cut into equal steps to land on each instant; the bound is re-estimated on the current geometry during the run",
+            g.pas_maxi.map_or(String::new(), |m| format!(" or PAS_MAXI = {m:e} if smaller")),
+            g.factor
+        ));
+    }
+    if let Some((k, t, dt)) =
+        explicit::first_step_above(&tl.instants, bound.dt).filter(|_| auto.is_none())
+    {
         let m = if bound.dt < bound.dt_elements {
             format!(
                 "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} set by the contact penalty (the elements' alone: {:.6e} at cell {}) (DYNAMIQUE_2)",
@@ -284,7 +294,12 @@ pub(crate) fn exec(
     }
     let settings = ExplicitSettings {
         stop_cfl,
-        recheck: if stop_cfl { RECHECK_STEPS } else { 0 },
+        recheck: if stop_cfl || auto.is_some() {
+            RECHECK_STEPS
+        } else {
+            0
+        },
+        auto,
     };
     for n in &notes {
         study.log(format!("  {n}"));

@@ -684,6 +684,26 @@ pub(crate) fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Su
 
 /// The time list and the instants [INST_INIT .. INST_FIN] to compute;
 /// `t_etat` is the initial instant of an EVOL_NOLI initial state.
+/// METHODE='AUTO' of a time list: the growth of the step after a success
+/// (1 + PCENT_AUGM/100 of the first ADAPTATION with MODE_CALCUL_TPLUS
+/// 'FIXE', 100 % by default) and PAS_MAXI; None for METHODE='MANUEL'.
+pub(crate) fn growth_of(list: &TimeList) -> Option<dyna::Growth> {
+    list.auto.then(|| {
+        let pcent = list
+            .adaptation
+            .iter()
+            .find_map(|a| match a.mode {
+                TplusMode::Fixe { pcent_augm } => Some(pcent_augm),
+                _ => None,
+            })
+            .unwrap_or(100.0);
+        dyna::Growth {
+            factor: 1.0 + pcent / 100.0,
+            pas_maxi: list.pas_maxi,
+        }
+    })
+}
+
 pub(crate) fn time_range(
     study: &Study,
     args: &Args,
@@ -1057,20 +1077,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             ignored.join(", ")
         ));
     }
-    let growth = list.auto.then(|| {
-        let pcent = list
-            .adaptation
-            .iter()
-            .find_map(|a| match a.mode {
-                TplusMode::Fixe { pcent_augm } => Some(pcent_augm),
-                _ => None,
-            })
-            .unwrap_or(100.0);
-        dyna::Growth {
-            factor: 1.0 + pcent / 100.0,
-            pas_maxi: list.pas_maxi,
-        }
-    });
+    let growth = growth_of(&list);
     if let Some(g) = &growth {
         notes.push(format!(
             "METHODE='AUTO': after each successful step the next one is {} times longer, up to the next instant of the list{} (the ADAPTATION thresholds are not evaluated)",

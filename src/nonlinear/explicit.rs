@@ -41,7 +41,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::assembly::{Assembler, CellFailure, PARALLEL_MIN_ELEMENTS};
 use super::dofs::NONE;
-use super::dyna::{archive, RunSummary, Stopped, TimeLoop};
+use super::dyna::{archive, Growth, RunSummary, Stopped, TimeLoop};
 use super::energy::EnergyBalance;
 use super::explicit_contact::ExplicitContact;
 use super::newton::Engine;
@@ -117,6 +117,12 @@ pub struct ExplicitSettings {
     /// Re-estimate the bound about every this many computed steps (0:
     /// never); the interval adapts to how fast the bound moves.
     pub recheck: usize,
+    /// METHODE='AUTO' (an aster extension in explicit): every step is the
+    /// current bound (PAS_MAXI and the growth factor permitting), the
+    /// list's instants only the instants to land on. Steps of the bound
+    /// itself instead of equal cuts of each list step: a list step just
+    /// above the bound costs two steps where one of the bound's would do.
+    pub auto: Option<Growth>,
 }
 
 impl Explicit {
@@ -654,17 +660,26 @@ fn run_on(
             )
         })?;
     // The step plan: list instants, each reached by equal sub-steps no
-    // longer than the current bound (STOP_CFL='OUI').
-    let plan = |t: f64, target: f64, bound: &StepBound| -> f64 {
+    // longer than the current bound (STOP_CFL='OUI' or METHODE='AUTO'),
+    // with AUTO also no longer than PAS_MAXI and the growth of the
+    // previous step `prev`.
+    let plan = |t: f64, target: f64, bound: &StepBound, prev: f64| -> f64 {
         let span = target - t;
-        if !settings.stop_cfl || span <= bound.dt {
+        let cap = match settings.auto {
+            Some(g) => {
+                let c = bound.dt.min(prev * g.factor);
+                g.pas_maxi.map_or(c, |m| c.min(m))
+            }
+            None if settings.stop_cfl => bound.dt,
+            None => return span,
+        };
+        if span <= cap {
             return span;
         }
-        let n = (span / bound.dt).ceil().max(1.0);
-        span / n
+        span / (span / cap).ceil().max(1.0)
     };
     let mut next = 1usize;
-    let first_dt = plan(tl.instants[0], tl.instants[1], &bound);
+    let first_dt = plan(tl.instants[0], tl.instants[1], &bound, f64::INFINITY);
     if let Some(ct) = contact.as_deref_mut() {
         ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
         // An initial state that already penetrates is removed in the
@@ -807,11 +822,11 @@ fn run_on(
             next_estimate = summary.steps + interval;
         }
         let dt_next = if next < tl.instants.len() {
-            plan(engine.trial.t, tl.instants[next], &bound)
+            plan(engine.trial.t, tl.instants[next], &bound, dt)
         } else {
             0.0
         };
-        if settings.stop_cfl && next < tl.instants.len() {
+        if settings.stop_cfl && settings.auto.is_none() && next < tl.instants.len() {
             let list_dt = tl.instants[next] - tl.instants[next - 1];
             if dt_next < list_dt * (1.0 - 1e-9) && !alarmed_sub {
                 alarmed_sub = true;
