@@ -226,6 +226,39 @@ fn auto_list_grows_the_step_back_up_to_the_list_and_pas_maxi() {
         .all(|p| p[1] - p[0] <= 2.5e-7 * (1.0 + 1e-9)));
 }
 
+/// NB_PAS_MAXI ends a METHODE='AUTO' computation after that many steps,
+/// as at the list's last instant (code_aster's ADAPTATION_13, an
+/// information): the state of the 30th step is archived, the run ends
+/// without error, and the .mess says so.
+#[test]
+fn nb_pas_maxi_ends_an_auto_computation() {
+    let mut list = time_list(instants(), vec![collision_rule()], Some(None));
+    list.nb_pas_maxi = 30;
+    let run = land(list, 1e7).unwrap();
+    let t = run.insts();
+    assert_eq!(
+        t.len(),
+        31,
+        "the initial state and 30 steps (every one archived)"
+    );
+    assert!(
+        run.mess.contains("NB_PAS_MAXI = 30 steps reached"),
+        "{}",
+        run.mess
+    );
+    let full = land(
+        time_list(instants(), vec![collision_rule()], Some(None)),
+        1e7,
+    )
+    .unwrap();
+    assert!(full.insts().len() > 31);
+    assert_close(
+        &t,
+        &full.insts()[..31],
+        "the first 30 steps of the full run",
+    );
+}
+
 fn short_list() -> Vec<f64> {
     let mut t = vec![2.27 / V, T_C];
     t.extend((1..=10).map(|k| T_C + k as f64 * 2e-7));

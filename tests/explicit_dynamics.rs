@@ -457,14 +457,21 @@ fn tchamwa_damps_the_highest_mode_as_documented() {
 }
 
 /// One AUTO run on `setup`'s bar (DEFI_LIST_INST METHODE='AUTO' over
-/// `instants`, PAS_MAXI if given, every list instant archived): the study,
-/// and the number of steps its .mess reports.
-fn auto_run(instants: Vec<f64>, pas_maxi: Option<f64>) -> (aster::study::Study, usize) {
+/// `instants`, PAS_MAXI and NB_PAS_MAXI if given, every list instant
+/// archived): the study, and the number of steps its .mess reports.
+fn auto_run(
+    instants: Vec<f64>,
+    pas_maxi: Option<f64>,
+    nb_pas_maxi: Option<usize>,
+) -> (aster::study::Study, usize) {
     let (mesh, mo, imp, top) = setup();
     let nn = mesh.nnodes();
     let mut list = aster::time::list::TimeList::plain(instants.clone());
     list.auto = true;
     list.pas_maxi = pas_maxi;
+    if let Some(n) = nb_pas_maxi {
+        list.nb_pas_maxi = n;
+    }
     let mut st = study(
         mesh,
         mo,
@@ -518,7 +525,7 @@ fn auto_time_list_steps_at_the_critical_step_and_lands_on_the_instants() {
     let (mesh, mo, imp, top) = setup();
     let (bound, _) = limits(&mesh, &mo, &imp);
     let (t1, t2) = (50.5 * bound, 100.0 * bound);
-    let (st, steps) = auto_run(vec![0.0, t1, t2], None);
+    let (st, steps) = auto_run(vec![0.0, t1, t2], None, None);
     assert_eq!(steps, 51 + 50, "steps of the bound: 51 to {t1:e}, 50 more");
     assert_eq!(
         instants_of(&st),
@@ -554,7 +561,7 @@ fn auto_time_list_steps_at_the_critical_step_and_lands_on_the_instants() {
         "AUTO {dy} against the manual list {dy_manual}"
     );
     // PAS_MAXI below the bound caps the step.
-    let (st, steps) = auto_run(vec![0.0, t1, t2], Some(bound / 3.0));
+    let (st, steps) = auto_run(vec![0.0, t1, t2], Some(bound / 3.0), None);
     assert_eq!(
         steps,
         152 + 149,
@@ -564,11 +571,42 @@ fn auto_time_list_steps_at_the_critical_step_and_lands_on_the_instants() {
     // Stable at the bound: 20000 steps of it, the total energy of the
     // rough initial velocity (all modes excited) archived every 2000.
     let list: Vec<f64> = (0..=10).map(|k| 2000.0 * k as f64 * bound).collect();
-    let (st, steps) = auto_run(list, None);
+    let (st, steps) = auto_run(list, None, None);
     assert!((20_000..=20_010).contains(&steps), "{steps} steps");
     let h = total_energy(&st);
     assert_eq!(h.len(), 11);
     let drift = h.iter().map(|e| (e - 1.0).abs()).fold(0.0, f64::max);
     println!("AUTO at the bound, 20000 steps: energy drift {drift:e}");
     assert!(drift < 0.05, "energy drift {drift}");
+}
+
+/// NB_PAS_MAXI ends a METHODE='AUTO' computation after that many steps,
+/// as at the list's last instant (code_aster's ADAPTATION_13, an
+/// information): the state of the last step is archived, the run ends
+/// without error, and the .mess says so.
+#[test]
+fn nb_pas_maxi_ends_an_auto_run() {
+    let (mesh, mo, imp, _) = setup();
+    let (bound, _) = limits(&mesh, &mo, &imp);
+    let list = vec![0.0, 50.5 * bound, 100.0 * bound];
+    let (st, steps) = auto_run(list, None, Some(60));
+    assert_eq!(steps, 60);
+    assert!(
+        st.mess.contains("NB_PAS_MAXI = 60 steps reached"),
+        "{}",
+        st.mess
+    );
+    let insts = instants_of(&st);
+    assert_eq!(
+        insts.len(),
+        3,
+        "t = 0, the list instant 50.5 bounds, the 60th step"
+    );
+    // 51 steps to 50.5 bounds, then 9 of the 50 equal steps to 100.
+    let t60 = 50.5 * bound + 9.0 * (49.5 * bound / 50.0);
+    assert!(
+        (insts[2] - t60).abs() <= 1e-9 * t60,
+        "last archived {:e}, expected {t60:e}",
+        insts[2]
+    );
 }

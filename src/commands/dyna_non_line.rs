@@ -686,7 +686,8 @@ pub(crate) fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Su
 /// `t_etat` is the initial instant of an EVOL_NOLI initial state.
 /// METHODE='AUTO' of a time list: the growth of the step after a success
 /// (1 + PCENT_AUGM/100 of the first ADAPTATION with MODE_CALCUL_TPLUS
-/// 'FIXE', 100 % by default) and PAS_MAXI; None for METHODE='MANUEL'.
+/// 'FIXE', 100 % by default), PAS_MAXI and NB_PAS_MAXI; None for
+/// METHODE='MANUEL'.
 pub(crate) fn growth_of(list: &TimeList) -> Option<dyna::Growth> {
     list.auto.then(|| {
         let pcent = list
@@ -700,6 +701,7 @@ pub(crate) fn growth_of(list: &TimeList) -> Option<dyna::Growth> {
         dyna::Growth {
             factor: 1.0 + pcent / 100.0,
             pas_maxi: list.pas_maxi,
+            max_steps: list.nb_pas_maxi,
         }
     })
 }

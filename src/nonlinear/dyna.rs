@@ -189,6 +189,10 @@ pub struct Growth {
     pub factor: f64,
     /// PAS_MAXI, if given.
     pub pas_maxi: Option<f64>,
+    /// NB_PAS_MAXI: the computation ends after this many computed steps,
+    /// as at the list's last instant (code_aster's ADAPTATION_13, an
+    /// information, not an error).
+    pub max_steps: usize,
 }
 
 /// What the time loop needs besides the engine.
@@ -495,6 +499,10 @@ pub fn run(
                         rep.iterations
                     ));
                 }
+                if !pending.is_empty() && tl.growth.is_some_and(|g| summary.steps >= g.max_steps) {
+                    log(&nb_pas_maxi_line(summary.steps, t_end, tl));
+                    pending.clear();
+                }
                 let last = pending.is_empty();
                 if (tl.archive.wants(summary.steps, t_end) || last)
                     && archive(
@@ -588,6 +596,15 @@ pub fn run(
     ));
     summary.count_profile();
     Ok(summary)
+}
+
+/// The information that NB_PAS_MAXI ends a METHODE='AUTO' computation
+/// after `steps` steps, at `t`.
+pub(crate) fn nb_pas_maxi_line(steps: usize, t: f64, tl: &TimeLoop) -> String {
+    format!(
+        "  NB_PAS_MAXI = {steps} steps reached at t = {t:e}: the computation ends here, as at the list's last instant ({:e} not reached; code_aster ADAPTATION_13)",
+        tl.instants.last().copied().unwrap_or(t)
+    )
 }
 
 /// The loop's bookkeeping that a stop on a signal closes.

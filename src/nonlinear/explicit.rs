@@ -857,12 +857,22 @@ fn run_on(
             energy.friction = ct.friction_dissipation;
         }
         let last = next >= tl.instants.len();
-        if at_list
-            && (tl.archive.wants(list_steps, engine.committed.t) || last)
+        let capped = !last && settings.auto.is_some_and(|g| summary.steps >= g.max_steps);
+        if capped {
+            log(&super::dyna::nb_pas_maxi_line(
+                summary.steps,
+                engine.committed.t,
+                tl,
+            ));
+        }
+        if ((at_list && (tl.archive.wants(list_steps, engine.committed.t) || last)) || capped)
             && archive(engine, tl, result, &engine.committed.clone(), None)
         {
             summary.archived += 1;
             archive_line(&mut energy, result, &summary, dt, log);
+        }
+        if capped {
+            break;
         }
         dt = dt_next;
     }
