@@ -131,6 +131,22 @@ fn limits(mesh: &Mesh, mo: &Model, imp: &[aster::model::ImposedDof]) -> (f64, f6
     (l.bound, 2.0 / l.eig.eigenvalues.max().sqrt())
 }
 
+/// `setup`'s bar with its rough initial velocity (V0) on the manual list
+/// `instants` (L_INST) and, given, the time list `list` (LI).
+fn bar_study(instants: Vec<f64>, list: Option<aster::time::list::TimeList>) -> aster::study::Study {
+    let (mesh, mo, imp, top) = setup();
+    let nn = mesh.nnodes();
+    study(
+        mesh,
+        mo,
+        material(E, NU, RHO, None),
+        imp,
+        Some(velocity(nn, &[top], 1000.0)),
+        instants,
+        list,
+    )
+}
+
 /// The energy history of a run of `steps` steps of `dt` from the rough
 /// initial velocity of `setup`: the total energy (ENER_CIN + ENER_TOT)
 /// over the initial kinetic energy at each archived instant (every
@@ -142,18 +158,7 @@ fn energy_history(
     stop_cfl: &str,
     schema: &str,
 ) -> Result<Vec<f64>, String> {
-    let (mesh, mo, imp, top) = setup();
-    let nn = mesh.nnodes();
-    let vite = velocity(nn, &[top], 1000.0);
-    let mut st = study(
-        mesh,
-        mo,
-        material(E, NU, RHO, None),
-        imp,
-        Some(vite),
-        linspace(0.0, dt * steps as f64, steps),
-        None,
-    );
+    let mut st = bar_study(linspace(0.0, dt * steps as f64, steps), None);
     let text = format!(
         "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
     COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
@@ -219,20 +224,11 @@ fn measured_stability_limit_lies_above_the_element_bound() {
 /// instant stored.
 #[test]
 fn unstable_run_stops_and_says_what_the_result_keeps() {
-    let (mesh, mo, imp, top) = setup();
+    let (mesh, mo, imp, _) = setup();
     let (_, exact) = limits(&mesh, &mo, &imp);
-    let nn = mesh.nnodes();
     let dt = 3.0 * exact;
     let steps = 2000;
-    let mut st = study(
-        mesh,
-        mo,
-        material(E, NU, RHO, None),
-        imp,
-        Some(velocity(nn, &[top], 1000.0)),
-        linspace(0.0, dt * steps as f64, steps),
-        None,
-    );
+    let mut st = bar_study(linspace(0.0, dt * steps as f64, steps), None);
     let text =
         "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
     COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
@@ -456,6 +452,23 @@ fn tchamwa_damps_the_highest_mode_as_documented() {
     }
 }
 
+/// `setup`'s bar under DIFF_CENT and the lumped mass, on the manual list
+/// `instants` (L_INST) or, given, on the time list `list` (LI): the study
+/// after the run.
+fn run_bar(instants: Vec<f64>, list: Option<aster::time::list::TimeList>) -> aster::study::Study {
+    let name = if list.is_some() { "LI" } else { "L_INST" };
+    let mut st = bar_study(instants, list);
+    let text = format!(
+        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
+    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
+    INCREMENT=_F(LIST_INST={name}),
+    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))"
+    );
+    let args = args_of(&text, "DYNA_NON_LINE", 0);
+    exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap();
+    st
+}
+
 /// One AUTO run on `setup`'s bar (DEFI_LIST_INST METHODE='AUTO' over
 /// `instants`, PAS_MAXI and NB_PAS_MAXI if given, every list instant
 /// archived): the study, and the number of steps its .mess reports.
@@ -464,30 +477,13 @@ fn auto_run(
     pas_maxi: Option<f64>,
     nb_pas_maxi: Option<usize>,
 ) -> (aster::study::Study, usize) {
-    let (mesh, mo, imp, top) = setup();
-    let nn = mesh.nnodes();
     let mut list = aster::time::list::TimeList::plain(instants.clone());
     list.auto = true;
     list.pas_maxi = pas_maxi;
     if let Some(n) = nb_pas_maxi {
         list.nb_pas_maxi = n;
     }
-    let mut st = study(
-        mesh,
-        mo,
-        material(E, NU, RHO, None),
-        imp,
-        Some(velocity(nn, &[top], 1000.0)),
-        instants,
-        Some(list),
-    );
-    let text =
-        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
-    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
-    INCREMENT=_F(LIST_INST=LI),
-    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))";
-    let args = args_of(text, "DYNA_NON_LINE", 0);
-    exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap();
+    let st = run_bar(instants, Some(list));
     assert!(
         st.mess.contains("METHODE='AUTO' in explicit dynamics"),
         "{}",
@@ -536,24 +532,7 @@ fn auto_time_list_steps_at_the_critical_step_and_lands_on_the_instants() {
     // The same run on a manual list of the same equal steps.
     let mut manual = linspace(0.0, t1, 51);
     manual.extend(linspace(t1, t2, 50).into_iter().skip(1));
-    let (mesh, mo, imp, _) = setup();
-    let nn = mesh.nnodes();
-    let mut st = study(
-        mesh,
-        mo,
-        material(E, NU, RHO, None),
-        imp,
-        Some(velocity(nn, &[top], 1000.0)),
-        manual,
-        None,
-    );
-    let text =
-        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
-    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),
-    INCREMENT=_F(LIST_INST=L_INST),
-    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))";
-    let args = args_of(text, "DYNA_NON_LINE", 0);
-    exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap();
+    let st = run_bar(manual, None);
     let dy_manual = last_dy(&st, top);
     println!("top DY: AUTO {dy:e}, manual {dy_manual:e}");
     assert!(
