@@ -259,6 +259,21 @@ fn nb_pas_maxi_ends_an_auto_computation() {
     );
 }
 
+/// A PAS_MAXI below the resolution of the instants makes a step that does
+/// not advance the time: the run stops saying so (it failed before as a
+/// non-finite residual, cut to nothing).
+#[test]
+fn a_step_that_does_not_advance_the_time_stops_the_run() {
+    let list = time_list(instants(), vec![], Some(Some(1e-25)));
+    let Err(m) = land(list, 1e7) else {
+        panic!("the run went on")
+    };
+    assert!(
+        m.contains("does not advance the time") && m.contains("cutting the step cannot cure it"),
+        "{m}"
+    );
+}
+
 fn short_list() -> Vec<f64> {
     let mut t = vec![2.27 / V, T_C];
     t.extend((1..=10).map(|k| T_C + k as f64 * 2e-7));

@@ -589,3 +589,24 @@ fn nb_pas_maxi_ends_an_auto_run() {
         insts[2]
     );
 }
+
+/// A planned step that does not advance the time (here a PAS_MAXI far
+/// below the resolution of the instants) stops the run with a message
+/// instead of looping: the initial state is kept.
+#[test]
+fn a_step_that_does_not_advance_the_time_stops_the_run() {
+    let instants = vec![1e-3, 1e-3 + 1e-6];
+    let mut list = aster::time::list::TimeList::plain(instants.clone());
+    list.auto = true;
+    list.pas_maxi = Some(1e-25);
+    let mut st = bar_study(instants, Some(list));
+    let text =
+        "RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), MASS_DIAG='OUI',
+    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0, INST=1.E-3),
+    INCREMENT=_F(LIST_INST=LI),
+    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))";
+    let args = args_of(text, "DYNA_NON_LINE", 0);
+    let m = exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap_err();
+    assert!(m.contains("does not advance the time"), "{m}");
+    assert_eq!(instants_of(&st), vec![1e-3]);
+}

@@ -900,6 +900,17 @@ fn defi_list_inst_errors() {
         &["ERREUR is given twice (occurrences 1 and 2"],
         "ACTION='ARRET'",
     );
+    // A step cap that is not positive (the run would never move on).
+    let comm =
+        axis("D = DEFI_LIST_INST(METHODE='AUTO',\n DEFI_LIST=_F(VALE=(0., 1.), PAS_MAXI=0.))");
+    let (_, err) = run("sdnv103b", &comm);
+    assert_error(
+        &comm,
+        err,
+        "DEFI_LIST_INST/DEFI_LIST/PAS_MAXI",
+        &["PAS_MAXI = 0e0 must be a positive finite step"],
+        "PAS_MAXI=0.",
+    );
 }
 
 // ---------------------------------------------------------------------------

@@ -93,6 +93,13 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     }
     let pas_mini = dl.real("PAS_MINI");
     let pas_maxi = dl.real("PAS_MAXI");
+    if let Some(hi) = pas_maxi.filter(|&hi| !(hi > 0.0 && hi.is_finite())) {
+        // A step that cannot be positive would never reach the next instant.
+        return Err(dl.error(
+            "PAS_MAXI",
+            format!("PAS_MAXI = {hi:e} must be a positive finite step"),
+        ));
+    }
     if let (Some(lo), Some(hi)) = (pas_mini, pas_maxi) {
         if lo > hi {
             return Err(dl.error(

@@ -407,7 +407,7 @@ pub fn run(
             (None, Some(u)) => Some(u),
             (None, None) => None,
         };
-        let outcome = engine.solve_step(dt, term, &mut |rec: &IterationRecord, st: &State| {
+        let mut record = |rec: &IterationRecord, st: &State| {
             if table {
                 let mut line = format!(
                     "      iter {:>2}  RESI_GLOB_RELA {:>10.3e}{}  RESI_GLOB_MAXI {:>10.3e}{}",
@@ -422,12 +422,25 @@ pub fn run(
                 }
                 rows.push(line);
             }
-        });
+        };
+        // A step that does not advance the time (a PAS_MAXI below the
+        // resolution of the instants) fails as what it is, not as the
+        // non-finite residual a zero step gives.
+        let outcome = if t_end > t0 {
+            engine.solve_step(dt, term, &mut record).map_err(Some)
+        } else {
+            Err(None)
+        };
         for r in &rows {
             log(r);
         }
         let outcome = match outcome {
-            Err(StepFailure::Interrupted(signal)) => {
+            Err(None) => Err((
+                "the step does not advance the time (PAS_MAXI below the resolution of the instants?)"
+                    .to_string(),
+                true,
+            )),
+            Err(Some(StepFailure::Interrupted(signal))) => {
                 let mut stop = StopState {
                     energy: &mut energy,
                     summary: &mut summary,
@@ -446,7 +459,7 @@ pub fn run(
                     log,
                 ));
             }
-            Err(failure) => Err((failure.to_string(), failure.is_fatal())),
+            Err(Some(failure)) => Err((failure.to_string(), failure.is_fatal())),
             Ok(rep) => match contact.as_deref_mut() {
                 Some(c) => match check_events(
                     c,
@@ -530,7 +543,7 @@ pub fn run(
                     "  step failure from t = {t0:e} to {t_end:e} (dt = {dt:.3e}, level {level}): {reason}"
                 ));
                 let cut = if fatal {
-                    Err("a mesh error cannot be cured by cutting the step".to_string())
+                    Err("cutting the step cannot cure it".to_string())
                 } else {
                     cut_step(&tl.on_error, t0, t_end, level, list_end)
                 };

@@ -773,7 +773,17 @@ fn run_on(
                 ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
             }
         }
-        let outcome = ex.step(engine, dt, contact.as_deref_mut(), team);
+        // A bound that collapsed (a cell crushed to nothing) or a PAS_MAXI
+        // below the instants' resolution would loop without end.
+        let outcome = if dt.is_finite() && t0 + dt > t0 {
+            ex.step(engine, dt, contact.as_deref_mut(), team)
+        } else {
+            Err(format!(
+                "the planned step {dt:e} does not advance the time (critical step bound {:e}, cell {})",
+                bound.dt,
+                bound.cell + 1
+            ))
+        };
         if let Err(why) = outcome {
             // The last converged state is archived first, so that the
             // message counts what the result really keeps.
