@@ -682,8 +682,6 @@ pub(crate) fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Su
     Ok(out)
 }
 
-/// The time list and the instants [INST_INIT .. INST_FIN] to compute;
-/// `t_etat` is the initial instant of an EVOL_NOLI initial state.
 /// METHODE='AUTO' of a time list: the growth of the step after a success
 /// (1 + PCENT_AUGM/100 of the first ADAPTATION with MODE_CALCUL_TPLUS
 /// 'FIXE', 100 % by default), PAS_MAXI and NB_PAS_MAXI; None for
@@ -706,6 +704,8 @@ pub(crate) fn growth_of(list: &TimeList) -> Option<dyna::Growth> {
     })
 }
 
+/// The time list and the instants [INST_INIT .. INST_FIN] to compute;
+/// `t_etat` is the initial instant of an EVOL_NOLI initial state.
 pub(crate) fn time_range(
     study: &Study,
     args: &Args,
