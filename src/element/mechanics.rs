@@ -274,15 +274,20 @@ struct PreviousGradients {
 }
 
 impl PreviousGradients {
-    fn holds(&self, u_n: &[f64], geometry: u64, npoints: usize) -> bool {
-        self.geometry == geometry
-            && self.points.len() == npoints
-            && self.u.len() == u_n.len()
+    /// Whether `u_n` is the kept u to the bit.
+    fn same_u(&self, u_n: &[f64]) -> bool {
+        self.u.len() == u_n.len()
             && self
                 .u
                 .iter()
                 .zip(u_n)
                 .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+
+    /// Whether the kept points are those of `geometry`, given
+    /// [`PreviousGradients::same_u`].
+    fn holds(&self, geometry: u64, npoints: usize) -> bool {
+        self.geometry == geometry && self.points.len() == npoints
     }
 }
 
@@ -564,7 +569,21 @@ fn evaluate(
     let d = spec.formulation.dofs_per_node();
     let ndof = nn * d;
     let known = geometry.fixed && geometry.key.is_some() && kin != Kinematics::PetitReac;
-    check_sizes(spec, coords, !known, ndof, &[("u_n", u_n), ("u", u)])?;
+    let want_k = tangent != TangentKind::None;
+    let explicit = matches!(
+        (kin, law, want_k, *conjugate_forces),
+        (Kinematics::SimoMiehe, LawRef::SimoMiehe(_), false, true)
+    );
+    // In explicit dynamics u_n is the u of the previous evaluation, kept
+    // because it was checked finite then: its finiteness is known.
+    let kept_u_n = explicit && previous.same_u(u_n);
+    check_sizes(
+        spec,
+        coords,
+        !known,
+        ndof,
+        &[("u_n", u_n, !kept_u_n), ("u", u, true)],
+    )?;
     if states_n.len() != tab.weights.len() {
         return Err(ElementFailure::StateCount {
             expected: tab.weights.len(),
@@ -573,7 +592,6 @@ fn evaluate(
     }
     check_law(kin, law)?;
 
-    let want_k = tangent != TangentKind::None;
     forces.clear();
     forces.resize(ndof, 0.0);
     stiffness.clear();
@@ -581,9 +599,7 @@ fn evaluate(
         stiffness.resize(ndof * ndof, 0.0);
     }
     states.clear();
-    if let (Kinematics::SimoMiehe, LawRef::SimoMiehe(l), false, true) =
-        (kin, law, want_k, *conjugate_forces)
-    {
+    if let (true, LawRef::SimoMiehe(l)) = (explicit, law) {
         let (initial, generation) = geometry.points(tab, spec.formulation, coords);
         let out = match direct {
             Some(o) if o.len() == states_n.len() => StatesOut::Slice(o),
@@ -600,7 +616,7 @@ fn evaluate(
             dt,
             forces,
             out,
-            previous,
+            (previous, kept_u_n),
         )?;
         return Ok(direct);
     }
@@ -875,10 +891,10 @@ fn simo_miehe_explicit(
     dt: f64,
     forces: &mut [f64],
     mut states: StatesOut,
-    previous: &mut PreviousGradients,
+    (previous, kept_u_n): (&mut PreviousGradients, bool),
 ) -> Result<(), ElementFailure> {
     let npg = initial.len();
-    let reuse = previous.holds(u_n, generation, npg);
+    let reuse = kept_u_n && previous.holds(generation, npg);
     if !reuse {
         previous.points.clear();
         previous
@@ -945,13 +961,17 @@ fn simo_miehe_explicit(
                     forces[a * 2] += geom.dv * v0;
                     forces[a * 2 + 1] += geom.dv * v1;
                 }
-                let new = PointState {
-                    stress: out.cauchy.to_stress(),
-                    internal: out.internal,
-                };
+                // Written in place: no whole PointState moved.
                 match &mut states {
-                    StatesOut::Vec(v) => v.push(new),
-                    StatesOut::Slice(o) => o[p] = new,
+                    StatesOut::Vec(v) => v.push(PointState {
+                        stress: out.cauchy.to_stress(),
+                        internal: out.internal,
+                    }),
+                    StatesOut::Slice(o) => {
+                        let o = &mut o[p];
+                        o.stress = out.cauchy.to_stress();
+                        o.internal.assign(&out.internal);
+                    }
                 }
                 continue;
             }
@@ -1138,13 +1158,14 @@ fn check_law(kin: Kinematics, law: LawRef) -> Result<(), ElementFailure> {
 }
 
 /// `coords_finite`: check that the coordinates are finite (not when
-/// they are those of the geometry already computed and checked).
+/// they are those of the geometry already computed and checked); the
+/// flag of a field likewise (not when its values are known finite).
 fn check_sizes(
     spec: &ElementSpec,
     coords: &[[f64; 3]],
     coords_finite: bool,
     ndof: usize,
-    fields: &[(&str, &[f64])],
+    fields: &[(&str, &[f64], bool)],
 ) -> Result<(), ElementFailure> {
     if coords.len() != spec.nnodes() {
         return Err(ElementFailure::BadInput {
@@ -1161,7 +1182,7 @@ fn check_sizes(
             message: format!("{}: non-finite node coordinate", spec.name),
         });
     }
-    for (name, f) in fields {
+    for &(name, f, finite) in fields {
         if f.len() != ndof {
             return Err(ElementFailure::BadInput {
                 message: format!(
@@ -1171,7 +1192,7 @@ fn check_sizes(
                 ),
             });
         }
-        if !all_finite(f) {
+        if finite && !all_finite(f) {
             return Err(ElementFailure::BadInput {
                 message: format!("{}: non-finite value in {name}", spec.name),
             });

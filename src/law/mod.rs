@@ -113,6 +113,18 @@ impl InternalVars {
     pub fn as_mut_slice(&mut self) -> &mut [f64] {
         &mut self.v[..self.len]
     }
+    /// `*self = *other`, copying only the `len` values when the lengths
+    /// agree (the values past `len` are zeros in every InternalVars):
+    /// the explicit element pass writes each point's variables once per
+    /// step, where the 136-byte move was a `memcpy` call.
+    #[inline]
+    pub fn assign(&mut self, other: &InternalVars) {
+        if self.len == other.len {
+            self.v[..self.len].copy_from_slice(&other.v[..other.len]);
+        } else {
+            *self = *other;
+        }
+    }
 }
 
 /// Which tangent the caller wants (code_aster's RAPH_MECA, RIGI_MECA_ELAS,

@@ -553,7 +553,7 @@ impl Axi {
     }
 
     /// self · o
-    #[inline]
+    #[inline(always)]
     pub fn mul(&self, o: &Axi) -> Axi {
         let (a, b) = (&self.m, &o.m);
         Axi {
@@ -572,7 +572,7 @@ impl Axi {
     }
 
     /// self · oᵀ
-    #[inline]
+    #[inline(always)]
     pub fn mul_t(&self, o: &Axi) -> Axi {
         let (a, b) = (&self.m, &o.m);
         Axi {
@@ -660,7 +660,13 @@ impl SimoMiehe {
     /// nonzero results to the bit. `fn_inv` is F_n⁻¹ (`f_n.inverse(j_n)`).
     /// `None` when the internal variables hold rθ or zθ components of
     /// b̄ᵉ (not an axisymmetric state: the caller takes the 3 × 3 path).
+    ///
+    /// Always inlined, with [`SimoMiehe::update_axi`] and the [`Axi`]
+    /// products: the explicit element pass calls it at every Gauss point
+    /// of every step, and as a call its update returned by value went
+    /// through memory. Inlining changes no operation (no contraction).
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     pub fn integrate_stress_axi(
         &self,
         f_n: &Axi,
@@ -727,6 +733,7 @@ impl SimoMiehe {
     }
 
     /// [`SimoMiehe::update`]'s stress on [`Axi`] tensors (`a` = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ).
+    #[inline(always)]
     fn update_axi(
         &self,
         f: &Axi,
