@@ -270,7 +270,39 @@ pub struct ElementBuffers {
 struct PreviousGradients {
     u: Vec<f64>,
     geometry: u64,
+    /// Every formulation but AXIS.
     points: Vec<(Matrix3<f64>, f64, Matrix3<f64>)>,
+    /// AXIS: 96 bytes a point where the 3 × 3 matrices took 152, read
+    /// back at the next step from a cache they have left by then.
+    axi: Vec<KeptAxi>,
+}
+
+/// An AXIS point's F (whose θ coupling is exact +0, so `f.matrix()` is
+/// F to the bit), det F and F⁻¹ on the (r, z) block and θθ. `general`:
+/// F⁻¹ came from the 3 × 3 path (`try_inverse`), whose zeros' signs are
+/// not kept here: that path's next step takes F_n⁻¹ from F_n again (the
+/// law's own `try_inverse` of the same F, the same bits).
+#[derive(Debug, Clone, Copy)]
+struct KeptAxi {
+    f: Axi,
+    j: f64,
+    f_inv: Axi,
+    general: bool,
+}
+
+impl KeptAxi {
+    const ZERO: KeptAxi = KeptAxi {
+        f: Axi {
+            m: [[0.0; 2]; 2],
+            t: 0.0,
+        },
+        j: 0.0,
+        f_inv: Axi {
+            m: [[0.0; 2]; 2],
+            t: 0.0,
+        },
+        general: false,
+    };
 }
 
 impl PreviousGradients {
@@ -286,8 +318,13 @@ impl PreviousGradients {
 
     /// Whether the kept points are those of `geometry`, given
     /// [`PreviousGradients::same_u`].
-    fn holds(&self, geometry: u64, npoints: usize) -> bool {
-        self.geometry == geometry && self.points.len() == npoints
+    fn holds(&self, geometry: u64, npoints: usize, axis: bool) -> bool {
+        let kept = if axis {
+            self.axi.len()
+        } else {
+            self.points.len()
+        };
+        self.geometry == geometry && kept == npoints
     }
 }
 
@@ -894,12 +931,18 @@ fn simo_miehe_explicit(
     (previous, kept_u_n): (&mut PreviousGradients, bool),
 ) -> Result<(), ElementFailure> {
     let npg = initial.len();
-    let reuse = kept_u_n && previous.holds(generation, npg);
+    let axis = matches!(initial.first(), Some(Ok(g)) if g.axis);
+    let reuse = kept_u_n && previous.holds(generation, npg, axis);
     if !reuse {
         previous.points.clear();
-        previous
-            .points
-            .resize(npg, (Matrix3::zeros(), 0.0, Matrix3::zeros()));
+        previous.axi.clear();
+        if axis {
+            previous.axi.resize(npg, KeptAxi::ZERO);
+        } else {
+            previous
+                .points
+                .resize(npg, (Matrix3::zeros(), 0.0, Matrix3::zeros()));
+        }
         previous.geometry = generation;
     }
     // Invalid until every point is done.
@@ -911,18 +954,25 @@ fn simo_miehe_explicit(
                 point: p,
                 message: message.clone(),
             })?;
-        let (f_n, f, j_n, fn_inv) = if reuse {
+        // `fn_inv_axi`: the kept F_n⁻¹ of an AXIS point; `fn_inv` the
+        // one of the 3 × 3 path (None: the law inverts F_n).
+        let (f_n, f, j_n, fn_inv, fn_inv_axi) = if reuse && axis {
+            let k = previous.axi[p];
+            let fn_inv = (!k.general).then(|| k.f_inv.matrix());
+            let f = geom.deformation_axi(u);
+            (k.f.matrix(), f, k.j, fn_inv, Some(k.f_inv))
+        } else if reuse {
             let (f_n, j_n, fn_inv) = previous.points[p];
             let f = if geom.axis {
                 geom.deformation_axi(u)
             } else {
                 Matrix3::identity() + geom.gradient(u, d)
             };
-            (f_n, f, j_n, Some(fn_inv))
+            (f_n, f, j_n, Some(fn_inv), None)
         } else {
             let (h_n, h) = geom.gradients(u_n, u, d);
             let f_n = Matrix3::identity() + h_n;
-            (f_n, Matrix3::identity() + h, f_n.determinant(), None)
+            (f_n, Matrix3::identity() + h, f_n.determinant(), None, None)
         };
         let j = if geom.axis {
             Axi::of(&f).determinant()
@@ -940,9 +990,10 @@ fn simo_miehe_explicit(
             // values to the bit at a fraction of the 3 × 3 arithmetic.
             let (fa, fna) = (Axi::of(&f), Axi::of(&f_n));
             let fa_inv = fa.inverse(j);
-            let fna_inv = match &fn_inv {
-                Some(m) => Axi::of(m),
-                None => fna.inverse(j_n),
+            let fna_inv = match (&fn_inv_axi, &fn_inv) {
+                (Some(k), _) => *k,
+                (None, Some(m)) => Axi::of(m),
+                (None, None) => fna.inverse(j_n),
             };
             let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
             let r =
@@ -950,7 +1001,12 @@ fn simo_miehe_explicit(
             drop(law_span);
             if let Some(r) = r {
                 let out = r.map_err(|failure| ElementFailure::Law { point: p, failure })?;
-                previous.points[p] = (f, j, fa_inv.matrix());
+                previous.axi[p] = KeptAxi {
+                    f: fa,
+                    j,
+                    f_inv: fa_inv,
+                    general: false,
+                };
                 // G⁰ : (τF⁻ᵀ) as below, less the products with the exact
                 // zeros of the θ coupling.
                 let s = out.kirchhoff.mul_t(&fa_inv);
@@ -992,7 +1048,16 @@ fn simo_miehe_explicit(
             .integrate_stress(&input, j_n, j, fn_inv.as_ref())
             .map_err(|failure| ElementFailure::Law { point: p, failure })?;
         drop(law_span);
-        previous.points[p] = (f, j, f_inv);
+        if axis {
+            previous.axi[p] = KeptAxi {
+                f: Axi::of(&f),
+                j,
+                f_inv: Axi::of(&f_inv),
+                general: true,
+            };
+        } else {
+            previous.points[p] = (f, j, f_inv);
+        }
         // (G⁰F⁻¹) : τ = G⁰ : (τF⁻ᵀ), G⁰ = e_i ⊗ ∇N_a (+ N_a/r e_θ ⊗ e_θ
         // for the radial dof of AXIS), the terms in the order of
         // VGrad::dot.
