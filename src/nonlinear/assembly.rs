@@ -392,7 +392,13 @@ impl Assembler {
         team.for_each(parts.len(), &|i| {
             let (els, bufs, res, states, mut flat) = parts.take(i);
             let base = els[0].state_offset;
-            for ((e, out), r) in els.iter().zip(bufs.iter_mut()).zip(res.iter_mut()) {
+            for (i, (e, r)) in els.iter().zip(res.iter_mut()).enumerate() {
+                // The next element's kept data is asked for while this
+                // one computes (the pass is latency-bound).
+                if let Some(next) = bufs.get(i + 1) {
+                    next.prefetch();
+                }
+                let out = &mut bufs[i];
                 let chunk = &mut states[e.state_offset - base..e.state_offset - base + e.npg];
                 *r = integrate_one(
                     e,
