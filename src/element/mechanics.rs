@@ -1009,7 +1009,8 @@ fn simo_miehe_explicit(
         }
         if geom.axis {
             // The (r, z) block and θθ only (`Axi`): the same nonzero
-            // values to the bit at a fraction of the 3 × 3 arithmetic.
+            // values at a fraction of the 3 × 3 arithmetic (to the bit but
+            // for `two_thirds_power`'s rounding of (J_n/J)^(2/3)).
             let (fa, fna) = (Axi::of(&f), Axi::of(&f_n));
             let fa_inv = fa.inverse(j);
             let fna_inv = match (&fn_inv_axi, &fn_inv) {
