@@ -738,8 +738,8 @@ fn definition_errors_are_clear() {
             "COEF_MULT is evaluated with the parameter INST only",
         ),
         (
-            "_F(GROUP_NO='A1', NOM_CMP='DX', COEF_MULT=CM1, COEF_IMPO=CI)",
-            "imposed by DDL_IMPO",
+            "_F(GROUP_NO='A1', NOM_CMP='DZ', COEF_MULT=CM1, COEF_IMPO=CI)",
+            "none of NOM_CMP (DZ) is a degree of freedom of the model MO",
         ),
     ];
     for (zones, want) in cases {
@@ -750,4 +750,16 @@ fn definition_errors_are_clear() {
         let e = run(&mut st, zones, schema, inc).expect_err(want);
         assert!(e.contains(want), "{want}: {e}");
     }
+    // A link on a component imposed by DDL_IMPO (DX here) is accepted, as
+    // code_aster does: the imposed value moves to the right-hand side and
+    // the link, satisfied, stays inert.
+    let (mut st, _, _) = single_node(1e-9, 8.93e-9, -1000.0, linspace(0.0, 1e-6, 1));
+    insert_function(&mut st, "CI", Function::constant(0.0, "TOUTRESU"));
+    run(
+        &mut st,
+        "_F(GROUP_NO='A1', NOM_CMP='DX', COEF_MULT=CM1, COEF_IMPO=CI)",
+        schema,
+        inc,
+    )
+    .unwrap();
 }

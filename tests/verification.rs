@@ -77,6 +77,26 @@ fn unilateral_zones_3d_carry_the_weight() {
     run_study("unil_zones_3d");
 }
 
+/// LIAISON_UNIL in AXIS (QUAD4): an elastic bar in free flight stopped
+/// inside a step by a floor (GROUP_MA, COEF_MULT = -1), a ceiling (GROUP_NO
+/// from DEFI_GROUP PLAN, COEF_MULT = +2), a tilted floor (COEF_IMPO a
+/// function of X) and a penalised floor: the stopped nodes sit on their
+/// bound to 1e-12 with the trapezoidal rule's velocity V - 2 s / dt.
+#[test]
+fn unilateral_axis_bar_stops_on_its_bounds() {
+    run_study("unil_axis_drop");
+}
+
+/// LIAISON_UNIL carrying a static load on a 3D quarter bar (PENTA6):
+/// reactions equal to the load, a floor rising with INST written as two
+/// zones (SANS_GROUP_NO, a NOM_CMP list with an imposed component), links
+/// on DDL_IMPO components, zones never active, and the penalised springs
+/// in series, all against uniaxial compression.
+#[test]
+fn unilateral_press_3d_reactions_equal_the_load() {
+    run_study("unil_press_3d");
+}
+
 /// A node name the mesh does not have, in a LIAISON_UNIL zone, is an
 /// error located on its keyword and line that gives the valid names.
 #[test]

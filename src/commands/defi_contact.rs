@@ -440,20 +440,39 @@ fn unil_zone(
             ),
         ));
     }
-    for c in &cmps {
-        if !Dof::from_name(c).is_some_and(|d| model.has_dof(d)) {
-            return Err(zone.error(
+    // A component the model does not carry is dropped from the links
+    // (code_aster's creaun, info UNILATER_75); none left empties the zone.
+    let (kept, absent): (Vec<&str>, Vec<&str>) = cmps
+        .iter()
+        .copied()
+        .partition(|c| Dof::from_name(c).is_some_and(|d| model.has_dof(d)));
+    if kept.is_empty() {
+        let names: Vec<&str> = model.dofs.iter().map(|d| d.name()).collect();
+        return Err(zone
+            .error(
                 "NOM_CMP",
-                format!("{c} is not a degree of freedom of the model {model_name}"),
-            ));
-        }
+                format!(
+                    "none of NOM_CMP ({}) is a degree of freedom of the model {model_name}: zone {} keeps no node (UNILATER_48)",
+                    cmps.join(", "),
+                    k + 1
+                ),
+            )
+            .choices(cmps[0], &names));
     }
-    Ok(format!(
+    let mut line = format!(
         "      zone {}: {} nodes, sum of COEF_MULT x ({}) <= COEF_IMPO",
         k + 1,
         nodes.len(),
-        cmps.join(", ")
-    ))
+        kept.join(", ")
+    );
+    if !absent.is_empty() {
+        line.push_str(&format!(
+            "\n      zone {}: NOM_CMP {} dropped: not a degree of freedom of the model {model_name} (UNILATER_75)",
+            k + 1,
+            absent.join(", ")
+        ));
+    }
+    Ok(line)
 }
 
 /// DISCRETE and LIAISON_UNIL solve all zones with one algorithm, so the

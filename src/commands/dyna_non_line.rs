@@ -1184,13 +1184,16 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut unil = match unil_def {
         Some(def) => {
             let term = nonlinear::UnilateralContact::new(def, &engine.asm.numbering);
-            // Coefficients that cannot be evaluated, or conditions on
-            // imposed dofs, are refused before the first step.
+            // Coefficients that cannot be evaluated are refused before
+            // the first step.
             let nb = &engine.asm.numbering;
             term.def
-                .rows(tl.instants[0], nb.ndpn, |f| {
-                    (nb.eq[f] != nonlinear::dofs::NONE).then(|| nb.eq[f])
-                })
+                .rows(
+                    tl.instants[0],
+                    nb.ndpn,
+                    |f| (nb.eq[f] != nonlinear::dofs::NONE).then(|| nb.eq[f]),
+                    nonlinear::unilateral::imposed_value(nb),
+                )
                 .map_err(|m| args.error("CONTACT", m))?;
             Some(term)
         }

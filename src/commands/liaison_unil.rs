@@ -81,17 +81,26 @@ pub fn unil_def(
         }
         let mut components = Vec::new();
         for (c, m) in cmps.iter().zip(&mults) {
-            let Some(idx) = Dof::from_name(c).and_then(|d| model.dofs.iter().position(|x| *x == d))
-            else {
-                let names: Vec<&str> = model.dofs.iter().map(|d| d.name()).collect();
-                return Err(z
-                    .error(
-                        "NOM_CMP",
-                        format!("{c} is not a displacement component of the model"),
-                    )
-                    .choices(c, &names));
-            };
-            components.push((idx, function(study, z, "COEF_MULT", m)?));
+            // A component the model does not carry is dropped from the
+            // links (code_aster's creaun, UNILATER_75, info).
+            if let Some(idx) =
+                Dof::from_name(c).and_then(|d| model.dofs.iter().position(|x| *x == d))
+            {
+                components.push((idx, function(study, z, "COEF_MULT", m)?));
+            }
+        }
+        if components.is_empty() {
+            let names: Vec<&str> = model.dofs.iter().map(|d| d.name()).collect();
+            return Err(z
+                .error(
+                    "NOM_CMP",
+                    format!(
+                        "none of NOM_CMP ({}) is a displacement component of the model: zone {} keeps no node (UNILATER_48)",
+                        cmps.join(", "),
+                        k + 1
+                    ),
+                )
+                .choices(cmps.first().copied().unwrap_or(""), &names));
         }
         let impo_name = z.concept("COEF_IMPO").unwrap_or_default();
         let coef_impo = function(study, z, "COEF_IMPO", impo_name)?;

@@ -103,30 +103,41 @@ pub fn eval_coef_impo(f: &Function, inst: f64, x: [f64; 3]) -> Result<f64, Strin
 impl UnilDef {
     /// The rows of every link at instant `t`, on the equations `eq` (full
     /// dof → equation, `None` for a dof without equation) of a numbering
-    /// with `ndpn` components per node.
+    /// with `ndpn` components per node. A component imposed by DDL_IMPO
+    /// (`imposed` gives its value) is not an unknown: its term a·u_imposed
+    /// moves to the right-hand side. This is what code_aster's dualised
+    /// DDL_IMPO amounts to: its column C⁻¹Aᵀ is zero on that dof, and the
+    /// gap c − A·u counts the imposed value. A row left empty is inert
+    /// while its gap is ≥ 0 and singular (MECANONLINE9_6) once violated,
+    /// as there.
     pub fn rows(
         &self,
         t: f64,
         ndpn: usize,
         eq: impl Fn(usize) -> Option<usize>,
+        imposed: impl Fn(usize) -> Option<f64>,
     ) -> Result<Vec<Row>, String> {
         self.links
             .iter()
             .map(|l| {
                 let z = &self.zones[l.zone];
                 let mut entries = Vec::with_capacity(z.components.len());
+                let mut shift = 0.0;
                 for (k, f) in &z.components {
                     let a = eval_coef_mult(f, t)?;
                     let full = l.node * ndpn + k;
-                    let Some(e) = eq(full) else {
-                        return Err(format!(
-                            "the unilateral condition at node {} acts on a component imposed by DDL_IMPO (or outside the model): not supported",
-                            l.node + 1
-                        ));
-                    };
-                    entries.push((e, a));
+                    match (eq(full), imposed(full)) {
+                        (Some(e), _) => entries.push((e, a)),
+                        (None, Some(u)) => shift += a * u,
+                        (None, None) => {
+                            return Err(format!(
+                                "the unilateral condition at node {} acts on a component without degree of freedom in the model",
+                                l.node + 1
+                            ))
+                        }
+                    }
                 }
-                let c = eval_coef_impo(&z.coef_impo, t, l.coords)?;
+                let c = eval_coef_impo(&z.coef_impo, t, l.coords)? - shift;
                 Ok(Row { entries, c })
             })
             .collect()
@@ -499,6 +510,70 @@ mod tests {
         assert!(msg.contains("did not converge in 4 passes") && msg.contains("MECANONLINE9_5"));
         // The increment and the gaps are left as they were.
         assert_eq!((delta, gaps), (vec![-1.0, -1.0], vec![0.0]));
+    }
+
+    /// A component imposed by DDL_IMPO leaves the unknowns: its term
+    /// moves to c. A link left without unknown is inert while its gap is
+    /// non-negative, and singular (code 2) once violated, as with
+    /// code_aster's dualised DDL_IMPO (liaison-unil.md §8).
+    #[test]
+    fn imposed_components_move_to_the_right_hand_side() {
+        let c = Function::constant(1.0, "TOUTRESU");
+        let def = UnilDef {
+            algo: UnilAlgo::ActiveSet,
+            zones: vec![UnilZone {
+                nodes: vec![0, 1],
+                components: vec![
+                    (0, Function::constant(2.0, "TOUTRESU")),
+                    (1, Function::constant(-1.0, "TOUTRESU")),
+                ],
+                coef_impo: c,
+                coef_pena: None,
+            }],
+            links: vec![
+                UnilLink {
+                    zone: 0,
+                    node: 0,
+                    coords: [0.0; 3],
+                },
+                UnilLink {
+                    zone: 0,
+                    node: 1,
+                    coords: [0.0; 3],
+                },
+            ],
+        };
+        // Node 0: DX free (equation 0), DY imposed to 0.25. Node 1: both
+        // imposed (DX = 1, DY = 0.5).
+        let eq = |f: usize| (f == 0).then_some(0);
+        let imposed = |f: usize| match f {
+            1 => Some(0.25),
+            2 => Some(1.0),
+            3 => Some(0.5),
+            _ => None,
+        };
+        let rows = def.rows(0.0, 2, eq, imposed).unwrap();
+        assert_eq!(rows[0].entries, vec![(0, 2.0)]);
+        assert!(close(rows[0].c, 1.0 + 0.25));
+        assert!(rows[1].entries.is_empty());
+        assert!(close(rows[1].c, 1.0 - 2.0 + 0.5));
+        // A dof neither free nor imposed has no meaning here.
+        assert!(def.rows(0.0, 2, |_| None, |_| None).is_err());
+        // The empty row: inert with g = 0.5 >= 0 ...
+        let mut solve = solver([[1.0, 0.0], [0.0, 1.0]]);
+        let empty = vec![Row {
+            entries: vec![],
+            c: 0.5,
+        }];
+        let mut delta = vec![-1.0, 0.0];
+        let (mut gaps, mut zero) = (vec![0.5], vec![false]);
+        let r = active_set(&empty, &mut gaps, &mut delta, &mut solve, &mut zero).unwrap();
+        assert!(r.active.is_empty());
+        assert_eq!(delta, vec![-1.0, 0.0]);
+        // ... singular with g < 0.
+        let (mut gaps, mut zero) = (vec![-0.5], vec![false]);
+        let r = active_set(&empty, &mut gaps, &mut delta, &mut solve, &mut zero);
+        assert_eq!(r, Err(ActiveSetFailure::Singular { link: 0 }));
     }
 
     #[test]

@@ -94,11 +94,20 @@ impl UnilateralContact {
     }
 }
 
+/// The DDL_IMPO value of a full dof, if it is imposed.
+pub fn imposed_value(numbering: &DofNumbering) -> impl Fn(usize) -> Option<f64> {
+    let map: std::collections::HashMap<usize, f64> = numbering.imposed.iter().copied().collect();
+    move |f| map.get(&f).copied()
+}
+
 impl ContactTerm for UnilateralContact {
     fn begin_step(&mut self, numbering: &DofNumbering, _u_start: &[f64], t: f64, dt: f64) {
         // Coefficients frozen at the end of the step for the whole step.
         let eq = |f: usize| (numbering.eq[f] != NONE).then(|| numbering.eq[f]);
-        match self.def.rows(t + dt, self.ndpn, eq) {
+        match self
+            .def
+            .rows(t + dt, self.ndpn, eq, imposed_value(numbering))
+        {
             Ok(r) => {
                 self.rows = r;
                 self.row_error = None;
