@@ -97,6 +97,15 @@ fn unilateral_press_3d_reactions_equal_the_load() {
     run_study("unil_press_3d");
 }
 
+/// A sloped wall DX + DY <= C (two components in one inequality), two
+/// zones (SANS_GROUP_NO, a swapped NOM_CMP order, a COEF_MULT of INST):
+/// the stopped nodes sit on the wall to 1e-12 with the trapezoidal rule's
+/// normal velocity.
+#[test]
+fn unilateral_sloped_wall_stops_the_nodes_on_it() {
+    run_study("unil_wall_quarter");
+}
+
 /// A node name the mesh does not have, in a LIAISON_UNIL zone, is an
 /// error located on its keyword and line that gives the valid names.
 #[test]

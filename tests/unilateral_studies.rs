@@ -1,0 +1,143 @@
+//! LIAISON_UNIL written wrong, as a user could: each variant of the AXIS
+//! drop study (tests/verification/unil_axis_drop.comm) must stop with exit
+//! code 1 and an error that names the command, the keyword and the line
+//! and column in the file — never a panic, never a silent run.
+
+use std::path::{Path, PathBuf};
+
+mod common;
+
+fn dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification")
+}
+
+/// Runs `comm` with `from` replaced by `to` (which must occur) as
+/// `<tag>.comm` on the study's mesh.
+fn run_variant(tag: &str, from: &str, to: &str) -> common::Run {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("unil_studies_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("unil_axis_drop.comm")).unwrap();
+    assert!(comm.contains(from), "{tag}: {from}");
+    let text = comm.replacen(from, to, 1);
+    std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+    std::fs::write(
+        tmp.join(format!("{tag}.export")),
+        format!("F mmed {} D 20\n", dir().join("unil_axis.mmed").display()),
+    )
+    .unwrap();
+    common::run_study(
+        tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+        &format!("unil_bad_{tag}"),
+    )
+}
+
+const FLOOR: &str = "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=MUN, COEF_IMPO=FH))\nPLAF";
+
+#[test]
+fn bad_unilateral_definitions_are_located_errors() {
+    let cases: [(&str, &str, &str, &[&str]); 8] = [
+        (
+            "dz_in_axis",
+            FLOOR,
+            "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DZ', COEF_MULT=MUN, COEF_IMPO=FH))\nPLAF",
+            &[
+                "DEFI_CONTACT/ZONE/NOM_CMP",
+                "none of NOM_CMP (DZ) is a degree of freedom of the model MO",
+                "UNILATER_48",
+                "expected one of: 'DX', 'DY'",
+                "dz_in_axis.comm:53:",
+            ],
+        ),
+        (
+            "lengths",
+            FLOOR,
+            "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=(MUN, MUN), COEF_IMPO=FH))\nPLAF",
+            &[
+                "DEFI_CONTACT/ZONE/COEF_MULT",
+                "NOM_CMP gives 1 component(s) and COEF_MULT 2 coefficient(s)",
+                "lengths.comm:53:",
+            ],
+        ),
+        (
+            "empty",
+            FLOOR,
+            "ZONE=_F(GROUP_MA='SZZ', SANS_GROUP_NO='SZZ', NOM_CMP='DY', COEF_MULT=MUN, COEF_IMPO=FH))\nPLAF",
+            &["DEFI_CONTACT/ZONE", "keeps no node", "UNILATER_48", "empty.comm:53:"],
+        ),
+        (
+            "no_group",
+            FLOOR,
+            "ZONE=_F(GROUP_MA='SOL', NOM_CMP='DY', COEF_MULT=MUN, COEF_IMPO=FH))\nPLAF",
+            &[
+                "DEFI_CONTACT/ZONE/GROUP_MA",
+                "has no cell group (GROUP_MA) 'SOL'",
+                "no_group.comm:53:",
+            ],
+        ),
+        (
+            "real_coef",
+            FLOOR,
+            "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=-1., COEF_IMPO=FH))\nPLAF",
+            &[
+                "DEFI_CONTACT/ZONE/COEF_MULT",
+                "expected a concept of type fonction_sdaster, found the real -1.0",
+                "real_coef.comm:53:",
+            ],
+        ),
+        (
+            "explicit",
+            "ETAT_INIT=_F(VITE=VDOWN), INCREMENT=_F(LIST_INST=LI),\n                    SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))\nREC",
+            "ETAT_INIT=_F(VITE=VDOWN), INCREMENT=_F(LIST_INST=LI),\n                    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))\nREC",
+            &[
+                "DYNA_NON_LINE/SCHEMA_TEMPS/SCHEMA",
+                "incompatible with the explicit scheme SCHEMA='DIFF_CENT' (MECANONLINE5_23)",
+                "explicit.comm:65:",
+            ],
+        ),
+        (
+            "pena_without_coef",
+            "ALGO_CONT='PENALISATION', COEF_PENA=1.E12))",
+            "ALGO_CONT='PENALISATION'))",
+            &["DEFI_CONTACT/ZONE/COEF_PENA", "missing compulsory keyword COEF_PENA", "pena_without_coef.comm:59:"],
+        ),
+        (
+            "cont_noeu",
+            "IMPR_TABLE(TABLE=T)",
+            "TC = POST_RELEVE_T(ACTION=_F(INTITULE='C', RESULTAT=RES, NOM_CHAM='CONT_NOEU', GROUP_NO='SZZ', TOUT_CMP='OUI', OPERATION='EXTRACTION'))",
+            &[
+                "POST_RELEVE_T/ACTION/NOM_CHAM",
+                "LIAISON_UNIL produces no CONT_NOEU, as in code_aster: the reactions are REAC_NODA of CALC_CHAMP",
+                "cont_noeu.comm:",
+            ],
+        ),
+    ];
+    for (tag, from, to, want) in cases {
+        let run = run_variant(tag, from, to);
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
+        for w in want {
+            assert!(run.term.contains(w), "{tag}: {w}\n{}", run.term);
+        }
+    }
+}
+
+/// NOM_CMP naming a component the model lacks next to one it has is
+/// accepted, as code_aster's creaun accepts it (the component is dropped
+/// with the note UNILATER_75), and gives the same motion.
+#[test]
+fn absent_component_is_dropped_with_a_note() {
+    let run = run_variant(
+        "dy_dz",
+        FLOOR,
+        "ZONE=_F(GROUP_MA='SZZ', NOM_CMP=('DY', 'DZ'), COEF_MULT=(MUN, MUN), COEF_IMPO=FH))\nPLAF",
+    );
+    let resu = common::assert_all_ok(&run, "dy_dz.resu");
+    assert!(resu.contains(" OK "));
+    assert!(
+        run.file("dy_dz.mess").contains(
+            "zone 1: NOM_CMP DZ dropped: not a degree of freedom of the model MO (UNILATER_75)"
+        ),
+        "{}",
+        run.file("dy_dz.mess")
+    );
+}
