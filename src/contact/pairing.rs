@@ -183,7 +183,10 @@ pub fn project(kind: CellType, xs: &[[f64; 3]], p: [f64; 3], dim: usize) -> Opti
     if !ok || xs.len() != kind.nnodes() {
         return None;
     }
-    let geo = |xi: [f64; 2]| -> ([f64; 3], [[f64; 3]; 2], Vec<f64>) {
+    // x(ξ) and the covariant tangents; the shape functions themselves
+    // are taken once, at the projection (no allocation per evaluation:
+    // the explicit loop pairs at every step).
+    let geo = |xi: [f64; 2]| -> ([f64; 3], [[f64; 3]; 2]) {
         let sh = shape::eval(kind, [xi[0], xi[1], 0.0]);
         let mut x = [0.0; 3];
         let mut t = [[0.0; 3]; 2];
@@ -193,7 +196,7 @@ pub fn project(kind: CellType, xs: &[[f64; 3]], p: [f64; 3], dim: usize) -> Opti
                 *ta = add(*ta, scale(sh.dn()[i][a], *xi_node));
             }
         }
-        (x, t, sh.n().to_vec())
+        (x, t)
     };
     // Newton from the cell's centre; a symmetric start can converge to a
     // stationary point that is not the closest (p on the axis of a curved
@@ -223,7 +226,8 @@ pub fn project(kind: CellType, xs: &[[f64; 3]], p: [f64; 3], dim: usize) -> Opti
         }
     }
     let (xi, _) = best?;
-    let (x, t, n) = geo(xi);
+    let (x, t) = geo(xi);
+    let n = shape::eval(kind, [xi[0], xi[1], 0.0]).n().to_vec();
     let (normal, tangents) = basis(t, pdim)?;
     let d = sub(x, p);
     let outside = match kind {
@@ -247,11 +251,11 @@ pub fn project(kind: CellType, xs: &[[f64; 3]], p: [f64; 3], dim: usize) -> Opti
 /// whether it is a strict local minimum (positive definite Hessian).
 fn newton<G>(geo: &G, p: [f64; 3], pdim: usize, start: [f64; 2]) -> Option<([f64; 2], bool)>
 where
-    G: Fn([f64; 2]) -> ([f64; 3], [[f64; 3]; 2], Vec<f64>),
+    G: Fn([f64; 2]) -> ([f64; 3], [[f64; 3]; 2]),
 {
     let mut xi = start;
     for _ in 0..MAX_NEWTON {
-        let (x, t, _) = geo(xi);
+        let (x, t) = geo(xi);
         let r = sub(x, p);
         let mut grad = [0.0; 2];
         let mut h = [[0.0; 2]; 2];
@@ -269,8 +273,8 @@ where
             let mut xm = xi;
             xp[b] += FD_STEP;
             xm[b] -= FD_STEP;
-            let (_, tp, _) = geo(xp);
-            let (_, tm, _) = geo(xm);
+            let (_, tp) = geo(xp);
+            let (_, tm) = geo(xm);
             for a in 0..pdim {
                 let d2 = scale(0.5 / FD_STEP, sub(tp[a], tm[a]));
                 full[a][b] += dot(r, d2);
