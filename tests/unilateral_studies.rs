@@ -35,7 +35,7 @@ const FLOOR: &str = "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=MUN, COEF_I
 
 #[test]
 fn bad_unilateral_definitions_are_located_errors() {
-    let cases: [(&str, &str, &str, &[&str]); 8] = [
+    let cases: [(&str, &str, &str, &[&str]); 9] = [
         (
             "dz_in_axis",
             FLOOR,
@@ -101,6 +101,18 @@ fn bad_unilateral_definitions_are_located_errors() {
             &["DEFI_CONTACT/ZONE/COEF_PENA", "missing compulsory keyword COEF_PENA", "pena_without_coef.comm:59:"],
         ),
         (
+            "domain",
+            "FH = DEFI_CONSTANTE(VALE=H)",
+            "FH = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., H, 1.E-5, H))",
+            &[
+                "DYNA_NON_LINE/CONTACT",
+                "LIAISON_UNIL at INST = 1.5e-5: ZONE 1, COEF_IMPO",
+                "outside the domain [0.0, 1e-05]",
+                "PROL_DROITE='EXCLU'",
+                "domain.comm:62:",
+            ],
+        ),
+        (
             "cont_noeu",
             "IMPR_TABLE(TABLE=T)",
             "TC = POST_RELEVE_T(ACTION=_F(INTITULE='C', RESULTAT=RES, NOM_CHAM='CONT_NOEU', GROUP_NO='SZZ', TOUT_CMP='OUI', OPERATION='EXTRACTION'))",
@@ -140,4 +152,17 @@ fn absent_component_is_dropped_with_a_note() {
         "{}",
         run.file("dy_dz.mess")
     );
+}
+
+/// COEF_IMPO is evaluated at the step ends only (t+), never at the
+/// initial instant: a function defined from the first step end on is
+/// valid, as in code_aster.
+#[test]
+fn coefficients_are_evaluated_at_the_step_ends_only() {
+    let run = run_variant(
+        "from_first_end",
+        "FH = DEFI_CONSTANTE(VALE=H)",
+        "FH = DEFI_FONCTION(NOM_PARA='INST', VALE=(DT, H, 1., H))",
+    );
+    common::assert_all_ok(&run, "from_first_end.resu");
 }

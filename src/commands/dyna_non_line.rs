@@ -1184,17 +1184,22 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut unil = match unil_def {
         Some(def) => {
             let term = nonlinear::UnilateralContact::new(def, &engine.asm.numbering);
-            // Coefficients that cannot be evaluated are refused before
-            // the first step.
+            // Coefficients that cannot be evaluated at the step ends of
+            // the list (code_aster evaluates them at t+, never at the
+            // initial instant) are refused before the first step, not
+            // found as a step failure that DEFI_LIST_INST would cut. A
+            // function's domain is an interval: the first and the last
+            // step ends cover the others.
             let nb = &engine.asm.numbering;
-            term.def
-                .rows(
-                    tl.instants[0],
-                    nb.ndpn,
-                    |f| (nb.eq[f] != nonlinear::dofs::NONE).then(|| nb.eq[f]),
-                    nonlinear::unilateral::imposed_value(nb),
-                )
-                .map_err(|m| args.error("CONTACT", m))?;
+            let eq = |f: usize| (nb.eq[f] != nonlinear::dofs::NONE).then(|| nb.eq[f]);
+            let imposed = nonlinear::unilateral::imposed_value(nb);
+            let ends = &tl.instants[1.min(tl.instants.len() - 1)..];
+            let checked = [ends[0], ends[ends.len() - 1]];
+            for &t in &checked {
+                term.def.rows(t, nb.ndpn, eq, &imposed).map_err(|m| {
+                    args.error("CONTACT", format!("LIAISON_UNIL at INST = {t:e}: {m}"))
+                })?;
+            }
             Some(term)
         }
         None => None,

@@ -124,7 +124,8 @@ impl UnilDef {
                 let mut entries = Vec::with_capacity(z.components.len());
                 let mut shift = 0.0;
                 for (k, f) in &z.components {
-                    let a = eval_coef_mult(f, t)?;
+                    let a = eval_coef_mult(f, t)
+                        .map_err(|e| format!("ZONE {}, COEF_MULT: {e}", l.zone + 1))?;
                     let full = l.node * ndpn + k;
                     match (eq(full), imposed(full)) {
                         (Some(e), _) => entries.push((e, a)),
@@ -137,7 +138,9 @@ impl UnilDef {
                         }
                     }
                 }
-                let c = eval_coef_impo(&z.coef_impo, t, l.coords)? - shift;
+                let c = eval_coef_impo(&z.coef_impo, t, l.coords)
+                    .map_err(|e| format!("ZONE {}, COEF_IMPO: {e}", l.zone + 1))?
+                    - shift;
                 Ok(Row { entries, c })
             })
             .collect()
