@@ -106,6 +106,15 @@ fn unilateral_sloped_wall_stops_the_nodes_on_it() {
     run_study("unil_wall_quarter");
 }
 
+/// LIAISON_UNIL on TETRA4 (a floor by GROUP_MA of TRIA3 outside the
+/// model, as SDNV103 E): the seven bottom nodes stopped inside a step on
+/// the floor to 1e-12 with the trapezoidal rule's velocity; penalised,
+/// within the reaction over COEF_PENA.
+#[test]
+fn unilateral_tetra_bar_stops_on_the_floor() {
+    run_study("unil_tetra_drop");
+}
+
 /// A node name the mesh does not have, in a LIAISON_UNIL zone, is an
 /// error located on its keyword and line that gives the valid names.
 #[test]

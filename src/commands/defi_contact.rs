@@ -323,6 +323,13 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         args.text("FROTTEMENT").unwrap_or("SANS"),
         zones.len()
     ));
+    if formulation == "LIAISON_UNIL" && friction {
+        // code_aster's caliun never reads FROTTEMENT: the conditions stay
+        // frictionless.
+        lines.push(
+            "      FROTTEMENT='COULOMB' has no effect on LIAISON_UNIL (linear inequalities, no friction): ignored, as code_aster does".into(),
+        );
+    }
     for l in lines {
         study.log(l);
     }
