@@ -64,6 +64,26 @@ fn landing_bar_momentum_is_the_impulse_of_the_reactions() {
         }
     }
     assert!(rows >= 60, "{rows} rows");
+    // CONT_NOEU's RNY (the kinematic contact's forces) against REAC_NODA's
+    // DY (CALC_CHAMP: M a + F_int at the slave nodes), node by node, at
+    // both instants of T_CK: the same force by two paths, to the table's
+    // six digits.
+    let mut rny = std::collections::BTreeMap::new();
+    let mut dy = std::collections::BTreeMap::new();
+    for l in resu.lines() {
+        let t: Vec<&str> = l.split_whitespace().collect();
+        if t.len() == 13 && t[1] == "RES_K" {
+            let key = (t[4].to_string(), t[5].to_string());
+            match t[2] {
+                "CONT_NOEU" => rny.insert(key, t[11].to_string()),
+                "REAC_NODA" => dy.insert(key, t[12].to_string()),
+                _ => None,
+            };
+        }
+    }
+    assert_eq!(rny.len(), 10, "{resu}");
+    assert_eq!(rny, dy);
+    assert!(rny.values().any(|v| v.parse::<f64>().unwrap() > 100.0));
 }
 
 /// A stiff penalty (E_N = 1e9 on the landing bar) lowers the stable step by

@@ -437,7 +437,7 @@ pub fn step_nodal<'r>(
                 crate::post::test_report::py_repr(step.inst),
                 fields_held(step),
                 if nom_cham == "CONT_NOEU" {
-                    " (LIAISON_UNIL produces no CONT_NOEU, as in code_aster: the reactions are REAC_NODA of CALC_CHAMP)"
+                    " (CONT_NOEU exists only for a computation with DEFI_CONTACT DISCRETE or CONTINUE; LIAISON_UNIL produces no CONT_NOEU, as in code_aster: the reactions are REAC_NODA of CALC_CHAMP)"
                 } else {
                     ""
                 }

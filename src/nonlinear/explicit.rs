@@ -727,11 +727,13 @@ fn run_on(
         .as_deref()
         .map_or(zero.clone(), |c| c.force_on_fint_side.clone());
     let mut energy = ex.start_energy(engine, &fc0);
-    if archive(engine, tl, result, &engine.committed.clone(), None) {
+    if archive_with_contact(engine, tl, result, contact.as_deref(), None) {
         summary.archived += 1;
         archive_line(&mut energy, result, &summary, first_dt, log);
     }
     let mut dt = first_dt;
+    // The length of the last step done (for CONT_NOEU's percussion).
+    let mut last_dt = 0.0;
     let mut interval = settings.recheck;
     let mut next_estimate = interval;
     let mut alarmed_sub = false;
@@ -742,7 +744,9 @@ fn run_on(
         // SIGINT/SIGTERM (crate::interrupt): stop between two steps, the
         // last state archived, as the implicit loop does.
         if let Some(signal) = crate::interrupt::requested() {
-            if archive(engine, tl, result, &engine.committed.clone(), None) {
+            // After a commit the trial state is the one committed before.
+            let last = (summary.steps > 0).then_some((&engine.trial.motion.u[..], last_dt));
+            if archive_with_contact(engine, tl, result, contact.as_deref(), last) {
                 summary.archived += 1;
                 archive_line(&mut energy, result, &summary, dt, log);
             }
@@ -786,8 +790,10 @@ fn run_on(
         };
         if let Err(why) = outcome {
             // The last converged state is archived first, so that the
-            // message counts what the result really keeps.
-            if archive(engine, tl, result, &engine.committed.clone(), None) {
+            // message counts what the result really keeps. The failed
+            // step overwrote the trial state: GLI* of its CONT_NOEU are 0.
+            let last = (summary.steps > 0).then_some((&engine.committed.motion.u[..], last_dt));
+            if archive_with_contact(engine, tl, result, contact.as_deref(), last) {
                 summary.archived += 1;
             }
             store_energy(&energy, result);
@@ -876,7 +882,13 @@ fn run_on(
             ));
         }
         if ((at_list && (tl.archive.wants(list_steps, engine.committed.t) || last)) || capped)
-            && archive(engine, tl, result, &engine.committed.clone(), None)
+            && archive_with_contact(
+                engine,
+                tl,
+                result,
+                contact.as_deref(),
+                Some((&engine.trial.motion.u, dt)),
+            )
         {
             summary.archived += 1;
             archive_line(&mut energy, result, &summary, dt, log);
@@ -884,6 +896,7 @@ fn run_on(
         if capped {
             break;
         }
+        last_dt = dt;
         dt = dt_next;
     }
     store_energy(&energy, result);
@@ -913,6 +926,30 @@ fn run_on(
     }
     crate::profile::count(crate::profile::Counter::Steps, summary.steps);
     Ok(summary)
+}
+
+/// Archives the committed state (as [`archive`]) and, with contact, its
+/// `CONT_NOEU`: zeros on the slave nodes at the initial state (`last`
+/// None), else the state reached by a step of `last.1` from the
+/// displacement `last.0` ([`ExplicitContact::cont_noeu`]).
+fn archive_with_contact(
+    engine: &Engine,
+    tl: &TimeLoop,
+    result: &mut EvolNoli,
+    contact: Option<&ExplicitContact>,
+    last: Option<(&[f64], f64)>,
+) -> bool {
+    if !archive(engine, tl, result, &engine.committed.clone(), None) {
+        return false;
+    }
+    if let (Some(ct), Some(step)) = (contact, result.steps.last_mut()) {
+        let field = match last {
+            None => ct.cont_noeu_initial(),
+            Some((u_start, dt)) => ct.cont_noeu(&engine.committed.motion.u, u_start, dt),
+        };
+        step.nodal.insert("CONT_NOEU".into(), field);
+    }
+    true
 }
 
 fn archive_line(

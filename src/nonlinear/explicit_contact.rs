@@ -474,6 +474,115 @@ impl ExplicitContact {
         self.u_prev.copy_from_slice(u);
     }
 
+    /// `CONT_NOEU` of the committed state `u`, reached by a step of `dt`
+    /// from `u_start`, an aster extension as the explicit contact itself,
+    /// so that a study's post-processing (JEU, RN, R of POST_RELEVE_T,
+    /// IMPR_RESU) runs unchanged on an explicit result. The components
+    /// are the implicit discrete contact's (docs/contact.md §4, code_aster's
+    /// `cfresu`), read from the last contact forces
+    /// ([`ExplicitContact::force_on_fint_side`]: the penalty at `u`, or the
+    /// kinematic correction of the state before the next step): JEU the
+    /// gap at `u` for every paired slave node; λ_n = −f·n_in and the
+    /// friction components −f·τ_k of the force f on the slave node; CONT 2
+    /// (sliding, or frictionless) when the tangential force reaches μλ_n
+    /// within 1e-9, else 1; GLIX/GLIY the slave's tangential displacement
+    /// over the step (the master is fixed). The percussion I is R·dt of
+    /// the last step, which is what code_aster's `cfresu` stores (the
+    /// implicit loop accumulates it, an open question of §4); steps are
+    /// tiny here, so I is small.
+    pub fn cont_noeu(&self, u: &[f64], u_start: &[f64], dt: f64) -> crate::result::NodalField {
+        use crate::contact::{ContactState, LinkState, LinkStatus};
+        let nd = self.ndpn;
+        let mut state = ContactState {
+            dim: self.def.dim,
+            links: Vec::with_capacity(self.pairing.links.len()),
+            unpaired: self.pairing.unpaired.clone(),
+        };
+        for l in &self.pairing.links {
+            let s = l.slave;
+            let us = self.node_u(u, s);
+            let mut um = [0.0; 3];
+            for (j, &mn) in l.master_nodes.iter().enumerate() {
+                let a = self.node_u(u, mn);
+                for k in 0..3 {
+                    um[k] += l.shape[j] * a[k];
+                }
+            }
+            let n = l.normal;
+            let gap = l.gap_ref + (0..3).map(|k| n[k] * (um[k] - us[k])).sum::<f64>();
+            // The force on the slave node.
+            let mut f = [0.0; 3];
+            for (k, x) in f.iter_mut().enumerate().take(self.dim) {
+                *x = -self.force_on_fint_side[s * nd + k];
+            }
+            let dot = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| a[k] * b[k]).sum::<f64>();
+            let lambda_n = -dot(&f, &n);
+            let mut friction = [0.0; 2];
+            for (k, t) in l.tangents.iter().enumerate().take(l.ntangents) {
+                friction[k] = -dot(&f, t);
+            }
+            let mut slip = [0.0; 2];
+            let d = {
+                let (a, b) = (self.node_u(u, s), self.node_u(u_start, s));
+                [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+            };
+            for (k, t) in l.tangents.iter().enumerate().take(l.ntangents) {
+                slip[k] = dot(&d, t);
+            }
+            let coulomb = self.def.zones[l.zone].friction;
+            let status = if lambda_n > 0.0 {
+                let ft = (friction[0] * friction[0] + friction[1] * friction[1]).sqrt();
+                match coulomb {
+                    Some(c) if ft < c.mu * lambda_n * (1.0 - 1e-9) => LinkStatus::Stick,
+                    _ => LinkStatus::Slip,
+                }
+            } else {
+                LinkStatus::Open
+            };
+            let mut link = LinkState {
+                zone: l.zone,
+                slave: s,
+                status,
+                gap,
+                lambda_n: lambda_n.max(0.0),
+                normal: n,
+                tangents: l.tangents,
+                ntangents: l.ntangents,
+                frictional: coulomb.is_some(),
+                slip,
+                friction,
+                proj: l.proj,
+                percussion: [0.0; 4],
+            };
+            if status.in_contact() {
+                let r = link.reaction();
+                let rn = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+                link.percussion = [rn * dt, r[0] * dt, r[1] * dt, r[2] * dt];
+            } else {
+                link.friction = [0.0; 2];
+            }
+            state.links.push(link);
+        }
+        state.cont_noeu(self.mesh.nnodes())
+    }
+
+    /// `CONT_NOEU` of the initial state: zeros on the slave nodes, as
+    /// code_aster's `cfmxr0` creates it and the implicit loop stores it.
+    pub fn cont_noeu_initial(&self) -> crate::result::NodalField {
+        let state = crate::contact::ContactState {
+            dim: self.def.dim,
+            links: Vec::new(),
+            unpaired: self
+                .def
+                .zones
+                .iter()
+                .enumerate()
+                .flat_map(|(z, zone)| zone.slave_nodes.iter().map(move |&n| (z, n)))
+                .collect(),
+        };
+        state.cont_noeu_initial(self.mesh.nnodes())
+    }
+
     /// The .mess line of the end of the run.
     pub fn summary_line(&self) -> String {
         let what = match self.enforcement {
