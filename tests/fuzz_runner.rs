@@ -874,6 +874,7 @@ const CHEAP: &[&str] = &[
     "tests/verification/free_flight.comm",
     "tests/verification/patch_axis.comm",
     "tests/verification/contact_landing.comm",
+    "tests/verification/unil_axis_drop.comm",
 ];
 
 /// Longer than any damaged cheap study should take (they run in well under

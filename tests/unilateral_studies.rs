@@ -166,3 +166,50 @@ fn coefficients_are_evaluated_at_the_step_ends_only() {
     );
     common::assert_all_ok(&run, "from_first_end.resu");
 }
+
+/// The same node in two zones, both links violated in one step: the
+/// Schur complement is singular (MECANONLINE9_6, as code_aster's code 2),
+/// DEFI_LIST_INST cuts the step, and in the sub-steps the node meets its
+/// stricter wall first: DX + DY of A1 is 2 sqrt(2) to 1e-12 when held and
+/// never above (tests/studies/unil_two_zones_cut.comm).
+#[test]
+fn same_node_in_two_zones_cut_then_held_on_the_stricter_wall() {
+    let run = common::run_study(
+        "tests/studies/unil_two_zones_cut.comm",
+        "unil_two_zones_cut",
+    );
+    assert_eq!(run.code, 0, "{}", run.term);
+    let mess = run.file("unil_two_zones_cut.mess");
+    for what in [
+        "step failure from t = 9e-6 to 1.2e-5",
+        "singular at link 8",
+        "MECANONLINE9_6",
+        "the step is cut into 4 sub-steps",
+    ] {
+        assert!(mess.contains(what), "{what}\n{mess}");
+    }
+    let resu = run.file("unil_two_zones_cut.resu");
+    let c2 = 2.0 * 2f64.sqrt();
+    let rows: Vec<(f64, f64)> = resu
+        .lines()
+        .skip_while(|l| !l.starts_with("INST"))
+        .skip(1)
+        .map_while(|l| {
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            (v.len() == 3).then(|| (v[0], v[1] + v[2]))
+        })
+        .collect();
+    assert_eq!(rows.len(), 9, "{resu}");
+    for &(t, s) in &rows {
+        assert!(s <= c2 + 1e-12, "t = {t}: DX + DY = {s} beyond {c2}");
+    }
+    let held: Vec<f64> = rows
+        .iter()
+        .filter(|r| (r.1 - c2).abs() <= 1e-12)
+        .map(|r| r.0)
+        .collect();
+    assert_eq!(held, vec![9e-6, 9.75e-6], "{rows:?}");
+}
