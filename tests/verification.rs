@@ -170,8 +170,9 @@ fn nodal_force_with_a_multiplier_in_time() {
 }
 
 /// A FONC_MULT that is not a function of INST, or that cannot be evaluated
-/// over the time list, or on a load imposing non-zero displacements, is a
-/// located error on FONC_MULT.
+/// over the time list, or on a load imposing non-zero displacements that
+/// another load without multiplier also imposes, is a located error on
+/// FONC_MULT.
 #[test]
 fn bad_multipliers_and_nodal_forces_are_located_errors() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("loads_fonc_mult_bad");
@@ -207,8 +208,8 @@ fn bad_multipliers_and_nodal_forces_are_located_errors() {
         );
         assert!(run.term.contains(what), "{tag}: {}", run.term);
     }
-    // BLOQ imposes zero displacements only: the multiplier changes nothing
-    // there, so only a non-zero imposed value is refused.
+    // A dof imposed both under a FONC_MULT (a value varying in time) and
+    // by a load without one has no single value: refused on FONC_MULT.
     let text = comm
         .replacen(
             "_F(GROUP_MA='SZZ', DZ=0.)",
@@ -217,14 +218,18 @@ fn bad_multipliers_and_nodal_forces_are_located_errors() {
         )
         .replacen(
             "_F(CHARGE=BLOQ), _F(CHARGE=TIRE, FONC_MULT=RAMPE)",
-            "_F(CHARGE=BLOQ, FONC_MULT=RAMPE), _F(CHARGE=TIRE)",
+            "_F(CHARGE=BLOQ, FONC_MULT=RAMPE), _F(CHARGE=BLOQ), _F(CHARGE=TIRE)",
             1,
         );
     let run = run_rod_variant(&tmp, "moving", &text, "verif_fonc_mult");
     assert_eq!(run.code, 1, "{}", run.term);
     assert!(
+        run.term.contains("DYNA_NON_LINE/EXCIT/FONC_MULT"),
+        "{}",
         run.term
-            .contains("not implemented yet: DYNA_NON_LINE/EXCIT/FONC_MULT"),
+    );
+    assert!(
+        run.term.contains("and by a load without FONC_MULT"),
         "{}",
         run.term
     );

@@ -275,8 +275,8 @@ pub(crate) fn model_data(
 /// load has a FONC_MULT, the history the engine re-evaluates at each
 /// step. A FONC_MULT is a function of INST (or a constant) that can be
 /// evaluated at every instant of the list; it scales the load's forces
-/// (PESANTEUR, FORCE_NODALE); non-zero DDL_IMPO values under a FONC_MULT
-/// (a time-varying imposed displacement) are not built.
+/// (PESANTEUR, FORCE_NODALE) and its DDL_IMPO values (an imposed
+/// displacement value × FONC_MULT(t), set at each step's end instant).
 pub(crate) fn set_loads(
     args: &Args,
     md: &ModelData,
@@ -291,15 +291,22 @@ pub(crate) fn set_loads(
     for (k, load) in loads.iter().enumerate() {
         let forces = md.load_forces(load).map_err(|m| args.error("EXCIT", m))?;
         let mult = match (mults.get(k).and_then(|m| m.as_deref()), excits.get(k)) {
-            (Some(name), Some(ex)) => Some(fonc_mult(study, ex, name, load, instants)?),
+            (Some(name), Some(ex)) => Some(fonc_mult(study, ex, name, instants)?),
             _ => None,
         };
         parts.push((forces, mult));
     }
-    let history = crate::nonlinear::loads::LoadHistory::new(parts);
+    let mut history = crate::nonlinear::loads::LoadHistory::new(parts);
+    let varying = imposed_under_mult(args, md, loads, mults, study, instants, engine)?;
+    for (entries, mult) in varying {
+        history = history.with_imposed(entries, mult);
+    }
     let t0 = instants.first().copied().unwrap_or(0.0);
     history
         .at(t0, &mut engine.fext)
+        .map_err(|m| args.error("EXCIT", m))?;
+    history
+        .set_imposed(t0, &mut engine.asm.numbering.imposed)
         .map_err(|m| args.error("EXCIT", m))?;
     if history.varies() {
         engine.loads = Some(history);
@@ -307,12 +314,74 @@ pub(crate) fn set_loads(
     Ok(())
 }
 
+/// The non-zero DDL_IMPO values of the loads with a FONC_MULT, as
+/// (index in the numbering's imposed list, value) per load with its
+/// multiplier. A dof imposed both by such a load and by a load without
+/// multiplier has no single value in time: refused, naming the EXCIT.
+fn imposed_under_mult(
+    args: &Args,
+    md: &ModelData,
+    loads: &[MechLoad],
+    mults: &[Option<String>],
+    study: &Study,
+    instants: &[f64],
+    engine: &crate::nonlinear::Engine,
+) -> Result<Vec<(Vec<(usize, f64)>, crate::post::function::Function)>, Diagnostic> {
+    let nb = &engine.asm.numbering;
+    let index: std::collections::HashMap<usize, usize> = nb
+        .imposed
+        .iter()
+        .enumerate()
+        .map(|(k, &(f, _))| (f, k))
+        .collect();
+    let full = |imp: &crate::model::ImposedDof| {
+        md.model
+            .dofs
+            .iter()
+            .position(|d| *d == imp.dof)
+            .map(|c| imp.node * nb.ndpn + c)
+            .and_then(|f| index.get(&f).copied())
+    };
+    let excits = args.facts("EXCIT");
+    let mut fixed = std::collections::HashSet::new();
+    for (k, load) in loads.iter().enumerate() {
+        if mults.get(k).and_then(|m| m.as_deref()).is_none() {
+            fixed.extend(load.imposed.iter().filter_map(full));
+        }
+    }
+    let mut out = Vec::new();
+    for (k, load) in loads.iter().enumerate() {
+        let (Some(name), Some(ex)) = (mults.get(k).and_then(|m| m.as_deref()), excits.get(k))
+        else {
+            continue;
+        };
+        let mut entries = Vec::new();
+        for imp in load.imposed.iter().filter(|d| d.value != 0.0) {
+            let Some(i) = full(imp) else { continue };
+            if fixed.contains(&i) {
+                return Err(ex.error(
+                    "FONC_MULT",
+                    format!(
+                        "{} of node {} is imposed by this load, whose FONC_MULT makes it vary in time, and by a load without FONC_MULT: one value per dof and instant",
+                        imp.dof.name(),
+                        imp.node + 1
+                    ),
+                ));
+            }
+            entries.push((i, imp.value));
+        }
+        if !entries.is_empty() {
+            out.push((entries, fonc_mult(study, ex, name, instants)?));
+        }
+    }
+    Ok(out)
+}
+
 /// The FONC_MULT function `name` of one EXCIT occurrence, checked.
 fn fonc_mult(
     study: &Study,
     ex: &Args,
     name: &str,
-    load: &MechLoad,
     instants: &[f64],
 ) -> Result<crate::post::function::Function, Diagnostic> {
     let Some(ConceptData::Function(f)) = study.concepts.data(name) else {
@@ -328,12 +397,6 @@ fn fonc_mult(
                 "FONC_MULT multiplies the load by a function of time: {name} is a function of {}, not of INST",
                 f.para
             ),
-        ));
-    }
-    if load.imposed.iter().any(|d| d.value != 0.0) {
-        return Err(ex.not_implemented(
-            "FONC_MULT",
-            "a FONC_MULT on a load with non-zero DDL_IMPO values (an imposed displacement varying in time); put the forces in a load of their own",
         ));
     }
     for &t in instants {

@@ -487,6 +487,53 @@ impl Assembler {
     pub fn mass_mul(&self, x: &[f64], y: &mut [f64]) {
         self.mass_full.mul_vec(x, y);
     }
+
+    /// K(u_n)·du added into `out` (full): the tangent of each element
+    /// that `du` touches, evaluated at the start of the step (zero
+    /// increment from `states_n`), applied to its part of `du`. The
+    /// prediction of a step whose imposed values move uses it to carry
+    /// their increment into the free dofs.
+    pub fn tangent_action(
+        &mut self,
+        u_n: &[f64],
+        states_n: &[PointState],
+        dt: f64,
+        du: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), CellFailure> {
+        let laws = &self.laws;
+        for (e, buf) in self.elements.iter().zip(self.buffers.iter_mut()) {
+            if e.full.iter().all(|&f| du[f] == 0.0) {
+                continue;
+            }
+            let mut chunk: Vec<PointState> =
+                states_n[e.state_offset..e.state_offset + e.npg].to_vec();
+            integrate_one(
+                e,
+                laws,
+                (u_n, u_n),
+                states_n,
+                dt,
+                TangentKind::Consistent,
+                buf,
+                &mut chunk,
+            )
+            .map_err(|failure| CellFailure {
+                cell: e.cell,
+                failure,
+            })?;
+            let n = e.full.len();
+            for (a, &fa) in e.full.iter().enumerate() {
+                let row = &buf.stiffness[a * n..(a + 1) * n];
+                out[fa] += row
+                    .iter()
+                    .zip(&e.full)
+                    .map(|(k, &fb)| k * du[fb])
+                    .sum::<f64>();
+            }
+        }
+        Ok(())
+    }
 }
 
 /// One element's integration into its buffer and its slice of the new

@@ -357,12 +357,13 @@ impl Explicit {
             loads,
             ..
         } = engine;
-        let nb = &asm.numbering;
         tr.t = cm.t + dt;
         // a_{n+1} balances the loads at t_{n+1}.
         if let Some(h) = loads.as_ref().filter(|h| h.varies()) {
             h.at(tr.t, fext)?;
+            h.set_imposed(tr.t, &mut asm.numbering.imposed)?;
         }
+        let nb = &asm.numbering;
         let n = cm.motion.u.len();
         tr.motion.u.resize(n, 0.0);
         tr.motion.v.resize(n, 0.0);

@@ -4,6 +4,11 @@
 //! "FIXE_CSTE" with a multiplier function). The engine asks for F_ext at
 //! the instants it needs: the end of the step, and for HHT's previous-step
 //! weight the start of it.
+//!
+//! The same multiplier scales the load's DDL_IMPO values (code_aster: an
+//! imposed displacement u(t) = value × FONC_MULT(t), the usual way to
+//! drive a displacement ramp): the engine sets the imposed values of the
+//! numbering at the end instant of each step before solving it.
 
 use crate::post::function::Function;
 
@@ -11,17 +16,46 @@ use crate::post::function::Function;
 #[derive(Debug, Clone, Default)]
 pub struct LoadHistory {
     parts: Vec<(Vec<f64>, Option<Function>)>,
+    /// Imposed values under a multiplier: (index in the numbering's
+    /// `imposed` list, value at multiplier 1) and the multiplier.
+    imposed: Vec<(Vec<(usize, f64)>, Function)>,
 }
 
 impl LoadHistory {
     pub fn new(parts: Vec<(Vec<f64>, Option<Function>)>) -> LoadHistory {
-        LoadHistory { parts }
+        LoadHistory {
+            parts,
+            imposed: Vec::new(),
+        }
+    }
+
+    /// Adds imposed values scaled by `mult` (see [`LoadHistory::set_imposed`]).
+    pub fn with_imposed(mut self, entries: Vec<(usize, f64)>, mult: Function) -> LoadHistory {
+        if !entries.is_empty() {
+            self.imposed.push((entries, mult));
+        }
+        self
     }
 
     /// Whether some load has a multiplier (otherwise F_ext is constant and
     /// set once).
     pub fn varies(&self) -> bool {
-        self.parts.iter().any(|(_, f)| f.is_some())
+        self.parts.iter().any(|(_, f)| f.is_some()) || !self.imposed.is_empty()
+    }
+
+    /// Writes the imposed values of instant `t` into the numbering's list
+    /// `imposed` ((full dof, value) pairs); entries without a multiplier
+    /// keep their constant value.
+    pub fn set_imposed(&self, t: f64, imposed: &mut [(usize, f64)]) -> Result<(), String> {
+        for (entries, mult) in &self.imposed {
+            let m = mult
+                .eval(t)
+                .map_err(|e| format!("FONC_MULT at INST = {t:e}: {e}"))?;
+            for &(k, v) in entries {
+                imposed[k].1 = m * v;
+            }
+        }
+        Ok(())
     }
 
     /// F_ext(t) into `out` (full vector). A multiplier that cannot be
@@ -62,5 +96,15 @@ mod tests {
         let e = h.at(3.0, &mut out).unwrap_err();
         assert!(e.contains("FONC_MULT at INST = 3e0"), "{e}");
         assert!(!LoadHistory::new(vec![(vec![1.0], None)]).varies());
+    }
+
+    #[test]
+    fn imposed_values_follow_their_multiplier() {
+        let ramp = Function::new("INST", "TOUTRESU", vec![0.0, 2.0], vec![0.0, 4.0]).unwrap();
+        let h = LoadHistory::new(vec![]).with_imposed(vec![(1, -0.5)], ramp);
+        assert!(h.varies());
+        let mut imposed = vec![(3, 7.0), (8, 0.0)];
+        h.set_imposed(1.5, &mut imposed).unwrap();
+        assert_eq!(imposed, vec![(3, 7.0), (8, -1.5)]);
     }
 }

