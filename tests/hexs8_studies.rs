@@ -226,8 +226,8 @@ fn cell_at(mesh: &mut Mesh, name: &str, p: [f64; 3]) {
         let nv = c.kind.nvertices();
         let mut g = [0.0; 3];
         for &n in &c.nodes[..nv] {
-            for d in 0..3 {
-                g[d] += mesh.coords[n][d] / nv as f64;
+            for (gd, xd) in g.iter_mut().zip(mesh.coords[n]) {
+                *gd += xd / nv as f64;
             }
         }
         (0..3).map(|d| (g[d] - p[d]).powi(2)).sum::<f64>()

@@ -314,6 +314,10 @@ pub(crate) fn set_loads(
     Ok(())
 }
 
+/// (index in the numbering's imposed list, value at multiplier 1) of a
+/// load's moving dofs, and its multiplier.
+type ImposedUnderMult = (Vec<(usize, f64)>, crate::post::function::Function);
+
 /// The non-zero DDL_IMPO values of the loads with a FONC_MULT, as
 /// (index in the numbering's imposed list, value) per load with its
 /// multiplier. A dof imposed both by such a load and by a load without
@@ -326,7 +330,7 @@ fn imposed_under_mult(
     study: &Study,
     instants: &[f64],
     engine: &crate::nonlinear::Engine,
-) -> Result<Vec<(Vec<(usize, f64)>, crate::post::function::Function)>, Diagnostic> {
+) -> Result<Vec<ImposedUnderMult>, Diagnostic> {
     let nb = &engine.asm.numbering;
     let index: std::collections::HashMap<usize, usize> = nb
         .imposed
