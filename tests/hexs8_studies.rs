@@ -37,9 +37,11 @@ enum Fill {
 
 /// A box [0, a] × [0, b] × [0, c] of n[0] × n[1] × n[2] cells, quadratic
 /// (HEXA20 / PENTA15 and QUAD8 faces; QUAD_LINE gives the linear mesh).
-/// `fill(k)` says how layer k (along z) is cut. Cell groups: VOL (all
-/// volume cells), HEXA / PENTA (by kind), XMIN ... ZMAX (boundary faces,
-/// normals pointing out of the box).
+/// `fill(i)` says how the cells of column i (along x) are cut, so that
+/// hexahedra and prisms meet on quadrilateral faces (a conforming mesh).
+/// Cell groups: VOL (all volume cells), HEXA / PENTA (by kind), XMIN ...
+/// ZMAX (boundary faces, normals pointing out of the box: triangles on the
+/// ends of the prisms).
 fn box_mesh(n: [usize; 3], size: [f64; 3], fill: &dyn Fn(usize) -> Fill) -> Mesh {
     let id = |i: usize, j: usize, k: usize| (k * (n[1] + 1) + j) * (n[0] + 1) + i;
     let mut coords = Vec::new();
@@ -71,7 +73,7 @@ fn box_mesh(n: [usize; 3], size: [f64; 3], fill: &dyn Fn(usize) -> Fill) -> Mesh
                     id(i, j + 1, k),
                 ];
                 let t = b.map(|v| v + (n[0] + 1) * (n[1] + 1));
-                match fill(k) {
+                match fill(i) {
                     // MED order whose code_aster numbering has ξ along x,
                     // η along y, ζ along z (the other orders of the same
                     // box change MECA_HEXS8's answers, see `swapped`)
@@ -109,16 +111,28 @@ fn box_mesh(n: [usize; 3], size: [f64; 3], fill: &dyn Fn(usize) -> Fill) -> Mesh
                         g[q] = c + dc;
                         id(g[0], g[1], g[2])
                     };
-                    let mut f = vec![node(0, 0), node(1, 0), node(1, 1), node(0, 1)];
-                    // outward: (x2 - x1) × (x3 - x1) along ±axis
-                    let x = |m: usize| mesh.coords[f[m]];
-                    let u = sub(x(1), x(0));
-                    let v = sub(x(2), x(0));
-                    let normal = cross(u, v)[axis];
-                    if (normal > 0.0) != (side > 0) {
-                        f.reverse();
+                    let quad = vec![node(0, 0), node(1, 0), node(1, 1), node(0, 1)];
+                    // the ends of a prism column are its triangles, cut
+                    // along the same diagonal (grid corners (i, j) and
+                    // (i + 1, j + 1)) as the volume cells
+                    let column = if axis == 2 { a } else { usize::MAX };
+                    let pieces = if column != usize::MAX && fill(column) == Fill::Prisms {
+                        vec![
+                            vec![quad[0], quad[1], quad[2]],
+                            vec![quad[0], quad[2], quad[3]],
+                        ]
+                    } else {
+                        vec![quad]
+                    };
+                    for mut f in pieces {
+                        // outward: (x2 - x1) × (x3 - x1) along ±axis
+                        let x = |m: usize| mesh.coords[f[m]];
+                        let normal = cross(sub(x(1), x(0)), sub(x(2), x(0)))[axis];
+                        if (normal > 0.0) != (side > 0) {
+                            f.reverse();
+                        }
+                        faces.push((name, f));
                     }
-                    faces.push((name, f));
                 }
             }
         }
@@ -129,6 +143,7 @@ fn box_mesh(n: [usize; 3], size: [f64; 3], fill: &dyn Fn(usize) -> Fill) -> Mesh
         let q = match kind {
             CellType::Hexa8 => CellType::Hexa20,
             CellType::Penta6 => CellType::Penta15,
+            CellType::Tria3 => CellType::Tria6,
             _ => CellType::Quad8,
         };
         for &(a, b) in q.mid_edges() {
@@ -168,7 +183,12 @@ fn box_mesh(n: [usize; 3], size: [f64; 3], fill: &dyn Fn(usize) -> Fill) -> Mesh
         groups.push(("PENTA".into(), penta));
     }
     for (name, f) in faces {
-        let i = quadratic(&mut mesh, CellType::Quad4, f);
+        let kind = if f.len() == 3 {
+            CellType::Tria3
+        } else {
+            CellType::Quad4
+        };
+        let i = quadratic(&mut mesh, kind, f);
         match groups.iter_mut().find(|(g, _)| g == name) {
             Some((_, cells)) => cells.push(i),
             None => groups.push((name.into(), vec![i])),
@@ -297,10 +317,10 @@ fn meshes() -> Vec<(&'static str, Mesh)> {
     point(&mut m, "MID", [0.0, 0.0, 40.0]);
     cell_at(&mut m, "BAS", [0.1, 0.1, 0.1]);
     out.push(("hexs8_bar40.mmed", m));
-    // mixed: 2 × 2 × 4, the two lower layers hexahedra, the two upper
-    // ones prisms
-    let mut m = box_mesh([2, 2, 4], [2.0, 2.0, 4.0], &|k| {
-        if k < 2 {
+    // mixed: 2 × 2 × 4, the column x < 1 hexahedra, the column x > 1
+    // prisms (they meet on the quadrilaterals of the plane x = 1)
+    let mut m = box_mesh([2, 2, 4], [2.0, 2.0, 4.0], &|i| {
+        if i < 1 {
             Fill::Hexa
         } else {
             Fill::Prisms
@@ -419,4 +439,144 @@ fn cantilever_bending() {
             "HEXS8 renumbered, {t} across: {p} against {beam}"
         );
     }
+}
+
+/// Mixed meshes (tests/studies/hexs8_mixed.comm): HEXS8 + PENTA6 and
+/// HEXS20 + PENTA15 under 3D then 3D_SI reproduce the homogeneous
+/// uniaxial state to round-off (in the command file), and the AFFE rule
+/// of semantics.md §3.2 as the message file lists the elements: 3D then
+/// 3D_SI gives MECA_HEXS8 and MECA_PENTA6; 3D_SI then 3D gives MECA_HEXA8
+/// everywhere; 3D_SI alone leaves the 16 prisms out (MODELE1_70).
+#[test]
+fn mixed_meshes() {
+    let run = common::run_study("tests/studies/hexs8_mixed.comm", "hexs8_hexs8_mixed");
+    common::assert_all_ok(&run, "hexs8_mixed.resu");
+    let mess = run.file("hexs8_mixed.mess");
+    let table = |model: &str| -> Vec<String> {
+        let tag = format!("model {model} on mesh");
+        mess.lines()
+            .skip_while(|l| !l.contains(&tag))
+            .skip(2)
+            .take_while(|l| !l.starts_with('<') && !l.starts_with('#'))
+            .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+            .collect()
+    };
+    let mol = table("MOL");
+    assert!(
+        mol.contains(&"3D_SI MECA_HEXS8 HEXA8 8".to_string()),
+        "{mol:?}"
+    );
+    assert!(
+        mol.contains(&"3D MECA_PENTA6 PENTA6 16".to_string()),
+        "{mol:?}"
+    );
+    let moq = table("MOQ");
+    assert!(
+        moq.contains(&"3D_SI MECA_HEXS20 HEXA20 8".to_string()),
+        "{moq:?}"
+    );
+    assert!(
+        moq.contains(&"3D MECA_PENTA15 PENTA15 16".to_string()),
+        "{moq:?}"
+    );
+    let mos = table("MOS");
+    assert!(
+        mos.contains(&"3D MECA_HEXA8 HEXA8 8".to_string()),
+        "{mos:?}"
+    );
+    assert!(mos.iter().all(|l| !l.contains("HEXS8")), "{mos:?}");
+    let moh = table("MOH");
+    assert!(
+        moh.contains(&"3D_SI MECA_HEXS8 HEXA8 8".to_string()),
+        "{moh:?}"
+    );
+    assert!(moh.iter().all(|l| !l.contains("PENTA")), "{moh:?}");
+    assert!(mess.contains("of the 68 cells, 68 selected, 52 assigned"));
+    assert!(
+        mess.contains("<MODELE1_70> after occurrence 1 of AFFE (MODELISATION='3D_SI'), 16 cell(s)")
+    );
+}
+
+/// Runs `text` (a variant of a study) with the study's units; returns
+/// the exit code and what the terminal showed.
+fn run_variant(tag: &str, text: &str, units: Vec<(i64, PathBuf)>) -> (i32, String) {
+    use aster::run::driver::{run_file, RunOptions};
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("hexs8_bad_{tag}"));
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = tmp.join("bad.comm");
+    std::fs::write(&comm, text).unwrap();
+    let mut term = Vec::new();
+    let code = run_file(
+        &RunOptions {
+            comm,
+            units,
+            out_dir: Some(tmp),
+            ..RunOptions::default()
+        },
+        &mut term,
+    );
+    (code, String::from_utf8(term).unwrap())
+}
+
+/// Bad input on 3D_SI studies stops with a located error, never a panic:
+/// the DDL_IMPO of nodes that only prisms hold when 3D_SI alone leaves
+/// the prisms out; SIMO_MIEHE and GDEF_LOG on HEXS8 (ELEMENTSSI_1);
+/// RELATION='ELAS' on HEXS8 with PETIT and a DEPL-only ETAT_INIT
+/// (ELEMENTSSI_3, the message saying which ETAT_INIT counts); 3D_SI on a
+/// 2D mesh (MODELE1_6).
+#[test]
+fn bad_input_is_located() {
+    let mixed = std::fs::read_to_string(dir().join("hexs8_mixed.comm")).unwrap();
+    let unit = vec![(20, dir().join("hexs8_mixed.mmed"))];
+    let only_si = mixed.replacen(
+        "AFFE=(_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'),\n                         _F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D_SI')))",
+        "AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D_SI'))",
+        1,
+    );
+    assert_ne!(only_si, mixed);
+    let (code, term) = run_variant("holes", &only_si, unit.clone());
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("DYNA_NON_LINE/EXCIT"), "{term}");
+    assert!(
+        term.contains("the node belongs to no element of the model"),
+        "{term}"
+    );
+    assert!(term.contains("bad.comm:"), "{term}");
+    for measure in ["SIMO_MIEHE", "GDEF_LOG"] {
+        let text = mixed.replacen(
+            "COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', TOUT='OUI')",
+            &format!(
+                "COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', DEFORMATION='{measure}', TOUT='OUI')"
+            ),
+            1,
+        );
+        assert_ne!(text, mixed);
+        let (code, term) = run_variant(measure, &text, unit.clone());
+        assert_eq!(code, 1, "{term}");
+        assert!(term.contains("DYNA_NON_LINE/COMPORTEMENT"), "{term}");
+        assert!(term.contains("ELEMENTSSI_1"), "{term}");
+        assert!(term.contains(measure), "{term}");
+    }
+    let text = mixed.replacen(
+        "COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', TOUT='OUI'),",
+        "COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(DEPL=U0),",
+        1,
+    );
+    let text = text.replacen(
+        "RL = DYNA_NON_LINE(",
+        "U0 = CREA_CHAMP(TYPE_CHAM='NOEU_DEPL_R', OPERATION='AFFE', MODELE=MOL,\n                 AFFE=_F(TOUT='OUI', NOM_CMP=('DX', 'DY', 'DZ'), VALE=(0., 0., 0.)))\nRL = DYNA_NON_LINE(",
+        1,
+    );
+    let (code, term) = run_variant("elas", &text, unit.clone());
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("ELEMENTSSI_3"), "{term}");
+    assert!(term.contains("ETAT_INIT with SIGM or EVOL_NOLI"), "{term}");
+    let two_d = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\nMO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D_SI'))\nFIN()\n";
+    let b = Path::new(env!("CARGO_MANIFEST_DIR")).join("med/sdnv103b.mmed");
+    let (code, term) = run_variant("two_d", two_d, vec![(20, b)]);
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("AFFE_MODELE/AFFE"), "{term}");
+    assert!(term.contains("MODELE1_6"), "{term}");
+    assert!(term.contains("bad.comm:3:"), "{term}");
 }
