@@ -580,3 +580,13 @@ fn bad_input_is_located() {
     assert!(term.contains("MODELE1_6"), "{term}");
     assert!(term.contains("bad.comm:3:"), "{term}");
 }
+
+/// tests/verification/contact_friction.comm in 3D_SI (tests/studies/
+/// hexs8_contact.comm): a HEXS8 block on the QUAD4 top face of a fixed
+/// HEXS8 slab, penalised discrete contact with Coulomb friction: sticking
+/// (the contact carries m g cos θ and the friction m g sin θ), sliding at
+/// g (sin θ − μ cos θ), and braking from V0 to rest after V0²/(2 μ g).
+#[test]
+fn block_on_a_slab_with_coulomb_friction() {
+    run_study("hexs8_contact");
+}
