@@ -590,3 +590,12 @@ fn bad_input_is_located() {
 fn block_on_a_slab_with_coulomb_friction() {
     run_study("hexs8_contact");
 }
+
+/// A DDL_IMPO under FONC_MULT in dynamics (tests/studies/
+/// hexs8_base_motion.comm): the base of a HEXS8 bar driven at V0, Newmark
+/// and DIFF_CENT, against one-dimensional wave theory (the tip at rest
+/// until L/c, then at 2 V0).
+#[test]
+fn base_driven_at_constant_velocity() {
+    run_study("hexs8_base_motion");
+}
