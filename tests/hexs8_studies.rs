@@ -523,8 +523,8 @@ fn run_variant(tag: &str, text: &str, units: Vec<(i64, PathBuf)>) -> (i32, Strin
 /// the DDL_IMPO of nodes that only prisms hold when 3D_SI alone leaves
 /// the prisms out; SIMO_MIEHE and GDEF_LOG on HEXS8 (ELEMENTSSI_1);
 /// RELATION='ELAS' on HEXS8 with PETIT and a DEPL-only ETAT_INIT
-/// (ELEMENTSSI_3, the message saying which ETAT_INIT counts); 3D_SI on a
-/// 2D mesh (MODELE1_6).
+/// (ELEMENTSSI_3, the message saying which ETAT_INIT counts); a NOM_VARI
+/// the law does not have; 3D_SI on a 2D mesh (MODELE1_6).
 #[test]
 fn bad_input_is_located() {
     let mixed = std::fs::read_to_string(dir().join("hexs8_mixed.comm")).unwrap();
@@ -572,6 +572,21 @@ fn bad_input_is_located() {
     assert_eq!(code, 1, "{term}");
     assert!(term.contains("ELEMENTSSI_3"), "{term}");
     assert!(term.contains("ETAT_INIT with SIGM or EVOL_NOLI"), "{term}");
+    let comp = std::fs::read_to_string(dir().join("hexs8_compression.comm")).unwrap();
+    let text = comp.replacen(
+        "NOM_VARI='EPSPEQ', GROUP_MA",
+        "NOM_VARI='EPSEQ', GROUP_MA",
+        1,
+    );
+    assert_ne!(text, comp);
+    let (code, term) = run_variant(
+        "nom_vari",
+        &text,
+        vec![(20, dir().join("hexs8_beam1.mmed"))],
+    );
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("TEST_RESU/RESU/NOM_VARI"), "{term}");
+    assert!(term.contains("its variables: EPSPEQ, INDIPLAS"), "{term}");
     let two_d = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\nMO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D_SI'))\nFIN()\n";
     let b = Path::new(env!("CARGO_MANIFEST_DIR")).join("med/sdnv103b.mmed");
     let (code, term) = run_variant("two_d", two_d, vec![(20, b)]);

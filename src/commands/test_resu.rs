@@ -129,7 +129,7 @@ type Header = Vec<(&'static str, String)>;
 /// The value a RESU occurrence tests, with the result name and the header
 /// columns.
 fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagnostic> {
-    for k in ["PARA", "NOM_VARI", "SOUS_POINT"] {
+    for k in ["PARA", "SOUS_POINT"] {
         if occ.has(k) {
             return Err(occ.not_implemented(k, ""));
         }
@@ -181,13 +181,24 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
         header.push(("TYPE_TEST", tt.to_string()));
         return Ok((rname.to_string(), header, v));
     }
-    let cmp = occ.text("NOM_CMP").ok_or_else(|| {
-        occ.error(
-            "NOM_CMP",
-            "NOM_CMP is needed to test one value (or give TYPE_TEST)",
-        )
-    })?;
-    header.push(("NOM_CMP", cmp.to_string()));
+    let nom_vari = occ.text("NOM_VARI");
+    let cmp = match nom_vari {
+        Some(v) => v,
+        None => occ.text("NOM_CMP").ok_or_else(|| {
+            occ.error(
+                "NOM_CMP",
+                "NOM_CMP is needed to test one value (or give TYPE_TEST)",
+            )
+        })?,
+    };
+    header.push((
+        if nom_vari.is_some() {
+            "NOM_VARI"
+        } else {
+            "NOM_CMP"
+        },
+        cmp.to_string(),
+    ));
     let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
     if gauss {
         if occ.has("GROUP_NO") || occ.has("NOEUD") {
@@ -205,7 +216,10 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
             .int("POINT")
             .ok_or_else(|| occ.error("POINT", format!("POINT is needed to test {nom_cham}")))?;
         let f = step_gauss(step, nom_cham, occ, "NOM_CHAM", rname)?;
-        let c = component_index(&f.components, cmp, occ, "NOM_CMP", nom_cham)?;
+        let c = match nom_vari {
+            Some(v) => vari_index(res, cell, v, occ, nom_cham)?,
+            None => component_index(&f.components, cmp, occ, "NOM_CMP", nom_cham)?,
+        };
         let npg = f.npg(cell);
         if point < 1 || point as usize > npg {
             return Err(occ.error(
@@ -245,6 +259,43 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
     let v = node_value(occ, f, nom_cham, node, cmp)?;
     header.push((nkey, nlabel));
     Ok((rname.to_string(), header, v))
+}
+
+/// The column of the internal variable named `name` (NOM_VARI) in the
+/// VARI_* field of `cell`: its rank in the cell's law (RELATION and
+/// DEFORMATION the result kept), V1 first.
+fn vari_index(
+    res: &crate::result::EvolNoli,
+    cell: usize,
+    name: &str,
+    occ: &Args,
+    nom_cham: &str,
+) -> Result<usize, Diagnostic> {
+    if !nom_cham.starts_with("VARI_") {
+        return Err(occ.error(
+            "NOM_VARI",
+            format!("NOM_VARI names an internal variable: NOM_CHAM must be VARI_ELGA (or VARI_ELNO/VARI_NOEU), not {nom_cham}"),
+        ));
+    }
+    let Some(Some((relation, deformation))) = res.comportement.get(cell) else {
+        return Err(occ.error(
+            "NOM_VARI",
+            format!(
+                "cell {} has no behaviour in this result",
+                super::post_args::cell_name(cell)
+            ),
+        ));
+    };
+    let names = crate::law::internal_variable_names(relation, deformation).unwrap_or(&[]);
+    names.iter().position(|n| *n == name).ok_or_else(|| {
+        occ.error(
+            "NOM_VARI",
+            format!(
+                "{relation} with DEFORMATION='{deformation}' has no internal variable {name}; its variables: {}",
+                if names.is_empty() { "none".to_string() } else { names.join(", ") }
+            ),
+        )
+    })
 }
 
 /// The value a CHAM_NO occurrence tests.

@@ -366,3 +366,21 @@ pub(crate) fn check_small_strain_input(
     }
     Ok(())
 }
+
+/// The names of the internal variables V1, V2, ... of a COMPORTEMENT
+/// (RELATION, DEFORMATION), as code_aster names them (TEST_RESU
+/// NOM_VARI); None for a combination that is not built.
+pub fn internal_variable_names(
+    relation: &str,
+    deformation: &str,
+) -> Option<&'static [&'static str]> {
+    Some(match (relation, deformation) {
+        ("ELAS", _) => &[],
+        ("VMIS_ISOT_LINE", "PETIT" | "PETIT_REAC") => vmis_isot_line::METADATA.internal_variables,
+        ("VMIS_ISOT_LINE", "SIMO_MIEHE") => simo_miehe::METADATA.internal_variables,
+        ("VMIS_ISOT_LINE", "GDEF_LOG") => gdef_log::ISOT_LINE_LOG.internal_variables,
+        ("VMIS_JOHN_COOK", "GDEF_LOG") => gdef_log::JOHN_COOK_LOG.internal_variables,
+        ("VMIS_JOHN_COOK", _) => john_cook::METADATA.internal_variables,
+        _ => return None,
+    })
+}
