@@ -614,3 +614,12 @@ fn block_on_a_slab_with_coulomb_friction() {
 fn base_driven_at_constant_velocity() {
     run_study("hexs8_base_motion");
 }
+
+/// tests/verification/contact_penalty.comm in 3D_SI (tests/studies/
+/// hexs8_contact_penalty.comm): the HEXS8 block at rest on the HEXS8 slab,
+/// penalised contact: the contact carries m g and the summed penetration
+/// is m g / E_N for E_N = 1e4 and 1e5.
+#[test]
+fn penetration_is_the_weight_over_the_penalty() {
+    run_study("hexs8_contact_penalty");
+}
