@@ -5,6 +5,7 @@
 //! lumped system (a dense eigenvalue computation, independent of the
 //! element inequality the bound rests on).
 
+mod common;
 mod dynamics_support;
 
 use aster::law::TangentKind;
@@ -609,4 +610,39 @@ fn a_step_that_does_not_advance_the_time_stops_the_run() {
     let m = exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap_err();
     assert!(m.contains("does not advance the time"), "{m}");
     assert_eq!(instants_of(&st), vec![1e-3]);
+}
+
+/// A DDL_IMPO under a FONC_MULT (a displacement ramp) in DIFF_CENT
+/// (tests/verification/explicit_imposed_ramp.comm): the driven top of a 1D
+/// rod follows the ramp with VITE = -V0 (it showed 0 before), the force on
+/// it is the wave's rho c V0 A, and DISS_SCH is the velocity jump's 1/2
+/// m_top V0^2 (every check in the file); here also: VITE of every driven
+/// node at every archived instant after the start, and the balance stays
+/// where the jump put it.
+#[test]
+fn imposed_displacement_ramp_drives_the_rod() {
+    let run = common::run_study(
+        "tests/verification/explicit_imposed_ramp.comm",
+        "explicit_imposed_ramp",
+    );
+    let resu = common::assert_all_ok(&run, "explicit_imposed_ramp.resu");
+    let m_top = 8e-9 * 3.2 * 3.2 / 2.0 * 32.4 / 20.0 / 2.0;
+    let jump = 0.5 * m_top * 1000.0f64.powi(2);
+    let mut rows = 0;
+    for l in resu.lines() {
+        let t: Vec<&str> = l.split_whitespace().collect();
+        if t.len() == 9 && t[0].parse::<usize>().is_ok_and(|n| n >= 1) {
+            let diss: f64 = t[8].parse().unwrap();
+            assert!((diss - jump).abs() <= 2e-3 * jump, "{l}");
+            rows += 1;
+        }
+    }
+    assert_eq!(rows, 10, "{resu}");
+    let vite: Vec<f64> = resu
+        .lines()
+        .filter(|l| l.starts_with("TOPV "))
+        .map(|l| l.split_whitespace().last().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(vite.len(), 2);
+    assert!(vite.iter().all(|v| (v + 1000.0).abs() < 1e-6), "{vite:?}");
 }

@@ -460,9 +460,22 @@ impl Explicit {
             }
             diverged.store(true, Ordering::Relaxed);
         }
-        for &(f, _) in &nb.imposed {
-            tr.motion.v[f] = 0.0;
-            tr.motion.a[f] = 0.0;
+        // An imposed dof that moved over the step (a DDL_IMPO under a
+        // FONC_MULT, or an initial state off its imposed value) moves at the
+        // step's mean velocity, exact for a ramp, with the backward
+        // difference of the velocities as acceleration (the support force
+        // M a + F_int − F_ext then includes the impulse that sets the
+        // node's mass moving); a held one has v = a = 0. Without this the
+        // driven nodes showed VITE 0 and their kinetic energy was missing.
+        for &(f, val) in &nb.imposed {
+            let du = val - cm.motion.u[f];
+            if du == 0.0 {
+                tr.motion.v[f] = 0.0;
+                tr.motion.a[f] = 0.0;
+            } else {
+                tr.motion.v[f] = du / dt;
+                tr.motion.a[f] = (tr.motion.v[f] - cm.motion.v[f]) / dt;
+            }
         }
         let diverged = diverged.into_inner();
         if let Some((f, x)) = nb
