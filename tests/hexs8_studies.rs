@@ -623,3 +623,11 @@ fn base_driven_at_constant_velocity() {
 fn penetration_is_the_weight_over_the_penalty() {
     run_study("hexs8_contact_penalty");
 }
+
+/// 3D_SI impact (tests/studies/hexs8_impact.comm): the HEXS8 block
+/// dropped at V0 on the HEXS8 slab with a soft penalty bounces as a rigid
+/// mass on 9 springs: the deepest penetration V0/ω, and it leaves at +V0.
+#[test]
+fn block_bounces_on_the_penalty() {
+    run_study("hexs8_impact");
+}
