@@ -80,7 +80,7 @@ fn bad_unilateral_definitions_are_located_errors() {
             "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=-1., COEF_IMPO=FH))\nPLAF",
             &[
                 "DEFI_CONTACT/ZONE/COEF_MULT",
-                "expected a concept of type fonction_sdaster, found the real -1.0",
+                "expected a concept of type fonction_sdaster or formule, found the real -1.0",
                 "real_coef.comm:53:",
             ],
         ),
@@ -212,4 +212,85 @@ fn same_node_in_two_zones_cut_then_held_on_the_stricter_wall() {
         .map(|r| r.0)
         .collect();
     assert_eq!(held, vec![9e-6, 9.75e-6], "{rows:?}");
+}
+
+/// FORMULE for COEF_IMPO and COEF_MULT (code_aster's COEF_IMPO takes
+/// fonction, nappe or formule): the tilted floor 2.27 - 0.1 X as a formula
+/// of X, the floor 2.27 as a formula of INST and Y, COEF_MULT -1 as a
+/// formula of INST give the study's checks, all OK.
+#[test]
+fn formulas_give_the_same_floors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("unil_studies_formule");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("unil_axis_drop.comm")).unwrap();
+    let mut text = comm.clone();
+    for (from, to) in [
+        (
+            "FX = DEFI_FONCTION(NOM_PARA='X', VALE=(0., H, 10., H - 1.))",
+            "FX = FORMULE(VALE='2.27 - 0.1 * X', NOM_PARA='X')",
+        ),
+        (
+            "FH = DEFI_CONSTANTE(VALE=H)",
+            "FH = FORMULE(VALE='2.27 + 0. * INST * Y', NOM_PARA=('INST', 'Y'))",
+        ),
+        (
+            "MUN = DEFI_CONSTANTE(VALE=-1.)",
+            "MUN = FORMULE(VALE='-1. + 0. * sin(INST)', NOM_PARA='INST')",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    std::fs::write(tmp.join("formule.comm"), text).unwrap();
+    std::fs::write(
+        tmp.join("formule.export"),
+        format!("F mmed {} D 20\n", dir().join("unil_axis.mmed").display()),
+    )
+    .unwrap();
+    let run = common::run_study(tmp.join("formule.comm").to_str().unwrap(), "unil_formule");
+    common::assert_all_ok(&run, "formule.resu");
+}
+
+/// A FORMULE naming a command-file constant (not captured here), a
+/// COEF_MULT formula of X (COEF_MULT is evaluated with INST only, as in
+/// code_aster), and a formula where a tabulated function is needed are
+/// located errors.
+#[test]
+fn bad_formulas_are_located_errors() {
+    let cases: [(&str, &str, &str, &[&str]); 3] = [
+        (
+            "formule_constant",
+            "FX = DEFI_FONCTION(NOM_PARA='X', VALE=(0., H, 10., H - 1.))",
+            "FX = FORMULE(VALE='H - 0.1 * X', NOM_PARA='X')",
+            &[
+                "FORMULE/VALE",
+                "name 'H' in VALE 'H - 0.1 * X' is neither a parameter of NOM_PARA (X)",
+                "formule_constant.comm:51:",
+            ],
+        ),
+        (
+            "formule_mult_of_x",
+            "MUN = DEFI_CONSTANTE(VALE=-1.)",
+            "MUN = FORMULE(VALE='-1. + 0. * X', NOM_PARA='X')",
+            &[
+                "DYNA_NON_LINE/CONTACT",
+                "ZONE 1, COEF_MULT: the formula '-1. + 0. * X' needs X, which is not among the parameters given here (INST)",
+                "formule_mult_of_x.comm:62:",
+            ],
+        ),
+        (
+            "formule_elsewhere",
+            "MUN = DEFI_CONSTANTE(VALE=-1.)",
+            "MUN = DEFI_CONSTANTE(VALE=-1.)\nFM = FORMULE(VALE='INST', NOM_PARA='INST')\nLF = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1., NOMBRE=2))\nIMPR_FONCTION(COURBE=_F(FONCTION=FM))",
+            &["IMPR_FONCTION/COURBE/FONCTION", "formule"],
+        ),
+    ];
+    for (tag, from, to, want) in cases {
+        let run = run_variant(tag, from, to);
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
+        for w in want {
+            assert!(run.term.contains(w), "{tag}: {w}\n{}", run.term);
+        }
+    }
 }

@@ -14,6 +14,8 @@ pub enum ConceptType {
     Listr8,
     ListInst,
     Fonction,
+    /// FORMULE: a function given by an expression.
+    Formule,
     ChamNo,
     EvolNoli,
     Table,
@@ -31,6 +33,7 @@ impl ConceptType {
             ConceptType::Listr8 => "listr8_sdaster",
             ConceptType::ListInst => "list_inst",
             ConceptType::Fonction => "fonction_sdaster",
+            ConceptType::Formule => "formule",
             ConceptType::ChamNo => "cham_no_sdaster",
             ConceptType::EvolNoli => "evol_noli",
             ConceptType::Table => "table_sdaster",

@@ -650,11 +650,11 @@ fn zone_unil() -> Keyword {
                 .many()
                 .doc("components c_i of sum COEF_MULT_i(t).u_ci <= COEF_IMPO")
                 .kw(),
-            concept("COEF_IMPO", &[C::Fonction])
+            concept("COEF_IMPO", &[C::Fonction, C::Formule])
                 .required()
                 .doc("right-hand side, function of INST and the initial X, Y, Z")
                 .kw(),
-            concept("COEF_MULT", &[C::Fonction])
+            concept("COEF_MULT", &[C::Fonction, C::Formule])
                 .required()
                 .many()
                 .doc("coefficients, one per NOM_CMP, functions of INST")

@@ -5,19 +5,19 @@
 use super::model_args::select_nodes;
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
-use crate::contact::unilateral::{UnilAlgo, UnilDef, UnilLink, UnilZone};
+use crate::contact::unilateral::{Coef, UnilAlgo, UnilDef, UnilLink, UnilZone};
 use crate::diag::Diagnostic;
 use crate::mesh::Mesh;
 use crate::model::{Dof, Model};
-use crate::post::function::Function;
 use crate::study::Study;
 
 /// At most this many NOM_CMP entries over all zones (UNILATER_43).
 const MAX_COMPONENTS: usize = 30;
 
-fn function(study: &Study, zone: &Args, key: &str, name: &str) -> Result<Function, Diagnostic> {
+fn function(study: &Study, zone: &Args, key: &str, name: &str) -> Result<Coef, Diagnostic> {
     match study.concepts.data(name) {
-        Some(ConceptData::Function(f)) => Ok((**f).clone()),
+        Some(ConceptData::Function(f)) => Ok(Coef::Function((**f).clone())),
+        Some(ConceptData::Formula(f)) => Ok(Coef::Formula((**f).clone())),
         _ => Err(zone.error(
             key,
             format!("{name} holds no function (its command did not run)"),

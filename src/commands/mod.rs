@@ -33,6 +33,7 @@ pub mod defi_materiau;
 pub mod dyna_explicit;
 pub mod dyna_non_line;
 pub mod fin;
+pub mod formule;
 pub mod impr_fonction;
 pub mod impr_resu;
 pub mod impr_table;
@@ -91,6 +92,7 @@ pub fn all() -> Vec<CommandDef> {
         defi_materiau::def(),
         dyna_non_line::def(),
         fin::def(),
+        formule::def(),
         impr_fonction::def(),
         impr_resu::def(),
         impr_table::def(),

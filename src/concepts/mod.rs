@@ -36,6 +36,8 @@ pub enum ConceptData {
     Result(Box<crate::result::EvolNoli>),
     /// A tabulated or constant function (RECU_FONCTION, DEFI_CONSTANTE).
     Function(Box<crate::post::function::Function>),
+    /// FORMULE.
+    Formula(Box<crate::post::formula::Formula>),
     /// DEFI_CONTACT: kept as checked keywords until the contact engine
     /// turns them into its own data.
     Contact(Box<crate::catalog::args::Args>),

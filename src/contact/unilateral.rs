@@ -9,7 +9,22 @@
 //! the penalised force ([`penalty`]). The Newton loop drives them through
 //! `nonlinear::unilateral`.
 
+use crate::post::formula::Formula;
 use crate::post::function::Function;
+
+/// COEF_MULT or COEF_IMPO: a tabulated or constant function (one
+/// parameter), or a FORMULE (evaluated by parameter name).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Coef {
+    Function(Function),
+    Formula(Formula),
+}
+
+impl From<Function> for Coef {
+    fn from(f: Function) -> Coef {
+        Coef::Function(f)
+    }
+}
 
 /// `ALGO_CONT` of the zones (the same in every zone).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,8 +42,8 @@ pub struct UnilZone {
     /// Nodes of the zone, ascending, duplicates and SANS_GROUP_NO removed.
     pub nodes: Vec<usize>,
     /// (component index in the node's dofs, COEF_MULT), NOM_CMP order.
-    pub components: Vec<(usize, Function)>,
-    pub coef_impo: Function,
+    pub components: Vec<(usize, Coef)>,
+    pub coef_impo: Coef,
     /// COEF_PENA (PENALISATION only).
     pub coef_pena: Option<f64>,
 }
@@ -75,7 +90,11 @@ impl Row {
 
 /// COEF_MULT takes INST only (code_aster evaluates it with that single
 /// parameter: a function of X fails).
-pub fn eval_coef_mult(f: &Function, inst: f64) -> Result<f64, String> {
+pub fn eval_coef_mult(f: &Coef, inst: f64) -> Result<f64, String> {
+    let f = match f {
+        Coef::Function(f) => f,
+        Coef::Formula(g) => return g.eval(&[("INST", inst)]),
+    };
     match f.para.as_str() {
         "TOUTPARA" | "INST" => f.eval(inst),
         other => Err(format!(
@@ -85,7 +104,13 @@ pub fn eval_coef_mult(f: &Function, inst: f64) -> Result<f64, String> {
 }
 
 /// COEF_IMPO takes INST and the initial X, Y, Z of the node.
-pub fn eval_coef_impo(f: &Function, inst: f64, x: [f64; 3]) -> Result<f64, String> {
+pub fn eval_coef_impo(f: &Coef, inst: f64, x: [f64; 3]) -> Result<f64, String> {
+    let f = match f {
+        Coef::Function(f) => f,
+        Coef::Formula(g) => {
+            return g.eval(&[("INST", inst), ("X", x[0]), ("Y", x[1]), ("Z", x[2])])
+        }
+    };
     let v = match f.para.as_str() {
         "TOUTPARA" | "INST" => inst,
         "X" => x[0],
@@ -527,10 +552,10 @@ mod tests {
             zones: vec![UnilZone {
                 nodes: vec![0, 1],
                 components: vec![
-                    (0, Function::constant(2.0, "TOUTRESU")),
-                    (1, Function::constant(-1.0, "TOUTRESU")),
+                    (0, Function::constant(2.0, "TOUTRESU").into()),
+                    (1, Function::constant(-1.0, "TOUTRESU").into()),
                 ],
-                coef_impo: c,
+                coef_impo: c.into(),
                 coef_pena: None,
             }],
             links: vec![
@@ -587,10 +612,35 @@ mod tests {
 
     #[test]
     fn coefficient_parameters() {
-        let fx = Function::new("X", "TOUTRESU", vec![0.0, 1.0], vec![0.0, 2.0]).unwrap();
+        let fx: Coef = Function::new("X", "TOUTRESU", vec![0.0, 1.0], vec![0.0, 2.0])
+            .unwrap()
+            .into();
         assert!(eval_coef_mult(&fx, 0.5).is_err());
         assert_eq!(eval_coef_impo(&fx, 9.0, [0.5, 0.0, 0.0]).unwrap(), 1.0);
-        let k = Function::constant(-1.0, "TOUTRESU");
+        let k: Coef = Function::constant(-1.0, "TOUTRESU").into();
         assert_eq!(eval_coef_mult(&k, 3.0).unwrap(), -1.0);
+        // A FORMULE is evaluated by parameter name: COEF_IMPO with INST and
+        // the initial X, Y, Z, COEF_MULT with INST only.
+        let params = ["INST".to_string(), "Y".to_string(), "Z".to_string()];
+        use crate::post::formula::{Node, Op};
+        let p = |i| Box::new(Node::Param(i));
+        let k = |x| Box::new(Node::Num(x));
+        let node = Node::Bin(
+            Op::Add,
+            p(0),
+            Box::new(Node::Bin(
+                Op::Add,
+                Box::new(Node::Bin(Op::Mul, k(10.0), p(1))),
+                Box::new(Node::Bin(Op::Mul, k(100.0), p(2))),
+            )),
+        );
+        let g = Coef::Formula(Formula {
+            params: params.to_vec(),
+            text: "INST + 10 * Y + 100 * Z".into(),
+            node,
+        });
+        assert_eq!(eval_coef_impo(&g, 1.0, [5.0, 2.0, 3.0]).unwrap(), 321.0);
+        let e = eval_coef_mult(&g, 1.0).unwrap_err();
+        assert!(e.contains("needs Y"), "{e}");
     }
 }
