@@ -215,9 +215,10 @@ fn same_node_in_two_zones_cut_then_held_on_the_stricter_wall() {
 }
 
 /// FORMULE for COEF_IMPO and COEF_MULT (code_aster's COEF_IMPO takes
-/// fonction, nappe or formule): the tilted floor 2.27 - 0.1 X as a formula
-/// of X, the floor 2.27 as a formula of INST and Y, COEF_MULT -1 as a
-/// formula of INST give the study's checks, all OK.
+/// fonction, nappe or formule): the tilted floor H - P X as a formula of
+/// X (H a variable of the command file, P=0.1 passed as a keyword), the
+/// floor 2.27 as a formula of INST and Y, COEF_MULT -1 as a formula of
+/// INST give the study's checks, all OK.
 #[test]
 fn formulas_give_the_same_floors() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("unil_studies_formule");
@@ -227,7 +228,7 @@ fn formulas_give_the_same_floors() {
     for (from, to) in [
         (
             "FX = DEFI_FONCTION(NOM_PARA='X', VALE=(0., H, 10., H - 1.))",
-            "FX = FORMULE(VALE='2.27 - 0.1 * X', NOM_PARA='X')",
+            "FX = FORMULE(VALE='H - P * X', NOM_PARA='X', P=0.1)",
         ),
         (
             "FH = DEFI_CONSTANTE(VALE=H)",
@@ -251,7 +252,7 @@ fn formulas_give_the_same_floors() {
     common::assert_all_ok(&run, "formule.resu");
 }
 
-/// A FORMULE naming a command-file constant (not captured here), a
+/// A FORMULE naming an undefined constant, a
 /// COEF_MULT formula of X (COEF_MULT is evaluated with INST only, as in
 /// code_aster), and a formula where a tabulated function is needed are
 /// located errors.
@@ -261,10 +262,10 @@ fn bad_formulas_are_located_errors() {
         (
             "formule_constant",
             "FX = DEFI_FONCTION(NOM_PARA='X', VALE=(0., H, 10., H - 1.))",
-            "FX = FORMULE(VALE='H - 0.1 * X', NOM_PARA='X')",
+            "FX = FORMULE(VALE='H0 - 0.1 * X', NOM_PARA='X')",
             &[
                 "FORMULE/VALE",
-                "name 'H' in VALE 'H - 0.1 * X' is neither a parameter of NOM_PARA (X)",
+                "name 'H0' in VALE 'H0 - 0.1 * X' is neither a parameter of NOM_PARA (X)",
                 "formule_constant.comm:51:",
             ],
         ),

@@ -253,6 +253,9 @@ impl Checker<'_> {
             }
         }
 
+        if cmd == "FORMULE" {
+            formula_constants(&mut given, &self.env);
+        }
         let mut top = Args::new(cmd, "", span);
         self.level(cmd, "", &spec.keywords, &spec.rules, given, &mut top);
 
@@ -852,6 +855,111 @@ impl Checker<'_> {
                 data: EntryData::Factor(checked),
             },
         );
+    }
+}
+
+/// FORMULE's constants: code_aster evaluates VALE with the values passed
+/// as extra keywords (`FORMULE(VALE='H - X', NOM_PARA='X', H=H)`) and, in
+/// older versions, with the command file's variables. Both become the
+/// hidden keywords CONST_NOMS/CONST_VALE (numbers only; anything else is
+/// left to be reported as an unknown keyword).
+fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
+    let mut names: Vec<String> = Vec::new();
+    let mut values: Vec<f64> = Vec::new();
+    let mut span = None;
+    given.retain(|(k, v)| {
+        if matches!(k.name.as_str(), "VALE" | "NOM_PARA") {
+            if k.name == "VALE" {
+                span = Some(v.span);
+            }
+            return true;
+        }
+        let x = match v.v {
+            PyVal::Int(i) => i as f64,
+            PyVal::Real(r) => r,
+            _ => return true,
+        };
+        span.get_or_insert(v.span);
+        names.push(k.name.clone());
+        values.push(x);
+        false
+    });
+    let text = given.iter().find_map(|(k, v)| match (&*k.name, &v.v) {
+        ("VALE", PyVal::Str(s)) => Some(s.clone()),
+        _ => None,
+    });
+    let params: Vec<String> = given
+        .iter()
+        .filter(|(k, _)| k.name == "NOM_PARA")
+        .flat_map(|(_, v)| match &v.v {
+            PyVal::Str(s) => vec![s.clone()],
+            PyVal::Tuple(t) => t
+                .iter()
+                .filter_map(|x| match &x.v {
+                    PyVal::Str(s) => Some(s.clone()),
+                    _ => None,
+                })
+                .collect(),
+            _ => vec![],
+        })
+        .collect();
+    if let Some(text) = text {
+        let src = crate::diag::Source::new("VALE", format!("F__ = ({text})\n"));
+        if let Ok(program) = crate::lang::parser::parse(&src) {
+            let mut used = Vec::new();
+            for s in &program.stmts {
+                if let StmtKind::Assign { value, .. } = &s.kind {
+                    collect_names(value, &mut used);
+                }
+            }
+            for n in used {
+                if params.contains(&n) || names.contains(&n) {
+                    continue;
+                }
+                let x = match env.names.get(&n) {
+                    Some(Binding::Var(PyVal::Int(i))) => *i as f64,
+                    Some(Binding::Var(PyVal::Real(r))) => *r,
+                    _ => continue,
+                };
+                names.push(n);
+                values.push(x);
+            }
+        }
+    }
+    let Some(span) = span else { return };
+    if names.is_empty() {
+        return;
+    }
+    let ident = |n: &str| Ident {
+        name: n.to_string(),
+        span,
+    };
+    let sp = |v: PyVal| SpVal { v, span };
+    given.push((
+        ident("CONST_NOMS"),
+        sp(PyVal::Tuple(
+            names.into_iter().map(|n| sp(PyVal::Str(n))).collect(),
+        )),
+    ));
+    given.push((
+        ident("CONST_VALE"),
+        sp(PyVal::Tuple(
+            values.into_iter().map(|x| sp(PyVal::Real(x))).collect(),
+        )),
+    ));
+}
+
+fn collect_names(e: &crate::lang::ast::Expr, out: &mut Vec<String>) {
+    match &e.kind {
+        ExprKind::Name(n) if !out.contains(n) => out.push(n.clone()),
+        ExprKind::Unary { operand, .. } => collect_names(operand, out),
+        ExprKind::Binary { lhs, rhs, .. } => {
+            collect_names(lhs, out);
+            collect_names(rhs, out);
+        }
+        ExprKind::Call { args, .. } => args.iter().for_each(|a| collect_names(&a.value, out)),
+        ExprKind::Tuple(items) => items.iter().for_each(|x| collect_names(x, out)),
+        _ => {}
     }
 }
 

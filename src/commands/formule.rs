@@ -1,8 +1,9 @@
 //! FORMULE: a function given by an expression of its parameters, in the
 //! command file's (Python) syntax: arithmetic on reals (+ - * / **, unary
 //! minus), the math functions and constants code_aster puts in a
-//! formula's namespace. Names other than NOM_PARA are refused: constants
-//! of the command file are not captured (write them as numbers). Only the
+//! formula's namespace, NOM_PARA, and numbers given as extra keywords
+//! (`H=H`) or defined earlier in the command file (the checker gathers
+//! them into CONST_NOMS/CONST_VALE). Only the
 //! commands that evaluate code_aster's "function-like" arguments by
 //! parameter name take a formula (LIAISON_UNIL's COEF_IMPO and COEF_MULT);
 //! the others ask for a fonction_sdaster and refuse it by its type.
@@ -30,6 +31,10 @@ pub fn def() -> CommandDef {
                 .many()
                 .doc("the parameters (INST, X, Y, Z...)")
                 .kw(),
+            // The constants of VALE: extra keywords (H=H) or command-file
+            // variables, gathered by the checker.
+            text("CONST_NOMS").many().hidden().kw(),
+            real("CONST_VALE").many().hidden().kw(),
         ],
     )
     .doc("Defines a function by an expression of its parameters (constants of the command file are written as numbers).");
@@ -43,12 +48,20 @@ fn exec(_study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         .iter()
         .map(|s| s.to_string())
         .collect();
-    let f = parse(vale, &params).map_err(|m| args.error("VALE", m))?;
+    let consts: Vec<(String, f64)> = args
+        .texts("CONST_NOMS")
+        .iter()
+        .map(|s| s.to_string())
+        .zip(args.reals("CONST_VALE"))
+        .collect();
+    let f = parse(vale, &params, &consts).map_err(|m| args.error("VALE", m))?;
     Ok(Some(ConceptData::Formula(Box::new(f))))
 }
 
-/// VALE → the formula's tree, every name checked.
-pub fn parse(text: &str, params: &[String]) -> Result<Formula, String> {
+/// VALE → the formula's tree, every name checked; `consts` are the
+/// values of the other names (FORMULE's extra keywords, command-file
+/// variables).
+pub fn parse(text: &str, params: &[String], consts: &[(String, f64)]) -> Result<Formula, String> {
     let src = Source::new("VALE", format!("F__ = ({text})\n"));
     let program = crate::lang::parser::parse(&src)
         .map_err(|d| format!("VALE '{text}' is not an expression: {}", d.message))?;
@@ -59,7 +72,7 @@ pub fn parse(text: &str, params: &[String]) -> Result<Formula, String> {
         },
         _ => return Err(format!("VALE '{text}' is not one expression")),
     };
-    let node = tree(expr, text, params)?;
+    let node = tree(expr, text, params, consts)?;
     Ok(Formula {
         params: params.to_vec(),
         text: text.to_string(),
@@ -67,24 +80,26 @@ pub fn parse(text: &str, params: &[String]) -> Result<Formula, String> {
     })
 }
 
-fn tree(e: &Expr, text: &str, params: &[String]) -> Result<Node, String> {
+fn tree(e: &Expr, text: &str, params: &[String], consts: &[(String, f64)]) -> Result<Node, String> {
     Ok(match &e.kind {
         ExprKind::Int(i) => Node::Num(*i as f64),
         ExprKind::Real(r) => Node::Num(*r),
         ExprKind::Name(n) => {
             if let Some(i) = params.iter().position(|p| p == n) {
                 Node::Param(i)
+            } else if let Some(c) = consts.iter().find(|c| &c.0 == n) {
+                Node::Num(c.1)
             } else if let Some(c) = CONSTANTS.iter().find(|c| c.0 == n) {
                 Node::Num(c.1)
             } else {
                 return Err(format!(
-                    "name '{n}' in VALE '{text}' is neither a parameter of NOM_PARA ({}) nor a math constant (pi, e): write the value of a command-file constant as a number",
+                    "name '{n}' in VALE '{text}' is neither a parameter of NOM_PARA ({}), a number of the command file or of FORMULE's keywords, nor a math constant (pi, e)",
                     params.join(", ")
                 ));
             }
         }
         ExprKind::Unary { op, operand } => {
-            let a = tree(operand, text, params)?;
+            let a = tree(operand, text, params, consts)?;
             match op {
                 UnOp::Neg => Node::Neg(Box::new(a)),
                 UnOp::Pos => a,
@@ -100,8 +115,8 @@ fn tree(e: &Expr, text: &str, params: &[String]) -> Result<Node, String> {
             };
             Node::Bin(
                 op,
-                Box::new(tree(lhs, text, params)?),
-                Box::new(tree(rhs, text, params)?),
+                Box::new(tree(lhs, text, params, consts)?),
+                Box::new(tree(rhs, text, params, consts)?),
             )
         }
         ExprKind::Call { func, args } => {
@@ -121,7 +136,7 @@ fn tree(e: &Expr, text: &str, params: &[String]) -> Result<Node, String> {
             }
             let xs = args
                 .iter()
-                .map(|a| tree(&a.value, text, params))
+                .map(|a| tree(&a.value, text, params, consts))
                 .collect::<Result<_, _>>()?;
             Node::Call(f, xs)
         }
@@ -137,7 +152,7 @@ mod tests {
 
     fn f(text: &str, params: &[&str]) -> Result<Formula, String> {
         let p: Vec<String> = params.iter().map(|s| s.to_string()).collect();
-        parse(text, &p)
+        parse(text, &p, &[("H".to_string(), 2.0)])
     }
 
     #[test]
@@ -158,8 +173,9 @@ mod tests {
 
     #[test]
     fn bad_formulas_are_refused_with_the_reason() {
-        let e = f("H - X", &["X"]).unwrap_err();
-        assert!(e.contains("name 'H'") && e.contains("NOM_PARA (X)"), "{e}");
+        assert_eq!(f("H - X", &["X"]).unwrap().eval(&[("X", 0.5)]), Ok(1.5));
+        let e = f("G - X", &["X"]).unwrap_err();
+        assert!(e.contains("name 'G'") && e.contains("NOM_PARA (X)"), "{e}");
         assert!(f("foo(X)", &["X"]).unwrap_err().contains("function 'foo'"));
         assert!(f("atan2(X)", &["X"])
             .unwrap_err()
