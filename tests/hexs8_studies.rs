@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use aster::mesh::ops::jacobian_dets;
 use aster::mesh::{Cell, CellType, Mesh};
 mod common;
+use common::printed_table;
 
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/studies")
@@ -352,34 +353,6 @@ fn meshes_are_committed() {
             "{file}"
         );
     }
-}
-
-/// The rows of the table `name` as IMPR_TABLE printed it in `resu`
-/// (column name -> cell text), in order.
-fn printed_table(resu: &str, name: &str) -> Vec<HashMap<String, String>> {
-    let mut lines = resu.lines();
-    let tag = format!("CONCEPT {name} ");
-    lines
-        .by_ref()
-        .find(|l| l.starts_with('#') && l.contains(&tag))
-        .unwrap_or_else(|| panic!("no table {name} printed"));
-    let header: Vec<String> = lines
-        .by_ref()
-        .find(|l| !l.starts_with('#'))
-        .unwrap()
-        .split_whitespace()
-        .map(String::from)
-        .collect();
-    lines
-        .take_while(|l| !l.trim().is_empty())
-        .map(|l| {
-            header
-                .iter()
-                .cloned()
-                .zip(l.split_whitespace().map(String::from))
-                .collect()
-        })
-        .collect()
 }
 
 /// The axial wave (tests/studies/hexs8_wave.comm): HEXS8, HEXS20, 3D

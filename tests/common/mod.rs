@@ -63,3 +63,31 @@ pub fn assert_all_ok(run: &Run, resu: &str) -> String {
     );
     text
 }
+
+/// The rows of the table `name` as IMPR_TABLE printed it in `resu`
+/// (column name -> cell text), in order.
+pub fn printed_table(resu: &str, name: &str) -> Vec<std::collections::HashMap<String, String>> {
+    let mut lines = resu.lines();
+    let tag = format!("CONCEPT {name} ");
+    lines
+        .by_ref()
+        .find(|l| l.starts_with('#') && l.contains(&tag))
+        .unwrap_or_else(|| panic!("no table {name} printed"));
+    let header: Vec<String> = lines
+        .by_ref()
+        .find(|l| !l.starts_with('#'))
+        .unwrap()
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    lines
+        .take_while(|l| !l.trim().is_empty())
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split_whitespace().map(String::from))
+                .collect()
+        })
+        .collect()
+}
