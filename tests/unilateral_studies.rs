@@ -11,6 +11,19 @@ fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification")
 }
 
+/// Runs each variant (tag, text replaced, replacement, message parts) and
+/// asserts it stops with exit 1, no panic, and a message holding every part.
+fn expect_errors(cases: &[(&str, &str, &str, &[&str])]) {
+    for &(tag, from, to, want) in cases {
+        let run = run_variant(tag, from, to);
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
+        for w in want {
+            assert!(run.term.contains(w), "{tag}: {w}\n{}", run.term);
+        }
+    }
+}
+
 /// Runs `comm` with `from` replaced by `to` (which must occur) as
 /// `<tag>.comm` on the study's mesh.
 fn run_variant(tag: &str, from: &str, to: &str) -> common::Run {
@@ -123,14 +136,7 @@ fn bad_unilateral_definitions_are_located_errors() {
             ],
         ),
     ];
-    for (tag, from, to, want) in cases {
-        let run = run_variant(tag, from, to);
-        assert_eq!(run.code, 1, "{tag}: {}", run.term);
-        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
-        for w in want {
-            assert!(run.term.contains(w), "{tag}: {w}\n{}", run.term);
-        }
-    }
+    expect_errors(&cases);
 }
 
 /// NOM_CMP naming a component the model lacks next to one it has is
@@ -286,12 +292,5 @@ fn bad_formulas_are_located_errors() {
             &["IMPR_FONCTION/COURBE/FONCTION", "formule"],
         ),
     ];
-    for (tag, from, to, want) in cases {
-        let run = run_variant(tag, from, to);
-        assert_eq!(run.code, 1, "{tag}: {}", run.term);
-        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
-        for w in want {
-            assert!(run.term.contains(w), "{tag}: {w}\n{}", run.term);
-        }
-    }
+    expect_errors(&cases);
 }
