@@ -444,14 +444,14 @@ fn affe_modele_errors() {
     );
 
     // A modelisation of the catalogue that aster does not build.
-    let comm = axis("MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))");
+    let comm = axis("MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='C_PLAN'))");
     let (_, err) = run("sdnv103b", &comm);
     assert_error(
         &comm,
         err,
         "not implemented yet: AFFE_MODELE/AFFE/MODELISATION",
-        &["D_PLAN"],
-        "D_PLAN",
+        &["C_PLAN", "D_PLAN"],
+        "C_PLAN",
     );
 
     // 3D on a 2D mesh: the QUAD8 cells are only faces, no volume element.

@@ -391,6 +391,29 @@ fn patch_test_axis() {
     run_study("patch_axis");
 }
 
+/// D_PLAN and D_PLAN_SI reproduce the linear field of the patch exactly,
+/// with the plane-strain SIZZ; the top reaction and the weight are per
+/// unit thickness (half and a quarter of their per-radian AXIS values on
+/// this patch).
+#[test]
+fn patch_test_plane_strain() {
+    run_study("dplan_patch");
+}
+
+/// A D_PLAN cantilever (4 x 20 QUAD8, full and reduced) against the
+/// Timoshenko beam with the plane-strain modulus E/(1 - NU^2), at 3 %.
+#[test]
+fn plane_strain_cantilever_against_the_beam() {
+    run_study("dplan_cantilever");
+}
+
+/// D_PLAN under DIFF_CENT: in uniaxial strain the wave runs at the P-wave
+/// speed, the driving force is RHO C V0 h per unit thickness.
+#[test]
+fn plane_strain_explicit_wave_speed() {
+    run_study("dplan_wave_explicit");
+}
+
 /// A 2 x 2 QUAD8 patch of [1, 3] x [0, 2] in the (r, z) plane whose centre
 /// vertex is moved off the grid; mid-edge nodes at the middle of straight
 /// edges. Groups: PATCH (the cells), M1 (the first cell), BAS (z = 0), HAUT

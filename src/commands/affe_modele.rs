@@ -61,12 +61,13 @@ pub fn def() -> CommandDef {
 }
 
 /// The modelisations aster builds, with their formulation. The others of
-/// the catalogue (D_PLAN, C_PLAN, ...) are refused as not implemented
-/// rather than silently giving no element.
+/// the catalogue (C_PLAN, ...) are refused as not implemented rather than
+/// silently giving no element.
 fn formulation_of(modelisation: &str) -> Option<Formulation> {
     match modelisation {
         "3D" | "3D_SI" => Some(Formulation::Solid3d),
         "AXIS" | "AXIS_SI" => Some(Formulation::Axis),
+        "D_PLAN" | "D_PLAN_SI" => Some(Formulation::PlaneStrain),
         _ => None,
     }
 }
@@ -83,6 +84,8 @@ fn skin_element(formulation: Formulation, cell: CellType) -> Option<&'static str
         (Formulation::Solid3d, Quad8) => Some("MECA_FACE8"),
         (Formulation::Axis, Seg2) => Some("MEAXSE2"),
         (Formulation::Axis, Seg3) => Some("MEAXSE3"),
+        (Formulation::PlaneStrain, Seg2) => Some("MEPLSE2"),
+        (Formulation::PlaneStrain, Seg3) => Some("MEPLSE3"),
         _ => None,
     }
 }
@@ -92,7 +95,7 @@ fn skin_element(formulation: Formulation, cell: CellType) -> Option<&'static str
 fn main_dim(f: Formulation) -> usize {
     match f {
         Formulation::Solid3d => 3,
-        Formulation::Axis => 2,
+        Formulation::Axis | Formulation::PlaneStrain => 2,
     }
 }
 
@@ -100,6 +103,7 @@ fn family_name(f: Formulation) -> &'static str {
     match f {
         Formulation::Solid3d => "3D (3D, 3D_SI)",
         Formulation::Axis => "2D axisymmetric (AXIS, AXIS_SI)",
+        Formulation::PlaneStrain => "2D plane strain (D_PLAN, D_PLAN_SI)",
     }
 }
 
@@ -122,7 +126,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         let Some(form) = formulation_of(modelisation) else {
             return Err(occ.not_implemented(
                 "MODELISATION",
-                &format!("MODELISATION='{modelisation}'; aster builds 3D, 3D_SI, AXIS and AXIS_SI models"),
+                &format!("MODELISATION='{modelisation}'; aster builds 3D, 3D_SI, AXIS, AXIS_SI, D_PLAN and D_PLAN_SI models"),
             ));
         };
         match &family {
@@ -213,12 +217,12 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             ),
         ));
     }
-    if form == Formulation::Axis && mesh.coords.iter().any(|x| x[2] != 0.0) {
-        alarms.push(
-            "<A> <AFFE_MODELE> <MODELE1_3> an AXIS model needs a mesh in the plane z = 0: \
-             the z coordinates are ignored"
-                .into(),
-        );
+    if main_dim(form) == 2 && mesh.coords.iter().any(|x| x[2] != 0.0) {
+        alarms.push(format!(
+            "<A> <AFFE_MODELE> <MODELE1_3> a {} model needs a mesh in the plane z = 0: \
+             the z coordinates are ignored",
+            family_name(form)
+        ));
     }
     if roles
         .iter()
@@ -259,7 +263,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         }
     }
     let dofs = match form {
-        Formulation::Axis => vec![Dof::Dx, Dof::Dy],
+        Formulation::Axis | Formulation::PlaneStrain => vec![Dof::Dx, Dof::Dy],
         Formulation::Solid3d => vec![Dof::Dx, Dof::Dy, Dof::Dz],
     };
 

@@ -69,8 +69,8 @@ pub fn element_body_force(
     Ok(out)
 }
 
-/// det J at a point (× r in AXIS): the volume (per radian) per unit
-/// reference measure.
+/// det J at a point (× r in AXIS): the volume (per radian in AXIS, per
+/// unit thickness in D_PLAN) per unit reference measure.
 fn measure(f: Formulation, n: &[f64], dn: &[[f64; 3]], x: &[[f64; 3]]) -> Result<f64, String> {
     match f {
         Formulation::Solid3d => {
@@ -85,6 +85,21 @@ fn measure(f: Formulation, n: &[f64], dn: &[[f64; 3]], x: &[[f64; 3]]) -> Result
             let det = j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
                 - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
                 + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0]);
+            if det.is_nan() || det <= 0.0 {
+                return Err(format!("non-positive Jacobian {det}"));
+            }
+            Ok(det)
+        }
+        Formulation::PlaneStrain => {
+            let mut j = [[0.0; 2]; 2];
+            for (a, g) in dn.iter().enumerate() {
+                for k in 0..2 {
+                    for l in 0..2 {
+                        j[k][l] += x[a][k] * g[l];
+                    }
+                }
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
             if det.is_nan() || det <= 0.0 {
                 return Err(format!("non-positive Jacobian {det}"));
             }
@@ -185,13 +200,16 @@ pub fn load_forces(
             .ok_or_else(|| format!("FORCE_NODALE: the model has no {}", dof.name()))?;
         out[node * d + k] += f;
     }
-    // the models are AXIS (DX, DY) or 3D (DX, DY, DZ)
-    let axis = d == 2;
+    let formulation = model.formulation().unwrap_or(if d == 2 {
+        Formulation::Axis
+    } else {
+        Formulation::Solid3d
+    });
     for pr in &load.pressures {
         for &c in &pr.cells {
             let cell = &mesh.cells[c];
             let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
-            let f = super::pressure::pressure_forces(cell.kind, axis, &coords, pr.p)
+            let f = super::pressure::pressure_forces(cell.kind, formulation, &coords, pr.p)
                 .map_err(|e| format!("PRES_REP: cell {}: {e}", c + 1))?;
             for (a, &n) in cell.nodes.iter().enumerate() {
                 for i in 0..d {

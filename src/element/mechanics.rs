@@ -1619,6 +1619,32 @@ fn point_geometry(
             }
             out.dv = w * det;
         }
+        Formulation::PlaneStrain => {
+            // AXIS's map without the radius: ∇N has no z component and
+            // the measure is per unit thickness.
+            let mut j = [[0.0; 2]; 2];
+            for a in 0..nn {
+                for k in 0..2 {
+                    for l in 0..2 {
+                        j[k][l] += x[a][k] * dn[a][l];
+                    }
+                }
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            if det.is_nan() || det <= 0.0 {
+                return Err(format!("non-positive Jacobian {det}"));
+            }
+            let inv = [
+                [j[1][1] / det, -j[0][1] / det],
+                [-j[1][0] / det, j[0][0] / det],
+            ];
+            for a in 0..nn {
+                for k in 0..2 {
+                    out.grad[a][k] = inv[0][k] * dn[a][0] + inv[1][k] * dn[a][1];
+                }
+            }
+            out.dv = w * det;
+        }
         Formulation::Axis => {
             let mut j = [[0.0; 2]; 2];
             let mut r = 0.0;

@@ -8,11 +8,13 @@
 //! n ∝ ∂x/∂ξ × ∂x/∂η, outward for the node order ORIE_PEAU_3D gives a
 //! skin. A positive pressure therefore pushes into the solid. In AXIS the
 //! integral is weighted by r without 2π (per radian), like every nodal
-//! force there.
+//! force there; in D_PLAN it is per unit thickness (the same edge normal,
+//! no weight).
 
 use crate::mesh::quadrature::{rule, Fpg};
 use crate::mesh::shape::eval;
 use crate::mesh::CellType;
+use crate::model::spec::Formulation;
 
 /// The Gauss family that integrates the force exactly on straight edges
 /// and flat faces: N_a·r is of degree 4 on a SEG3 (FPG3 is exact to 5),
@@ -34,10 +36,13 @@ fn family(cell: CellType) -> Option<Fpg> {
 /// point at r < 0.
 pub fn pressure_forces(
     cell: CellType,
-    axis: bool,
+    formulation: Formulation,
     coords: &[[f64; 3]],
     p: f64,
 ) -> Result<Vec<f64>, String> {
+    // A 2D model's edges; in AXIS their measure carries the radius.
+    let axis = formulation == Formulation::Axis;
+    let plane = formulation != Formulation::Solid3d;
     let nn = cell.nnodes();
     if coords.len() != nn {
         return Err(format!(
@@ -46,16 +51,20 @@ pub fn pressure_forces(
             coords.len()
         ));
     }
-    let want = if axis { 1 } else { 2 };
+    let want = if plane { 1 } else { 2 };
     let fpg = family(cell).filter(|_| cell.dim() == want).ok_or_else(|| {
         format!(
             "a pressure acts on {} cells of an {} model, not on a {}",
-            if axis {
+            if plane {
                 "SEG2/SEG3"
             } else {
                 "TRIA3/TRIA6/QUAD4/QUAD8"
             },
-            if axis { "AXIS" } else { "3D" },
+            match formulation {
+                Formulation::Axis => "AXIS",
+                Formulation::PlaneStrain => "D_PLAN",
+                Formulation::Solid3d => "3D",
+            },
             cell.aster_name()
         )
     })?;
@@ -64,7 +73,7 @@ pub fn pressure_forces(
     }
     let q =
         rule(cell, fpg).ok_or_else(|| format!("{} has no family {fpg:?}", cell.aster_name()))?;
-    let d = if axis { 2 } else { 3 };
+    let d = if plane { 2 } else { 3 };
     let mut out = vec![0.0; nn * d];
     for (xi, w) in q.points.iter().zip(&q.weights) {
         let s = eval(cell, *xi);
@@ -85,6 +94,8 @@ pub fn pressure_forces(
                 return Err(format!("Gauss point at radius {r} < 0"));
             }
             [t1[1] * r, -t1[0] * r, 0.0]
+        } else if plane {
+            [t1[1], -t1[0], 0.0]
         } else {
             [
                 t1[1] * t2[2] - t1[2] * t2[1],
@@ -126,7 +137,7 @@ mod tests {
             let (u, w) = (v[k], v[(k + 1) % 4]);
             x.push([(u[0] + w[0]) / 2.0, (u[1] + w[1]) / 2.0, 2.0]);
         }
-        let f = pressure_forces(CellType::Quad8, false, &x, p).unwrap();
+        let f = pressure_forces(CellType::Quad8, Formulation::Solid3d, &x, p).unwrap();
         let total = -p * a * b;
         let scale = p * a * b;
         for n in 0..8 {
@@ -157,7 +168,7 @@ mod tests {
             e1[0] * e2[1] - e1[1] * e2[0],
         ];
         let p = -7.0;
-        let f = pressure_forces(CellType::Quad4, false, &x, p).unwrap();
+        let f = pressure_forces(CellType::Quad4, Formulation::Solid3d, &x, p).unwrap();
         for n in 0..4 {
             for i in 0..3 {
                 // |c| n = c: −p A n / 4 = −p c / 4
@@ -180,7 +191,7 @@ mod tests {
             x.push([0.0, (u[1] + w[1]) / 2.0, (u[2] + w[2]) / 2.0]);
         }
         // n = +x (e_y × e_z), A = 6
-        let f = pressure_forces(CellType::Tria6, false, &x, 2.0).unwrap();
+        let f = pressure_forces(CellType::Tria6, Formulation::Solid3d, &x, 2.0).unwrap();
         for n in 0..6 {
             let expect = if n < 3 { 0.0 } else { -2.0 * 6.0 / 3.0 };
             assert!(close(f[3 * n], expect, 12.0), "node {n}: {}", f[3 * n]);
@@ -194,7 +205,7 @@ mod tests {
     fn axis_seg3_parallel_to_the_axis() {
         let (r, l, p) = (2.5, 4.0, 3.0);
         let x = [[r, 1.0, 0.], [r, 1.0 + l, 0.], [r, 1.0 + l / 2.0, 0.]];
-        let f = pressure_forces(CellType::Seg3, true, &x, p).unwrap();
+        let f = pressure_forces(CellType::Seg3, Formulation::Axis, &x, p).unwrap();
         let total = -p * l * r;
         for (n, share) in [1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0].iter().enumerate() {
             assert!(close(f[2 * n], share * total, 30.0), "{n}: {}", f[2 * n]);
@@ -209,7 +220,7 @@ mod tests {
     fn axis_seg2_radial_edge_has_the_r_weighting() {
         let (r1, r2, p) = (1.0, 4.0, 2.0);
         let x = [[r1, 5.0, 0.], [r2, 5.0, 0.]];
-        let f = pressure_forces(CellType::Seg2, true, &x, p).unwrap();
+        let f = pressure_forces(CellType::Seg2, Formulation::Axis, &x, p).unwrap();
         let c = p * (r2 - r1) / 6.0;
         assert!(close(f[1], c * (2.0 * r1 + r2), 30.0), "{}", f[1]);
         assert!(close(f[3], c * (r1 + 2.0 * r2), 30.0), "{}", f[3]);
@@ -217,13 +228,43 @@ mod tests {
         assert!(close(f[0], 0.0, 30.0) && close(f[2], 0.0, 30.0));
     }
 
+    /// D_PLAN: the same edge as the AXIS test above, no weight r: the
+    /// total is p (r2 − r1) along +z, shared (1/2, 1/2) by a SEG2 and
+    /// (1/6, 1/6, 2/3) by a SEG3.
+    #[test]
+    fn plane_strain_edges_are_per_unit_thickness() {
+        let (r1, r2, p) = (1.0, 4.0, 2.0);
+        let x = [[r1, 5.0, 0.], [r2, 5.0, 0.]];
+        let f = pressure_forces(CellType::Seg2, Formulation::PlaneStrain, &x, p).unwrap();
+        let total = p * (r2 - r1);
+        assert!(close(f[1], total / 2.0, 30.0) && close(f[3], total / 2.0, 30.0));
+        assert!(close(f[0], 0.0, 30.0) && close(f[2], 0.0, 30.0));
+        let x3 = [[r1, 5.0, 0.], [r2, 5.0, 0.], [0.5 * (r1 + r2), 5.0, 0.]];
+        let f = pressure_forces(CellType::Seg3, Formulation::PlaneStrain, &x3, p).unwrap();
+        for (k, share) in [1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0].iter().enumerate() {
+            assert!(
+                close(f[2 * k + 1], share * total, 30.0),
+                "{k}: {}",
+                f[2 * k + 1]
+            );
+        }
+        let e = pressure_forces(CellType::Quad4, Formulation::PlaneStrain, &[[0.0; 3]; 4], p)
+            .unwrap_err();
+        assert!(e.contains("D_PLAN") && e.contains("SEG2/SEG3"), "{e}");
+    }
+
     #[test]
     fn wrong_cell_for_the_model_is_an_error() {
         let x = [[0., 0., 0.], [1., 0., 0.]];
-        let e = pressure_forces(CellType::Seg2, false, &x, 1.0).unwrap_err();
+        let e = pressure_forces(CellType::Seg2, Formulation::Solid3d, &x, 1.0).unwrap_err();
         assert!(e.contains("TRIA3/TRIA6/QUAD4/QUAD8"), "{e}");
-        let e =
-            pressure_forces(CellType::Seg2, true, &[[1., 0., 0.], [1., 0., 0.]], 1.0).unwrap_err();
+        let e = pressure_forces(
+            CellType::Seg2,
+            Formulation::Axis,
+            &[[1., 0., 0.], [1., 0., 0.]],
+            1.0,
+        )
+        .unwrap_err();
         assert!(e.contains("degenerate"), "{e}");
     }
 }

@@ -73,6 +73,12 @@ impl Model {
         })
     }
 
+    /// The formulation of the model's elements (AFFE_MODELE refuses a
+    /// mix of families), `None` for a model without elements.
+    pub fn formulation(&self) -> Option<spec::Formulation> {
+        self.element_cells().map(|(_, s)| s.formulation).next()
+    }
+
     /// True if the model carries this component (DZ is absent in AXIS).
     pub fn has_dof(&self, dof: Dof) -> bool {
         self.dofs.contains(&dof)

@@ -21,6 +21,11 @@ pub enum Formulation {
     /// 2D axisymmetric: x is r, y is z, dofs (DX, DY) = (u_r, u_z);
     /// integrals per radian (r dr dz, no 2π).
     Axis,
+    /// 2D plane strain (D_PLAN): dofs (DX, DY), ε_zz = 0, integrals per
+    /// unit thickness along z. The element code is AXIS's without the
+    /// hoop term and without the weight r: F_zz = 1 is the identity row
+    /// of a 3D gradient, so every 3D law applies unchanged.
+    PlaneStrain,
     /// 3D continuum, dofs (DX, DY, DZ).
     Solid3d,
 }
@@ -29,7 +34,7 @@ impl Formulation {
     /// Degrees of freedom per node (2 for AXIS, 3 in 3D).
     pub fn dofs_per_node(self) -> usize {
         match self {
-            Formulation::Axis => 2,
+            Formulation::Axis | Formulation::PlaneStrain => 2,
             Formulation::Solid3d => 3,
         }
     }
@@ -87,6 +92,13 @@ pub fn element_spec(modelisation: &str, cell: CellType) -> Option<ElementSpec> {
         ("AXIS", Tria6) => ("MEAXTR6", Axis, Fpg6, Fpg6),
         ("AXIS", Tria3) => ("MEAXTR3", Axis, Fpg1, Fpg3),
         ("AXIS_SI", Quad8) => ("MEAXQS8", Axis, Fpg4, Fpg9),
+        // code_aster's plane elements take the Gauss families of the
+        // axisymmetric ones on each cell.
+        ("D_PLAN", Quad8) => ("MEDPQU8", PlaneStrain, Fpg9, Fpg9),
+        ("D_PLAN", Quad4) => ("MEDPQU4", PlaneStrain, Fpg4, Fpg4),
+        ("D_PLAN", Tria6) => ("MEDPTR6", PlaneStrain, Fpg6, Fpg6),
+        ("D_PLAN", Tria3) => ("MEDPTR3", PlaneStrain, Fpg1, Fpg3),
+        ("D_PLAN_SI", Quad8) => ("MEDPQS8", PlaneStrain, Fpg4, Fpg9),
         _ => return None,
     };
     Some(ElementSpec {

@@ -44,16 +44,16 @@ pub fn from_nodal(asm: &Assembler, names: &[String], field: &NodalField) -> Vec<
     out
 }
 
-/// SIEF_ELGA component names: 4 in AXIS, 6 in 3D (semantics.md §10),
+/// SIEF_ELGA component names: 4 in AXIS and D_PLAN, 6 in 3D (semantics.md §10),
 /// plus FSTAB1..FSTAB72 when the model has HEXS8 elements (their
 /// hourglass stresses; other cells read 0 there).
 pub fn sief_components(asm: &Assembler) -> Vec<String> {
-    let axis = asm
+    let plane = asm
         .elements
         .first()
-        .is_some_and(|e| e.spec.formulation == Formulation::Axis);
+        .is_some_and(|e| e.spec.formulation != Formulation::Solid3d);
     let all = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
-    let n = if axis { 4 } else { 6 };
+    let n = if plane { 4 } else { 6 };
     let mut out: Vec<String> = all[..n].iter().map(|s| s.to_string()).collect();
     if has_hexs8(asm) {
         out.extend((1..=hexs8::NQ).map(|k| format!("FSTAB{k}")));
