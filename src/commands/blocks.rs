@@ -276,8 +276,18 @@ pub fn c_comportement() -> Keyword {
     .kw()
 }
 
-/// `NEWTON` (`C_NEWTON`).
+/// `NEWTON` (`C_NEWTON`) of DYNA_NON_LINE (REAC_ITER = 1 by default).
 pub fn c_newton() -> Keyword {
+    newton_with(1)
+}
+
+/// `NEWTON` of STAT_NON_LINE: code_aster's REAC_ITER = 0 by default (the
+/// prediction's matrix is kept for the corrections).
+pub fn c_newton_stat() -> Keyword {
+    newton_with(0)
+}
+
+fn newton_with(reac_iter: i64) -> Keyword {
     fact(
         "NEWTON",
         vec![
@@ -297,7 +307,7 @@ pub fn c_newton() -> Keyword {
                 .kw(),
             real("PAS_MINI_ELAS").min_val(0.0).kw(),
             int("REAC_ITER")
-                .default(i(1))
+                .default(i(reac_iter))
                 .min_val(0.0)
                 .doc("reassemble every REAC_ITER iterations (0: keep the prediction matrix)")
                 .kw(),
@@ -539,16 +549,31 @@ pub fn c_rech_lineaire() -> Keyword {
 
 /// `ETAT_INIT` (`C_ETAT_INIT` for DYNA_NON_LINE).
 pub fn c_etat_init() -> Keyword {
-    let mut kws = vec![
-        concept("DEPL", &[C::ChamNo])
-            .doc("initial displacement field")
-            .kw(),
-        concept("VITE", &[C::ChamNo])
-            .doc("initial velocity field")
-            .kw(),
-        concept("ACCE", &[C::ChamNo])
-            .doc("initial acceleration; absent: solved from M a0 = F_ext - F_int")
-            .kw(),
+    etat_init_with(true)
+}
+
+/// `ETAT_INIT` of STAT_NON_LINE: no VITE or ACCE.
+pub fn c_etat_init_stat() -> Keyword {
+    etat_init_with(false)
+}
+
+fn etat_init_with(motion: bool) -> Keyword {
+    let mut kws = vec![concept("DEPL", &[C::ChamNo])
+        .doc("initial displacement field")
+        .kw()];
+    if motion {
+        kws.push(
+            concept("VITE", &[C::ChamNo])
+                .doc("initial velocity field")
+                .kw(),
+        );
+        kws.push(
+            concept("ACCE", &[C::ChamNo])
+                .doc("initial acceleration; absent: solved from M a0 = F_ext - F_int")
+                .kw(),
+        );
+    }
+    kws.extend([
         concept("EVOL_NOLI", &[C::EvolNoli])
             .doc(
                 "continue from a stored state of this result (the last one unless INST/NUME_ORDRE)",
@@ -564,13 +589,15 @@ pub fn c_etat_init() -> Keyword {
         real("INST_ETAT_INIT")
             .doc("overrides the initial instant taken from EVOL_NOLI")
             .kw(),
-    ];
+    ]);
     kws.extend(critere_precision(1e-6));
+    let one_of: &[&'static str] = if motion {
+        &["EVOL_NOLI", "ACCE", "VITE", "DEPL"]
+    } else {
+        &["EVOL_NOLI", "DEPL"]
+    };
     fact("ETAT_INIT", kws)
-        .rules(vec![
-            au_moins_un(&["EVOL_NOLI", "ACCE", "VITE", "DEPL"]),
-            exclus(&["NUME_ORDRE", "INST"]),
-        ])
+        .rules(vec![au_moins_un(one_of), exclus(&["NUME_ORDRE", "INST"])])
         .doc("initial state (absent fields are zero); compulsory with reuse= (checked when run)")
         .kw()
 }

@@ -182,13 +182,17 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         }
     }
     let refs: Vec<&MechLoad> = loads.iter().collect();
-    let (mut asm, _) = nonlinear::discretize(
+    // A STAT_NON_LINE result has no ACCE: no M.a term, and no density is
+    // needed (REAC_NODA = FORC_NODA - F_ext).
+    let inertia = evol.steps.iter().any(|s| s.nodal.contains_key("ACCE"));
+    let (mut asm, _) = nonlinear::discretize_for(
         &md.mesh,
         &md.model,
         &md.matfield,
         &md.materials,
         &occs,
         &refs,
+        inertia,
     )
     .map_err(|e| prepare_error(args, e))?;
     // A result of an explicit run with MASS_DIAG='OUI': M·a with the run's

@@ -579,8 +579,13 @@ fn scheme_of(args: &Args) -> Result<SchemeChoice, Diagnostic> {
     }
 }
 
-fn newton_of(args: &Args) -> Result<NewtonSettings, Diagnostic> {
-    let mut n = NewtonSettings::default();
+/// NEWTON; REAC_ITER defaults to 1 in DYNA_NON_LINE (this project's
+/// choice since its first version) and to 0 in STAT_NON_LINE (code_aster).
+fn newton_of(args: &Args, inertia: bool) -> Result<NewtonSettings, Diagnostic> {
+    let mut n = NewtonSettings {
+        reac_iter: usize::from(inertia),
+        ..NewtonSettings::default()
+    };
     if let Some(o) = args.fact("NEWTON") {
         n.matrix = match o.text("MATRICE").unwrap_or("TANGENTE") {
             "ELASTIQUE" => TangentKind::Elastic,
@@ -592,7 +597,7 @@ fn newton_of(args: &Args) -> Result<NewtonSettings, Diagnostic> {
             }
         }
         n.reac_incr = o.int("REAC_INCR").unwrap_or(1).max(0) as usize;
-        n.reac_iter = o.int("REAC_ITER").unwrap_or(1).max(0) as usize;
+        n.reac_iter = o.int("REAC_ITER").unwrap_or(i64::from(inertia)).max(0) as usize;
         n.symmetrize = o.text("MATR_RIGI_SYME") == Some("OUI");
         if o.given("PAS_MINI_ELAS") {
             return Err(o.not_implemented("PAS_MINI_ELAS", ""));
@@ -601,9 +606,16 @@ fn newton_of(args: &Args) -> Result<NewtonSettings, Diagnostic> {
     Ok(n)
 }
 
-fn convergence_of(args: &Args, log: &mut Vec<String>) -> Result<ConvergenceSettings, Diagnostic> {
+fn convergence_of(
+    args: &Args,
+    log: &mut Vec<String>,
+    inertia: bool,
+) -> Result<ConvergenceSettings, Diagnostic> {
     let mut c = ConvergenceSettings::default();
     if let Some(o) = args.fact("CONVERGENCE") {
+        if o.given("RESI_COMP_RELA") && !inertia {
+            return Err(o.not_implemented("RESI_COMP_RELA", ""));
+        }
         if o.given("RESI_COMP_RELA") {
             return Err(o.error(
                 "RESI_COMP_RELA",
@@ -929,12 +941,52 @@ pub(crate) fn etat_init(
 }
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    run(study, args, result, Analysis::Dynamic)
+}
+
+/// Which of the two nonlinear commands runs: they share this executor, the
+/// engine and the time loop; STAT_NON_LINE is the implicit path with the
+/// inertia removed ([`Scheme::quasi_static`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Analysis {
+    /// DYNA_NON_LINE: SCHEMA_TEMPS chooses the scheme.
+    Dynamic,
+    /// STAT_NON_LINE: equilibrium at each instant of a pseudo-time.
+    Static,
+}
+
+/// The executor of DYNA_NON_LINE and STAT_NON_LINE.
+pub(crate) fn run(
+    study: &mut Study,
+    args: &Args,
+    result: Option<&str>,
+    analysis: Analysis,
+) -> ExecResult {
     // ENERGIE is accepted: the balance is computed for every run
     // (nonlinear::energy) and kept as the result's PARA_CALC table.
     if args.given("RECH_LINEAIRE") {
         return Err(args.not_implemented("RECH_LINEAIRE", ""));
     }
-    let choice = scheme_of(args)?;
+    if args.given("PILOTAGE") {
+        return Err(args.not_implemented("PILOTAGE", ""));
+    }
+    if args.given("OBSERVATION") {
+        return Err(args.not_implemented(
+            "OBSERVATION",
+            "SUIVI_DDL gives the same values in the step table",
+        ));
+    }
+    let inertia = analysis == Analysis::Dynamic;
+    let choice = match analysis {
+        Analysis::Dynamic => scheme_of(args)?,
+        Analysis::Static => SchemeChoice::Implicit(Scheme::quasi_static()),
+    };
+    if !inertia && !args.given("CHAM_MATER") {
+        return Err(args.error(
+            "CHAM_MATER",
+            "CHAM_MATER is needed: the elements of the model need a material",
+        ));
+    }
     if args.text("MASS_DIAG") == Some("OUI") && matches!(choice, SchemeChoice::Implicit(_)) {
         return Err(args.error(
             "MASS_DIAG",
@@ -983,16 +1035,29 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         .is_some_and(|o| o.given("SIGM") || o.given("EVOL_NOLI"));
     nonlinear::behaviour::check_hexs8(&md.model, &occs, initial_state)
         .map_err(|e| prepare_error(args, PrepareError::Behaviour(e)))?;
-    let (asm, alarms) = nonlinear::discretize(
+    let (asm, alarms) = nonlinear::discretize_for(
         &md.mesh,
         &md.model,
         &md.matfield,
         &md.materials,
         &occs,
         &load_refs,
+        inertia,
     )
     .map_err(|e| prepare_error(args, e))?;
     notes.extend(alarms);
+    if !inertia && args.concept("CONTACT").is_none() {
+        let free = nonlinear::rigid::unheld_modes(&md.mesh, &md.model, &asm.numbering);
+        if !free.is_empty() {
+            return Err(args.error(
+                "EXCIT",
+                format!(
+                    "the stiffness is singular: the rigid-body mode(s) {} of the model are held by no DDL_IMPO of the loads (without inertia only the supports hold the structure); add the missing DDL_IMPO",
+                    free.iter().map(|m| format!("({m})")).collect::<Vec<_>>().join(", ")
+                ),
+            ));
+        }
+    }
     let scheme = match choice {
         SchemeChoice::Implicit(s) => s,
         SchemeChoice::Explicit(es) => {
@@ -1015,7 +1080,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             )
         }
     };
-    let mut newton = newton_of(args)?;
+    let mut newton = newton_of(args, inertia)?;
     let mut unil_def = None;
     let contact_def = match args.concept("CONTACT") {
         Some(name) => {
@@ -1096,11 +1161,16 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         }
         None => None,
     };
-    let conv = convergence_of(args, &mut notes)?;
+    let conv = convergence_of(args, &mut notes, inertia)?;
     let archive = archive_of(study, args)?;
     let suivi = suivi_of(&md.mesh, &md.model, args)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
-    let init = etat_init(study, args, &asm, &dof_names)?;
+    let mut init = etat_init(study, args, &asm, &dof_names)?;
+    if !inertia {
+        // A dynamic result continued statically: its motion is dropped.
+        init.v = None;
+        init.a = None;
+    }
     let (list, instants) = time_range(study, args, init.t0)?;
     let on_error = list.on_error().clone();
     if matches!(
@@ -1204,7 +1274,8 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         study.log(format!("  {n}"));
     }
     study.log(format!(
-        "  DYNA_NON_LINE: {} equations ({} imposed dofs), {} elements, matrix pattern {} entries; {} steps from {:e} to {:e}",
+        "  {}: {} equations ({} imposed dofs), {} elements, matrix pattern {} entries; {} steps from {:e} to {:e}",
+        args.command,
         engine.asm.numbering.neq(),
         engine.asm.numbering.imposed.len(),
         engine.asm.elements.len(),
@@ -1213,10 +1284,10 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         tl.instants[0],
         tl.instants[tl.instants.len() - 1]
     ));
-    match engine.initialize(!has_acce) {
+    match engine.initialize(inertia && !has_acce) {
         Ok(Some(alarm)) => study.log(format!("  {alarm}")),
         Ok(None) => {
-            if !has_acce {
+            if inertia && !has_acce {
                 study.log("  initial acceleration solved from M a0 = F_ext - F_int(u0)");
             }
         }

@@ -46,6 +46,7 @@ pub mod post_args;
 pub mod post_releve_t;
 pub mod recu_fonction;
 pub mod recu_table;
+pub mod stat_non_line;
 pub mod test_resu;
 pub mod test_table;
 
@@ -101,6 +102,7 @@ pub fn all() -> Vec<CommandDef> {
         post_releve_t::def(),
         recu_fonction::def(),
         recu_table::def(),
+        stat_non_line::def(),
         test_resu::def(),
         test_table::def(),
     ]

@@ -118,6 +118,18 @@ pub fn build(
     materials: &IndexMap<String, Material>,
     occurrences: &[Occurrence],
 ) -> Result<BehaviourField, BehaviourError> {
+    build_for(model, matfield, materials, occurrences, true)
+}
+
+/// [`build`] for a dynamic (`inertia`: ELAS/RHO is compulsory) or a
+/// quasi-static computation (the density of the mass is 0, RHO unread).
+pub fn build_for(
+    model: &Model,
+    matfield: &MaterialField,
+    materials: &IndexMap<String, Material>,
+    occurrences: &[Occurrence],
+    inertia: bool,
+) -> Result<BehaviourField, BehaviourError> {
     let ncells = model.cells.len();
     // Which occurrence covers each cell (later wins); None = default.
     let mut chosen: Vec<Option<usize>> = vec![None; ncells];
@@ -192,7 +204,12 @@ pub fn build(
                 out.laws.len() - 1
             }
         };
-        let rho = mat.get("ELAS", "RHO").ok_or_else(|| {
+        let rho = if !inertia {
+            Some(0.0)
+        } else {
+            mat.get("ELAS", "RHO")
+        }
+        .ok_or_else(|| {
             err(
                 occ,
                 "",

@@ -1,5 +1,7 @@
-//! The time loop of DYNA_NON_LINE: steps of the time list, step cutting on
-//! failure (DEFI_LIST_INST ECHEC), archiving, the step log and SUIVI_DDL.
+//! The time loop of DYNA_NON_LINE and STAT_NON_LINE (the same loop on a
+//! quasi-static engine, [`crate::time::Scheme::quasi_static`]): steps of
+//! the time list, step cutting on failure (DEFI_LIST_INST ECHEC),
+//! archiving, the step log and SUIVI_DDL.
 
 use std::collections::{HashMap, HashSet};
 use std::time::Instant;
@@ -275,14 +277,18 @@ pub fn archive(
         "DEPL".into(),
         fields::nodal(asm, &tl.dof_names, &state.motion.u),
     );
-    step.nodal.insert(
-        "VITE".into(),
-        fields::nodal(asm, &tl.dof_names, &state.motion.v),
-    );
-    step.nodal.insert(
-        "ACCE".into(),
-        fields::nodal(asm, &tl.dof_names, &state.motion.a),
-    );
+    // A quasi-static result has no velocity or acceleration (code_aster's
+    // STAT_NON_LINE stores neither).
+    if engine.scheme.inertia {
+        step.nodal.insert(
+            "VITE".into(),
+            fields::nodal(asm, &tl.dof_names, &state.motion.v),
+        );
+        step.nodal.insert(
+            "ACCE".into(),
+            fields::nodal(asm, &tl.dof_names, &state.motion.a),
+        );
+    }
     let (sief, vari) = fields::gauss(asm, tl.ncells, &state.points);
     if let Some(c) = contact {
         step.nodal.insert("CONT_NOEU".into(), c.cont_noeu());
@@ -294,6 +300,28 @@ pub fn archive(
     step.gauss.insert("VARI_ELGA".into(), vari);
     result.steps.push(step);
     true
+}
+
+/// A step failure for the log. A singular quasi-static stiffness is
+/// almost always a rigid-body mode that nothing holds (without inertia
+/// nothing else can): the message says so.
+fn describe(engine: &Engine, failure: &StepFailure) -> String {
+    match failure {
+        StepFailure::Singular(m) if !engine.scheme.inertia => format!(
+            "{m}: the stiffness of STAT_NON_LINE is singular, a rigid-body mode (or a mechanism) of the structure is not held; \
+             add the missing DDL_IMPO (or a contact that holds it)"
+        ),
+        f => f.to_string(),
+    }
+}
+
+/// The command whose time loop this is, for messages.
+fn command(engine: &Engine) -> &'static str {
+    if engine.scheme.inertia {
+        "DYNA_NON_LINE"
+    } else {
+        "STAT_NON_LINE"
+    }
 }
 
 fn header(tl: &TimeLoop) -> String {
@@ -338,9 +366,10 @@ pub fn run(
     let bar = tl.progress.then(|| {
         let pb = indicatif::ProgressBar::new(tl.instants.len().saturating_sub(1) as u64);
         pb.set_style(
-            indicatif::ProgressStyle::with_template(
-                "DYNA_NON_LINE [{bar:40}] {pos}/{len} steps {msg} ({elapsed}, eta {eta})",
-            )
+            indicatif::ProgressStyle::with_template(&format!(
+                "{} [{{bar:40}}] {{pos}}/{{len}} steps {{msg}} ({{elapsed}}, eta {{eta}})",
+                command(engine)
+            ))
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
         pb
@@ -459,7 +488,7 @@ pub fn run(
                     log,
                 ));
             }
-            Err(Some(failure)) => Err((failure.to_string(), failure.is_fatal())),
+            Err(Some(failure)) => Err((describe(engine, &failure), failure.is_fatal())),
             Ok(rep) => match contact.as_deref_mut() {
                 Some(c) => match check_events(
                     c,
@@ -577,7 +606,8 @@ pub fn run(
                         }
                         summary.seconds = started.elapsed().as_secs_f64();
                         let message = format!(
-                            "DYNA_NON_LINE stopped at the step from t = {t0:e} to t = {t_end:e}: {reason}; {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
+                            "{} stopped at the step from t = {t0:e} to t = {t_end:e}: {reason}; {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
+                            command(engine),
                             result.steps.len(),
                             result.steps.last().map_or(t0, |s| s.inst)
                         );
@@ -660,7 +690,8 @@ fn stop_on_signal(
     let first = result.steps.first().map_or(t, |s| s.inst);
     let last = result.steps.last().map_or(t, |s| s.inst);
     let message = format!(
-        "DYNA_NON_LINE stopped by {} at t = {t:e}{}, after {} converged steps: the {} archived instants (t = {first:e} to {last:e}, the last converged state included) are kept in the result; the computation up to t = {end:e} was not done.",
+        "{} stopped by {} at t = {t:e}{}, after {} converged steps: the {} archived instants (t = {first:e} to {last:e}, the last converged state included) are kept in the result; the computation up to t = {end:e} was not done.",
+        command(engine),
         crate::interrupt::name(signal),
         abandoned.map_or(String::new(), |te| format!(
             " (the step to t = {te:e} was abandoned)"

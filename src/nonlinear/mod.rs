@@ -22,6 +22,7 @@ pub mod explicit_contact;
 pub mod fields;
 pub mod loads;
 pub mod newton;
+pub mod rigid;
 pub mod team;
 pub mod unilateral;
 
@@ -75,9 +76,26 @@ pub fn discretize(
     occurrences: &[Occurrence],
     loads: &[&MechLoad],
 ) -> Result<(Assembler, Vec<String>), PrepareError> {
+    discretize_for(mesh, model, matfield, materials, occurrences, loads, true)
+}
+
+/// [`discretize`] for a dynamic (`inertia`) or quasi-static computation:
+/// without inertia no density is needed (STAT_NON_LINE reads no RHO; a
+/// RHO given is used for PESANTEUR only) and the mass matrix is zero.
+pub fn discretize_for(
+    mesh: &Mesh,
+    model: &Model,
+    matfield: &MaterialField,
+    materials: &IndexMap<String, Material>,
+    occurrences: &[Occurrence],
+    loads: &[&MechLoad],
+    inertia: bool,
+) -> Result<(Assembler, Vec<String>), PrepareError> {
     check_geometry(mesh, model)?;
-    check_density(mesh, model, matfield, materials)?;
-    let beh = behaviour::build(model, matfield, materials, occurrences)
+    if inertia {
+        check_density(mesh, model, matfield, materials)?;
+    }
+    let beh = behaviour::build_for(model, matfield, materials, occurrences, inertia)
         .map_err(PrepareError::Behaviour)?;
     let alarms = beh.alarms.clone();
     let nb = dofs::number(mesh, model, loads).map_err(PrepareError::Load)?;

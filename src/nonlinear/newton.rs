@@ -662,7 +662,7 @@ impl Engine {
     /// denominator of semantics.md §8.5: the largest of |λ_i + c_i − F_ext,i|
     /// (λ the reaction, −R at imposed dofs, 0 elsewhere; c the discrete
     /// contact forces) and of the
-    /// reference inertia |M v_{n+1}|_i/(β Δt).
+    /// reference inertia |M v_{n+1}|_i/(β Δt) (absent in quasi-statics).
     fn norms(&mut self, dt: f64, it: usize, swap_allowed: bool, updated: bool) -> IterationRecord {
         let nb = &self.asm.numbering;
         let mut maxi: f64 = 0.0;
@@ -678,10 +678,14 @@ impl Engine {
         for &(f, _) in &nb.imposed {
             denom = denom.max((-self.resid[f] + self.cforce[f] - self.fext[f]).abs());
         }
-        self.asm.mass_mul(&self.trial.motion.v, &mut self.work);
-        let inv = 1.0 / (self.scheme.beta * dt);
-        for f in 0..self.work.len() {
-            denom = denom.max(self.work[f].abs() * inv);
+        // Quasi-static (STAT_NON_LINE): no inertia term, code_aster's
+        // denominator is the reactions and loads alone.
+        if self.scheme.inertia {
+            self.asm.mass_mul(&self.trial.motion.v, &mut self.work);
+            let inv = 1.0 / (self.scheme.beta * dt);
+            for f in 0..self.work.len() {
+                denom = denom.max(self.work[f].abs() * inv);
+            }
         }
         let swapped = swap_allowed
             && self.conv.resi_glob_rela.is_some()

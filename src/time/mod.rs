@@ -14,6 +14,9 @@
 //!
 //! Unknown of the Newton iterations: the displacement increment; velocity
 //! and acceleration follow from the Newmark relations.
+//!
+//! STAT_NON_LINE runs the same engine with [`Scheme::quasi_static`]: no
+//! inertia, time a pseudo-time, velocity and acceleration held at zero.
 
 pub mod explicit;
 pub mod list;
@@ -27,6 +30,10 @@ pub struct Scheme {
     pub alpha: f64,
     /// True for the full HHT equilibrium (MODI_EQUI='OUI').
     pub hht_full: bool,
+    /// False for STAT_NON_LINE: the inertia is removed (no mass in the
+    /// matrix or the residual, v = a = 0), the rest of the engine is the
+    /// same.
+    pub inertia: bool,
 }
 
 /// Kinematic state of all dofs at one instant.
@@ -50,7 +57,20 @@ impl Scheme {
             gamma,
             alpha: 0.0,
             hht_full: false,
+            inertia: true,
         })
+    }
+
+    /// The quasi-static "scheme" of STAT_NON_LINE: equilibrium
+    /// F_int(u) = F_ext(t) at each instant, t a pseudo-time.
+    pub fn quasi_static() -> Scheme {
+        Scheme {
+            beta: 0.25,
+            gamma: 0.5,
+            alpha: 0.0,
+            hht_full: false,
+            inertia: false,
+        }
     }
 
     /// HHT with code_aster's `ALPHA` and `MODI_EQUI`.
@@ -65,6 +85,7 @@ impl Scheme {
             gamma: 0.5 - alpha,
             alpha,
             hht_full: modi_equi,
+            inertia: true,
         })
     }
 
@@ -73,7 +94,9 @@ impl Scheme {
     /// 1/(1+alpha) for full HHT (code_aster divides its equation by 1+alpha,
     /// so the current forces keep weight 1), 1 otherwise.
     pub fn inertia_weight(&self) -> f64 {
-        if self.hht_full {
+        if !self.inertia {
+            0.0
+        } else if self.hht_full {
             1.0 / (1.0 + self.alpha)
         } else {
             1.0
@@ -104,11 +127,17 @@ impl Scheme {
     /// The predictor of code_aster's displacement formulation (ndnpas):
     /// u0 = u_n, v0 = (1 - gamma/beta) v_n + (1 - gamma/(2 beta)) dt a_n,
     /// a0 = -v_n/(beta dt) + (1 - 1/(2 beta)) a_n.
+    /// Quasi-static: u0 = u_n, v0 = a0 = 0.
     pub fn predict(&self, dt: f64, prev: &Kinematics, next: &mut Kinematics) {
         let (b, g) = (self.beta, self.gamma);
         next.u.clone_from(&prev.u);
         next.v.resize(prev.v.len(), 0.0);
         next.a.resize(prev.a.len(), 0.0);
+        if !self.inertia {
+            next.v.iter_mut().for_each(|v| *v = 0.0);
+            next.a.iter_mut().for_each(|v| *v = 0.0);
+            return;
+        }
         for i in 0..prev.u.len() {
             let (vn, an) = (prev.v[i], prev.a[i]);
             next.v[i] = (1.0 - g / b) * vn + (1.0 - g / (2.0 * b)) * dt * an;
@@ -117,8 +146,14 @@ impl Scheme {
     }
 
     /// Applies a displacement correction du: u += du, v += gamma/(beta dt) du,
-    /// a += 1/(beta dt^2) du.
+    /// a += 1/(beta dt^2) du (quasi-static: u alone moves).
     pub fn correct(&self, dt: f64, du: &[f64], k: &mut Kinematics) {
+        if !self.inertia {
+            for (u, d) in k.u.iter_mut().zip(du) {
+                *u += d;
+            }
+            return;
+        }
         let cv = self.gamma / (self.beta * dt);
         let ca = 1.0 / (self.beta * dt * dt);
         for i in 0..du.len() {

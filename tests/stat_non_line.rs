@@ -1,0 +1,135 @@
+//! STAT_NON_LINE (quasi-static nonlinear analysis on DYNA_NON_LINE's
+//! implicit engine without inertia): studies written as a code_aster user
+//! would, each against an independent reference, and bad input that must
+//! stop with a located error. The command files are tests/studies/stat_*.comm.
+
+use std::path::{Path, PathBuf};
+
+mod common;
+
+fn dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/studies")
+}
+
+/// Runs tests/studies/<name>.comm, asserts every check OK, snapshots its
+/// tables and test report and returns the .resu.
+fn run_study(name: &str) -> String {
+    let run = common::run_study(&format!("tests/studies/{name}.comm"), name);
+    let resu = common::assert_all_ok(&run, &format!("{name}.resu"));
+    // Every table and check of the file (the dated header lines aside).
+    let tables: Vec<&str> = resu
+        .lines()
+        .filter(|l| !l.starts_with("#ASTER"))
+        .map(|l| l.trim_end())
+        .collect();
+    insta::assert_snapshot!(name, tables.join("\n"));
+    resu
+}
+
+/// Runs tests/studies/<study>.comm with `from` replaced by `to` (which must
+/// occur) under its own export; returns exit code, terminal and .mess.
+fn run_variant(study: &str, tag: &str, from: &str, to: &str) -> (i32, String) {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("stat_non_line_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join(format!("{study}.comm"))).unwrap();
+    assert!(comm.contains(from), "{tag}: {from}");
+    std::fs::write(tmp.join(format!("{tag}.comm")), comm.replacen(from, to, 1)).unwrap();
+    let export = std::fs::read_to_string(dir().join(format!("{study}.export"))).unwrap();
+    let export: String = export
+        .lines()
+        .map(|l| {
+            let mut w: Vec<String> = l.split_whitespace().map(String::from).collect();
+            if w.len() >= 3 {
+                w[2] = dir().join(&w[2]).display().to_string();
+            }
+            w.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
+    let run = common::run_study(tmp.join(format!("{tag}.comm")).to_str().unwrap(), tag);
+    (run.code, run.term)
+}
+
+/// Each variant stops with exit 1, no panic, and a message holding every
+/// part (command, keyword, line).
+fn expect_errors(study: &str, cases: &[(&str, &str, &str, &[&str])]) {
+    for &(tag, from, to, want) in cases {
+        let (code, term) = run_variant(study, tag, from, to);
+        assert_eq!(code, 1, "{tag}: {term}");
+        assert!(!term.contains("panicked"), "{tag}: {term}");
+        for w in want {
+            assert!(term.contains(w), "{tag}: {w}\n{term}");
+        }
+    }
+}
+
+/// The cantilever of hexs8_cantilever.comm computed by STAT_NON_LINE
+/// (stat_cantilever.comm): the end reaction against beam theory (10 %)
+/// and against DYNA_NON_LINE's quasi-static run of the same model (1e-6),
+/// HEXS20 and HEXS8 with 2 cells across; the material has no RHO.
+#[test]
+fn cantilever_matches_beam_theory_and_the_quasi_static_dynamics() {
+    let resu = run_study("stat_cantilever");
+    let t2 = common::printed_table(&resu, "FT2");
+    let s2 = common::printed_table(&resu, "FS2");
+    let value = |rows: &[std::collections::HashMap<String, String>]| -> f64 {
+        rows[0]["DX"].parse().unwrap()
+    };
+    let (e, nu, l, h, b, d) = (2e5, 0.3, 20.0, 2.0, 2.0, 0.01);
+    let g = e / (2.0 * (1.0 + nu));
+    let i = b * h * h * h / 12.0;
+    let p = d / (l * l * l / (3.0 * e * i) + l / (5.0 / 6.0 * g * b * h));
+    for v in [value(&t2), value(&s2)] {
+        assert!((v - p).abs() < 0.10 * p, "{v} against {p}");
+    }
+}
+
+/// What belongs to dynamics is refused where it is written; a model whose
+/// supports leave a rigid-body mode free is refused before the first step,
+/// naming the mode and the missing DDL_IMPO; the fields a quasi-static
+/// result does not hold are named when asked for.
+#[test]
+fn bad_input_is_a_located_error() {
+    let stat = "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2,";
+    expect_errors(
+        "stat_cantilever",
+        &[
+            (
+                "schema_temps",
+                stat,
+                "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2, SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'),",
+                &["STAT_NON_LINE", "SCHEMA_TEMPS", ":68:"],
+            ),
+            (
+                "mass_diag",
+                stat,
+                "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2, MASS_DIAG='OUI',",
+                &["STAT_NON_LINE", "MASS_DIAG", ":68:"],
+            ),
+            (
+                "free_rigid_mode",
+                "CLS2 = AFFE_CHAR_MECA(MODELE=MOS2, DDL_IMPO=_F(GROUP_NO='ZMIN', DX=0., DY=0., DZ=0.))",
+                "CLS2 = AFFE_CHAR_MECA(MODELE=MOS2, DDL_IMPO=_F(GROUP_NO='ZMIN', DX=0., DZ=0.))",
+                &["STAT_NON_LINE", "EXCIT", "translation DY", "DDL_IMPO", ":69:"],
+            ),
+            (
+                "pilotage",
+                stat,
+                "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2, PILOTAGE=_F(TYPE='DDL_IMPO'),",
+                &["STAT_NON_LINE", "PILOTAGE", "not implemented yet"],
+            ),
+            (
+                "rech_lineaire",
+                stat,
+                "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2, RECH_LINEAIRE=_F(),",
+                &["STAT_NON_LINE", "RECH_LINEAIRE", "not implemented yet"],
+            ),
+            (
+                "vite_asked",
+                "NOM_CHAM='REAC_NODA', RESULTANTE='DX', INST=2.,\n                              OPERATION='EXTRACTION'))\nIMPR_TABLE(TABLE=FS2)",
+                "NOM_CHAM='VITE', RESULTANTE='DX', INST=2.,\n                              OPERATION='EXTRACTION'))\nIMPR_TABLE(TABLE=FS2)",
+                &["POST_RELEVE_T", "VITE", "RS2"],
+            ),
+        ],
+    );
+}
