@@ -232,6 +232,7 @@ fn run_with(
             gravity: None,
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
+            distributed: Vec::new(),
         }],
     )
     .unwrap();

@@ -255,6 +255,7 @@ fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<S
             gravity: None,
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
+            distributed: Vec::new(),
         }],
     )
     .unwrap();
@@ -803,6 +804,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             gravity: None,
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
+            distributed: Vec::new(),
         }],
     )
     .unwrap();

@@ -127,6 +127,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             gravity: None,
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
+            distributed: Vec::new(),
         }],
     )
     .unwrap();

@@ -225,6 +225,15 @@ fn axis_face_pressure_is_per_radian() {
     run_study("pres_rep_axis");
 }
 
+/// FORCE_FACE (FZ = -F per unit area, global frame) on the bottom face
+/// of the rod held at its top, under a slow Newmark ramp: the static
+/// bottom DZ = -F L / E, the support reaction +F A and SIEF_ELGA SIZZ = F
+/// at every Gauss point, to 1e-6 (the residual dynamics).
+#[test]
+fn face_force_pulls_the_rod_uniformly() {
+    run_study("force_face");
+}
+
 /// An inward skin under PRES_REP (VERI_NORM), a follower pressure
 /// (TYPE_CHARGE='SUIV') and a pressure on volume cells only are located
 /// errors.

@@ -8,7 +8,9 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
-use crate::model::{CellRole, Dof, Gravity, ImposedDof, MechLoad, Pressure};
+use crate::model::{
+    CellRole, DistributedForce, DistributedKind, Dof, Gravity, ImposedDof, MechLoad, Pressure,
+};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -106,6 +108,26 @@ pub fn def() -> CommandDef {
             ])
             .doc("uniform pressure on the skin cells of the selection (SEG in AXIS, per radian; TRIA/QUAD in 3D): the force -PRES*n per unit area, n the cell's normal as its nodes orient it (outward after MODI_MAILLAGE ORIE_PEAU_2D/3D); a dead load on the initial geometry, scaled in time by EXCIT/FONC_MULT")
             .kw(),
+            distributed_fact(
+                "FORCE_FACE",
+                &["FX", "FY", "FZ"],
+                "force per unit area (MPa) on the TRIA3/TRIA6/QUAD4/QUAD8 skin cells of a 3D model, global frame, consistent nodal forces; a dead load on the initial geometry, scaled in time by EXCIT/FONC_MULT; a cell given again keeps the later occurrence",
+            ),
+            distributed_fact(
+                "FORCE_ARETE",
+                &["FX", "FY", "FZ", "MX", "MY", "MZ"],
+                "force per unit length (N/mm) on the SEG2/SEG3 cells of a 3D model, global frame, consistent nodal forces; a dead load, scaled in time by EXCIT/FONC_MULT",
+            ),
+            distributed_fact(
+                "FORCE_CONTOUR",
+                &["FX", "FY", "FZ", "MX", "MY", "MZ"],
+                "force per unit length (N/mm) on the SEG2/SEG3 edges of a 2D model; in AXIS per unit length of the meridian and per radian (the integral carries r); global frame, consistent nodal forces; a dead load, scaled in time by EXCIT/FONC_MULT",
+            ),
+            distributed_fact(
+                "FORCE_INTERNE",
+                &["FX", "FY", "FZ"],
+                "force per unit volume (N/mm^3) on the volume elements of the selection (per radian in AXIS), integrated like PESANTEUR; a dead load, scaled in time by EXCIT/FONC_MULT",
+            ),
             oui_non("VERI_NORM", "OUI")
                 .doc("check the orientation of skin cells carrying loads")
                 .kw(),
@@ -120,9 +142,33 @@ pub fn def() -> CommandDef {
         "PESANTEUR",
         "FORCE_NODALE",
         "PRES_REP",
+        "FORCE_FACE",
+        "FORCE_ARETE",
+        "FORCE_CONTOUR",
+        "FORCE_INTERNE",
     ])])
     .doc("Defines mechanical boundary conditions on a model.");
     CommandDef { spec, exec }
+}
+
+/// A distributed-force keyword: a cell selection and force components.
+fn distributed_fact(name: &'static str, cmps: &[&'static str], doc: &'static str) -> Keyword {
+    let mut kws = vec![tout(), group_ma(), maille()];
+    for &c in cmps {
+        kws.push(if c.starts_with('M') {
+            real(c).kw()
+        } else {
+            real(c).doc("component of the force density").kw()
+        });
+    }
+    fact(name, kws)
+        .many()
+        .rules(vec![
+            au_moins_un(&["TOUT", "GROUP_MA", "MAILLE"]),
+            au_moins_un(cmps),
+        ])
+        .doc(doc)
+        .kw()
 }
 
 /// DDL_IMPO: for each occurrence, every selected node gets each given
@@ -206,6 +252,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     }
     let nodal_forces = nodal_forces_of(args, mesh, &model, &model_name, &in_model, &mut lines)?;
     let pressures = pressures_of(args, mesh, &model, &model_name, &mut lines)?;
+    let distributed = distributed_of(args, mesh, &model, &model_name, &mut lines)?;
     let gravity = match args.fact("PESANTEUR") {
         Some(occ) => Some(gravity_of(occ, mesh, &model, &mut lines)?),
         None => None,
@@ -224,6 +271,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         gravity,
         nodal_forces,
         pressures,
+        distributed,
     }))))
 }
 
@@ -462,4 +510,137 @@ fn gravity_of(
         direction,
         cells,
     })
+}
+
+/// FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR, FORCE_INTERNE: each occurrence
+/// gives a uniform force density to the cells of its selection that can
+/// carry it: skin faces (FORCE_FACE, 3D), skin edges (FORCE_ARETE in 3D,
+/// FORCE_CONTOUR in AXIS), volume elements (FORCE_INTERNE). As for
+/// PRES_REP, the other cells of the model in the selection are skipped,
+/// a selected cell outside the model is an error (unless by TOUT), and so
+/// is a selection with no cell to load. A keyword meant for the other
+/// model dimension, or a component the model does not carry (FZ in AXIS),
+/// is an error giving the valid choices. A cell given again by a later
+/// occurrence of the same keyword keeps the later density (code_aster's
+/// load card is assigned occurrence by occurrence, every component,
+/// absent ones 0).
+fn distributed_of(
+    args: &Args,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    model_name: &str,
+    lines: &mut Vec<String>,
+) -> Result<Vec<DistributedForce>, Diagnostic> {
+    let axis = model.ndof_per_node() == 2;
+    let mut out: Vec<DistributedForce> = Vec::new();
+    for kind in [
+        DistributedKind::Face,
+        DistributedKind::Edge,
+        DistributedKind::Contour,
+        DistributedKind::Internal,
+    ] {
+        let key = kind.keyword();
+        // (cell dimension, role wanted, what the valid cells are)
+        let (dim, skin, cells_text) = match kind {
+            DistributedKind::Face => (2, true, "TRIA3/TRIA6/QUAD4/QUAD8 faces"),
+            DistributedKind::Edge | DistributedKind::Contour => (1, true, "SEG2/SEG3 edges"),
+            DistributedKind::Internal => (if axis { 2 } else { 3 }, false, "volume elements"),
+        };
+        for (k, occ) in args.facts(key).iter().enumerate() {
+            let wrong_model = match kind {
+                DistributedKind::Face | DistributedKind::Edge => axis,
+                DistributedKind::Contour => !axis,
+                DistributedKind::Internal => false,
+            };
+            if wrong_model {
+                return Err(occ.error(
+                    "",
+                    format!(
+                        "{key} does not apply to the {} model {model_name}: {}",
+                        if axis { "AXIS" } else { "3D" },
+                        if axis {
+                            "on a 2D model, FORCE_CONTOUR loads the SEG2/SEG3 edges, FORCE_INTERNE the surface elements, PRES_REP presses on edges"
+                        } else {
+                            "on a 3D model, FORCE_FACE loads the TRIA/QUAD faces, FORCE_ARETE the SEG2/SEG3 edges, FORCE_INTERNE the volume elements, PRES_REP presses on faces"
+                        }
+                    ),
+                ));
+            }
+            for m in ["MX", "MY", "MZ"] {
+                if occ.has(m) {
+                    return Err(occ.not_implemented(
+                        m,
+                        "distributed moments (no element of aster has rotational dofs)",
+                    ));
+                }
+            }
+            let mut force = [0.0; 3];
+            for (i, (c, dof)) in [("FX", Dof::Dx), ("FY", Dof::Dy), ("FZ", Dof::Dz)]
+                .into_iter()
+                .enumerate()
+            {
+                let Some(v) = occ.real(c) else { continue };
+                if !model.has_dof(dof) {
+                    return Err(occ.error(
+                        c,
+                        format!(
+                            "{c} acts along {}, which is not a degree of freedom of the model {model_name} (valid: {})",
+                            dof.name(),
+                            if axis { "FX, FY" } else { "FX, FY, FZ" }
+                        ),
+                    ));
+                }
+                if !v.is_finite() {
+                    return Err(occ.error(c, format!("{c} must be finite")));
+                }
+                force[i] = v;
+            }
+            let selected = select_cells(mesh, occ)?;
+            let mut cells = Vec::new();
+            for &c in &selected {
+                let fits = mesh.cells[c].kind.dim() == dim;
+                match model.cells.get(c) {
+                    Some(CellRole::Skin { .. }) if skin && fits => cells.push(c),
+                    Some(CellRole::Element(_)) if !skin => cells.push(c),
+                    Some(CellRole::Skin { .. }) | Some(CellRole::Element(_)) => {}
+                    _ if occ.has("TOUT") => {}
+                    _ => {
+                        return Err(occ.error(
+                            "",
+                            format!(
+                                "cell {} of {} belongs to no element of the model {model_name}: assign it to the model (AFFE_MODELE) to load it",
+                                c + 1,
+                                selection_label(occ)
+                            ),
+                        ));
+                    }
+                }
+            }
+            if cells.is_empty() {
+                return Err(occ.error(
+                    "",
+                    format!(
+                        "{} has no cell that {key} loads: on the {} model {model_name} it acts on {cells_text} of the model",
+                        selection_label(occ),
+                        if axis { "AXIS" } else { "3D" },
+                    ),
+                ));
+            }
+            for earlier in out.iter_mut().filter(|d| d.kind == kind) {
+                earlier.cells.retain(|c| !cells.contains(c));
+            }
+            lines.push(format!(
+                "      {key} {}: ({:e}, {:e}, {:e}) on {} cells of {}",
+                k + 1,
+                force[0],
+                force[1],
+                force[2],
+                cells.len(),
+                selection_label(occ)
+            ));
+            out.push(DistributedForce { kind, force, cells });
+        }
+    }
+    out.retain(|d| !d.cells.is_empty());
+    Ok(out)
 }

@@ -82,12 +82,25 @@ fn skin_element(formulation: Formulation, cell: CellType) -> Option<&'static str
         (Formulation::Solid3d, Tria6) => Some("MECA_FACE6"),
         (Formulation::Solid3d, Quad4) => Some("MECA_FACE4"),
         (Formulation::Solid3d, Quad8) => Some("MECA_FACE8"),
+        // edges of a 3D model: they carry FORCE_ARETE only (given by
+        // MODELISATION='3D' alone, see `assigns_skin`)
+        (Formulation::Solid3d, Seg2) => Some("MECA_ARETE2"),
+        (Formulation::Solid3d, Seg3) => Some("MECA_ARETE3"),
         (Formulation::Axis, Seg2) => Some("MEAXSE2"),
         (Formulation::Axis, Seg3) => Some("MEAXSE3"),
         (Formulation::PlaneStrain, Seg2) => Some("MEPLSE2"),
         (Formulation::PlaneStrain, Seg3) => Some("MEPLSE3"),
         _ => None,
     }
+}
+
+/// Whether `modelisation` puts its skin element on `cell`: the edge
+/// elements MECA_ARETE2/3 come with '3D' only [mem: code_aster's 3D_SI
+/// catalogue is not known here to hold them], so that 3D_SI on SEG cells
+/// still assigns nothing.
+fn assigns_skin(modelisation: &str, form: Formulation, cell: CellType) -> bool {
+    skin_element(form, cell).is_some()
+        && (cell.dim() != 1 || form != Formulation::Solid3d || modelisation == "3D")
 }
 
 /// The topological dimension of the volume cells of a formulation (the
@@ -177,7 +190,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             if let Some(spec) = element_spec(modelisation, kind) {
                 roles[c] = CellRole::Element(spec);
                 given_by[c] = Some(k);
-            } else if skin_element(form, kind).is_some() {
+            } else if assigns_skin(modelisation, form, kind) {
                 roles[c] = CellRole::Skin {
                     modelisation: modelisation.to_string(),
                 };

@@ -181,7 +181,9 @@ pub fn gravity_forces(
 /// The external forces of one load (full vector, dof `node·ndpn +
 /// component`): its PESANTEUR ([`gravity_forces`]) plus its FORCE_NODALE,
 /// each node receiving the force given for it, plus its PRES_REP
-/// ([`super::pressure`], on the initial geometry). DYNA_NON_LINE scales this
+/// ([`super::pressure`], on the initial geometry), plus its FORCE_FACE,
+/// FORCE_ARETE, FORCE_CONTOUR and FORCE_INTERNE ([`super::distributed`]).
+/// DYNA_NON_LINE scales this
 /// vector by the load's FONC_MULT.
 pub fn load_forces(
     mesh: &Mesh,
@@ -218,6 +220,7 @@ pub fn load_forces(
             }
         }
     }
+    super::distributed::add_distributed_forces(mesh, model, &load.distributed, &mut out)?;
     Ok(out)
 }
 

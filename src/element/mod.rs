@@ -9,6 +9,7 @@
 
 pub mod axis;
 pub mod body_force;
+pub mod distributed;
 pub mod hexs8;
 pub mod mechanics;
 pub mod pressure;

@@ -20,7 +20,7 @@ use crate::model::spec::Formulation;
 /// and flat faces: N_a·r is of degree 4 on a SEG3 (FPG3 is exact to 5),
 /// N_a of degree 2 on a QUAD8 face times a bilinear Jacobian (FPG9), N_a
 /// of degree 2 on a TRIA6 (FPG6, degree 4).
-fn family(cell: CellType) -> Option<Fpg> {
+pub(super) fn family(cell: CellType) -> Option<Fpg> {
     match cell {
         CellType::Seg2 | CellType::Seg3 => Some(Fpg::Fpg3),
         CellType::Tria3 | CellType::Tria6 => Some(Fpg::Fpg6),

@@ -146,6 +146,46 @@ pub struct MechLoad {
     /// PRES_REP: a uniform pressure on skin cells of the model, a dead
     /// load on the initial geometry (`element::pressure`).
     pub pressures: Vec<Pressure>,
+    /// FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR and FORCE_INTERNE: uniform
+    /// forces per unit area, length or volume, dead loads on the initial
+    /// geometry (`element::distributed`).
+    pub distributed: Vec<DistributedForce>,
+}
+
+/// Which AFFE_CHAR_MECA keyword a [`DistributedForce`] came from: it
+/// fixes the measure the force density is per.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DistributedKind {
+    /// FORCE_FACE: per unit area of TRIA/QUAD skin cells of a 3D model.
+    Face,
+    /// FORCE_ARETE: per unit length of SEG cells of a 3D model.
+    Edge,
+    /// FORCE_CONTOUR: per unit length of SEG cells of a 2D model (in
+    /// AXIS per unit length and per radian: the integral carries r).
+    Contour,
+    /// FORCE_INTERNE: per unit volume of the volume elements (per radian
+    /// in AXIS).
+    Internal,
+}
+
+impl DistributedKind {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            DistributedKind::Face => "FORCE_FACE",
+            DistributedKind::Edge => "FORCE_ARETE",
+            DistributedKind::Contour => "FORCE_CONTOUR",
+            DistributedKind::Internal => "FORCE_INTERNE",
+        }
+    }
+}
+
+/// A uniform force density `force` (global frame, components absent
+/// from the keyword are 0) on each of `cells`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DistributedForce {
+    pub kind: DistributedKind,
+    pub force: [f64; 3],
+    pub cells: Vec<usize>,
 }
 
 /// PRES_REP: the pressure `p` on each of `cells` (skin cells of the model:

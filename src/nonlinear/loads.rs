@@ -1,5 +1,6 @@
 //! External forces that vary in time: each load's vector (PESANTEUR,
-//! FORCE_NODALE and PRES_REP, `element::body_force::load_forces`) times its EXCIT
+//! FORCE_NODALE, PRES_REP and the distributed forces,
+//! `element::body_force::load_forces`) times its EXCIT
 //! FONC_MULT evaluated at the instant, summed (code_aster's dead loads
 //! "FIXE_CSTE" with a multiplier function). The engine asks for F_ext at
 //! the instants it needs: the end of the step, and for HHT's previous-step

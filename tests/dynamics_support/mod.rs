@@ -184,6 +184,7 @@ pub fn study(
             gravity: None,
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
+            distributed: Vec::new(),
         })),
     );
     if let Some(v) = vite {

@@ -1,0 +1,252 @@
+//! AFFE_CHAR_MECA FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR and
+//! FORCE_INTERNE: the consistent nodal forces f_a = ∫ f N_a dΩ of a
+//! uniform force density f (global frame) over a face, an edge or a
+//! volume, on the initial geometry (dead loads, code_aster's FIXE_CSTE).
+//!
+//! Consistent means the load is shared by the shape functions, not
+//! equally between the nodes: on a QUAD8 or TRIA6 face under a uniform
+//! density the corner nodes get a negative or zero share and the mid-side
+//! nodes the rest, as in code_aster (its FORCE_FACE elements integrate
+//! N_a the same way). The total is f times the measure of the cell.
+//!
+//! Skin cells use the Gauss families of PRES_REP ([`super::pressure`]),
+//! which integrate the force exactly on straight edges and flat faces;
+//! volume cells use the mass family of PESANTEUR
+//! ([`super::body_force::element_body_force`] with ρ = 1), so that
+//! FORCE_INTERNE = ρ g d gives the same nodal forces as PESANTEUR. In
+//! AXIS every integral carries r without 2π (per radian), like every
+//! nodal force there.
+
+use super::body_force::element_body_force;
+use crate::mesh::quadrature::rule;
+use crate::mesh::shape::eval;
+use crate::mesh::{CellType, Mesh};
+use crate::model::{CellRole, DistributedForce, DistributedKind, Model};
+
+/// The nodal forces of the density `f` per unit measure of the skin cell
+/// `cell` (node-major, 2 components per node in AXIS, 3 in 3D), node
+/// coordinates `coords` in MED order: per unit length × r on a SEG of an
+/// AXIS model, per unit length on a SEG of a 3D model, per unit area on a
+/// TRIA/QUAD of a 3D model. Any other combination, a degenerate cell and,
+/// in AXIS, a Gauss point at r < 0 are errors.
+pub fn skin_force(
+    cell: CellType,
+    axis: bool,
+    coords: &[[f64; 3]],
+    f: [f64; 3],
+) -> Result<Vec<f64>, String> {
+    let nn = cell.nnodes();
+    if coords.len() != nn {
+        return Err(format!(
+            "{}: {} node coordinates for {nn} nodes",
+            cell.aster_name(),
+            coords.len()
+        ));
+    }
+    let fits = match cell.dim() {
+        1 => true,
+        2 => !axis,
+        _ => false,
+    };
+    let fpg = super::pressure::family(cell)
+        .filter(|_| fits)
+        .ok_or_else(|| {
+            format!(
+                "a distributed force acts on {} cells of an {} model, not on a {}",
+                if axis {
+                    "SEG2/SEG3"
+                } else {
+                    "SEG2/SEG3 (per length) or TRIA3/TRIA6/QUAD4/QUAD8 (per area)"
+                },
+                if axis { "AXIS" } else { "3D" },
+                cell.aster_name()
+            )
+        })?;
+    if f.iter().any(|v| !v.is_finite()) {
+        return Err(format!("force density {f:?} must be finite"));
+    }
+    let q =
+        rule(cell, fpg).ok_or_else(|| format!("{} has no family {fpg:?}", cell.aster_name()))?;
+    let d = if axis { 2 } else { 3 };
+    let mut out = vec![0.0; nn * d];
+    for (xi, w) in q.points.iter().zip(&q.weights) {
+        let s = eval(cell, *xi);
+        let mut t1 = [0.0; 3];
+        let mut t2 = [0.0; 3];
+        let mut r = 0.0;
+        for (a, g) in s.dn().iter().enumerate() {
+            r += s.n()[a] * coords[a][0];
+            for k in 0..3 {
+                t1[k] += coords[a][k] * g[0];
+                if cell.dim() == 2 {
+                    t2[k] += coords[a][k] * g[1];
+                }
+            }
+        }
+        let norm = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        // the measure per unit reference measure
+        let dm = if cell.dim() == 1 {
+            norm(t1)
+        } else {
+            norm([
+                t1[1] * t2[2] - t1[2] * t2[1],
+                t1[2] * t2[0] - t1[0] * t2[2],
+                t1[0] * t2[1] - t1[1] * t2[0],
+            ])
+        };
+        if dm.is_nan() || dm <= 0.0 {
+            return Err(format!("degenerate {} (zero Jacobian)", cell.aster_name()));
+        }
+        let dm = if axis {
+            if r.is_nan() || r < 0.0 {
+                return Err(format!("Gauss point at radius {r} < 0"));
+            }
+            dm * r
+        } else {
+            dm
+        };
+        for (a, &na) in s.n().iter().enumerate() {
+            for i in 0..d {
+                out[a * d + i] += f[i] * na * dm * w;
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Adds the nodal forces of `forces` to `out` (full vector, dof
+/// `node·ndpn + component`). FORCE_INTERNE acts on the volume elements of
+/// its cells, the other keywords on the skin cells (AFFE_CHAR_MECA has
+/// checked the kinds; a cell of another role is skipped).
+pub fn add_distributed_forces(
+    mesh: &Mesh,
+    model: &Model,
+    forces: &[DistributedForce],
+    out: &mut [f64],
+) -> Result<(), String> {
+    let d = model.ndof_per_node();
+    let axis = d == 2;
+    for df in forces {
+        for &c in &df.cells {
+            let cell = &mesh.cells[c];
+            let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
+            let fe = match (df.kind, model.cells.get(c)) {
+                (DistributedKind::Internal, Some(CellRole::Element(spec))) => {
+                    element_body_force(spec, &coords, 1.0, df.force).map_err(|e| e.to_string())
+                }
+                (DistributedKind::Internal, _) => continue,
+                (_, Some(CellRole::Skin { .. })) => skin_force(cell.kind, axis, &coords, df.force),
+                _ => continue,
+            }
+            .map_err(|e| format!("{}: cell {}: {e}", df.kind.keyword(), c + 1))?;
+            for (a, &n) in cell.nodes.iter().enumerate() {
+                for i in 0..d {
+                    out[n * d + i] += fe[a * d + i];
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64, scale: f64) -> bool {
+        (a - b).abs() <= 1e-13 * scale
+    }
+
+    fn totals(f: &[f64], d: usize) -> [f64; 3] {
+        let mut t = [0.0; 3];
+        for (k, v) in f.iter().enumerate() {
+            t[k % d] += v;
+        }
+        t
+    }
+
+    /// A flat QUAD8 parallelogram: the serendipity split of a uniform
+    /// density, −1/12 of the total on each corner and +1/3 on each
+    /// mid-side node, along the force, whatever its direction.
+    #[test]
+    fn quad8_uniform_density_is_the_serendipity_split() {
+        let (e1, e2) = ([3.0, 0.0, 1.0], [0.5, 2.0, 0.0]);
+        let at = |s: f64, t: f64| [0, 1, 2].map(|k| s * e1[k] + t * e2[k]);
+        let v = [at(0., 0.), at(1., 0.), at(1., 1.), at(0., 1.)];
+        let mut x = v.to_vec();
+        for k in 0..4 {
+            let (u, w) = (v[k], v[(k + 1) % 4]);
+            x.push([0, 1, 2].map(|i| (u[i] + w[i]) / 2.0));
+        }
+        let c = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        let area = c.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let f = [1.5, -2.0, 0.25];
+        let fe = skin_force(CellType::Quad8, false, &x, f).unwrap();
+        for n in 0..8 {
+            let share = if n < 4 { -1.0 / 12.0 } else { 1.0 / 3.0 };
+            for i in 0..3 {
+                assert!(
+                    close(fe[3 * n + i], share * f[i] * area, 10.0 * area),
+                    "node {n} {i}: {}",
+                    fe[3 * n + i]
+                );
+            }
+        }
+    }
+
+    /// A SEG3 edge in 3D with its middle node off the centre (but on the
+    /// segment): the total is f L whatever the parametrisation.
+    #[test]
+    fn seg3_edge_total_is_density_times_length() {
+        let (p, q) = ([1.0, 2.0, -1.0], [3.0, 0.5, 2.0]);
+        let m = [0, 1, 2].map(|k| p[k] + 0.4 * (q[k] - p[k]));
+        let len = [0, 1, 2]
+            .map(|k: usize| (q[k] - p[k]) * (q[k] - p[k]))
+            .iter()
+            .sum::<f64>()
+            .sqrt();
+        let f = [0.3, 4.0, -1.0];
+        let t = totals(
+            &skin_force(CellType::Seg3, false, &[p, q, m], f).unwrap(),
+            3,
+        );
+        for i in 0..3 {
+            assert!(close(t[i], f[i] * len, 10.0 * len), "{i}: {}", t[i]);
+        }
+    }
+
+    /// AXIS SEG2 on an oblique edge: per radian the total is f ∫ r ds =
+    /// f L (r1 + r2)/2, node a getting f L (2 r_a + r_b)/6.
+    #[test]
+    fn axis_contour_carries_the_radius() {
+        let (a, b) = ([1.0, 0.5, 0.0], [4.0, 4.5, 0.0]);
+        let l = 5.0;
+        let f = [2.0, -3.0, 0.0];
+        let fe = skin_force(CellType::Seg2, true, &[a, b], f).unwrap();
+        for i in 0..2 {
+            assert!(close(fe[i], f[i] * l * (2.0 + 4.0) / 6.0, 100.0));
+            assert!(close(fe[2 + i], f[i] * l * (1.0 + 8.0) / 6.0, 100.0));
+        }
+    }
+
+    #[test]
+    fn wrong_cells_are_errors() {
+        let tri = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]];
+        let e = skin_force(CellType::Tria3, true, &tri, [1.0, 0.0, 0.0]).unwrap_err();
+        assert!(e.contains("SEG2/SEG3 cells of an AXIS model"), "{e}");
+        let e = skin_force(CellType::Seg2, false, &[[1., 0., 0.]; 2], [1.0; 3]).unwrap_err();
+        assert!(e.contains("degenerate"), "{e}");
+        let e = skin_force(
+            CellType::Seg2,
+            true,
+            &[[-1., 0., 0.], [-1., 1., 0.]],
+            [1.0; 3],
+        )
+        .unwrap_err();
+        assert!(e.contains("radius"), "{e}");
+    }
+}
