@@ -225,7 +225,8 @@ fn mesh3d() -> Mesh3d {
 /// (1.4, 1.5) as one QUAD4 and (shifted up by 5) one QUAD8 with moved
 /// mid-nodes; groups A4, A8 (the cells), E2, E3 (the bottom, oblique
 /// right and top edges of each), ALL. Measures per radian: ∫ r ds on the
-/// edges, ∫∫ r dA on the cells.
+/// edges, ∫∫ r dA on the cells; with the suffix _P (D_PLAN, per unit
+/// thickness) the lengths and areas.
 fn mesh_axis() -> (Mesh, HashMap<&'static str, f64>) {
     let mut mesh = Mesh {
         name: "LOADSAX".into(),
@@ -263,15 +264,22 @@ fn mesh_axis() -> (Mesh, HashMap<&'static str, f64>) {
             rda += (p[0] + q[0]) * (p[0] * q[1] - q[0] * p[1]) / 6.0;
         }
         measure.insert(cname, rda);
+        measure.insert(
+            if z0 == 0.0 { "A4_P" } else { "A8_P" },
+            polygon_area(&mesh, &c, &[0, 1, 2, 3]),
+        );
         let mut edges = Vec::new();
         let mut rds = 0.0;
+        let mut length = 0.0;
         for (p, q) in [(0, 1), (1, 2), (2, 3)] {
             edges.push(add_skin(&mut mesh, kind, &c, &[p, q]));
             let (xp, xq) = (mesh.coords[c[p]], mesh.coords[c[q]]);
             rds += norm(sub(xq, xp)) * (xp[0] + xq[0]) / 2.0;
+            length += norm(sub(xq, xp));
         }
         mesh.cell_groups.insert(ename.into(), edges);
         measure.insert(ename, rds);
+        measure.insert(if z0 == 0.0 { "E2_P" } else { "E3_P" }, length);
     }
     mesh.node_groups
         .insert("ALL".into(), (0..mesh.nnodes()).collect());
@@ -289,14 +297,20 @@ fn scratch(name: &str) -> PathBuf {
 /// one-step DYNA_NON_LINE; prints the table T of the REAC_NODA
 /// resultant and, with `per_node`, the table TN of the reactions node by
 /// node. Returns the run.
-fn held_study(tag: &str, mesh: &Mesh, axis: bool, load: &str, per_node: bool) -> common::Run {
+fn held_study(
+    tag: &str,
+    mesh: &Mesh,
+    modelisation: &str,
+    load: &str,
+    per_node: bool,
+) -> common::Run {
     let dir = scratch(tag);
     let med = dir.join("mesh.mmed");
     aster::medio::write_mesh(&med, mesh).unwrap();
-    let (modelisation, dofs, cmps) = if axis {
-        ("AXIS", "DX=0., DY=0.", "('DX', 'DY')")
+    let (dofs, cmps) = if modelisation != "3D" {
+        ("DX=0., DY=0.", "('DX', 'DY')")
     } else {
-        ("3D", "DX=0., DY=0., DZ=0.", "('DX', 'DY', 'DZ')")
+        ("DX=0., DY=0., DZ=0.", "('DX', 'DY', 'DZ')")
     };
     let per_node = if per_node {
         format!(
@@ -375,7 +389,7 @@ fn force_face_resultant_is_density_times_area() {
         let run = held_study(
             &format!("dl_face_{g}"),
             &m.mesh,
-            false,
+            "3D",
             &format!(
                 "FORCE_FACE=_F(GROUP_MA='{g}', FX={}, FY={}, FZ={})",
                 F3[0], F3[1], F3[2]
@@ -394,7 +408,7 @@ fn force_arete_resultant_is_density_times_length() {
         let run = held_study(
             &format!("dl_arete_{g}"),
             &m.mesh,
-            false,
+            "3D",
             &format!(
                 "FORCE_ARETE=_F(GROUP_MA='{g}', FX={}, FY={}, FZ={})",
                 F3[0], F3[1], F3[2]
@@ -414,7 +428,7 @@ fn force_interne_resultant_is_density_times_volume() {
         let run = held_study(
             &format!("dl_interne_{g}"),
             &m.mesh,
-            false,
+            "3D",
             &format!(
                 "FORCE_INTERNE=_F(GROUP_MA='{g}', FX={}, FY={}, FZ={})",
                 F3[0], F3[1], F3[2]
@@ -427,25 +441,28 @@ fn force_interne_resultant_is_density_times_volume() {
 
 /// FORCE_CONTOUR in AXIS on SEG2 and SEG3 edges (one oblique): per
 /// radian, the density times ∫ r ds; FORCE_INTERNE in AXIS: the density
-/// times ∫∫ r dA.
+/// times ∫∫ r dA. In D_PLAN (per unit thickness) the length and the area.
 #[test]
 fn axis_force_contour_and_interne_are_per_radian() {
     let (mesh, measure) = mesh_axis();
     let f = [2.5, -1.5];
-    for (g, key) in [
-        ("E2", "FORCE_CONTOUR"),
-        ("E3", "FORCE_CONTOUR"),
-        ("A4", "FORCE_INTERNE"),
-        ("A8", "FORCE_INTERNE"),
-    ] {
-        let run = held_study(
-            &format!("dl_axis_{g}"),
-            &mesh,
-            true,
-            &format!("{key}=_F(GROUP_MA='{g}', FX={}, FY={})", f[0], f[1]),
-            false,
-        );
-        assert_resultant(g, &resultant(&run, 2), &f, measure[g]);
+    for (modelisation, suffix) in [("AXIS", ""), ("D_PLAN", "_P")] {
+        for (g, key) in [
+            ("E2", "FORCE_CONTOUR"),
+            ("E3", "FORCE_CONTOUR"),
+            ("A4", "FORCE_INTERNE"),
+            ("A8", "FORCE_INTERNE"),
+        ] {
+            let run = held_study(
+                &format!("dl_{modelisation}_{g}"),
+                &mesh,
+                modelisation,
+                &format!("{key}=_F(GROUP_MA='{g}', FX={}, FY={})", f[0], f[1]),
+                false,
+            );
+            let m = measure[format!("{g}{suffix}").as_str()];
+            assert_resultant(g, &resultant(&run, 2), &f, m);
+        }
     }
 }
 
@@ -472,11 +489,12 @@ fn force_interne_equals_pesanteur() {
     let d = [0.6, -0.8, 0.0];
     let m = mesh3d();
     let (max, _) = mesh_axis();
-    for (tag, mesh, axis, cmps) in [
-        ("3d", &m.mesh, false, &["DX", "DY", "DZ"][..]),
-        ("axis", &max, true, &["DX", "DY"][..]),
+    for (tag, mesh, modelisation, cmps) in [
+        ("3d", &m.mesh, "3D", &["DX", "DY", "DZ"][..]),
+        ("axis", &max, "AXIS", &["DX", "DY"][..]),
+        ("dplan", &max, "D_PLAN", &["DX", "DY"][..]),
     ] {
-        let interne = if axis {
+        let interne = if modelisation != "3D" {
             format!(
                 "FORCE_INTERNE=_F(TOUT='OUI', FX=RHO * {g} * {}, FY=RHO * {g} * {})",
                 d[0], d[1]
@@ -488,14 +506,14 @@ fn force_interne_equals_pesanteur() {
             )
         };
         let a = reactions(
-            &held_study(&format!("dl_fi_{tag}"), mesh, axis, &interne, true),
+            &held_study(&format!("dl_fi_{tag}"), mesh, modelisation, &interne, true),
             cmps,
         );
         let b = reactions(
             &held_study(
                 &format!("dl_pes_{tag}"),
                 mesh,
-                axis,
+                modelisation,
                 &format!(
                     "PESANTEUR=_F(GRAVITE={g}, DIRECTION=({}, {}, {}))",
                     d[0], d[1], d[2]
@@ -525,11 +543,11 @@ fn force_interne_equals_pesanteur() {
 fn bad_distributed_loads_are_located_errors() {
     let m = mesh3d();
     let (max, _) = mesh_axis();
-    for (tag, mesh, axis, load, place, what) in [
+    for (tag, mesh, modelisation, load, place, what) in [
         (
             "face_axis",
             &max,
-            true,
+            "AXIS",
             "FORCE_FACE=_F(GROUP_MA='E2', FX=1.)",
             "AFFE_CHAR_MECA/FORCE_FACE",
             "on a 2D model, FORCE_CONTOUR loads the SEG2/SEG3 edges",
@@ -537,7 +555,7 @@ fn bad_distributed_loads_are_located_errors() {
         (
             "contour_3d",
             &m.mesh,
-            false,
+            "3D",
             "FORCE_CONTOUR=_F(GROUP_MA='S2', FX=1.)",
             "AFFE_CHAR_MECA/FORCE_CONTOUR",
             "FORCE_ARETE the SEG2/SEG3 edges",
@@ -545,7 +563,7 @@ fn bad_distributed_loads_are_located_errors() {
         (
             "fz_axis",
             &max,
-            true,
+            "AXIS",
             "FORCE_CONTOUR=_F(GROUP_MA='E2', FZ=1.)",
             "AFFE_CHAR_MECA/FORCE_CONTOUR/FZ",
             "(valid: FX, FY)",
@@ -553,7 +571,7 @@ fn bad_distributed_loads_are_located_errors() {
         (
             "face_on_volume",
             &m.mesh,
-            false,
+            "3D",
             "FORCE_FACE=_F(GROUP_MA='H8', FX=1.)",
             "AFFE_CHAR_MECA/FORCE_FACE",
             "has no cell that FORCE_FACE loads",
@@ -561,13 +579,13 @@ fn bad_distributed_loads_are_located_errors() {
         (
             "moment",
             &m.mesh,
-            false,
+            "3D",
             "FORCE_ARETE=_F(GROUP_MA='S2', MX=1.)",
             "not implemented yet",
             "MX",
         ),
     ] {
-        let run = held_study(&format!("dl_bad_{tag}"), mesh, axis, load, false);
+        let run = held_study(&format!("dl_bad_{tag}"), mesh, modelisation, load, false);
         assert_eq!(run.code, 1, "{tag}: {}", run.term);
         assert!(run.term.contains(place), "{tag}: {}", run.term);
         assert!(run.term.contains(what), "{tag}: {}", run.term);

@@ -8,6 +8,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
+use crate::model::spec::Formulation;
 use crate::model::{
     CellRole, DistributedForce, DistributedKind, Dof, Gravity, ImposedDof, MechLoad, Pressure,
 };
@@ -121,7 +122,7 @@ pub fn def() -> CommandDef {
             distributed_fact(
                 "FORCE_CONTOUR",
                 &["FX", "FY", "FZ", "MX", "MY", "MZ"],
-                "force per unit length (N/mm) on the SEG2/SEG3 edges of a 2D model; in AXIS per unit length of the meridian and per radian (the integral carries r); global frame, consistent nodal forces; a dead load, scaled in time by EXCIT/FONC_MULT",
+                "force per unit length (N/mm) on the SEG2/SEG3 edges of a 2D model; in AXIS per unit length of the meridian and per radian (the integral carries r), in D_PLAN per unit thickness; global frame, consistent nodal forces; a dead load, scaled in time by EXCIT/FONC_MULT",
             ),
             distributed_fact(
                 "FORCE_INTERNE",
@@ -515,11 +516,11 @@ fn gravity_of(
 /// FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR, FORCE_INTERNE: each occurrence
 /// gives a uniform force density to the cells of its selection that can
 /// carry it: skin faces (FORCE_FACE, 3D), skin edges (FORCE_ARETE in 3D,
-/// FORCE_CONTOUR in AXIS), volume elements (FORCE_INTERNE). As for
+/// FORCE_CONTOUR in AXIS and D_PLAN), volume elements (FORCE_INTERNE). As for
 /// PRES_REP, the other cells of the model in the selection are skipped,
 /// a selected cell outside the model is an error (unless by TOUT), and so
 /// is a selection with no cell to load. A keyword meant for the other
-/// model dimension, or a component the model does not carry (FZ in AXIS),
+/// model dimension, or a component the model does not carry (FZ in 2D),
 /// is an error giving the valid choices. A cell given again by a later
 /// occurrence of the same keyword keeps the later density (code_aster's
 /// load card is assigned occurrence by occurrence, every component,
@@ -531,7 +532,14 @@ fn distributed_of(
     model_name: &str,
     lines: &mut Vec<String>,
 ) -> Result<Vec<DistributedForce>, Diagnostic> {
-    let axis = model.ndof_per_node() == 2;
+    // a 2D model: AXIS or D_PLAN
+    let plane = model.ndof_per_node() == 2;
+    let model_kind = match model.formulation() {
+        Some(Formulation::Axis) => "AXIS",
+        Some(Formulation::PlaneStrain) => "D_PLAN",
+        _ if plane => "2D",
+        _ => "3D",
+    };
     let mut out: Vec<DistributedForce> = Vec::new();
     for kind in [
         DistributedKind::Face,
@@ -544,21 +552,20 @@ fn distributed_of(
         let (dim, skin, cells_text) = match kind {
             DistributedKind::Face => (2, true, "TRIA3/TRIA6/QUAD4/QUAD8 faces"),
             DistributedKind::Edge | DistributedKind::Contour => (1, true, "SEG2/SEG3 edges"),
-            DistributedKind::Internal => (if axis { 2 } else { 3 }, false, "volume elements"),
+            DistributedKind::Internal => (if plane { 2 } else { 3 }, false, "volume elements"),
         };
         for (k, occ) in args.facts(key).iter().enumerate() {
             let wrong_model = match kind {
-                DistributedKind::Face | DistributedKind::Edge => axis,
-                DistributedKind::Contour => !axis,
+                DistributedKind::Face | DistributedKind::Edge => plane,
+                DistributedKind::Contour => !plane,
                 DistributedKind::Internal => false,
             };
             if wrong_model {
                 return Err(occ.error(
                     "",
                     format!(
-                        "{key} does not apply to the {} model {model_name}: {}",
-                        if axis { "AXIS" } else { "3D" },
-                        if axis {
+                        "{key} does not apply to the {model_kind} model {model_name}: {}",
+                        if plane {
                             "on a 2D model, FORCE_CONTOUR loads the SEG2/SEG3 edges, FORCE_INTERNE the surface elements, PRES_REP presses on edges"
                         } else {
                             "on a 3D model, FORCE_FACE loads the TRIA/QUAD faces, FORCE_ARETE the SEG2/SEG3 edges, FORCE_INTERNE the volume elements, PRES_REP presses on faces"
@@ -586,7 +593,7 @@ fn distributed_of(
                         format!(
                             "{c} acts along {}, which is not a degree of freedom of the model {model_name} (valid: {})",
                             dof.name(),
-                            if axis { "FX, FY" } else { "FX, FY, FZ" }
+                            if plane { "FX, FY" } else { "FX, FY, FZ" }
                         ),
                     ));
                 }
@@ -620,9 +627,8 @@ fn distributed_of(
                 return Err(occ.error(
                     "",
                     format!(
-                        "{} has no cell that {key} loads: on the {} model {model_name} it acts on {cells_text} of the model",
+                        "{} has no cell that {key} loads: on the {model_kind} model {model_name} it acts on {cells_text} of the model",
                         selection_label(occ),
-                        if axis { "AXIS" } else { "3D" },
                     ),
                 ));
             }

@@ -15,26 +15,30 @@
 //! ([`super::body_force::element_body_force`] with ρ = 1), so that
 //! FORCE_INTERNE = ρ g d gives the same nodal forces as PESANTEUR. In
 //! AXIS every integral carries r without 2π (per radian), like every
-//! nodal force there.
+//! nodal force there; in D_PLAN it is per unit thickness.
 
 use super::body_force::element_body_force;
 use crate::mesh::quadrature::rule;
 use crate::mesh::shape::eval;
 use crate::mesh::{CellType, Mesh};
+use crate::model::spec::Formulation;
 use crate::model::{CellRole, DistributedForce, DistributedKind, Model};
 
 /// The nodal forces of the density `f` per unit measure of the skin cell
-/// `cell` (node-major, 2 components per node in AXIS, 3 in 3D), node
+/// `cell` (node-major, 2 components per node in 2D, 3 in 3D), node
 /// coordinates `coords` in MED order: per unit length × r on a SEG of an
-/// AXIS model, per unit length on a SEG of a 3D model, per unit area on a
-/// TRIA/QUAD of a 3D model. Any other combination, a degenerate cell and,
-/// in AXIS, a Gauss point at r < 0 are errors.
+/// AXIS model, per unit length on a SEG of a D_PLAN model (per unit
+/// thickness) or of a 3D model, per unit area on a TRIA/QUAD of a 3D
+/// model. Any other combination, a degenerate cell and, in AXIS, a Gauss
+/// point at r < 0 are errors.
 pub fn skin_force(
     cell: CellType,
-    axis: bool,
+    formulation: Formulation,
     coords: &[[f64; 3]],
     f: [f64; 3],
 ) -> Result<Vec<f64>, String> {
+    let axis = formulation == Formulation::Axis;
+    let plane = formulation != Formulation::Solid3d;
     let nn = cell.nnodes();
     if coords.len() != nn {
         return Err(format!(
@@ -45,7 +49,7 @@ pub fn skin_force(
     }
     let fits = match cell.dim() {
         1 => true,
-        2 => !axis,
+        2 => !plane,
         _ => false,
     };
     let fpg = super::pressure::family(cell)
@@ -53,12 +57,16 @@ pub fn skin_force(
         .ok_or_else(|| {
             format!(
                 "a distributed force acts on {} cells of an {} model, not on a {}",
-                if axis {
+                if plane {
                     "SEG2/SEG3"
                 } else {
                     "SEG2/SEG3 (per length) or TRIA3/TRIA6/QUAD4/QUAD8 (per area)"
                 },
-                if axis { "AXIS" } else { "3D" },
+                match formulation {
+                    Formulation::Axis => "AXIS",
+                    Formulation::PlaneStrain => "D_PLAN",
+                    Formulation::Solid3d => "3D",
+                },
                 cell.aster_name()
             )
         })?;
@@ -67,7 +75,7 @@ pub fn skin_force(
     }
     let q =
         rule(cell, fpg).ok_or_else(|| format!("{} has no family {fpg:?}", cell.aster_name()))?;
-    let d = if axis { 2 } else { 3 };
+    let d = if plane { 2 } else { 3 };
     let mut out = vec![0.0; nn * d];
     for (xi, w) in q.points.iter().zip(&q.weights) {
         let s = eval(cell, *xi);
@@ -125,7 +133,11 @@ pub fn add_distributed_forces(
     out: &mut [f64],
 ) -> Result<(), String> {
     let d = model.ndof_per_node();
-    let axis = d == 2;
+    let formulation = model.formulation().unwrap_or(if d == 2 {
+        Formulation::Axis
+    } else {
+        Formulation::Solid3d
+    });
     for df in forces {
         for &c in &df.cells {
             let cell = &mesh.cells[c];
@@ -135,7 +147,9 @@ pub fn add_distributed_forces(
                     element_body_force(spec, &coords, 1.0, df.force).map_err(|e| e.to_string())
                 }
                 (DistributedKind::Internal, _) => continue,
-                (_, Some(CellRole::Skin { .. })) => skin_force(cell.kind, axis, &coords, df.force),
+                (_, Some(CellRole::Skin { .. })) => {
+                    skin_force(cell.kind, formulation, &coords, df.force)
+                }
                 _ => continue,
             }
             .map_err(|e| format!("{}: cell {}: {e}", df.kind.keyword(), c + 1))?;
@@ -185,7 +199,7 @@ mod tests {
         ];
         let area = c.iter().map(|v| v * v).sum::<f64>().sqrt();
         let f = [1.5, -2.0, 0.25];
-        let fe = skin_force(CellType::Quad8, false, &x, f).unwrap();
+        let fe = skin_force(CellType::Quad8, Formulation::Solid3d, &x, f).unwrap();
         for n in 0..8 {
             let share = if n < 4 { -1.0 / 12.0 } else { 1.0 / 3.0 };
             for i in 0..3 {
@@ -211,7 +225,7 @@ mod tests {
             .sqrt();
         let f = [0.3, 4.0, -1.0];
         let t = totals(
-            &skin_force(CellType::Seg3, false, &[p, q, m], f).unwrap(),
+            &skin_force(CellType::Seg3, Formulation::Solid3d, &[p, q, m], f).unwrap(),
             3,
         );
         for i in 0..3 {
@@ -226,23 +240,42 @@ mod tests {
         let (a, b) = ([1.0, 0.5, 0.0], [4.0, 4.5, 0.0]);
         let l = 5.0;
         let f = [2.0, -3.0, 0.0];
-        let fe = skin_force(CellType::Seg2, true, &[a, b], f).unwrap();
+        let fe = skin_force(CellType::Seg2, Formulation::Axis, &[a, b], f).unwrap();
         for i in 0..2 {
             assert!(close(fe[i], f[i] * l * (2.0 + 4.0) / 6.0, 100.0));
             assert!(close(fe[2 + i], f[i] * l * (1.0 + 8.0) / 6.0, 100.0));
         }
     }
 
+    /// The same oblique SEG2 in D_PLAN: per unit thickness, f L / 2 on
+    /// each node (no r).
+    #[test]
+    fn plane_strain_contour_is_per_unit_thickness() {
+        let (a, b) = ([1.0, 0.5, 0.0], [4.0, 4.5, 0.0]);
+        let f = [2.0, -3.0, 0.0];
+        let fe = skin_force(CellType::Seg2, Formulation::PlaneStrain, &[a, b], f).unwrap();
+        for i in 0..2 {
+            assert!(close(fe[i], f[i] * 2.5, 100.0));
+            assert!(close(fe[2 + i], f[i] * 2.5, 100.0));
+        }
+    }
+
     #[test]
     fn wrong_cells_are_errors() {
         let tri = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]];
-        let e = skin_force(CellType::Tria3, true, &tri, [1.0, 0.0, 0.0]).unwrap_err();
+        let e = skin_force(CellType::Tria3, Formulation::Axis, &tri, [1.0, 0.0, 0.0]).unwrap_err();
         assert!(e.contains("SEG2/SEG3 cells of an AXIS model"), "{e}");
-        let e = skin_force(CellType::Seg2, false, &[[1., 0., 0.]; 2], [1.0; 3]).unwrap_err();
+        let e = skin_force(
+            CellType::Seg2,
+            Formulation::Solid3d,
+            &[[1., 0., 0.]; 2],
+            [1.0; 3],
+        )
+        .unwrap_err();
         assert!(e.contains("degenerate"), "{e}");
         let e = skin_force(
             CellType::Seg2,
-            true,
+            Formulation::Axis,
             &[[-1., 0., 0.], [-1., 1., 0.]],
             [1.0; 3],
         )
