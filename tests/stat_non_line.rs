@@ -133,3 +133,24 @@ fn bad_input_is_a_located_error() {
         ],
     );
 }
+
+/// LIAISON_UNIL under STAT_NON_LINE (stat_unil.comm), the static cases of
+/// liaison-unil.md §9.2 on a bar acting as the spring K = E A / L: force
+/// and floor with CONTRAINTE (the floor reached exactly, reactions F − K H
+/// and K H) and PENALISATION (u = (F − E h)/(k + E) per link), and a floor
+/// rising with INST (free, then DZ = W t − H0 with its reaction K (W t −
+/// H0)); all checked to 1e-9 or better in the file.
+#[test]
+fn unilateral_links_hold_the_static_references() {
+    run_study("stat_unil");
+}
+
+/// The bilinear uniaxial curve of VMIS_ISOT_LINE under an imposed
+/// displacement ramp and an elastic unloading (stat_plastic_bar.comm):
+/// SIZZ = SY + ET (e − SY/E), p = (e − SY/E)/(1 + H/E), unloading
+/// elastic with p frozen, REAC_NODA = 4 SIZZ; 3D HEXA8 with code_aster's
+/// default REAC_ITER = 0, 3D_SI HEXS8 with REAC_ITER = 1 (loading only).
+#[test]
+fn plastic_bar_follows_the_bilinear_curve() {
+    run_study("stat_plastic_bar");
+}

@@ -9,8 +9,9 @@
 //!
 //! A mode combination r is free when r vanishes at every imposed dof: the
 //! null space of the Gram matrix G_kl = Σ_imposed r_k r_l of the rigid
-//! modes (6 in 3D: 3 translations, 3 rotations about the centroid; 1 in
-//! AXIS: the axial translation DY, a radial one strains the hoop).
+//! modes (6 in 3D: 3 translations, 3 rotations about the centroid; 3 in
+//! plane strain: DX, DY and the rotation about z; 1 in AXIS: the axial
+//! translation DY, a radial one strains the hoop).
 
 use super::dofs::DofNumbering;
 use crate::mesh::Mesh;
@@ -24,23 +25,31 @@ pub fn unheld_modes(mesh: &Mesh, model: &Model, nb: &DofNumbering) -> Vec<String
     let axis = model
         .element_cells()
         .any(|(_, s)| s.formulation == Formulation::Axis);
+    let plane = model
+        .element_cells()
+        .any(|(_, s)| s.formulation == Formulation::PlaneStrain);
     let ndpn = nb.ndpn;
     let active: Vec<usize> = (0..nb.nnodes).filter(|&n| nb.active_node[n]).collect();
     if active.is_empty() {
         return Vec::new();
     }
-    let names: Vec<&str> = if axis {
-        vec!["translation DY"]
+    const ALL: [&str; 6] = [
+        "translation DX",
+        "translation DY",
+        "translation DZ",
+        "rotation about X",
+        "rotation about Y",
+        "rotation about Z",
+    ];
+    // The modes of the formulation, as indices into ALL.
+    let ids: Vec<usize> = if axis {
+        vec![1]
+    } else if plane || ndpn == 2 {
+        vec![0, 1, 5]
     } else {
-        vec![
-            "translation DX",
-            "translation DY",
-            "translation DZ",
-            "rotation about X",
-            "rotation about Y",
-            "rotation about Z",
-        ]
+        (0..6).collect()
     };
+    let names: Vec<&str> = ids.iter().map(|&k| ALL[k]).collect();
     let m = names.len();
     // Centroid and size: the rotations are scaled to O(1) on the model.
     let mut c = [0.0; 3];
@@ -57,10 +66,8 @@ pub fn unheld_modes(mesh: &Mesh, model: &Model, nb: &DofNumbering) -> Vec<String
         })
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
-    let mode_value = |k: usize, node: usize, comp: usize| -> f64 {
-        if axis {
-            return if comp == 1 { 1.0 } else { 0.0 };
-        }
+    let mode_value = |j: usize, node: usize, comp: usize| -> f64 {
+        let k = ids[j];
         let x = mesh.coords[node];
         let r = [
             (x[0] - c[0]) / size,
