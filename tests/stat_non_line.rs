@@ -14,6 +14,11 @@ fn dir() -> PathBuf {
 /// Runs tests/studies/<name>.comm, asserts every check OK, snapshots its
 /// tables and test report and returns the .resu.
 fn run_study(name: &str) -> String {
+    run_study_mess(name).0
+}
+
+/// [`run_study`], with the .mess.
+fn run_study_mess(name: &str) -> (String, String) {
     let run = common::run_study(&format!("tests/studies/{name}.comm"), name);
     let resu = common::assert_all_ok(&run, &format!("{name}.resu"));
     // Every table and check of the file (the dated header lines aside).
@@ -23,7 +28,8 @@ fn run_study(name: &str) -> String {
         .map(|l| l.trim_end())
         .collect();
     insta::assert_snapshot!(name, tables.join("\n"));
-    resu
+    let mess = run.file(&format!("{name}.mess"));
+    (resu, mess)
 }
 
 /// Runs tests/studies/<study>.comm with `from` replaced by `to` (which must
@@ -255,4 +261,20 @@ fn patch_mesh_is_committed() {
 #[test]
 fn hexs8_passes_the_patch_test_on_a_distorted_mesh() {
     run_study("stat_patch_hexs8");
+}
+
+/// Step cutting, continuation and hand-over (stat_continuation.comm): with
+/// ITER_GLOB_MAXI = 8 the plastic steps fail and DEFI_LIST_INST cuts them
+/// in 4 (the sub-steps converge); the run stopped at t = 5 and continued
+/// with reuse= and ETAT_INIT EVOL_NOLI, then DYNA_NON_LINE started from the
+/// static state at t = 10 keeps the bar at rest: every value on the
+/// bilinear curve (1e-9, the unloaded stress 1e-8).
+#[test]
+fn steps_are_cut_and_a_static_result_is_continued() {
+    let (_, mess) = run_study_mess("stat_continuation");
+    assert!(mess.contains("the step is cut into 4 sub-steps"), "{mess}");
+    assert_eq!(mess.matches("STAT_NON_LINE done").count(), 2, "{mess}");
+    assert!(mess.contains("DYNA_NON_LINE done"), "{mess}");
+    // the continuation starts where the first run stopped
+    assert!(mess.contains("steps from 5e0 to 1.2e1"), "{mess}");
 }
