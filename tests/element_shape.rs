@@ -7,7 +7,7 @@ use aster::mesh::quadrature::{families, rule, Fpg};
 use aster::mesh::shape::{eval, med_to_aster, reference_measure, reference_nodes};
 use aster::mesh::CellType;
 
-const CELLS: [CellType; 11] = [
+const CELLS: [CellType; 12] = [
     CellType::Seg2,
     CellType::Seg3,
     CellType::Tria3,
@@ -15,6 +15,7 @@ const CELLS: [CellType; 11] = [
     CellType::Quad4,
     CellType::Quad8,
     CellType::Tetra4,
+    CellType::Tetra10,
     CellType::Penta6,
     CellType::Penta15,
     CellType::Hexa8,
@@ -46,7 +47,7 @@ fn sample_points(cell: CellType, n: usize) -> Vec<[f64; 3]> {
                 }
                 [u[0], u[1], 0.0]
             }
-            CellType::Tetra4 => {
+            CellType::Tetra4 | CellType::Tetra10 => {
                 if u[0] + u[1] + u[2] > 1.0 {
                     continue;
                 }
@@ -158,7 +159,7 @@ fn linear_fields_are_reproduced() {
 #[test]
 fn complete_quadratic_fields_are_reproduced_by_quadratic_cells() {
     // Full quadratic q(x) = Σ a_kl x_k x_l + linear part; every quadratic
-    // cell here (SEG3, TRIA6, QUAD8, PENTA15, HEXA20) contains P2.
+    // cell here (SEG3, TRIA6, QUAD8, TETRA10, PENTA15, HEXA20) contains P2.
     let a = [[0.7, -0.4, 0.25], [-0.4, 1.3, 0.6], [0.25, 0.6, -0.9]];
     let b = [0.5, -0.2, 1.1];
     for cell in CELLS.into_iter().filter(|c| c.is_quadratic()) {
@@ -202,6 +203,16 @@ fn med_order_is_the_mirror_of_code_aster_order_for_3d_cells() {
     assert_eq!(reference_nodes(CellType::Penta15)[p[9]], [0.0, 1.0, 0.0]);
     // code_aster's TETRA4 node 2 is at (0,0,1); in MED order it is node 3.
     assert_eq!(reference_nodes(CellType::Tetra4)[2], [0.0, 0.0, 1.0]);
+    // TETRA10: code_aster's node 5 (edge 1-2) is MED's node 7 (edge 3-1 of
+    // MED's vertices, code_aster's vertices 1 and 2 being MED's 1 and 3);
+    // every mid-node sits at the middle of its MED edge.
+    let p = med_to_aster(CellType::Tetra10);
+    assert_eq!(p[4], 6);
+    let r = reference_nodes(CellType::Tetra10);
+    for (k, &(a, b)) in CellType::Tetra10.mid_edges().iter().enumerate() {
+        let mid: [f64; 3] = std::array::from_fn(|i| 0.5 * (r[a][i] + r[b][i]));
+        assert_eq!(r[4 + k], mid, "mid-node {k}");
+    }
 }
 
 fn factorial(n: u32) -> f64 {
@@ -223,7 +234,7 @@ fn monomial_integral(cell: CellType, e: [u32; 3]) -> f64 {
         CellType::Quad4 | CellType::Quad8 => line(e[0]) * line(e[1]),
         CellType::Hexa8 | CellType::Hexa20 => line(e[0]) * line(e[1]) * line(e[2]),
         CellType::Tria3 | CellType::Tria6 => simplex2(e[0], e[1]),
-        CellType::Tetra4 => {
+        CellType::Tetra4 | CellType::Tetra10 => {
             factorial(e[0]) * factorial(e[1]) * factorial(e[2]) / factorial(e[0] + e[1] + e[2] + 3)
         }
         _ => line(e[0]) * simplex2(e[1], e[2]),

@@ -47,6 +47,8 @@ fn vtk_edges(t: CellType) -> Vec<(usize, usize)> {
         CellType::Seg3 => vec![(0, 1)],
         CellType::Tria6 => vec![(0, 1), (1, 2), (2, 0)],
         CellType::Quad8 => vec![(0, 1), (1, 2), (2, 3), (3, 0)],
+        // VTK_QUADRATIC_TETRA: base triangle, then the edges to the apex
+        CellType::Tetra10 => vec![(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)],
         // VTK_QUADRATIC_WEDGE: bottom triangle, top triangle, verticals
         CellType::Penta15 => vec![
             (0, 1),
@@ -194,6 +196,6 @@ fn the_med_cells_themselves_are_not_vtk_valid() {
 #[test]
 fn vtk_type_ids() {
     let ids: Vec<u8> = CellType::ALL.into_iter().map(vtk_cell_type).collect();
-    // POI1 SEG2 SEG3 TRIA3 TRIA6 QUAD4 QUAD8 TETRA4 PENTA6 PENTA15 HEXA8 HEXA20
-    assert_eq!(ids, [1, 3, 21, 5, 22, 9, 23, 10, 13, 26, 12, 25]);
+    // POI1 SEG2 SEG3 TRIA3 TRIA6 QUAD4 QUAD8 TETRA4 TETRA10 PENTA6 PENTA15 HEXA8 HEXA20
+    assert_eq!(ids, [1, 3, 21, 5, 22, 9, 23, 10, 24, 13, 26, 12, 25]);
 }

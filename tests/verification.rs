@@ -400,6 +400,15 @@ fn patch_test_axis() {
     run_study("patch_axis");
 }
 
+/// TETRA10 (3D and 3D_SI) on a tetrahedral bar made quadratic by
+/// CREA_MAILLAGE LINE_QUAD: the uniaxial-strain patch exact at every
+/// mid-height node and in the reaction, and rigid free flight under
+/// DIFF_CENT with the HRZ lumped mass.
+#[test]
+fn tetra10_patch_and_free_flight() {
+    run_study("tetra10_bar");
+}
+
 /// D_PLAN and D_PLAN_SI reproduce the linear field of the patch exactly,
 /// with the plane-strain SIZZ; the top reaction and the weight are per
 /// unit thickness (half and a quarter of their per-radian AXIS values on

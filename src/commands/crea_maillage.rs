@@ -37,7 +37,7 @@ pub fn def() -> CommandDef {
                 .concat(),
             )
             .rules(rule())
-            .doc("linear to quadratic cells")
+            .doc("linear to quadratic cells: a node at the middle of each edge of the selected cells (QUAD4 gives QUAD8, HEXA8 HEXA20, TETRA4 TETRA10); groups kept, the new nodes in none")
             .kw(),
             fact(
                 "RESTREINT",
@@ -61,15 +61,14 @@ pub fn def() -> CommandDef {
     CommandDef { spec, exec }
 }
 
-/// QUAD_LINE only: a new linear mesh, the source left unchanged.
+/// QUAD_LINE or LINE_QUAD: a new mesh, the source left unchanged.
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
-    let Some(occ) = args.fact("QUAD_LINE") else {
-        let key = if args.has("LINE_QUAD") {
-            "LINE_QUAD"
-        } else {
-            "RESTREINT"
-        };
-        return Err(args.not_implemented(key, "only QUAD_LINE"));
+    let (occ, name) = match (args.fact("QUAD_LINE"), args.fact("LINE_QUAD")) {
+        (Some(o), _) => (o, "QUAD_LINE"),
+        (None, Some(o)) => (o, "LINE_QUAD"),
+        (None, None) => {
+            return Err(args.not_implemented("RESTREINT", "only QUAD_LINE and LINE_QUAD"))
+        }
     };
     let src = mesh_of(study, args, "MAILLAGE")?;
     let cells: Option<Vec<usize>> = if occ.has("TOUT") {
@@ -88,9 +87,14 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         return Err(occ.not_implemented("MAILLE", "cells by name"));
     };
     let key = if occ.has("TOUT") { "TOUT" } else { "GROUP_MA" };
-    let mesh = ops::quad_line(src, cells.as_deref()).map_err(|e| mesh_error(occ, key, e))?;
+    let mesh = if name == "QUAD_LINE" {
+        ops::quad_line(src, cells.as_deref())
+    } else {
+        ops::line_quad(src, cells.as_deref())
+    }
+    .map_err(|e| mesh_error(occ, key, e))?;
     study.log(format!(
-        "    QUAD_LINE: {} nodes, {} cells",
+        "    {name}: {} nodes, {} cells",
         mesh.nnodes(),
         mesh.ncells()
     ));

@@ -14,6 +14,7 @@ const ID4: [usize; 4] = [0, 1, 2, 3];
 const ID6: [usize; 6] = [0, 1, 2, 3, 4, 5];
 const ID8: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 7];
 const TETRA4: [usize; 4] = [0, 2, 1, 3];
+const TETRA10: [usize; 10] = [0, 2, 1, 3, 6, 5, 4, 7, 9, 8];
 const PENTA6: [usize; 6] = [0, 2, 1, 3, 5, 4];
 const HEXA8: [usize; 8] = [0, 3, 2, 1, 4, 7, 6, 5];
 const PENTA15: [usize; 15] = [0, 2, 1, 3, 5, 4, 8, 7, 6, 11, 10, 9, 12, 14, 13];
@@ -33,6 +34,7 @@ pub fn vtk_permutation(t: CellType) -> &'static [usize] {
         CellType::Tria6 => &ID6,
         CellType::Quad8 => &ID8,
         CellType::Tetra4 => &TETRA4,
+        CellType::Tetra10 => &TETRA10,
         CellType::Penta6 => &PENTA6,
         CellType::Penta15 => &PENTA15,
         CellType::Hexa8 => &HEXA8,
@@ -51,6 +53,7 @@ pub fn vtk_cell_type(t: CellType) -> u8 {
         CellType::Quad4 => 9,
         CellType::Quad8 => 23,
         CellType::Tetra4 => 10,
+        CellType::Tetra10 => 24,
         CellType::Penta6 => 13,
         CellType::Penta15 => 26,
         CellType::Hexa8 => 12,

@@ -17,6 +17,7 @@ pub enum CellType {
     Quad4,
     Quad8,
     Tetra4,
+    Tetra10,
     Penta6,
     Penta15,
     Hexa8,
@@ -24,7 +25,7 @@ pub enum CellType {
 }
 
 impl CellType {
-    pub const ALL: [CellType; 12] = [
+    pub const ALL: [CellType; 13] = [
         CellType::Poi1,
         CellType::Seg2,
         CellType::Seg3,
@@ -33,6 +34,7 @@ impl CellType {
         CellType::Quad4,
         CellType::Quad8,
         CellType::Tetra4,
+        CellType::Tetra10,
         CellType::Penta6,
         CellType::Penta15,
         CellType::Hexa8,
@@ -50,6 +52,7 @@ impl CellType {
             CellType::Quad4 => 4,
             CellType::Quad8 => 8,
             CellType::Tetra4 => 4,
+            CellType::Tetra10 => 10,
             CellType::Penta6 => 6,
             CellType::Penta15 => 15,
             CellType::Hexa8 => 8,
@@ -63,6 +66,7 @@ impl CellType {
             CellType::Seg3 => 2,
             CellType::Tria6 => 3,
             CellType::Quad8 => 4,
+            CellType::Tetra10 => 4,
             CellType::Penta15 => 6,
             CellType::Hexa20 => 8,
             t => t.nnodes(),
@@ -117,6 +121,7 @@ impl CellType {
             CellType::Seg3 => &[(0, 1)],
             CellType::Tria6 => &[(0, 1), (1, 2), (2, 0)],
             CellType::Quad8 => &QUAD,
+            CellType::Tetra10 => &[(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)],
             CellType::Penta15 => &PENTA,
             CellType::Hexa20 => &HEXA,
             _ => &[],
@@ -129,9 +134,25 @@ impl CellType {
             CellType::Seg3 => CellType::Seg2,
             CellType::Tria6 => CellType::Tria3,
             CellType::Quad8 => CellType::Quad4,
+            CellType::Tetra10 => CellType::Tetra4,
             CellType::Penta15 => CellType::Penta6,
             CellType::Hexa20 => CellType::Hexa8,
             t => t,
+        }
+    }
+
+    /// The quadratic cell CREA_MAILLAGE LINE_QUAD makes of a linear one
+    /// (serendipity: QUAD4 gives QUAD8, HEXA8 gives HEXA20); `None` for a
+    /// cell that is already quadratic or has no edge.
+    pub fn quadratic(self) -> Option<CellType> {
+        match self {
+            CellType::Seg2 => Some(CellType::Seg3),
+            CellType::Tria3 => Some(CellType::Tria6),
+            CellType::Quad4 => Some(CellType::Quad8),
+            CellType::Tetra4 => Some(CellType::Tetra10),
+            CellType::Penta6 => Some(CellType::Penta15),
+            CellType::Hexa8 => Some(CellType::Hexa20),
+            _ => None,
         }
     }
 
@@ -146,6 +167,7 @@ impl CellType {
             CellType::Quad4 => "QUAD4",
             CellType::Quad8 => "QUAD8",
             CellType::Tetra4 => "TETRA4",
+            CellType::Tetra10 => "TETRA10",
             CellType::Penta6 => "PENTA6",
             CellType::Penta15 => "PENTA15",
             CellType::Hexa8 => "HEXA8",
@@ -164,6 +186,7 @@ impl CellType {
             CellType::Quad4 => "QU4",
             CellType::Quad8 => "QU8",
             CellType::Tetra4 => "TE4",
+            CellType::Tetra10 => "T10",
             CellType::Penta6 => "PE6",
             CellType::Penta15 => "P15",
             CellType::Hexa8 => "HE8",
@@ -182,6 +205,7 @@ impl CellType {
             CellType::Quad4 => 204,
             CellType::Quad8 => 208,
             CellType::Tetra4 => 304,
+            CellType::Tetra10 => 310,
             CellType::Penta6 => 306,
             CellType::Penta15 => 315,
             CellType::Hexa8 => 308,

@@ -824,6 +824,77 @@ pub fn quad_line(mesh: &Mesh, cells: Option<&[usize]>) -> Result<Mesh, MeshError
     })
 }
 
+/// CREA_MAILLAGE/LINE_QUAD: a copy of `mesh` where every selected linear
+/// cell (all when `cells` is `None`) becomes its quadratic counterpart, a
+/// node being added at the middle of each edge of those cells, shared by
+/// the cells around the edge (straight edges: the mid-node is the midpoint
+/// of its two vertices). Existing nodes keep their indices and the new
+/// ones follow, in the order the edges are met; cell and node groups are
+/// kept as they are (as code_aster: the new nodes join no group, a
+/// CREA_GROUP_NO after the command puts them in).
+pub fn line_quad(mesh: &Mesh, cells: Option<&[usize]>) -> Result<Mesh, MeshError> {
+    let mut selected = vec![cells.is_none(); mesh.ncells()];
+    if let Some(list) = cells {
+        for &c in list {
+            if c >= mesh.ncells() {
+                return Err(MeshError::new(
+                    "ASTER_RS_CELL_INDEX",
+                    format!(
+                        "cell {} does not exist (the mesh has {})",
+                        c + 1,
+                        mesh.ncells()
+                    ),
+                ));
+            }
+            selected[c] = true;
+        }
+    }
+    if !mesh
+        .cells
+        .iter()
+        .zip(&selected)
+        .any(|(c, &s)| s && c.kind.quadratic().is_some())
+    {
+        return Err(MeshError::new(
+            "MODELISA3_8",
+            "LINE_QUAD: no linear cell with edges in the selection",
+        ));
+    }
+    let mut coords = mesh.coords.clone();
+    let mut mid: std::collections::HashMap<(usize, usize), usize> = Default::default();
+    let mut new_cells = Vec::with_capacity(mesh.ncells());
+    for (cell, &sel) in mesh.cells.iter().zip(&selected) {
+        let Some(kind) = cell.kind.quadratic().filter(|_| sel) else {
+            new_cells.push(cell.clone());
+            continue;
+        };
+        let mut nodes = cell.nodes.clone();
+        for &(a, b) in kind.mid_edges() {
+            let (na, nb) = (cell.nodes[a], cell.nodes[b]);
+            let key = (na.min(nb), na.max(nb));
+            let n = *mid.entry(key).or_insert_with(|| {
+                let (pa, pb) = (mesh.coords[na], mesh.coords[nb]);
+                coords.push([
+                    0.5 * (pa[0] + pb[0]),
+                    0.5 * (pa[1] + pb[1]),
+                    0.5 * (pa[2] + pb[2]),
+                ]);
+                coords.len() - 1
+            });
+            nodes.push(n);
+        }
+        new_cells.push(Cell { kind, nodes });
+    }
+    Ok(Mesh {
+        name: mesh.name.clone(),
+        dim: mesh.dim,
+        coords,
+        cells: new_cells,
+        cell_groups: mesh.cell_groups.clone(),
+        node_groups: mesh.node_groups.clone(),
+    })
+}
+
 // ---------------------------------------------------------------------------
 // Geometry: code_aster's reference elements
 // ---------------------------------------------------------------------------
@@ -839,6 +910,7 @@ pub fn med_to_aster(kind: CellType) -> &'static [usize] {
     ];
     match kind {
         CellType::Tetra4 => &[0, 2, 1, 3],
+        CellType::Tetra10 => &[0, 2, 1, 3, 6, 5, 4, 7, 9, 8],
         CellType::Penta6 => &[0, 2, 1, 3, 5, 4],
         CellType::Penta15 => &[0, 2, 1, 3, 5, 4, 8, 7, 6, 12, 14, 13, 11, 10, 9],
         CellType::Hexa8 => &[0, 3, 2, 1, 4, 7, 6, 5],
@@ -858,7 +930,7 @@ fn check_rule(kind: CellType) -> QuadRule {
         CellType::Poi1 => Fpg::Fpg1,
         CellType::Seg2 | CellType::Seg3 | CellType::Tria3 | CellType::Tria6 => Fpg::Fpg3,
         CellType::Quad4 | CellType::Quad8 => Fpg::Fpg9,
-        CellType::Tetra4 => Fpg::Fpg4,
+        CellType::Tetra4 | CellType::Tetra10 => Fpg::Fpg4,
         CellType::Penta6 | CellType::Penta15 => Fpg::Fpg21,
         CellType::Hexa8 | CellType::Hexa20 => Fpg::Fpg27,
     };
@@ -1010,7 +1082,7 @@ mod tests {
             let want = match kind {
                 CellType::Tria3 | CellType::Tria6 => 0.5,
                 CellType::Quad4 | CellType::Quad8 => 4.0,
-                CellType::Tetra4 => 1.0 / 6.0,
+                CellType::Tetra4 | CellType::Tetra10 => 1.0 / 6.0,
                 CellType::Penta6 | CellType::Penta15 => 1.0,
                 _ => 8.0,
             };
@@ -1482,6 +1554,46 @@ mod tests {
     }
 
     // ---- QUAD_LINE ------------------------------------------------------
+
+    /// LINE_QUAD then QUAD_LINE gives the mesh back; the mid-nodes of the
+    /// E mesh are one per edge (shared by the tetrahedra around it), at
+    /// the middle of their edge.
+    #[test]
+    fn line_quad_adds_one_node_per_edge() {
+        let e = gen('E');
+        let q = line_quad(&e, None).unwrap();
+        let mut edges = std::collections::BTreeSet::new();
+        for c in &e.cells {
+            if let Some(k) = c.kind.quadratic() {
+                for &(a, b) in k.mid_edges() {
+                    let (na, nb) = (c.nodes[a], c.nodes[b]);
+                    edges.insert((na.min(nb), na.max(nb)));
+                }
+            }
+        }
+        assert_eq!(q.nnodes(), e.nnodes() + edges.len());
+        for (old, new) in e.cells.iter().zip(&q.cells) {
+            let kind = old.kind.quadratic().unwrap_or(old.kind);
+            assert_eq!(new.kind, kind);
+            assert_eq!(new.nodes[..old.nodes.len()], old.nodes[..]);
+            for (k, &(a, b)) in kind.mid_edges().iter().enumerate() {
+                let (pa, pb, m) = (
+                    q.coords[new.nodes[a]],
+                    q.coords[new.nodes[b]],
+                    q.coords[new.nodes[old.nodes.len() + k]],
+                );
+                for i in 0..3 {
+                    assert_eq!(m[i], 0.5 * (pa[i] + pb[i]));
+                }
+            }
+        }
+        assert_eq!(q.cell_groups, e.cell_groups);
+        let back = quad_line(&q, None).unwrap();
+        assert_eq!(back.coords, e.coords);
+        assert_eq!(back.cells, e.cells);
+        // Nothing linear left to convert is an error, as in code_aster.
+        assert_eq!(line_quad(&q, None).unwrap_err().id, "MODELISA3_8");
+    }
 
     #[test]
     fn quad_line_of_the_a_mesh() {

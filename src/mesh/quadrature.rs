@@ -100,7 +100,7 @@ pub fn families(cell: CellType) -> &'static [Fpg] {
         CellType::Seg2 | CellType::Seg3 => &[Fpg1, Fpg2, Fpg3],
         CellType::Tria3 | CellType::Tria6 => &[Fpg1, Fpg3, Fpg4, Fpg6, Fpg7],
         CellType::Quad4 | CellType::Quad8 => &[Fpg1, Fpg4, Fpg9],
-        CellType::Tetra4 => &[Fpg1, Fpg4, Fpg5, Fpg15],
+        CellType::Tetra4 | CellType::Tetra10 => &[Fpg1, Fpg4, Fpg5, Fpg15],
         CellType::Penta6 | CellType::Penta15 => &[Fpg1, Fpg6, Fpg8, Fpg21],
         CellType::Hexa8 | CellType::Hexa20 => &[Fpg1, Fpg8, Fpg27],
     }
@@ -121,7 +121,7 @@ pub fn rule(cell: CellType, fpg: Fpg) -> Option<QuadRule> {
             let (p, w, d) = triangle(fpg);
             (p.iter().map(|q| [q[0], q[1], 0.0]).collect(), w, exact(d))
         }
-        CellType::Tetra4 => tetrahedron(fpg),
+        CellType::Tetra4 | CellType::Tetra10 => tetrahedron(fpg),
         CellType::Penta6 | CellType::Penta15 => prism(fpg),
     };
     Some(QuadRule {

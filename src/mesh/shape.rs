@@ -118,6 +118,7 @@ fn eval_internal(cell: CellType, xi: [f64; 3]) -> ShapeEval {
         CellType::Tria3 => triangle(1, xi, &mut out),
         CellType::Tria6 => triangle(2, xi, &mut out),
         CellType::Tetra4 => tetra4(xi, &mut out),
+        CellType::Tetra10 => tetra10(xi, &mut out),
         CellType::Penta6 => prism6(xi, &mut out),
         CellType::Penta15 => prism15(xi, &mut out),
     }
@@ -163,7 +164,8 @@ fn internal_nodes(cell: CellType) -> &'static [[f64; 3]] {
         CellType::Tria6 => &TRIA6_NODES,
         CellType::Quad4 => &QUAD8_NODES[..4],
         CellType::Quad8 => &QUAD8_NODES,
-        CellType::Tetra4 => &TETRA4_NODES,
+        CellType::Tetra4 => &TETRA10_NODES[..4],
+        CellType::Tetra10 => &TETRA10_NODES,
         CellType::Penta6 => &PENTA15_NODES[..6],
         CellType::Penta15 => &PENTA15_NODES,
         CellType::Hexa8 => &HEXA20_NODES[..8],
@@ -178,7 +180,7 @@ pub fn reference_measure(cell: CellType) -> f64 {
         CellType::Seg2 | CellType::Seg3 => 2.0,
         CellType::Tria3 | CellType::Tria6 => 0.5,
         CellType::Quad4 | CellType::Quad8 => 4.0,
-        CellType::Tetra4 => 1.0 / 6.0,
+        CellType::Tetra4 | CellType::Tetra10 => 1.0 / 6.0,
         CellType::Penta6 | CellType::Penta15 => 1.0,
         CellType::Hexa8 | CellType::Hexa20 => 8.0,
     }
@@ -334,12 +336,48 @@ fn triangle(order: u8, xi: [f64; 3], out: &mut ShapeEval) {
 
 // ------------------------------------------------------------ tetrahedra
 
-const TETRA4_NODES: [[f64; 3]; 4] = [
+const TETRA10_NODES: [[f64; 3]; 10] = [
     [0.0, 1.0, 0.0],
     [0.0, 0.0, 1.0],
     [0.0, 0.0, 0.0],
     [1.0, 0.0, 0.0],
+    // mid-edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4 (code_aster's TE10)
+    [0.0, 0.5, 0.5],
+    [0.0, 0.0, 0.5],
+    [0.0, 0.5, 0.0],
+    [0.5, 0.5, 0.0],
+    [0.5, 0.0, 0.5],
+    [0.5, 0.0, 0.0],
 ];
+
+/// The volume coordinates of code_aster's tetrahedron (L1 = ξ₂, L2 = ξ₃,
+/// L3 = 1 − ξ₁ − ξ₂ − ξ₃, L4 = ξ₁) and their constant derivatives.
+const TETRA_DL: [[f64; 3]; 4] = [
+    [0.0, 1.0, 0.0],
+    [0.0, 0.0, 1.0],
+    [-1.0, -1.0, -1.0],
+    [1.0, 0.0, 0.0],
+];
+
+/// Quadratic Lagrange tetrahedron: L(2L − 1) at the vertices, 4 Lᵢ Lⱼ at
+/// the mid-edges.
+fn tetra10(xi: [f64; 3], out: &mut ShapeEval) {
+    let l = [xi[1], xi[2], 1.0 - xi[0] - xi[1] - xi[2], xi[0]];
+    for i in 0..4 {
+        out.n[i] = l[i] * (2.0 * l[i] - 1.0);
+        let c = 4.0 * l[i] - 1.0;
+        out.dn[i] = TETRA_DL[i].map(|d| c * d);
+    }
+    for (m, (i, j)) in [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+        .into_iter()
+        .enumerate()
+    {
+        out.n[4 + m] = 4.0 * l[i] * l[j];
+        for k in 0..3 {
+            out.dn[4 + m][k] = 4.0 * (TETRA_DL[i][k] * l[j] + l[i] * TETRA_DL[j][k]);
+        }
+    }
+}
 
 fn tetra4(xi: [f64; 3], out: &mut ShapeEval) {
     out.n[0] = xi[1];

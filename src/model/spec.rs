@@ -84,6 +84,10 @@ pub fn element_spec(modelisation: &str, cell: CellType) -> Option<ElementSpec> {
         // One point is exact for the constant strain of TETRA4; the mass
         // (degree 2) needs four.
         ("3D", Tetra4) => ("MECA_TETRA4", Solid3d, Fpg1, Fpg4),
+        // semantics.md §3.3: five points for the stiffness, fifteen for
+        // the mass; 3D_SI's MECA_TETRS10 takes four.
+        ("3D", Tetra10) => ("MECA_TETRA10", Solid3d, Fpg5, Fpg15),
+        ("3D_SI", Tetra10) => ("MECA_TETRS10", Solid3d, Fpg4, Fpg15),
         ("3D_SI", Hexa20) => ("MECA_HEXS20", Solid3d, Fpg8, Fpg27),
         // One point plus hourglass stabilisation (element::hexs8).
         ("3D_SI", Hexa8) => (HEXS8_NAME, Solid3d, Fpg1, Fpg8),

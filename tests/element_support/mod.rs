@@ -45,6 +45,7 @@ pub fn linear_of(cell: CellType) -> CellType {
         CellType::Penta15 => CellType::Penta6,
         CellType::Quad8 => CellType::Quad4,
         CellType::Tria6 => CellType::Tria3,
+        CellType::Tetra10 => CellType::Tetra4,
         c => c,
     }
 }
