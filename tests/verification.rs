@@ -234,6 +234,71 @@ fn face_force_pulls_the_rod_uniformly() {
     run_study("force_face");
 }
 
+/// CALC_CHAMP CONTRAINTE on the AXIS patch test (QUAD8 with a moved
+/// vertex, 3 x 3 and 2 x 2 points): the uniform stress at every node of
+/// SIEF_ELNO, SIGM_ELNO, SIEF_NOEU and SIGM_NOEU to round-off, by
+/// TEST_RESU (cell and node, TYPE_TEST) and POST_RELEVE_T EXTRACTION.
+#[test]
+fn uniform_stress_is_extrapolated_to_every_node() {
+    run_study("stress_nodes");
+}
+
+/// SIGM_ELGA (not built), an ELNO field tested without CALC_CHAMP and
+/// an ELNO node outside the cell are located errors.
+#[test]
+fn bad_stresses_at_nodes_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("stress_nodes_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("stress_nodes.comm")).unwrap();
+    let cases = [
+        (
+            "sigm_elga",
+            (
+                "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU')",
+                "CONTRAINTE=('SIGM_ELGA',)",
+            ),
+            "not implemented yet: CALC_CHAMP/CONTRAINTE",
+        ),
+        (
+            "not_computed",
+            (
+                "RESULTAT=RES_R, NUME_ORDRE=1, NOM_CHAM='SIGM_ELNO', NOM_CMP='SIYY'",
+                "RESULTAT=RES_R, NUME_ORDRE=1, NOM_CHAM='SIEF_ELNO', NOM_CMP='SIYY'",
+            ),
+            "compute it with CALC_CHAMP CONTRAINTE='SIEF_ELNO'",
+        ),
+        (
+            "node_outside",
+            (
+                "GROUP_MA='M1',\n       GROUP_NO='CENTRE'",
+                "GROUP_MA='M1',\n       NOEUD='N3'",
+            ),
+            "node N3 is not a node of cell",
+        ),
+    ];
+    for (tag, (from, to), what) in cases {
+        let text = comm.replacen(from, to, 1);
+        assert_ne!(text, comm, "{tag}");
+        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+        std::fs::write(
+            tmp.join(format!("{tag}.export")),
+            format!("F mmed {} D 20\n", dir().join("patch.mmed").display()),
+        )
+        .unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+            &format!("verif_stress_nodes_{tag}"),
+        );
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(run.term.contains(what), "{tag}: {}", run.term);
+        assert!(
+            run.term.contains(&format!("{tag}.comm:")),
+            "{tag}: {}",
+            run.term
+        );
+    }
+}
+
 /// An inward skin under PRES_REP (VERI_NORM), a follower pressure
 /// (TYPE_CHARGE='SUIV') and a pressure on volume cells only are located
 /// errors.

@@ -49,7 +49,7 @@ pub fn def() -> CommandDef {
         text("CONTRAINTE")
             .many()
             .into(&["SIEF_ELNO", "SIGM_ELNO", "SIEF_NOEU", "SIGM_NOEU", "SIGM_ELGA"])
-            .doc("stress fields")
+            .doc("stress fields at nodes: *_ELNO extrapolated from SIEF_ELGA cell by cell, *_NOEU their mean over the cells at each node; SIGM_* the stress components only (SIGM_ELGA is not implemented)")
             .kw(),
         text("DEFORMATION")
             .many()
@@ -104,22 +104,24 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         Some(ConceptData::Result(r)) => (**r).clone(),
         _ => return Err(args.error("RESULTAT", format!("the result {name} holds no data"))),
     };
-    for key in [
-        "CONTRAINTE",
-        "DEFORMATION",
-        "CRITERES",
-        "VARI_INTERNE",
-        "ENERGIE",
-    ] {
+    for key in ["DEFORMATION", "CRITERES", "VARI_INTERNE", "ENERGIE"] {
         if args.has(key) {
             return Err(args.not_implemented(key, ""));
         }
+    }
+    if args.texts("CONTRAINTE").contains(&"SIGM_ELGA") {
+        return Err(args.not_implemented(
+            "CONTRAINTE",
+            "SIGM_ELGA (SIEF_ELGA holds the Cauchy stress of every law here); SIEF_ELNO, SIGM_ELNO, SIEF_NOEU and SIGM_NOEU are computed",
+        ));
     }
     for key in ["TOUT", "GROUP_MA", "MAILLE"] {
         if args.given(key) {
             return Err(args.not_implemented(key, "the whole model is always used"));
         }
     }
+    let selected = selected_steps(study, args, &evol)?;
+    stresses_at_nodes(study, args, &name, &mut evol, &selected)?;
     let options = args.texts("FORCE");
     if options.is_empty() {
         return Ok(Some(ConceptData::Result(Box::new(evol))));
@@ -213,39 +215,6 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         asm.set_conjugate_forces(false);
     }
     let dofs: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
-    // Selected steps.
-    let relative = args.text("CRITERE").unwrap_or("RELATIF") == "RELATIF";
-    let precision = args.real("PRECISION").unwrap_or(1e-6);
-    let mut selected: Vec<usize> = Vec::new();
-    let mut pick = |acc: Access| -> Result<(), String> {
-        let s = evol.find(acc)?;
-        selected.push(s.nume_ordre);
-        Ok(())
-    };
-    if args.has("NUME_ORDRE") {
-        for k in args.ints("NUME_ORDRE") {
-            pick(Access::NumeOrdre(k.max(0) as usize)).map_err(|m| args.error("NUME_ORDRE", m))?;
-        }
-    } else if args.has("INST") || args.has("LIST_INST") {
-        let insts = if let Some(l) = args.concept("LIST_INST") {
-            match study.concepts.data(l) {
-                Some(ConceptData::ListReal(v)) => v.clone(),
-                _ => return Err(args.error("LIST_INST", format!("the list {l} holds no data"))),
-            }
-        } else {
-            args.reals("INST")
-        };
-        for t in insts {
-            pick(Access::Inst {
-                inst: t,
-                precision,
-                relative,
-            })
-            .map_err(|m| args.error("INST", m))?;
-        }
-    } else {
-        selected = evol.steps.iter().map(|s| s.nume_ordre).collect();
-    }
     let nfull = asm.numbering.nfull();
     // F_ext of each load and its FONC_MULT, evaluated at each step below.
     let mut parts = Vec::new();
@@ -339,4 +308,124 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         }
     }
     Ok(Some(ConceptData::Result(Box::new(evol))))
+}
+
+/// The NUME_ORDRE of the steps the command's access keywords select
+/// (every stored step without them).
+fn selected_steps(
+    study: &Study,
+    args: &Args,
+    evol: &crate::result::EvolNoli,
+) -> Result<Vec<usize>, crate::diag::Diagnostic> {
+    let relative = args.text("CRITERE").unwrap_or("RELATIF") == "RELATIF";
+    let precision = args.real("PRECISION").unwrap_or(1e-6);
+    let mut selected: Vec<usize> = Vec::new();
+    let mut pick = |acc: Access| -> Result<(), String> {
+        let s = evol.find(acc)?;
+        selected.push(s.nume_ordre);
+        Ok(())
+    };
+    if args.has("NUME_ORDRE") {
+        for k in args.ints("NUME_ORDRE") {
+            pick(Access::NumeOrdre(k.max(0) as usize)).map_err(|m| args.error("NUME_ORDRE", m))?;
+        }
+    } else if args.has("INST") || args.has("LIST_INST") {
+        let insts = if let Some(l) = args.concept("LIST_INST") {
+            match study.concepts.data(l) {
+                Some(ConceptData::ListReal(v)) => v.clone(),
+                _ => return Err(args.error("LIST_INST", format!("the list {l} holds no data"))),
+            }
+        } else {
+            args.reals("INST")
+        };
+        for t in insts {
+            pick(Access::Inst {
+                inst: t,
+                precision,
+                relative,
+            })
+            .map_err(|m| args.error("INST", m))?;
+        }
+    } else {
+        selected = evol.steps.iter().map(|s| s.nume_ordre).collect();
+    }
+    Ok(selected)
+}
+
+/// CONTRAINTE: SIEF_ELNO and SIGM_ELNO extrapolated from SIEF_ELGA cell by
+/// cell (`post::elno`), SIEF_NOEU and SIGM_NOEU their mean at each node
+/// over the elements holding it. SIGM_* are the stress components
+/// (SIXX..SIYZ) alone, SIEF_* every component of SIEF_ELGA (with the
+/// hourglass stresses FSTAB* of HEXS8 models). SIEF_ELGA holds the Cauchy
+/// stress whatever the law and the kinematics, so SIGM = SIEF on those
+/// components.
+fn stresses_at_nodes(
+    study: &Study,
+    args: &Args,
+    name: &str,
+    evol: &mut crate::result::EvolNoli,
+    selected: &[usize],
+) -> Result<(), crate::diag::Diagnostic> {
+    let options = args.texts("CONTRAINTE");
+    if options.is_empty() {
+        return Ok(());
+    }
+    let model_name = args.concept("MODELE").unwrap_or(&evol.model).to_string();
+    let model = match study.concepts.data(&model_name) {
+        Some(ConceptData::Model(m)) => m,
+        _ => {
+            return Err(args.error(
+                "RESULTAT",
+                format!(
+                    "the result {name} does not say which model it was computed with: give MODELE"
+                ),
+            ))
+        }
+    };
+    let mesh = super::model_args::mesh_of_model(study, args, "RESULTAT", model)?;
+    for step in evol.steps.iter_mut() {
+        if !selected.contains(&step.nume_ordre) {
+            continue;
+        }
+        let Some(sief) = step.gauss.get("SIEF_ELGA") else {
+            return Err(args.error(
+                "CONTRAINTE",
+                format!(
+                    "NUME_ORDRE {} of {name} has no SIEF_ELGA field to extrapolate",
+                    step.nume_ordre
+                ),
+            ));
+        };
+        let all: Vec<usize> = (0..sief.ncmp()).collect();
+        let stress: Vec<usize> = (0..sief.ncmp())
+            .filter(|&k| sief.components[k].starts_with("SI"))
+            .collect();
+        // computed from the borrowed SIEF_ELGA, stored after
+        let mut nodal_out = Vec::new();
+        let mut elno_out = Vec::new();
+        for (elno_name, noeu_name, keep) in [
+            ("SIEF_ELNO", "SIEF_NOEU", &all),
+            ("SIGM_ELNO", "SIGM_NOEU", &stress),
+        ] {
+            if !options.contains(&elno_name) && !options.contains(&noeu_name) {
+                continue;
+            }
+            let elno = crate::post::elno::elno(sief, mesh, model, keep).map_err(|m| {
+                args.error("CONTRAINTE", format!("NUME_ORDRE {}: {m}", step.nume_ordre))
+            })?;
+            if options.contains(&noeu_name) {
+                nodal_out.push((noeu_name, crate::post::elno::noeu(&elno, mesh)));
+            }
+            if options.contains(&elno_name) {
+                elno_out.push((elno_name, elno));
+            }
+        }
+        for (n, f) in nodal_out {
+            step.nodal.insert(n.to_string(), f);
+        }
+        for (n, f) in elno_out {
+            step.elno.insert(n.to_string(), f);
+        }
+    }
+    Ok(())
 }

@@ -472,6 +472,7 @@ fn fields_held(step: &Step) -> String {
         .nodal
         .keys()
         .chain(step.gauss.keys())
+        .chain(step.elno.keys())
         .map(String::as_str)
         .collect();
     if names.is_empty() {

@@ -167,6 +167,11 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
         ("NOM_CHAM", nom_cham.to_string()),
     ];
     let gauss = is_gauss_name(nom_cham);
+    if nom_cham.ends_with("_ELNO") {
+        let (v, more) = elno_value(study, occ, rname, res, step, nom_cham)?;
+        header.extend(more);
+        return Ok((rname.to_string(), header, v));
+    }
     if let Some(tt) = occ.text("TYPE_TEST") {
         let v = if gauss {
             let f = step_gauss(step, nom_cham, occ, "NOM_CHAM", rname)?;
@@ -381,4 +386,74 @@ fn aggregate(
             format!("field {field} has no value to aggregate"),
         )),
     }
+}
+
+/// An ELNO field's value (CALC_CHAMP SIEF_ELNO, SIGM_ELNO): the value of
+/// NOM_CMP that the cell of GROUP_MA/MAILLE gives at the node of
+/// GROUP_NO/NOEUD, or TYPE_TEST over the whole field.
+fn elno_value(
+    study: &Study,
+    occ: &Args,
+    rname: &str,
+    res: &crate::result::EvolNoli,
+    step: &crate::result::Step,
+    nom_cham: &str,
+) -> Result<(f64, Header), Diagnostic> {
+    let f = step.elno.get(nom_cham).ok_or_else(|| {
+        occ.error(
+            "NOM_CHAM",
+            format!(
+                "result {rname} has no field {nom_cham} at NUME_ORDRE {} (compute it with CALC_CHAMP CONTRAINTE='{nom_cham}')",
+                step.nume_ordre
+            ),
+        )
+    })?;
+    let mut header: Header = Vec::new();
+    if let Some(tt) = occ.text("TYPE_TEST") {
+        let v = aggregate(occ, &f.components, &f.values, nom_cham, tt)?;
+        if let Some(c) = occ.text("NOM_CMP") {
+            header.push(("NOM_CMP", c.to_string()));
+        }
+        header.push(("TYPE_TEST", tt.to_string()));
+        return Ok((v, header));
+    }
+    let cmp = occ.text("NOM_CMP").ok_or_else(|| {
+        occ.error(
+            "NOM_CMP",
+            "NOM_CMP is needed to test one value (or give TYPE_TEST)",
+        )
+    })?;
+    header.push(("NOM_CMP", cmp.to_string()));
+    let c = component_index(&f.components, cmp, occ, "NOM_CMP", nom_cham)?;
+    let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
+    if !(occ.has("GROUP_MA") || occ.has("MAILLE")) || !(occ.has("GROUP_NO") || occ.has("NOEUD")) {
+        return Err(occ.error(
+            "NOM_CHAM",
+            format!("{nom_cham} is a field by element at nodes: give the cell (GROUP_MA or MAILLE) and the node (GROUP_NO or NOEUD)"),
+        ));
+    }
+    let (cell, ckey, clabel) = single_cell(mesh, occ)?;
+    let (node, nkey, nlabel) = single_node(mesh, occ)?;
+    let Some(a) = mesh.cells[cell].nodes.iter().position(|&n| n == node) else {
+        return Err(occ.error(
+            nkey,
+            format!(
+                "node {} is not a node of cell {}",
+                node_name(node),
+                super::post_args::cell_name(cell)
+            ),
+        ));
+    };
+    if f.npg(cell) != mesh.cells[cell].nodes.len() {
+        return Err(occ.error(
+            ckey,
+            format!(
+                "cell {} has no value in {nom_cham} (not an element of the model)",
+                super::post_args::cell_name(cell)
+            ),
+        ));
+    }
+    header.push((ckey, clabel));
+    header.push((nkey, nlabel));
+    Ok((f.cell(cell)[a * f.ncmp() + c], header))
 }

@@ -100,6 +100,9 @@ pub struct Step {
     pub inst: f64,
     pub nodal: IndexMap<String, NodalField>,
     pub gauss: IndexMap<String, GaussField>,
+    /// Element fields at nodes (SIEF_ELNO, SIGM_ELNO of CALC_CHAMP): a
+    /// [`GaussField`] whose "points" of a cell are its nodes, MED order.
+    pub elno: IndexMap<String, GaussField>,
 }
 
 /// A transient nonlinear result (evol_noli).
