@@ -243,8 +243,9 @@ fn uniform_stress_is_extrapolated_to_every_node() {
     run_study("stress_nodes");
 }
 
-/// SIGM_ELGA (not built), an ELNO field tested without CALC_CHAMP and
-/// an ELNO node outside the cell are located errors.
+/// SIGM_ELGA (not built), an ELNO field tested without CALC_CHAMP, an
+/// ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
+/// located errors.
 #[test]
 fn bad_stresses_at_nodes_are_located_errors() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("stress_nodes_bad");
@@ -274,6 +275,14 @@ fn bad_stresses_at_nodes_are_located_errors() {
                 "GROUP_MA='M1',\n       NOEUD='N3'",
             ),
             "node N3 is not a node of cell",
+        ),
+        (
+            "releve_elno",
+            (
+                "RESULTAT=RES_F, NOM_CHAM='SIEF_NOEU',",
+                "RESULTAT=RES_F, NOM_CHAM='SIEF_ELNO',",
+            ),
+            "not implemented yet: POST_RELEVE_T/ACTION/NOM_CHAM",
         ),
     ];
     for (tag, (from, to), what) in cases {

@@ -229,6 +229,12 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
                 "extraction of Gauss-point fields (project them to the nodes first)",
             ));
         }
+        if nom_cham.ends_with("_ELNO") {
+            return Err(occ.not_implemented(
+                "NOM_CHAM",
+                &format!("extraction of the field by element at nodes {nom_cham}; the nodal field *_NOEU of CALC_CHAMP CONTRAINTE averages it at the nodes"),
+            ));
+        }
         let nodes = nodes_of(mesh, occ)?;
         for step in select_steps(study, res, occ)? {
             let field = step_nodal(step, nom_cham, occ, "NOM_CHAM", rname)?;

@@ -167,6 +167,12 @@ fn from_result(study: &mut Study, args: &Args) -> Result<Function, Diagnostic> {
     let mut xs = Vec::with_capacity(steps.len());
     let mut ys = Vec::with_capacity(steps.len());
     let mut alarms = Vec::new();
+    if nom_cham.ends_with("_ELNO") {
+        return Err(args.not_implemented(
+            "NOM_CHAM",
+            &format!("a function of the field by element at nodes {nom_cham}; the nodal field *_NOEU of CALC_CHAMP CONTRAINTE averages it at the nodes"),
+        ));
+    }
     if is_gauss_name(nom_cham) {
         let (cell, _, _) = single_cell(mesh, args)?;
         let point = args
