@@ -278,3 +278,33 @@ fn steps_are_cut_and_a_static_result_is_continued() {
     // the continuation starts where the first run stopped
     assert!(mess.contains("steps from 5e0 to 1.2e1"), "{mess}");
 }
+
+/// Discrete penalised contact under STAT_NON_LINE (stat_contact.comm): a
+/// block resting under its weight, held sideways by frictionless walls:
+/// sum RN = m g, summed penetration m g / E_N for two E_N, REAC_NODA
+/// summed = m g, to 1e-9 (measured 3e-15). Started at rest (gap 0, no
+/// link active, the vertical translation held by nothing), the run stops
+/// on its step and says which rigid-body mode only the contact could
+/// hold; the alarm is logged before the first step.
+#[test]
+fn discrete_contact_carries_the_weight_statically() {
+    let (_, mess) = run_study_mess("stat_contact");
+    assert!(
+        mess.contains("alarm: the rigid-body mode(s) (translation DZ of the part BLOC) are held by no DDL_IMPO, only by the contact"),
+        "{mess}"
+    );
+    expect_errors(
+        "stat_contact",
+        &[(
+            "contact_from_rest",
+            "CONTACT=CONT1, ETAT_INIT=_F(DEPL=DEPL0),",
+            "CONTACT=CONT1,",
+            &[
+                "STAT_NON_LINE stopped at the step",
+                "translation DZ of the part BLOC",
+                "add the missing DDL_IMPO",
+                ":60:",
+            ],
+        )],
+    );
+}

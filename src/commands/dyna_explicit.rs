@@ -151,6 +151,7 @@ pub(crate) fn exec(
         ncells: md.mesh.ncells(),
         events: dyna::ContactEvents::default(),
         growth: None,
+        hint: None,
     };
     let mut evol = result_to_fill(
         study,

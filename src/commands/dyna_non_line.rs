@@ -1046,8 +1046,26 @@ pub(crate) fn run(
     )
     .map_err(|e| prepare_error(args, e))?;
     notes.extend(alarms);
-    if !inertia && args.concept("CONTACT").is_none() {
-        let free = nonlinear::rigid::unheld_modes(&md.mesh, &md.model, &asm.numbering);
+    let mut hint = None;
+    let free = if inertia {
+        Vec::new()
+    } else {
+        nonlinear::rigid::unheld_modes(&md.mesh, &md.model, &asm.numbering)
+    };
+    if !free.is_empty() && args.concept("CONTACT").is_some() {
+        let modes = free
+            .iter()
+            .map(|m| format!("({m})"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        notes.push(format!(
+            "alarm: the rigid-body mode(s) {modes} are held by no DDL_IMPO, only by the contact, if at all (without inertia nothing else holds them)"
+        ));
+        hint = Some(format!(
+            "the rigid-body mode(s) {modes} are held by no DDL_IMPO: if the contact does not hold them (a frictionless contact holds no tangential motion), the stiffness of STAT_NON_LINE is singular; add the missing DDL_IMPO"
+        ));
+    }
+    if args.concept("CONTACT").is_none() {
         if !free.is_empty() {
             return Err(args.error(
                 "EXCIT",
@@ -1240,6 +1258,7 @@ pub(crate) fn run(
         ncells: md.mesh.ncells(),
         events,
         growth,
+        hint,
     };
     let mut evol = result_to_fill(
         study,

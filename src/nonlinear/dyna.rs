@@ -218,6 +218,10 @@ pub struct TimeLoop {
     pub events: ContactEvents,
     /// None: METHODE='MANUEL', the list is followed as given.
     pub growth: Option<Growth>,
+    /// A known weakness of the model, appended to the message of a step
+    /// that fails numerically (STAT_NON_LINE: rigid-body modes that only
+    /// the contact holds).
+    pub hint: Option<String>,
 }
 
 /// Totals of a run.
@@ -305,13 +309,20 @@ pub fn archive(
 /// A step failure for the log. A singular quasi-static stiffness is
 /// almost always a rigid-body mode that nothing holds (without inertia
 /// nothing else can): the message says so.
-fn describe(engine: &Engine, failure: &StepFailure) -> String {
-    match failure {
+fn describe(engine: &Engine, tl: &TimeLoop, failure: &StepFailure) -> String {
+    let text = match failure {
         StepFailure::Singular(m) if !engine.scheme.inertia => format!(
             "{m}: the stiffness of STAT_NON_LINE is singular, a rigid-body mode (or a mechanism) of the structure is not held; \
              add the missing DDL_IMPO (or a contact that holds it)"
         ),
         f => f.to_string(),
+    };
+    match (&tl.hint, failure) {
+        (
+            Some(h),
+            StepFailure::NotConverged { .. } | StepFailure::Singular(_) | StepFailure::NonFinite(_),
+        ) => format!("{text} ({h})"),
+        _ => text,
     }
 }
 
@@ -488,7 +499,7 @@ pub fn run(
                     log,
                 ));
             }
-            Err(Some(failure)) => Err((describe(engine, &failure), failure.is_fatal())),
+            Err(Some(failure)) => Err((describe(engine, tl, &failure), failure.is_fatal())),
             Ok(rep) => match contact.as_deref_mut() {
                 Some(c) => match check_events(
                     c,

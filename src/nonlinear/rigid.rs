@@ -20,16 +20,81 @@ use crate::model::Model;
 
 /// The rigid-body modes of the model not held by its imposed dofs, each
 /// described in words ("translation DX", "rotation about Z + translation
-/// DY"); empty when every mode is held.
+/// DY"); empty when every mode is held. Each connected part of the mesh
+/// (cells sharing nodes) has its own modes: a block resting on a clamped
+/// base is free even though the base is held; with several parts the
+/// words name the part by its cell groups.
 pub fn unheld_modes(mesh: &Mesh, model: &Model, nb: &DofNumbering) -> Vec<String> {
+    // Connected parts by union-find over the element cells' nodes.
+    let mut parent: Vec<usize> = (0..nb.nnodes).collect();
+    fn root(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for (c, _) in model.element_cells() {
+        let nodes = &mesh.cells[c].nodes;
+        for w in nodes.windows(2) {
+            let (a, b) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
+            if a != b {
+                parent[a] = b;
+            }
+        }
+    }
+    let mut parts: indexmap::IndexMap<usize, (Vec<usize>, Vec<usize>)> = indexmap::IndexMap::new();
+    for (c, _) in model.element_cells() {
+        let r = root(&mut parent, mesh.cells[c].nodes[0]);
+        parts.entry(r).or_default().1.push(c);
+    }
+    for n in (0..nb.nnodes).filter(|&n| nb.active_node[n]) {
+        let r = root(&mut parent, n);
+        if let Some(p) = parts.get_mut(&r) {
+            p.0.push(n);
+        }
+    }
+    let several = parts.len() > 1;
+    let mut out = Vec::new();
+    for (r, (nodes, cells)) in &parts {
+        let imposed: Vec<usize> = nb
+            .imposed
+            .iter()
+            .map(|&(f, _)| f)
+            .filter(|&f| root(&mut parent, f / nb.ndpn) == *r)
+            .collect();
+        for mode in part_modes(mesh, model, nb.ndpn, nodes, &imposed) {
+            if several {
+                let groups = mesh.groups_containing(cells);
+                let name = if groups.is_empty() {
+                    format!("cells M{}..", cells[0] + 1)
+                } else {
+                    groups.join(", ")
+                };
+                out.push(format!("{mode} of the part {name}"));
+            } else {
+                out.push(mode);
+            }
+        }
+    }
+    out
+}
+
+/// The free modes of one connected part: `active` its nodes, `imposed`
+/// its imposed dofs (full indices).
+fn part_modes(
+    mesh: &Mesh,
+    model: &Model,
+    ndpn: usize,
+    active: &[usize],
+    imposed: &[usize],
+) -> Vec<String> {
     let axis = model
         .element_cells()
         .any(|(_, s)| s.formulation == Formulation::Axis);
     let plane = model
         .element_cells()
         .any(|(_, s)| s.formulation == Formulation::PlaneStrain);
-    let ndpn = nb.ndpn;
-    let active: Vec<usize> = (0..nb.nnodes).filter(|&n| nb.active_node[n]).collect();
     if active.is_empty() {
         return Vec::new();
     }
@@ -53,7 +118,7 @@ pub fn unheld_modes(mesh: &Mesh, model: &Model, nb: &DofNumbering) -> Vec<String
     let m = names.len();
     // Centroid and size: the rotations are scaled to O(1) on the model.
     let mut c = [0.0; 3];
-    for &n in &active {
+    for &n in active {
         for (ci, xi) in c.iter_mut().zip(mesh.coords[n]) {
             *ci += xi / active.len() as f64;
         }
@@ -87,7 +152,7 @@ pub fn unheld_modes(mesh: &Mesh, model: &Model, nb: &DofNumbering) -> Vec<String
         }
     };
     let mut g = vec![vec![0.0; m]; m];
-    for &(f, _) in &nb.imposed {
+    for &f in imposed {
         let (node, comp) = (f / ndpn, f % ndpn);
         let v: Vec<f64> = (0..m).map(|k| mode_value(k, node, comp)).collect();
         for k in 0..m {
