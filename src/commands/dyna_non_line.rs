@@ -1065,16 +1065,14 @@ pub(crate) fn run(
             "the rigid-body mode(s) {modes} are held by no DDL_IMPO: if the contact does not hold them (a frictionless contact holds no tangential motion), the stiffness of STAT_NON_LINE is singular; add the missing DDL_IMPO"
         ));
     }
-    if args.concept("CONTACT").is_none() {
-        if !free.is_empty() {
-            return Err(args.error(
-                "EXCIT",
-                format!(
-                    "the stiffness is singular: the rigid-body mode(s) {} of the model are held by no DDL_IMPO of the loads (without inertia only the supports hold the structure); add the missing DDL_IMPO",
-                    free.iter().map(|m| format!("({m})")).collect::<Vec<_>>().join(", ")
-                ),
-            ));
-        }
+    if args.concept("CONTACT").is_none() && !free.is_empty() {
+        return Err(args.error(
+            "EXCIT",
+            format!(
+                "the stiffness is singular: the rigid-body mode(s) {} of the model are held by no DDL_IMPO of the loads (without inertia only the supports hold the structure); add the missing DDL_IMPO",
+                free.iter().map(|m| format!("({m})")).collect::<Vec<_>>().join(", ")
+            ),
+        ));
     }
     let scheme = match choice {
         SchemeChoice::Implicit(s) => s,
