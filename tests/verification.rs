@@ -243,6 +243,15 @@ fn uniform_stress_is_extrapolated_to_every_node() {
     run_study("stress_nodes");
 }
 
+/// CALC_CHAMP CONTRAINTE in 3D on the STAT_NON_LINE patch of distorted
+/// HEXA8 under a uniform stress: MECA_HEXS8 (one point to every node,
+/// FSTAB included) and MECA_HEXA8 (2 x 2 x 2 interpolated): SIGM_NOEU and
+/// the sum of SIEF_ELNO give the stress to 1e-12.
+#[test]
+fn uniform_stress_at_the_nodes_of_hexs8_and_hexa8() {
+    run_study("stress_nodes_3d");
+}
+
 /// SIGM_ELGA (not built), an ELNO field tested without CALC_CHAMP, an
 /// ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
 /// located errors.

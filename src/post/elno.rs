@@ -192,6 +192,9 @@ mod tests {
             (CellType::Penta6, Fpg::Fpg6),
             (CellType::Penta15, Fpg::Fpg21),
             (CellType::Tria6, Fpg::Fpg3),
+            (CellType::Tetra10, Fpg::Fpg4),
+            (CellType::Tetra10, Fpg::Fpg5),
+            (CellType::Tetra10, Fpg::Fpg15),
         ] {
             reproduces(cell, fpg, &lin);
         }
