@@ -252,6 +252,15 @@ fn uniform_stress_at_the_nodes_of_hexs8_and_hexa8() {
     run_study("stress_nodes_3d");
 }
 
+/// STAT_NON_LINE on the HEXA20 bar: FORCE_FACE traction (sigma = F,
+/// tip F L / E, reaction -F A) and FORCE_INTERNE (sigma = B (L - z)
+/// linear, exact at every node of SIGM_NOEU; tip B L^2 / 2E, reaction
+/// -B V), to 1e-9.
+#[test]
+fn static_bar_under_face_and_body_forces() {
+    run_study("stat_distributed");
+}
+
 /// SIGM_ELGA (not built), an ELNO field tested without CALC_CHAMP, an
 /// ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
 /// located errors.
