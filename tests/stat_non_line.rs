@@ -119,6 +119,12 @@ fn bad_input_is_a_located_error() {
                 &["STAT_NON_LINE", "EXCIT", "translation DY", "DDL_IMPO", ":69:"],
             ),
             (
+                "suivi_vite",
+                stat,
+                "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2, SUIVI_DDL=_F(NOM_CHAM='VITE', NOM_CMP='DX', GROUP_NO='ZMAX'),",
+                &["STAT_NON_LINE/SUIVI_DDL/NOM_CHAM", "VITE", ":68:"],
+            ),
+            (
                 "pilotage",
                 stat,
                 "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2, PILOTAGE=_F(TYPE='DDL_IMPO'),",
@@ -307,4 +313,16 @@ fn discrete_contact_carries_the_weight_statically() {
             ],
         )],
     );
+}
+
+/// DISCRETE (penalised) and CONTINUE contact under STAT_NON_LINE in AXIS
+/// (stat_contact_continue.comm): a ring resting under its weight on a
+/// fixed foundation, held axially by the contact alone: sum RN = W for
+/// all three runs, sum(-JEU) = W / E_N for the penalised ones, JEU = 0 and
+/// LAGS_C = −RHO g H at every slave node for the continuous one (measured
+/// 3e-14 and 1.3e-14 relative; the file's tolerances are the dynamic
+/// study's).
+#[test]
+fn discrete_and_continuous_contact_hold_a_ring_statically() {
+    run_study("stat_contact_continue");
 }

@@ -680,10 +680,21 @@ pub(crate) fn archive_of(study: &Study, args: &Args) -> Result<ArchivePolicy, Di
     })
 }
 
-pub(crate) fn suivi_of(mesh: &Mesh, model: &Model, args: &Args) -> Result<Vec<Suivi>, Diagnostic> {
+pub(crate) fn suivi_of(
+    mesh: &Mesh,
+    model: &Model,
+    args: &Args,
+    inertia: bool,
+) -> Result<Vec<Suivi>, Diagnostic> {
     let mut out = Vec::new();
     for o in args.facts("SUIVI_DDL") {
         let name = o.text("NOM_CHAM").unwrap_or("");
+        if !inertia && matches!(name, "VITE" | "ACCE") {
+            return Err(o.error(
+                "NOM_CHAM",
+                format!("NOM_CHAM='{name}': STAT_NON_LINE computes no {name} (no inertia); follow DEPL, FORC_NODA, SIEF_ELGA or VARI_ELGA"),
+            ));
+        }
         let field = match name {
             "DEPL" => SuiviField::Depl,
             "VITE" => SuiviField::Vite,
@@ -1179,7 +1190,7 @@ pub(crate) fn run(
     };
     let conv = convergence_of(args, &mut notes, inertia)?;
     let archive = archive_of(study, args)?;
-    let suivi = suivi_of(&md.mesh, &md.model, args)?;
+    let suivi = suivi_of(&md.mesh, &md.model, args, inertia)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
     let mut init = etat_init(study, args, &asm, &dof_names)?;
     if !inertia {
