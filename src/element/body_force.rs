@@ -90,40 +90,10 @@ fn measure(f: Formulation, n: &[f64], dn: &[[f64; 3]], x: &[[f64; 3]]) -> Result
             }
             Ok(det)
         }
-        Formulation::PlaneStrain => {
-            let mut j = [[0.0; 2]; 2];
-            for (a, g) in dn.iter().enumerate() {
-                for k in 0..2 {
-                    for l in 0..2 {
-                        j[k][l] += x[a][k] * g[l];
-                    }
-                }
-            }
-            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            if det.is_nan() || det <= 0.0 {
-                return Err(format!("non-positive Jacobian {det}"));
-            }
-            Ok(det)
-        }
+        Formulation::PlaneStrain => Ok(super::mechanics::jacobian_2d(x, dn)?.0),
         Formulation::Axis => {
-            let mut j = [[0.0; 2]; 2];
-            let mut r = 0.0;
-            for (a, g) in dn.iter().enumerate() {
-                r += n[a] * x[a][0];
-                for k in 0..2 {
-                    for l in 0..2 {
-                        j[k][l] += x[a][k] * g[l];
-                    }
-                }
-            }
-            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            if det.is_nan() || det <= 0.0 {
-                return Err(format!("non-positive Jacobian {det}"));
-            }
-            if r.is_nan() || r <= 0.0 {
-                return Err(format!("Gauss point at radius {r} <= 0"));
-            }
-            Ok(det * r)
+            let det = super::mechanics::jacobian_2d(x, dn)?.0;
+            Ok(det * super::mechanics::gauss_radius(n, x)?)
         }
     }
 }

@@ -1566,6 +1566,44 @@ impl PointGeometry {
     }
 }
 
+/// Determinant and inverse of the 2D Jacobian J[k][l] = ∂x_k/∂ξ_l of
+/// the (x, y) or (r, z) plane, shared by AXIS, D_PLAN and the 2D measures
+/// of the load integrals.
+pub(crate) fn jacobian_2d(x: &[[f64; 3]], dn: &[[f64; 3]]) -> Result<(f64, [[f64; 2]; 2]), String> {
+    let mut j = [[0.0; 2]; 2];
+    for (xa, dna) in x.iter().zip(dn) {
+        for k in 0..2 {
+            for l in 0..2 {
+                j[k][l] += xa[k] * dna[l];
+            }
+        }
+    }
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    if det.is_nan() || det <= 0.0 {
+        return Err(format!("non-positive Jacobian {det}"));
+    }
+    Ok((
+        det,
+        [
+            [j[1][1] / det, -j[0][1] / det],
+            [-j[1][0] / det, j[0][0] / det],
+        ],
+    ))
+}
+
+/// The radius Σ N_a r_a of an AXIS point, which must be positive (Gauss
+/// points are interior, so a valid mesh has r > 0 there).
+pub(crate) fn gauss_radius(n: &[f64], x: &[[f64; 3]]) -> Result<f64, String> {
+    let mut r = 0.0;
+    for (na, xa) in n.iter().zip(x) {
+        r += na * xa[0];
+    }
+    if r.is_nan() || r <= 0.0 {
+        return Err(format!("Gauss point at radius {r} <= 0"));
+    }
+    Ok(r)
+}
+
 /// Determinant and inverse of the 3D Jacobian J[k][l] = ∂x_k/∂ξ_l
 /// (inv[(l, k)] = ∂ξ_l/∂x_k) of nodes `x` with reference derivatives `dn`;
 /// one home for every 3D element, so the refusal of a folded cell reads
@@ -1619,64 +1657,29 @@ fn point_geometry(
             }
             out.dv = w * det;
         }
-        Formulation::PlaneStrain => {
-            // AXIS's map without the radius: ∇N has no z component and
-            // the measure is per unit thickness.
-            let mut j = [[0.0; 2]; 2];
-            for a in 0..nn {
-                for k in 0..2 {
-                    for l in 0..2 {
-                        j[k][l] += x[a][k] * dn[a][l];
-                    }
-                }
-            }
-            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            if det.is_nan() || det <= 0.0 {
-                return Err(format!("non-positive Jacobian {det}"));
-            }
-            let inv = [
-                [j[1][1] / det, -j[0][1] / det],
-                [-j[1][0] / det, j[0][0] / det],
-            ];
+        Formulation::PlaneStrain | Formulation::Axis => {
+            let (det, inv) = jacobian_2d(x, dn)?;
+            // An AXIS point also needs its radius, checked after det J as
+            // it always was; D_PLAN is AXIS without it (per unit thickness).
+            let r = if formulation == Formulation::Axis {
+                gauss_radius(&out.n[..nn], x)?
+            } else {
+                1.0
+            };
             for a in 0..nn {
                 for k in 0..2 {
                     out.grad[a][k] = inv[0][k] * dn[a][0] + inv[1][k] * dn[a][1];
                 }
             }
-            out.dv = w * det;
-        }
-        Formulation::Axis => {
-            let mut j = [[0.0; 2]; 2];
-            let mut r = 0.0;
-            for a in 0..nn {
-                r += out.n[a] * x[a][0];
-                for k in 0..2 {
-                    for l in 0..2 {
-                        j[k][l] += x[a][k] * dn[a][l];
-                    }
+            if formulation == Formulation::Axis {
+                out.r = r;
+                for a in 0..nn {
+                    out.n_over_r[a] = out.n[a] / r;
                 }
+                out.dv = w * det * r;
+            } else {
+                out.dv = w * det;
             }
-            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            if det.is_nan() || det <= 0.0 {
-                return Err(format!("non-positive Jacobian {det}"));
-            }
-            if r.is_nan() || r <= 0.0 {
-                return Err(format!("Gauss point at radius {r} <= 0"));
-            }
-            let inv = [
-                [j[1][1] / det, -j[0][1] / det],
-                [-j[1][0] / det, j[0][0] / det],
-            ];
-            for a in 0..nn {
-                for k in 0..2 {
-                    out.grad[a][k] = inv[0][k] * dn[a][0] + inv[1][k] * dn[a][1];
-                }
-            }
-            out.r = r;
-            for a in 0..nn {
-                out.n_over_r[a] = out.n[a] / r;
-            }
-            out.dv = w * det * r;
         }
     }
     Ok(out)

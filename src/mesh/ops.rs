@@ -720,6 +720,26 @@ pub fn orie_peau<S: AsRef<str>>(
 // CREA_MAILLAGE / QUAD_LINE
 // ---------------------------------------------------------------------------
 
+/// Which cells a CREA_MAILLAGE occurrence selects: all for `None`; an
+/// index beyond the mesh is an error.
+fn selection_mask(mesh: &Mesh, cells: Option<&[usize]>) -> Result<Vec<bool>, MeshError> {
+    let mut selected = vec![cells.is_none(); mesh.ncells()];
+    for &c in cells.unwrap_or_default() {
+        if c >= mesh.ncells() {
+            return Err(MeshError::new(
+                "ASTER_RS_CELL_INDEX",
+                format!(
+                    "cell {} does not exist (the mesh has {})",
+                    c + 1,
+                    mesh.ncells()
+                ),
+            ));
+        }
+        selected[c] = true;
+    }
+    Ok(selected)
+}
+
 /// `CREA_MAILLAGE(MAILLAGE=mesh, QUAD_LINE=_F(TOUT='OUI' | GROUP_MA=...))`:
 /// a new mesh where the selected quadratic cells (all cells when `cells` is
 /// None) become linear. Cell indices and cell groups are unchanged; nodes
@@ -728,22 +748,7 @@ pub fn orie_peau<S: AsRef<str>>(
 /// in their old order; node groups keep their surviving nodes and a node
 /// group left empty is dropped.
 pub fn quad_line(mesh: &Mesh, cells: Option<&[usize]>) -> Result<Mesh, MeshError> {
-    let mut selected = vec![cells.is_none(); mesh.ncells()];
-    if let Some(list) = cells {
-        for &c in list {
-            if c >= mesh.ncells() {
-                return Err(MeshError::new(
-                    "ASTER_RS_CELL_INDEX",
-                    format!(
-                        "cell {} does not exist (the mesh has {})",
-                        c + 1,
-                        mesh.ncells()
-                    ),
-                ));
-            }
-            selected[c] = true;
-        }
-    }
+    let selected = selection_mask(mesh, cells)?;
     let convert: Vec<bool> = mesh
         .cells
         .iter()
@@ -833,22 +838,7 @@ pub fn quad_line(mesh: &Mesh, cells: Option<&[usize]>) -> Result<Mesh, MeshError
 /// kept as they are (as code_aster: the new nodes join no group, a
 /// CREA_GROUP_NO after the command puts them in).
 pub fn line_quad(mesh: &Mesh, cells: Option<&[usize]>) -> Result<Mesh, MeshError> {
-    let mut selected = vec![cells.is_none(); mesh.ncells()];
-    if let Some(list) = cells {
-        for &c in list {
-            if c >= mesh.ncells() {
-                return Err(MeshError::new(
-                    "ASTER_RS_CELL_INDEX",
-                    format!(
-                        "cell {} does not exist (the mesh has {})",
-                        c + 1,
-                        mesh.ncells()
-                    ),
-                ));
-            }
-            selected[c] = true;
-        }
-    }
+    let selected = selection_mask(mesh, cells)?;
     if !mesh
         .cells
         .iter()
