@@ -125,6 +125,12 @@ fn bad_input_is_a_located_error() {
                 &["STAT_NON_LINE/SUIVI_DDL/NOM_CHAM", "VITE", ":68:"],
             ),
             (
+                "vite_recu_fonction",
+                "IMPR_TABLE(TABLE=FS2)",
+                "IMPR_TABLE(TABLE=FS2)\nFV = RECU_FONCTION(RESULTAT=RS2, NOM_CHAM='VITE', NOM_CMP='DX', GROUP_NO='ZMAX')",
+                &["RECU_FONCTION/NOM_CHAM", "result RS2 has no nodal field VITE"],
+            ),
+            (
                 "pilotage",
                 stat,
                 "RS2 = STAT_NON_LINE(MODELE=MOS2, CHAM_MATER=CMS2, PILOTAGE=_F(TYPE='DDL_IMPO'),",
@@ -278,6 +284,15 @@ fn hexs8_passes_the_patch_test_on_a_distorted_mesh() {
 #[test]
 fn steps_are_cut_and_a_static_result_is_continued() {
     let (_, mess) = run_study_mess("stat_continuation");
+    expect_errors(
+        "stat_continuation",
+        &[(
+            "acce_asked",
+            "FIN()",
+            "TEST_RESU(RESU=_F(RESULTAT=R, INST=2., NOM_CHAM='ACCE', NOM_CMP='DX', GROUP_NO='TIP', VALE_CALC=0.))\nFIN()",
+            &["TEST_RESU/RESU/NOM_CHAM", "result R has no nodal field ACCE"],
+        )],
+    );
     assert!(mess.contains("the step is cut into 4 sub-steps"), "{mess}");
     assert_eq!(mess.matches("STAT_NON_LINE done").count(), 2, "{mess}");
     assert!(mess.contains("DYNA_NON_LINE done"), "{mess}");

@@ -1,4 +1,4 @@
-//! The nonlinear dynamics engine of DYNA_NON_LINE (everything but
+//! The nonlinear engine of DYNA_NON_LINE and STAT_NON_LINE (everything but
 //! contact): dof numbering with Dirichlet elimination ([`dofs`]), the
 //! behaviour field ([`behaviour`]), parallel element loop and fixed-pattern
 //! assembly ([`assembly`]), the Newton step with code_aster's residual
