@@ -492,6 +492,14 @@ fn patch_test_axis() {
     run_study("patch_axis");
 }
 
+/// POST_RELEVE_T EXTREMA and MOYENNE_ARITH on the exact field of the
+/// D_PLAN patch: the extremal nodes and values, the mean over a node
+/// group and over the nodes of a cell group.
+#[test]
+fn post_releve_extrema_and_mean() {
+    run_study("post_extrema");
+}
+
 /// TETRA10 (3D and 3D_SI) on a tetrahedral bar made quadratic by
 /// CREA_MAILLAGE LINE_QUAD: the uniaxial-strain patch exact at every
 /// mid-height node and in the reaction, and rigid free flight under

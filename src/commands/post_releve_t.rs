@@ -122,14 +122,18 @@ pub fn def() -> CommandDef {
 /// The leading columns of an extraction table, in code_aster's order
 /// (`rvtec0`): label, concept, field, access parameters, node, coordinates.
 /// Component columns follow, in order of first appearance.
-const LEADING: [(&str, ColumnType); 10] = [
+const LEADING: [(&str, ColumnType); 13] = [
     ("INTITULE", ColumnType::Text(16)),
     ("RESU", ColumnType::Text(8)),
     ("CHAM_GD", ColumnType::Text(8)),
     ("NOM_CHAM", ColumnType::Text(16)),
     ("NUME_ORDRE", ColumnType::Int),
     ("INST", ColumnType::Real),
+    // EXTREMA (code_aster's `rvmima`): which extremum, then where.
+    ("EXTREMA", ColumnType::Text(8)),
     ("NOEUD", ColumnType::Text(8)),
+    ("CMP", ColumnType::Text(8)),
+    ("VALE", ColumnType::Real),
     ("COOR_X", ColumnType::Real),
     ("COOR_Y", ColumnType::Real),
     ("COOR_Z", ColumnType::Real),
@@ -195,17 +199,40 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     Ok(Some(ConceptData::Table(Box::new(table))))
 }
 
-/// One ACTION occurrence: OPERATION='EXTRACTION' of nodal values.
+/// What an ACTION occurrence computes from each nodal field.
+#[derive(Clone, Copy, PartialEq)]
+enum Operation {
+    /// The values at the nodes (or their RESULTANTE).
+    Extraction,
+    /// MAX, MIN, MAXI_ABS, MINI_ABS over the nodes and components.
+    Extrema,
+    /// The arithmetic mean of each component over the nodes.
+    MeanArith,
+}
+
+/// One ACTION occurrence: OPERATION='EXTRACTION', 'EXTREMA' or
+/// 'MOYENNE_ARITH' of nodal values.
 fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnostic> {
-    if let Some(op) = occ
-        .texts("OPERATION")
-        .into_iter()
-        .find(|o| *o != "EXTRACTION")
-    {
-        return Err(occ.not_implemented("OPERATION", &format!("OPERATION='{op}'")));
-    }
+    let ops = occ.texts("OPERATION");
+    let op = match ops.as_slice() {
+        ["EXTRACTION"] => Operation::Extraction,
+        ["EXTREMA"] => Operation::Extrema,
+        ["MOYENNE_ARITH"] => Operation::MeanArith,
+        _ => return Err(occ.not_implemented(
+            "OPERATION",
+            &format!(
+                "OPERATION={}; aster builds EXTRACTION, EXTREMA and MOYENNE_ARITH, one at a time",
+                ops.iter()
+                    .map(|o| format!("'{o}'"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        )),
+    };
     for k in UNSUPPORTED {
-        if occ.has(k) {
+        // EXTREMA and MOYENNE_ARITH select nodes by cells too.
+        let selection = matches!(k, "TOUT" | "GROUP_MA" | "MAILLE");
+        if occ.has(k) && !(selection && op != Operation::Extraction) {
             return Err(occ.not_implemented(k, "only nodal extraction on GROUP_NO/NOEUD is built"));
         }
     }
@@ -235,7 +262,7 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
                 &format!("extraction of the field by element at nodes {nom_cham}; the nodal field *_NOEU of CALC_CHAMP CONTRAINTE averages it at the nodes"),
             ));
         }
-        let nodes = nodes_of(mesh, occ)?;
+        let nodes = selected_nodes(mesh, occ, op)?;
         for step in select_steps(study, res, occ)? {
             let field = step_nodal(step, nom_cham, occ, "NOM_CHAM", rname)?;
             let lead = vec![
@@ -245,26 +272,215 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
                 ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre as i64)),
                 ("INST".to_string(), Cell::Real(step.inst)),
             ];
-            if occ.has("RESULTANTE") {
-                resultant_row(occ, field, nom_cham, &nodes, lead, rows)?;
-            } else {
-                node_rows(occ, mesh, field, nom_cham, &nodes, &lead, rows)?;
-            }
+            field_rows(occ, op, mesh, field, nom_cham, &nodes, lead, rows)?;
         }
     } else {
         let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
         let groups = occ.texts("GROUP_NO");
         let mesh = mesh_for_field(study, occ, "CHAM_GD", fname, field, &groups)?;
-        let nodes = nodes_of(mesh, occ)?;
+        let nodes = selected_nodes(mesh, occ, op)?;
         let lead = vec![
             ("INTITULE".to_string(), Cell::Text(intitule.clone())),
             ("CHAM_GD".to_string(), Cell::Text(fname.to_string())),
         ];
-        if occ.has("RESULTANTE") {
-            resultant_row(occ, field, fname, &nodes, lead, rows)?;
-        } else {
-            node_rows(occ, mesh, field, fname, &nodes, &lead, rows)?;
+        field_rows(occ, op, mesh, field, fname, &nodes, lead, rows)?;
+    }
+    Ok(())
+}
+
+/// The rows of one field for the occurrence's operation.
+#[allow(clippy::too_many_arguments)]
+fn field_rows(
+    occ: &Args,
+    op: Operation,
+    mesh: &Mesh,
+    field: &NodalField,
+    field_name: &str,
+    nodes: &[usize],
+    lead: Row,
+    rows: &mut Vec<Row>,
+) -> Result<(), Diagnostic> {
+    match op {
+        Operation::Extraction if occ.has("RESULTANTE") => {
+            resultant_row(occ, field, field_name, nodes, lead, rows)
         }
+        Operation::Extraction => node_rows(occ, mesh, field, field_name, nodes, &lead, rows),
+        Operation::Extrema => extrema_rows(occ, field, field_name, nodes, lead, rows),
+        Operation::MeanArith => mean_rows(occ, field, field_name, nodes, lead, rows),
+    }
+}
+
+/// The nodes of the occurrence. EXTRACTION needs GROUP_NO/NOEUD (the
+/// catalogue's rule); EXTREMA and MOYENNE_ARITH also take the nodes of
+/// GROUP_MA/MAILLE cells and default to every node of the mesh, as
+/// code_aster's `prexno`/`prmono` do.
+fn selected_nodes(mesh: &Mesh, occ: &Args, op: Operation) -> Result<Vec<usize>, Diagnostic> {
+    let mut nodes = nodes_of(mesh, occ)?;
+    if op == Operation::Extraction {
+        return Ok(nodes);
+    }
+    let mut cells: Vec<usize> = Vec::new();
+    for g in occ.texts("GROUP_MA") {
+        let Some(c) = mesh.cell_groups.get(g) else {
+            let known: Vec<&str> = mesh.cell_groups.keys().map(String::as_str).collect();
+            let mut d = occ.error("GROUP_MA", format!("the mesh has no cell group '{g}'"));
+            d.suggestion = crate::diag::closest(g, &known);
+            d.choices = known.iter().map(|s| s.to_string()).collect();
+            return Err(d);
+        };
+        cells.extend(c);
+    }
+    for name in occ.texts("MAILLE") {
+        cells.push(super::post_args::cell_by_name(mesh, occ, "MAILLE", name)?);
+    }
+    let mut seen = vec![false; mesh.nnodes()];
+    for &n in &nodes {
+        seen[n] = true;
+    }
+    for c in cells {
+        for &n in &mesh.cells[c].nodes {
+            if !std::mem::replace(&mut seen[n], true) {
+                nodes.push(n);
+            }
+        }
+    }
+    let by_selection = ["GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"]
+        .iter()
+        .any(|k| occ.has(k));
+    if !by_selection {
+        nodes = (0..mesh.nnodes()).collect();
+    }
+    Ok(nodes)
+}
+
+/// The components an EXTREMA or MOYENNE_ARITH occurrence reads: NOM_CMP,
+/// or every component of the field.
+fn components_of(
+    occ: &Args,
+    field: &NodalField,
+    field_name: &str,
+) -> Result<Vec<(String, usize)>, Diagnostic> {
+    if !occ.has("NOM_CMP") {
+        return Ok(field
+            .components
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (c.clone(), i))
+            .collect());
+    }
+    occ.texts("NOM_CMP")
+        .into_iter()
+        .map(|c| {
+            super::post_args::component_index(&field.components, c, occ, "NOM_CMP", field_name)
+                .map(|i| (c.to_string(), i))
+        })
+        .collect()
+}
+
+/// EXTREMA (code_aster's `rvmima`/`prexno`): over the components (outer
+/// loop) and the nodes (inner loop), the largest and smallest value and
+/// the largest and smallest absolute value, the first one met winning a
+/// tie; four rows MAX, MIN, MAXI_ABS, MINI_ABS with the node, the
+/// component and the value (|value| for the *_ABS rows). Nodes where the
+/// component is absent are skipped; a selection where it is absent
+/// everywhere is an error rather than a row of sentinels.
+fn extrema_rows(
+    occ: &Args,
+    field: &NodalField,
+    field_name: &str,
+    nodes: &[usize],
+    lead: Row,
+    rows: &mut Vec<Row>,
+) -> Result<(), Diagnostic> {
+    struct Best {
+        value: f64,
+        node: usize,
+        cmp: usize,
+    }
+    let cmps = components_of(occ, field, field_name)?;
+    let mut best: [Option<Best>; 4] = [None, None, None, None];
+    // MAX, MIN, MAXI_ABS, MINI_ABS: the quantity compared and whether a
+    // larger one wins.
+    let rules: [(bool, bool); 4] = [(false, true), (false, false), (true, true), (true, false)];
+    for (k, (_, i)) in cmps.iter().enumerate() {
+        for &n in nodes {
+            let v = field.values[n * field.ncmp() + i];
+            if v.is_nan() {
+                continue;
+            }
+            for (slot, &(abs, larger)) in best.iter_mut().zip(&rules) {
+                let x = if abs { v.abs() } else { v };
+                let better = match slot {
+                    None => true,
+                    Some(b) => (larger && x > b.value) || (!larger && x < b.value),
+                };
+                if better {
+                    *slot = Some(Best {
+                        value: x,
+                        node: n,
+                        cmp: k,
+                    });
+                }
+            }
+        }
+    }
+    for (name, slot) in ["MAX", "MIN", "MAXI_ABS", "MINI_ABS"].iter().zip(best) {
+        let Some(b) = slot else {
+            return Err(occ.error(
+                "NOM_CMP",
+                format!(
+                    "EXTREMA of {field_name}: no value of {} at the {} selected node(s)",
+                    cmps.iter()
+                        .map(|(c, _)| c.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    nodes.len()
+                ),
+            ));
+        };
+        let mut row = lead.clone();
+        row.push(("EXTREMA".to_string(), Cell::Text(name.to_string())));
+        row.push(("NOEUD".to_string(), Cell::Text(node_name(b.node))));
+        row.push(("CMP".to_string(), Cell::Text(cmps[b.cmp].0.clone())));
+        row.push(("VALE".to_string(), Cell::Real(b.value)));
+        rows.push(row);
+    }
+    Ok(())
+}
+
+/// MOYENNE_ARITH (code_aster's `rvmoye`/`prmono`): one row per component,
+/// the arithmetic mean of its values at the selected nodes where it is
+/// defined, in columns CMP and MOYENNE.
+fn mean_rows(
+    occ: &Args,
+    field: &NodalField,
+    field_name: &str,
+    nodes: &[usize],
+    lead: Row,
+    rows: &mut Vec<Row>,
+) -> Result<(), Diagnostic> {
+    for (c, i) in components_of(occ, field, field_name)? {
+        let values: Vec<f64> = nodes
+            .iter()
+            .map(|&n| field.values[n * field.ncmp() + i])
+            .filter(|v| !v.is_nan())
+            .collect();
+        if values.is_empty() {
+            return Err(occ.error(
+                "NOM_CMP",
+                format!(
+                    "MOYENNE_ARITH of {field_name}: no value of {c} at the {} selected node(s)",
+                    nodes.len()
+                ),
+            ));
+        }
+        let mut row = lead.clone();
+        row.push(("CMP".to_string(), Cell::Text(c)));
+        row.push((
+            "MOYENNE".to_string(),
+            Cell::Real(values.iter().sum::<f64>() / values.len() as f64),
+        ));
+        rows.push(row);
     }
     Ok(())
 }
