@@ -611,7 +611,7 @@ pub fn run(
                             summary.archived += 1;
                             log_energy(&mut energy, result, log);
                         }
-                        store_energy(&energy, result);
+                        store_energy(engine, &energy, result);
                         if let Some(pb) = &bar {
                             pb.abandon();
                         }
@@ -637,7 +637,7 @@ pub fn run(
     if let Some(pb) = &bar {
         pb.finish_and_clear();
     }
-    store_energy(&energy, result);
+    store_energy(engine, &energy, result);
     summary.seconds = started.elapsed().as_secs_f64();
     log(&format!(
         "  {} steps ({} cuts), {} Newton iterations, {} archived, {:.3} s ({:.3e} s per step)",
@@ -695,7 +695,7 @@ fn stop_on_signal(
         stop.summary.archived += 1;
         log_energy(stop.energy, result, log);
     }
-    store_energy(stop.energy, result);
+    store_energy(engine, stop.energy, result);
     stop.summary.seconds = stop.started.elapsed().as_secs_f64();
     let end = tl.instants.last().copied().unwrap_or(t);
     let first = result.steps.first().map_or(t, |s| s.inst);
@@ -729,10 +729,10 @@ fn log_energy(energy: &mut EnergyBalance, result: &EvolNoli, log: &mut dyn FnMut
 /// The balance as the result's PARA_CALC table (RECU_TABLE). A
 /// continuation (reuse=) restarts the balance from its initial state and
 /// replaces the table.
-fn store_energy(energy: &EnergyBalance, result: &mut EvolNoli) {
+fn store_energy(engine: &Engine, energy: &EnergyBalance, result: &mut EvolNoli) {
     result.tables.insert(
         super::energy::TABLE_NAME.to_string(),
-        energy.table("energy balance of DYNA_NON_LINE"),
+        energy.table(&format!("energy balance of {}", command(engine))),
     );
 }
 
