@@ -353,7 +353,7 @@ fn selected_steps(
 }
 
 /// CONTRAINTE: SIEF_ELNO and SIGM_ELNO extrapolated from SIEF_ELGA cell by
-/// cell (`post::elno`), SIEF_NOEU and SIGM_NOEU their mean at each node
+/// cell (`result::elno`), SIEF_NOEU and SIGM_NOEU their mean at each node
 /// over the elements holding it. SIGM_* are the stress components
 /// (SIXX..SIYZ) alone, SIEF_* every component of SIEF_ELGA (with the
 /// hourglass stresses FSTAB* of HEXS8 models). SIEF_ELGA holds the Cauchy
@@ -410,11 +410,11 @@ fn stresses_at_nodes(
             if !options.contains(&elno_name) && !options.contains(&noeu_name) {
                 continue;
             }
-            let elno = crate::post::elno::elno(sief, mesh, model, keep).map_err(|m| {
+            let elno = crate::result::elno::elno(sief, mesh, model, keep).map_err(|m| {
                 args.error("CONTRAINTE", format!("NUME_ORDRE {}: {m}", step.nume_ordre))
             })?;
             if options.contains(&noeu_name) {
-                nodal_out.push((noeu_name, crate::post::elno::noeu(&elno, mesh)));
+                nodal_out.push((noeu_name, crate::result::elno::noeu(&elno, mesh)));
             }
             if options.contains(&elno_name) {
                 elno_out.push((elno_name, elno));

@@ -1,6 +1,5 @@
 //! Post-processing: tables, the TEST_RESU/TEST_TABLE report, printed results.
 
-pub mod elno;
 pub mod formula;
 pub mod function;
 pub mod table;

@@ -6,6 +6,8 @@
 //! commands (POST_RELEVE_T, TEST_RESU, RECU_FONCTION, IMPR_RESU) read them
 //! through the accessors below and never see the solver.
 
+pub mod elno;
+
 use indexmap::IndexMap;
 
 /// A nodal field: `ncmp` components per node, node-major. A (node,

@@ -17,11 +17,11 @@
 use indexmap::IndexMap;
 use nalgebra::DMatrix;
 
+use super::{GaussField, NodalField};
 use crate::mesh::quadrature::{rule, Fpg};
 use crate::mesh::shape::eval;
 use crate::mesh::{CellType, Mesh};
 use crate::model::{CellRole, Model};
-use crate::result::{GaussField, NodalField};
 
 /// The Gauss-to-node matrix of `cell` with the family `fpg`, row-major
 /// (`nnodes × npg`): node values = M · point values.
