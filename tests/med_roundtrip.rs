@@ -23,7 +23,7 @@ const MESH3D: &str = concat!(
 #[test]
 fn all_cell_types_round_trip_identically() {
     let m = all_types_mesh();
-    assert_eq!(m.ncells(), 12);
+    assert_eq!(m.ncells(), CellType::ALL.len());
     let p = scratch("alltypes.med");
     write_mesh(&p, &m).unwrap();
     let back = read_mesh(&p, None).unwrap();
@@ -131,12 +131,16 @@ fn cell_fields_round_trip() {
             FieldStep {
                 numdt: 1,
                 time: 1.0,
-                values: (0..24).map(|i| i as f64 * 0.5 - 3.0).collect(),
+                values: (0..2 * CellType::ALL.len())
+                    .map(|i| i as f64 * 0.5 - 3.0)
+                    .collect(),
             },
             FieldStep {
                 numdt: 2,
                 time: 2.0,
-                values: (0..24).map(|i| (i as f64).sqrt()).collect(),
+                values: (0..2 * CellType::ALL.len())
+                    .map(|i| (i as f64).sqrt())
+                    .collect(),
             },
         ],
     };

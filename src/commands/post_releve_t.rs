@@ -218,16 +218,18 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
         ["EXTRACTION"] => Operation::Extraction,
         ["EXTREMA"] => Operation::Extrema,
         ["MOYENNE_ARITH"] => Operation::MeanArith,
-        _ => return Err(occ.not_implemented(
-            "OPERATION",
-            &format!(
+        _ => {
+            return Err(occ.not_implemented(
+                "OPERATION",
+                &format!(
                 "OPERATION={}; aster builds EXTRACTION, EXTREMA and MOYENNE_ARITH, one at a time",
                 ops.iter()
                     .map(|o| format!("'{o}'"))
                     .collect::<Vec<_>>()
                     .join(", ")
             ),
-        )),
+            ))
+        }
     };
     for k in UNSUPPORTED {
         // EXTREMA and MOYENNE_ARITH select nodes by cells too.
