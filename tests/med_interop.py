@@ -33,6 +33,7 @@ TYPES = {
     "QU4": ("NORM_QUAD4", "quad", "MED_QUAD4"),
     "QU8": ("NORM_QUAD8", "quad8", "MED_QUAD8"),
     "TE4": ("NORM_TETRA4", "tetra", "MED_TETRA4"),
+    "T10": ("NORM_TETRA10", "tetra10", "MED_TETRA10"),
     "PE6": ("NORM_PENTA6", "wedge", "MED_PENTA6"),
     "P15": ("NORM_PENTA15", "wedge15", "MED_PENTA15"),
     "HE8": ("NORM_HEXA8", "hexahedron", "MED_HEXA8"),
