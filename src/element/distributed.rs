@@ -79,18 +79,7 @@ pub fn skin_force(
     let mut out = vec![0.0; nn * d];
     for (xi, w) in q.points.iter().zip(&q.weights) {
         let s = eval(cell, *xi);
-        let mut t1 = [0.0; 3];
-        let mut t2 = [0.0; 3];
-        let mut r = 0.0;
-        for (a, g) in s.dn().iter().enumerate() {
-            r += s.n()[a] * coords[a][0];
-            for k in 0..3 {
-                t1[k] += coords[a][k] * g[0];
-                if cell.dim() == 2 {
-                    t2[k] += coords[a][k] * g[1];
-                }
-            }
-        }
+        let (t1, t2, r) = super::pressure::skin_tangents(&s, coords);
         let norm = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
         // the measure per unit reference measure
         let dm = if cell.dim() == 1 {

@@ -12,7 +12,7 @@
 //! no weight).
 
 use crate::mesh::quadrature::{rule, Fpg};
-use crate::mesh::shape::eval;
+use crate::mesh::shape::{eval, ShapeEval};
 use crate::mesh::CellType;
 use crate::model::spec::Formulation;
 
@@ -27,6 +27,23 @@ pub(super) fn family(cell: CellType) -> Option<Fpg> {
         CellType::Quad4 | CellType::Quad8 => Some(Fpg::Fpg9),
         _ => None,
     }
+}
+
+/// At a point of a skin cell with shape values `s` and node positions
+/// `coords`: the tangents ∂x/∂ξ and ∂x/∂η (the second is zero on an edge)
+/// and the radius Σ N_a x_a, the ingredients of every load on a skin.
+pub(crate) fn skin_tangents(s: &ShapeEval, coords: &[[f64; 3]]) -> ([f64; 3], [f64; 3], f64) {
+    let mut t1 = [0.0; 3];
+    let mut t2 = [0.0; 3];
+    let mut r = 0.0;
+    for (a, g) in s.dn().iter().enumerate() {
+        r += s.n()[a] * coords[a][0];
+        for k in 0..3 {
+            t1[k] += coords[a][k] * g[0];
+            t2[k] += coords[a][k] * g[1];
+        }
+    }
+    (t1, t2, r)
 }
 
 /// The nodal forces of the pressure `p` on the skin cell `cell` (node-major,
@@ -77,16 +94,7 @@ pub fn pressure_forces(
     let mut out = vec![0.0; nn * d];
     for (xi, w) in q.points.iter().zip(&q.weights) {
         let s = eval(cell, *xi);
-        let mut t1 = [0.0; 3];
-        let mut t2 = [0.0; 3];
-        let mut r = 0.0;
-        for (a, g) in s.dn().iter().enumerate() {
-            r += s.n()[a] * coords[a][0];
-            for k in 0..3 {
-                t1[k] += coords[a][k] * g[0];
-                t2[k] += coords[a][k] * g[1];
-            }
-        }
+        let (t1, t2, r) = skin_tangents(&s, coords);
         // the normal scaled by the surface (or length × r) per unit
         // reference measure
         let nds: [f64; 3] = if axis {
