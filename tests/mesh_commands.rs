@@ -94,6 +94,20 @@ fn unmapped_unit_and_bad_file_are_clear_errors() {
     );
 }
 
+/// LINE_QUAD on a mesh with no linear cell to convert (the quadratic B
+/// mesh's QUAD8/SEG3 cells) is code_aster's MODELISA3_8, located.
+#[test]
+fn line_quad_with_nothing_to_convert_is_located() {
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+        MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, CREA_GROUP_MA=_F(NOM='BAR', GROUP_MA='VOL'))\n\
+        QUAD = CREA_MAILLAGE(MAILLAGE=MAIL, LINE_QUAD=_F(GROUP_MA='BAR'))\nFIN()\n";
+    let (code, out, _) = run("line_quad_nothing", text, &root().join("med/sdnv103b.mmed"));
+    assert_eq!(code, 1);
+    assert!(out.contains("CREA_MAILLAGE/LINE_QUAD/GROUP_MA"), "{out}");
+    assert!(out.contains("line_quad_nothing.comm:4:"), "{out}");
+    assert!(out.contains("no linear cell"), "{out}");
+}
+
 #[test]
 fn quarter_mesh_groups_as_the_3d_command_files_build_them() {
     let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\

@@ -547,6 +547,37 @@ fn post_releve_t_refuses_other_operations() {
     );
 }
 
+/// EXTREMA and MOYENNE_ARITH: a cell group the mesh lacks is named with
+/// the closest existing one, two operations at once are refused naming
+/// the ones built, a component absent at every selected node is an error
+/// on NOM_CMP rather than a row of sentinels; the file position is shown.
+#[test]
+fn post_releve_t_extrema_bad_input_is_located() {
+    let e = run_err(
+        "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTREMA', INTITULE='M', RESULTAT=RESU,
+                NOM_CHAM='DEPL', GROUP_MA='C3', NOM_CMP='DY'))\n",
+    );
+    assert!(e.contains("POST_RELEVE_T/ACTION/GROUP_MA"), "{e}");
+    assert!(e.contains("'C3'") && e.contains("t.comm:6:"), "{e}");
+    let e = run_err(
+        "T = POST_RELEVE_T(ACTION=_F(OPERATION=('EXTREMA', 'MOYENNE_ARITH'), INTITULE='M',
+                RESULTAT=RESU, NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY'))\n",
+    );
+    assert!(
+        e.contains("not implemented yet: POST_RELEVE_T/ACTION/OPERATION")
+            && e.contains("EXTRACTION, EXTREMA and MOYENNE_ARITH, one at a time"),
+        "{e}"
+    );
+    for op in ["EXTREMA", "MOYENNE_ARITH"] {
+        let e = run_err(&format!(
+            "T = POST_RELEVE_T(ACTION=_F(OPERATION='{op}', INTITULE='M', CHAM_GD=CH,
+                GROUP_NO='B', NOM_CMP='DZ'))\n"
+        ));
+        assert!(e.contains("POST_RELEVE_T/ACTION/NOM_CMP"), "{e}");
+        assert!(e.contains(&format!("{op} of CH: no value of DZ")), "{e}");
+    }
+}
+
 /// RESULTANTE: one row per stored step, each component summed over the
 /// nodes of GROUP_NO and NOEUD (a node named twice counts once), in a
 /// column named after it; a component absent at a node adds nothing.

@@ -1,6 +1,7 @@
 //! POST_RELEVE_T: extracts field values into a table.
 
 use super::blocks::*;
+use super::mesh_args::{check_groups, GroupKind};
 use super::post_args::{
     cham_no_of, concept_title, is_gauss_name, mesh_for_field, mesh_of_result, node_name, nodes_of,
     result_of, select_steps, step_nodal, table_error,
@@ -321,17 +322,12 @@ fn selected_nodes(mesh: &Mesh, occ: &Args, op: Operation) -> Result<Vec<usize>, 
     if op == Operation::Extraction {
         return Ok(nodes);
     }
-    let mut cells: Vec<usize> = Vec::new();
-    for g in occ.texts("GROUP_MA") {
-        let Some(c) = mesh.cell_groups.get(g) else {
-            let known: Vec<&str> = mesh.cell_groups.keys().map(String::as_str).collect();
-            let mut d = occ.error("GROUP_MA", format!("the mesh has no cell group '{g}'"));
-            d.suggestion = crate::diag::closest(g, &known);
-            d.choices = known.iter().map(|s| s.to_string()).collect();
-            return Err(d);
-        };
-        cells.extend(c);
-    }
+    check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
+    let mut cells: Vec<usize> = occ
+        .texts("GROUP_MA")
+        .iter()
+        .flat_map(|g| mesh.cell_groups[*g].iter().copied())
+        .collect();
     for name in occ.texts("MAILLE") {
         cells.push(super::post_args::cell_by_name(mesh, occ, "MAILLE", name)?);
     }

@@ -62,11 +62,7 @@ pub fn skin_force(
                 } else {
                     "SEG2/SEG3 (per length) or TRIA3/TRIA6/QUAD4/QUAD8 (per area)"
                 },
-                match formulation {
-                    Formulation::Axis => "AXIS",
-                    Formulation::PlaneStrain => "D_PLAN",
-                    Formulation::Solid3d => "3D",
-                },
+                formulation.label(),
                 cell.aster_name()
             )
         })?;

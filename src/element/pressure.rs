@@ -47,8 +47,9 @@ pub(crate) fn skin_tangents(s: &ShapeEval, coords: &[[f64; 3]]) -> ([f64; 3], [f
 }
 
 /// The nodal forces of the pressure `p` on the skin cell `cell` (node-major,
-/// 2 components per node in AXIS, 3 in 3D) with node coordinates `coords`
-/// (MED order). A SEG is an AXIS edge, a TRIA/QUAD a 3D face; any other
+/// 2 components per node in AXIS and D_PLAN, 3 in 3D) with node
+/// coordinates `coords` (MED order). A SEG is an edge of a 2D model, a
+/// TRIA/QUAD a 3D face; any other
 /// combination is an error, as is a degenerate cell or, in AXIS, a Gauss
 /// point at r < 0.
 pub fn pressure_forces(
@@ -77,11 +78,7 @@ pub fn pressure_forces(
             } else {
                 "TRIA3/TRIA6/QUAD4/QUAD8"
             },
-            match formulation {
-                Formulation::Axis => "AXIS",
-                Formulation::PlaneStrain => "D_PLAN",
-                Formulation::Solid3d => "3D",
-            },
+            formulation.label(),
             cell.aster_name()
         )
     })?;

@@ -31,6 +31,15 @@ pub enum Formulation {
 }
 
 impl Formulation {
+    /// The modelisation family a message names (AXIS, D_PLAN, 3D).
+    pub fn label(self) -> &'static str {
+        match self {
+            Formulation::Axis => "AXIS",
+            Formulation::PlaneStrain => "D_PLAN",
+            Formulation::Solid3d => "3D",
+        }
+    }
+
     /// Degrees of freedom per node (2 for AXIS, 3 in 3D).
     pub fn dofs_per_node(self) -> usize {
         match self {
