@@ -634,6 +634,16 @@ pub fn c_increment() -> Keyword {
     .kw()
 }
 
+/// ENERGIE of STAT/DYNA_NON_LINE: the energy balance table.
+pub fn c_energie() -> Keyword {
+    fact(
+        "ENERGIE",
+        vec![text("CALCUL").into(&["OUI"]).default(t("OUI")).kw()],
+    )
+    .doc("energy balance table")
+    .kw()
+}
+
 /// `ARCHIVAGE` (`C_ARCHIVAGE`).
 pub fn c_archivage() -> Keyword {
     let mut kws = vec![

@@ -81,12 +81,7 @@ pub fn def() -> CommandDef {
             c_convergence(),
             c_solveur(),
             c_suivi_ddl(),
-            fact(
-                "ENERGIE",
-                vec![text("CALCUL").into(&["OUI"]).default(t("OUI")).kw()],
-            )
-            .doc("energy balance table")
-            .kw(),
+            c_energie(),
             c_affichage(),
             c_archivage(),
             info(),
