@@ -203,6 +203,45 @@ fn consistent_tangent_equals_finite_difference_tangent() {
     }
 }
 
+/// The prediction of a step (a zero increment) from a state on the yield
+/// surface takes the continuum plastic tangent at every point, whatever
+/// the last bits of q − R: σ nudged by ±4 ulp around the surface gives
+/// the same tangent, K 1⊗1 + 2μ I_dev − 2μ·3μ/(3μ+H) n⊗n, and leaves σ
+/// and p unchanged. Off the surface (q < R by 1e-6) it is elastic. (Left
+/// to round-off, one point of a hardened bar took the elastic tangent and
+/// its neighbour the plastic one, and MECA_HEXS8 stalled on unloading:
+/// tests/studies/stat_plastic_bar.comm.)
+#[test]
+fn zero_increment_on_the_yield_surface_takes_the_plastic_tangent() {
+    for law in [copper(), steel()] {
+        let (s0, v0) = hardened_state(&law);
+        let elastic = isotropic_elastic(law.elas.bulk(), law.elas.mu());
+        let mu = law.elas.mu();
+        let h = law.hardening();
+        let dev = aster::law::voigt::deviator(&s0);
+        let n = dev / aster::law::voigt::double_dot(&dev, &dev).sqrt();
+        let expect = elastic - n * n.transpose() * (2.0 * mu * 3.0 * mu / (3.0 * mu + h));
+        for ulps in [-4i64, -1, 0, 1, 4] {
+            let f = 1.0 + ulps as f64 * f64::EPSILON;
+            let out = step(&law, s0 * f, &v0, Vec6::zeros(), TangentKind::Consistent);
+            assert_eq!(out.regime, Regime::Plastic, "{ulps} ulp");
+            let d = out.tangent.unwrap();
+            assert!((d - expect).norm() / expect.norm() < 1e-12, "{ulps} ulp");
+            assert_eq!(out.stress, s0 * f);
+            assert_eq!(out.internal.as_slice()[0], v0[0]);
+        }
+        let inside = step(
+            &law,
+            s0 * (1.0 - 1e-6),
+            &v0,
+            Vec6::zeros(),
+            TangentKind::Consistent,
+        );
+        assert_eq!(inside.regime, Regime::Elastic);
+        assert_eq!(inside.tangent.unwrap(), elastic);
+    }
+}
+
 #[test]
 fn consistent_tangent_is_not_the_elastic_one_in_plastic_steps() {
     // Guards the previous test: in a plastic step the two tangents differ.

@@ -275,9 +275,9 @@ fn hexs8_passes_the_patch_test_on_a_distorted_mesh() {
     run_study("stat_patch_hexs8");
 }
 
-/// Step cutting, continuation and hand-over (stat_continuation.comm): with
-/// ITER_GLOB_MAXI = 8 the plastic steps fail and DEFI_LIST_INST cuts them
-/// in 4 (the sub-steps converge); the run stopped at t = 5 and continued
+/// Step cutting, continuation and hand-over (stat_continuation.comm): the
+/// ECHEC rule DELTA_GRANDEUR on VARI_ELGA V1 (VALE_REF 5e-4) redoes every
+/// plastic step (Δp = 9.9e-4) in 4 sub-steps; the run stopped at t = 5 and continued
 /// with reuse= and ETAT_INIT EVOL_NOLI, then DYNA_NON_LINE started from the
 /// static state at t = 10 keeps the bar at rest: every value on the
 /// bilinear curve (1e-9, the unloaded stress 1e-8).
@@ -291,9 +291,18 @@ fn steps_are_cut_and_a_static_result_is_continued() {
             "FIN()",
             "TEST_RESU(RESU=_F(RESULTAT=R, INST=2., NOM_CHAM='ACCE', NOM_CMP='DX', GROUP_NO='TIP', VALE_CALC=0.))\nFIN()",
             &["TEST_RESU/RESU/NOM_CHAM", "result R has no nodal field ACCE"],
+        ), (
+            "delta_cmp",
+            "NOM_CHAM='VARI_ELGA', NOM_CMP='V1',",
+            "NOM_CHAM='VARI_ELGA', NOM_CMP='VX1',",
+            &["STAT_NON_LINE/INCREMENT", "DELTA_GRANDEUR", "no component 'VX1'", "delta_cmp.comm:68:19"],
         )],
     );
-    assert!(mess.contains("the step is cut into 4 sub-steps"), "{mess}");
+    assert_eq!(
+        mess.matches("DELTA_GRANDEUR: the increment of VARI_ELGA V1 reaches 9.900000e-4 > VALE_REF = 5e-4; cut into 4 sub-steps").count(),
+        9,
+        "{mess}"
+    );
     assert_eq!(mess.matches("STAT_NON_LINE done").count(), 2, "{mess}");
     assert!(mess.contains("DYNA_NON_LINE done"), "{mess}");
     // the continuation starts where the first run stopped

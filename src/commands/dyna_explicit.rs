@@ -150,6 +150,7 @@ pub(crate) fn exec(
         dof_names,
         ncells: md.mesh.ncells(),
         events: dyna::ContactEvents::default(),
+        deltas: Vec::new(),
         growth: None,
         hint: None,
     };

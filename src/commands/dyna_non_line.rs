@@ -767,6 +767,67 @@ pub(crate) fn suivi_of(
     Ok(out)
 }
 
+/// An ECHEC rule EVENEMENT='DELTA_GRANDEUR' made checkable: NOM_CHAM one
+/// of DEPL, SIEF_ELGA, VARI_ELGA (the catalogue's choices) and NOM_CMP a
+/// component of it in this model.
+fn delta_grandeur(
+    args: &Args,
+    model: &Model,
+    nom_cham: &str,
+    nom_cmp: &str,
+    vale_ref: f64,
+    action: &Action,
+) -> Result<dyna::DeltaGrandeur, Diagnostic> {
+    let bad = |m: String| {
+        args.error(
+            "INCREMENT",
+            format!("LIST_INST, ECHEC EVENEMENT='DELTA_GRANDEUR': {m}"),
+        )
+    };
+    let (field, component) = match nom_cham {
+        "DEPL" => (
+            SuiviField::Depl,
+            model.dofs.iter().position(|d| d.name() == nom_cmp),
+        ),
+        "SIEF_ELGA" => (
+            SuiviField::SiefElga,
+            ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"]
+                .iter()
+                .position(|c| *c == nom_cmp),
+        ),
+        "VARI_ELGA" => (
+            SuiviField::VariElga,
+            nom_cmp
+                .strip_prefix('V')
+                .and_then(|k| k.parse::<usize>().ok())
+                .filter(|k| *k >= 1)
+                .map(|k| k - 1),
+        ),
+        other => {
+            return Err(bad(format!(
+                "NOM_CHAM='{other}' is not one of DEPL, SIEF_ELGA, VARI_ELGA"
+            )))
+        }
+    };
+    let component = component.ok_or_else(|| {
+        bad(format!(
+            "the field {nom_cham} has no component '{nom_cmp}' in this model"
+        ))
+    })?;
+    if !(vale_ref.is_finite() && vale_ref > 0.0) {
+        return Err(bad(format!(
+            "VALE_REF = {vale_ref} must be a positive number"
+        )));
+    }
+    Ok(dyna::DeltaGrandeur {
+        label: format!("{nom_cham} {nom_cmp}"),
+        field,
+        component,
+        vale_ref,
+        action: action.clone(),
+    })
+}
+
 /// METHODE='AUTO' of a time list: the growth of the step after a success
 /// (1 + PCENT_AUGM/100 of the first ADAPTATION with MODE_CALCUL_TPLUS
 /// 'FIXE', 100 % by default), PAS_MAXI and NB_PAS_MAXI; None for
@@ -1206,8 +1267,19 @@ pub(crate) fn run(
     }
     let mut events = dyna::ContactEvents::default();
     let mut ignored: Vec<String> = Vec::new();
+    let mut deltas = Vec::new();
     for r in list.rules.iter().filter(|r| r.event != Event::Erreur) {
         match (&r.event, &r.action) {
+            (
+                Event::DeltaGrandeur {
+                    vale_ref,
+                    nom_cham,
+                    nom_cmp,
+                },
+                Action::Decoupe(_) | Action::Arret,
+            ) => deltas.push(delta_grandeur(
+                args, &md.model, nom_cham, nom_cmp, *vale_ref, &r.action,
+            )?),
             (
                 Event::Collision,
                 Action::Decoupe(Subdivision::AutoCollision {
@@ -1234,7 +1306,7 @@ pub(crate) fn run(
     }
     if !ignored.is_empty() {
         notes.push(format!(
-            "the time list's events {} concern contact; without CONTACT they are ignored",
+            "the time list's events {} are ignored (acted upon: ERREUR, DELTA_GRANDEUR, and with CONTACT, COLLISION and INTERPENETRATION)",
             ignored.join(", ")
         ));
     }
@@ -1261,6 +1333,7 @@ pub(crate) fn run(
         dof_names,
         ncells: md.mesh.ncells(),
         events,
+        deltas,
         growth,
         hint,
     };

@@ -29,6 +29,10 @@ pub static METADATA: LawMetadata = LawMetadata {
     ],
 };
 
+/// Relative distance to the yield surface under which a zero increment
+/// is taken as on it (see `integrate`).
+const ON_SURFACE: f64 = 1e-10;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VmisIsotLine {
     pub elas: ElasParams,
@@ -86,7 +90,20 @@ impl SmallStrainBehaviour for VmisIsotLine {
         let elastic_d = isotropic_elastic(k, mu);
         let mut internal = InternalVars::zeros(2);
         let hydro = Vec6::new(sigma_m, sigma_m, sigma_m, 0.0, 0.0, 0.0);
-        if q_tr <= r_n {
+        // A zero increment is the prediction of a step (code_aster's
+        // RIGI_MECA_TANG). On the yield surface the choice between the
+        // elastic and the plastic tangent must not be left to the last bit
+        // of q − R: after a plastic step q = R(p) up to round-off, and a
+        // coin flip per point mixes stiff and softened points in one
+        // prediction matrix, which throws the predicted increment into the
+        // soft points (a stalled unloading of MECA_HEXS8, docs/laws-elements.md).
+        // So a stress on the surface to 1e-10 takes the plastic tangent
+        // with Δp = 0, as code_aster does after a plastic step (V2 = 1);
+        // unlike its V2 test, an elastic step that ended on the surface
+        // also does.
+        let on_surface =
+            de.iter().all(|v| *v == 0.0) && q_tr > 0.0 && q_tr >= r_n * (1.0 - ON_SURFACE);
+        if q_tr <= r_n && !on_surface {
             internal.as_mut_slice()[0] = p_n;
             return Ok(SmallStrainOutput {
                 stress: s_tr + hydro,
@@ -99,7 +116,11 @@ impl SmallStrainBehaviour for VmisIsotLine {
             });
         }
         // Plastic corrector: q_tr − 3μΔp − R(p_n + Δp) = 0.
-        let dp = (q_tr - r_n) / (3.0 * mu + h);
+        let dp = if on_surface {
+            0.0
+        } else {
+            (q_tr - r_n) / (3.0 * mu + h)
+        };
         let theta = 1.0 - 3.0 * mu * dp / q_tr;
         let s = s_tr * theta;
         internal.as_mut_slice()[0] = p_n + dp;

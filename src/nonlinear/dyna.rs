@@ -183,6 +183,56 @@ pub struct ContactEvents {
     pub interpenetration: Option<(f64, f64)>,
 }
 
+/// ECHEC EVENEMENT='DELTA_GRANDEUR' (code_aster's nmevdg): a converged
+/// step whose increment of one component, in absolute value at any node
+/// or Gauss point of the model, exceeds VALE_REF is redone in sub-steps by
+/// the rule's own ACTION. It bounds what a step may change, where ERREUR
+/// only reacts to what fails.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DeltaGrandeur {
+    /// "VARI_ELGA V1", for the messages.
+    pub label: String,
+    /// DEPL, SIEF_ELGA or VARI_ELGA.
+    pub field: SuiviField,
+    /// Dof index (DEPL) or SIEF/VARI component.
+    pub component: usize,
+    pub vale_ref: f64,
+    pub action: Action,
+}
+
+impl DeltaGrandeur {
+    /// The largest |increment| of the component from `from` to `to`.
+    pub fn max_increment(&self, from: &State, to: &State, ndpn: usize) -> f64 {
+        let c = self.component;
+        match self.field {
+            SuiviField::Depl => to
+                .motion
+                .u
+                .iter()
+                .zip(&from.motion.u)
+                .skip(c)
+                .step_by(ndpn)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max),
+            SuiviField::SiefElga => to
+                .points
+                .iter()
+                .zip(&from.points)
+                .map(|(a, b)| (a.stress[c] - b.stress[c]).abs())
+                .fold(0.0, f64::max),
+            _ => to
+                .points
+                .iter()
+                .zip(&from.points)
+                .filter_map(|(a, b)| {
+                    let (a, b) = (a.internal.as_slice(), b.internal.as_slice());
+                    Some((a.get(c)? - b.get(c)?).abs())
+                })
+                .fold(0.0, f64::max),
+        }
+    }
+}
+
 /// METHODE='AUTO': how the step grows back after a success.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Growth {
@@ -216,6 +266,8 @@ pub struct TimeLoop {
     pub ncells: usize,
     /// COLLISION / INTERPENETRATION (only with a contact term).
     pub events: ContactEvents,
+    /// DELTA_GRANDEUR rules of the time list.
+    pub deltas: Vec<DeltaGrandeur>,
     /// None: METHODE='MANUEL', the list is followed as given.
     pub growth: Option<Growth>,
     /// A known weakness of the model, appended to the message of a step
@@ -523,6 +575,37 @@ pub fn run(
                 None => Ok(rep),
             },
         };
+        let mut outcome = outcome;
+        if outcome.is_ok() {
+            let over = tl.deltas.iter().find_map(|d| {
+                let m = d.max_increment(&engine.committed, &engine.trial, ndpn);
+                (m > d.vale_ref).then_some((d, m))
+            });
+            if let Some((d, m)) = over {
+                let why = format!(
+                    "DELTA_GRANDEUR: the increment of {} reaches {m:.6e} > VALE_REF = {:e}",
+                    d.label, d.vale_ref
+                );
+                let cut = match d.action {
+                    Action::Arret => Err("its ACTION is ARRET".to_string()),
+                    _ => cut_step(&d.action, t0, t_end, level, list_end),
+                };
+                match cut {
+                    Ok(subs) => {
+                        summary.cuts += 1;
+                        log(&format!(
+                            "  step from t = {t0:e} to {t_end:e} (dt = {dt:.3e}) converged, redone: {why}; cut into {} sub-steps of {:.3e} (level {})",
+                            subs.len(),
+                            dt / subs.len() as f64,
+                            level + 1
+                        ));
+                        pending.extend(subs.into_iter().rev());
+                        continue;
+                    }
+                    Err(e) => outcome = Err((format!("{why}; {e}"), true)),
+                }
+            }
+        }
         match outcome {
             Ok(rep) => {
                 engine.commit();
