@@ -42,6 +42,26 @@
 //! environment variable `ASTER_HEXS8=CODE_ASTER`, to measure what the
 //! departures change (docs/laws-elements.md).
 //!
+//! # Frame
+//! The inclusion rules of the hourglass shears (γxy takes no ξη mode, γxz
+//! no ξζ, γyz no ηζ) are what keeps the bending modes free of shear
+//! locking, and they hold only in axes that follow ξ, η, ζ. Written in
+//! global axes (as code_aster does, note §14.1) they lock a cantilever
+//! whose cells are numbered from another corner (+31 % instead of −7 %).
+//! The published variant therefore computes the element in its own frame,
+//! the rotation of the polar decomposition of the centre Jacobian, as the
+//! paper does in its corotational frame: coordinates, increments and the
+//! centre stress are turned into it, the law is called there (every law
+//! this element takes is isotropic with scalar internal variables), Q is
+//! kept there (FSTAB are components in the element's frame), and the
+//! stress, forces and stiffness are turned back. Under PETIT_REAC the frame
+//! follows the element, so Q turns with it, and the centre stress of the
+//! start of the step is taken in the frame of that start: a rigid
+//! rotation over a step rotates σ and Q (a corotational update, objective
+//! to the order of the spurious strain I − sym ΔR of PETIT_REAC; code_aster
+//! rotates neither). An element whose ξ, η, ζ run along x, y, z is
+//! computed in global axes, to the bit as before.
+//!
 //! # Tangent
 //! The stiffness is the material one (∂f/∂u at fixed geometry): for
 //! PETIT_REAC the change of the working geometry with u is not
@@ -255,6 +275,43 @@ pub fn internal_forces_with(
     for k in 0..24 {
         du[k] = u[k] - u_n[k];
     }
+    // The published variant works in the element's own frame (module doc,
+    // "Frame"): coordinates and increments in, stress in and out.
+    let frame = match opts.variant {
+        Variant::Published => element_frame(&x),
+        Variant::CodeAster => None,
+    };
+    // The centre stress of the start of the step is turned into the frame
+    // the element had then (PETIT_REAC: the frame of X + u_n), so that a
+    // rotation of the element over the step rotates its stress: the update
+    // is corotational, as Q is.
+    let frame_n = match (opts.variant, kin) {
+        (Variant::Published, Kinematics::PetitReac) => {
+            let mut xn = [[0.0; 3]; 8];
+            for a in 0..8 {
+                for i in 0..3 {
+                    xn[a][i] = coords[a][i] + u_n[3 * a + i];
+                }
+            }
+            element_frame(&xn)
+        }
+        _ => frame,
+    };
+    let mut sigma_n = states_n[0].stress;
+    if let Some(r) = &frame_n {
+        sigma_n = rotate_stress(&r.transpose(), &sigma_n);
+    }
+    if let Some(r) = &frame {
+        for a in 0..8 {
+            let xl = r.transpose() * nalgebra::Vector3::from(x[a]);
+            let dl =
+                r.transpose() * nalgebra::Vector3::new(du[3 * a], du[3 * a + 1], du[3 * a + 2]);
+            for i in 0..3 {
+                x[a][i] = xl[i];
+                du[3 * a + i] = dl[i];
+            }
+        }
+    }
     let geom = Geometry::new(&x, opts.variant).map_err(|(point, message)| {
         if kin == Kinematics::PetitReac {
             ElementFailure::Inverted { point, message }
@@ -275,7 +332,7 @@ pub fn internal_forces_with(
     let out = {
         let _span = crate::profile::span(crate::profile::Phase::LawIntegration);
         l.integrate(&SmallStrainInput {
-            stress: st0.stress,
+            stress: sigma_n,
             internal: st0.internal.as_slice(),
             strain_increment: deps,
             dt,
@@ -385,6 +442,18 @@ pub fn internal_forces_with(
         }
     }
 
+    let mut sigma = sigma;
+    if let Some(r) = &frame {
+        sigma = rotate_stress(r, &sigma);
+        let mut rb = K24::zeros();
+        for a in 0..8 {
+            rb.fixed_view_mut::<3, 3>(3 * a, 3 * a).copy_from(r);
+        }
+        forces = rb * forces;
+        if want_k {
+            kmat = rb * kmat * rb.transpose();
+        }
+    }
     let mut states = Vec::with_capacity(STATE_ROWS);
     states.push(PointState {
         stress: sigma,
@@ -405,6 +474,39 @@ pub fn internal_forces_with(
         stiffness: want_k.then(|| DMatrix::from_column_slice(24, 24, kmat.as_slice())),
         states,
     })
+}
+
+/// The element's frame: the rotation R of the polar decomposition
+/// J₀ = R U of the centre Jacobian (columns ∂x/∂ξ, ∂x/∂η, ∂x/∂ζ), so that
+/// the local axes follow ξ, η, ζ as closely as a rotation can. `None` when
+/// J₀ is diagonal and positive (ξ, η, ζ along x, y, z: R = I, and the
+/// element is computed in global axes to the bit) or not invertible (the
+/// geometry check then reports it).
+fn element_frame(x: &[[f64; 3]; 8]) -> Option<Matrix3<f64>> {
+    let dn = reference().centre.dn();
+    let mut j0 = Matrix3::<f64>::zeros();
+    for a in 0..8 {
+        for i in 0..3 {
+            for k in 0..3 {
+                j0[(i, k)] += x[a][i] * dn[a][k];
+            }
+        }
+    }
+    let aligned = (0..3).all(|i| (0..3).all(|k| i == k || j0[(i, k)] == 0.0))
+        && (0..3).all(|i| j0[(i, i)] > 0.0);
+    let det: f64 = j0.determinant();
+    if aligned || det.is_nan() || det <= 0.0 {
+        return None;
+    }
+    let svd = nalgebra::SVD::<f64, nalgebra::U3, nalgebra::U3>::new(j0, true, true);
+    let (w, vt) = (svd.u?, svd.v_t?);
+    Some(w * vt)
+}
+
+/// R σ Rᵀ on stress components.
+fn rotate_stress(r: &Matrix3<f64>, s: &Vec6) -> Vec6 {
+    let t = crate::law::voigt::stress_to_tensor(s);
+    crate::law::voigt::tensor_to_stress(&(r * t * r.transpose()))
 }
 
 /// E^{αj}(e_l) for every mode α, gradient direction j and displacement
