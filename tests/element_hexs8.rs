@@ -78,6 +78,14 @@ impl Grid {
                 }
             }
         }
+        let cells = Grid::cells(n, &|p| [p[0], p[1], p[2]]);
+        Grid { n, coords, cells }
+    }
+    /// Each cell's node indices (MED order), the reference node ξ going to
+    /// the grid corner on the positive side of each of `corner(ξ)`.
+    fn cells(n: [usize; 3], corner: &dyn Fn(&[f64; 3]) -> [f64; 3]) -> Vec<Vec<usize>> {
+        let id = |g: [usize; 3]| g[0] + (n[0] + 1) * (g[1] + (n[1] + 1) * g[2]);
+        let o = |c: f64| usize::from(c > 0.0);
         let mut cells = Vec::new();
         for k in 0..n[2] {
             for j in 0..n[1] {
@@ -85,15 +93,15 @@ impl Grid {
                     let ids = reference_nodes(CellType::Hexa8)
                         .iter()
                         .map(|p| {
-                            let o = |c: f64| usize::from(c > 0.0);
-                            id([i + o(p[0]), j + o(p[1]), k + o(p[2])])
+                            let c = corner(p);
+                            id([i + o(c[0]), j + o(c[1]), k + o(c[2])])
                         })
                         .collect();
                     cells.push(ids);
                 }
             }
         }
-        Grid { n, coords, cells }
+        cells
     }
     fn grid_of(&self, node: usize) -> [usize; 3] {
         let nx = self.n[0] + 1;
@@ -453,6 +461,64 @@ fn box_hourglass_energies() {
     }
 }
 
+/// The cantilever of `cantilever_bending`: the grid, its clamp, the end
+/// load P = 1 shared by the 4 tip nodes and the beam deflection.
+struct Cantilever {
+    grid: Grid,
+    imposed: Vec<(usize, f64)>,
+    fext: DVector<f64>,
+    tip: Vec<usize>,
+    exact: f64,
+}
+
+impl Cantilever {
+    fn new() -> Cantilever {
+        let (l, h) = (10.0, 1.0);
+        let nx = 4;
+        let grid = Grid::new([nx, 1, 1], &|g| {
+            [
+                l * g[0] as f64 / nx as f64,
+                h * g[1] as f64,
+                h * g[2] as f64,
+            ]
+        });
+        let p = 1.0;
+        let inertia = h * h * h * h / 12.0;
+        let g_mod = E / (2.0 * (1.0 + NU));
+        let exact = p * l * l * l / (3.0 * E * inertia) + p * l / (5.0 / 6.0 * g_mod * h * h);
+        let mut imposed = Vec::new();
+        let mut fext = DVector::zeros(3 * grid.coords.len());
+        let mut tip = Vec::new();
+        for (a, _) in grid.coords.iter().enumerate() {
+            let g = grid.grid_of(a);
+            if g[0] == 0 {
+                for i in 0..3 {
+                    imposed.push((3 * a + i, 0.0));
+                }
+            }
+            if g[0] == nx {
+                fext[3 * a + 2] = -p / 4.0;
+                tip.push(a);
+            }
+        }
+        Cantilever {
+            grid,
+            imposed,
+            fext,
+            tip,
+            exact,
+        }
+    }
+
+    /// The mean tip deflection on `grid` (the cantilever's, or the same
+    /// nodes with other cells).
+    fn deflection(&self, grid: &Grid, spec: &ElementSpec, law: LawRef, o: Options) -> f64 {
+        let run = runner(spec, law, o);
+        let u = solve_linear(grid, spec, law, &self.imposed, &self.fext, &run);
+        -self.tip.iter().map(|&a| u[3 * a + 2]).sum::<f64>() / self.tip.len() as f64
+    }
+}
+
 /// Tip deflection of a cantilever L × h × h (L = 10 h) meshed with 4
 /// elements along the length and one across the thickness and width,
 /// clamped at x = 0, total load P at the free end, against
@@ -461,39 +527,10 @@ fn box_hourglass_energies() {
 /// 2×2×2 HEXA8 locks.
 #[test]
 fn cantilever_bending() {
-    let (l, h) = (10.0, 1.0);
-    let nx = 4;
-    let grid = Grid::new([nx, 1, 1], &|g| {
-        [
-            l * g[0] as f64 / nx as f64,
-            h * g[1] as f64,
-            h * g[2] as f64,
-        ]
-    });
-    let p = 1.0;
-    let inertia = h * h * h * h / 12.0;
-    let g_mod = E / (2.0 * (1.0 + NU));
-    let exact = p * l * l * l / (3.0 * E * inertia) + p * l / (5.0 / 6.0 * g_mod * h * h);
-    let mut imposed = Vec::new();
-    let mut fext = DVector::zeros(3 * grid.coords.len());
-    let mut tip = Vec::new();
-    for (a, _) in grid.coords.iter().enumerate() {
-        let g = grid.grid_of(a);
-        if g[0] == 0 {
-            for i in 0..3 {
-                imposed.push((3 * a + i, 0.0));
-            }
-        }
-        if g[0] == nx {
-            fext[3 * a + 2] = -p / 4.0;
-            tip.push(a);
-        }
-    }
-    let deflection = |spec: &ElementSpec, law: LawRef, o: Options| {
-        let run = runner(spec, law, o);
-        let u = solve_linear(&grid, spec, law, &imposed, &fext, &run);
-        -tip.iter().map(|&a| u[3 * a + 2]).sum::<f64>() / tip.len() as f64
-    };
+    let c = Cantilever::new();
+    let exact = c.exact;
+    let deflection =
+        |spec: &ElementSpec, law: LawRef, o: Options| c.deflection(&c.grid, spec, law, o);
     let el = Elas::new(elas());
     let vm = incremental_elastic();
     let mut report = Vec::new();
@@ -807,22 +844,7 @@ impl Grid {
     /// and η along −x (a right-handed renumbering).
     fn renumbered(&self) -> Grid {
         let n = self.n;
-        let id = |g: [usize; 3]| g[0] + (n[0] + 1) * (g[1] + (n[1] + 1) * g[2]);
-        let mut cells = Vec::new();
-        for k in 0..n[2] {
-            for j in 0..n[1] {
-                for i in 0..n[0] {
-                    let ids = reference_nodes(CellType::Hexa8)
-                        .iter()
-                        .map(|p| {
-                            let o = |c: f64| usize::from(c > 0.0);
-                            id([i + o(-p[1]), j + o(p[0]), k + o(p[2])])
-                        })
-                        .collect();
-                    cells.push(ids);
-                }
-            }
-        }
+        let cells = Grid::cells(n, &|p| [-p[1], p[0], p[2]]);
         Grid {
             n,
             coords: self.coords.clone(),
@@ -838,44 +860,16 @@ impl Grid {
 /// in global axes, locks (its ratio moves by more than 20 %).
 #[test]
 fn cantilever_does_not_depend_on_cell_numbering() {
-    let (l, h) = (10.0, 1.0);
-    let nx = 4;
-    let grid = Grid::new([nx, 1, 1], &|g| {
-        [
-            l * g[0] as f64 / nx as f64,
-            h * g[1] as f64,
-            h * g[2] as f64,
-        ]
-    });
-    let turned = grid.renumbered();
-    let mut imposed = Vec::new();
-    let mut fext = DVector::zeros(3 * grid.coords.len());
-    let mut tip = Vec::new();
-    for (a, _) in grid.coords.iter().enumerate() {
-        let g = grid.grid_of(a);
-        if g[0] == 0 {
-            for i in 0..3 {
-                imposed.push((3 * a + i, 0.0));
-            }
-        }
-        if g[0] == nx {
-            fext[3 * a + 2] = -0.25;
-            tip.push(a);
-        }
-    }
-    let deflection = |gr: &Grid, law: LawRef, o: Options| {
-        let spec = hexs8();
-        let run = runner(&spec, law, o);
-        let u = solve_linear(gr, &spec, law, &imposed, &fext, &run);
-        -tip.iter().map(|&a| u[3 * a + 2]).sum::<f64>() / tip.len() as f64
-    };
+    let c = Cantilever::new();
+    let turned = c.grid.renumbered();
+    let deflection = |gr: &Grid, law: LawRef, o: Options| c.deflection(gr, &hexs8(), law, o);
     let el = Elas::new(elas());
     let vm = incremental_elastic();
     for law in [LawRef::Small(&el), LawRef::Small(&vm)] {
-        let a = deflection(&grid, law, opts(Variant::Published));
+        let a = deflection(&c.grid, law, opts(Variant::Published));
         let b = deflection(&turned, law, opts(Variant::Published));
         assert!((a - b).abs() < 1e-10 * a, "published: {a} against {b}");
-        let ca = deflection(&grid, law, opts(Variant::CodeAster));
+        let ca = deflection(&c.grid, law, opts(Variant::CodeAster));
         let cb = deflection(&turned, law, opts(Variant::CodeAster));
         assert!((ca - cb).abs() > 0.2 * ca, "code_aster: {ca} against {cb}");
     }

@@ -594,10 +594,8 @@ pub fn run(
                     Ok(subs) => {
                         summary.cuts += 1;
                         log(&format!(
-                            "  step from t = {t0:e} to {t_end:e} (dt = {dt:.3e}) converged, redone: {why}; cut into {} sub-steps of {:.3e} (level {})",
-                            subs.len(),
-                            dt / subs.len() as f64,
-                            level + 1
+                            "  step from t = {t0:e} to {t_end:e} (dt = {dt:.3e}) converged, redone: {why}; cut into {}",
+                            sub_steps(subs.len(), dt, level)
                         ));
                         pending.extend(subs.into_iter().rev());
                         continue;
@@ -674,10 +672,8 @@ pub fn run(
                     Ok(subs) => {
                         summary.cuts += 1;
                         log(&format!(
-                            "  the step is cut into {} sub-steps of {:.3e} (level {})",
-                            subs.len(),
-                            dt / subs.len() as f64,
-                            level + 1
+                            "  the step is cut into {}",
+                            sub_steps(subs.len(), dt, level)
                         ));
                         pending.extend(subs.into_iter().rev());
                     }
@@ -975,6 +971,15 @@ fn check_events(
         }
     }
     EventOutcome::Accept
+}
+
+/// "n sub-steps of dt/n (level l+1)", for the messages of a cut.
+fn sub_steps(n: usize, dt: f64, level: usize) -> String {
+    format!(
+        "{n} sub-steps of {:.3e} (level {})",
+        dt / n as f64,
+        level + 1
+    )
 }
 
 /// The sub-steps replacing a failed step, or why it cannot be cut.
