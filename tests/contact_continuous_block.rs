@@ -243,6 +243,7 @@ fn run_with(
         resi_glob_maxi: None,
         iter_glob_maxi: 30,
         arret: true,
+        ..ConvergenceSettings::default()
     };
     let mut engine = Engine::new(
         asm,

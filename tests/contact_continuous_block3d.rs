@@ -266,6 +266,7 @@ fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<S
         resi_glob_maxi: None,
         iter_glob_maxi: 100,
         arret: true,
+        ..ConvergenceSettings::default()
     };
     let mut engine = Engine::new(
         asm,

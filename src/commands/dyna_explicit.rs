@@ -151,6 +151,7 @@ pub(crate) fn exec(
         ncells: md.mesh.ncells(),
         events: dyna::ContactEvents::default(),
         deltas: Vec::new(),
+        event_actions: Vec::new(),
         growth: None,
         hint: None,
     };

@@ -1244,7 +1244,7 @@ pub(crate) fn run(
         }
         None => None,
     };
-    let conv = convergence_of(args, &mut notes, inertia)?;
+    let mut conv = convergence_of(args, &mut notes, inertia)?;
     let archive = archive_of(study, args)?;
     let suivi = suivi_of(&md.mesh, &md.model, args, inertia)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
@@ -1268,6 +1268,7 @@ pub(crate) fn run(
     let mut events = dyna::ContactEvents::default();
     let mut ignored: Vec<String> = Vec::new();
     let mut deltas = Vec::new();
+    let mut event_actions = Vec::new();
     for r in list.rules.iter().filter(|r| r.event != Event::Erreur) {
         match (&r.event, &r.action) {
             (
@@ -1280,6 +1281,14 @@ pub(crate) fn run(
             ) => deltas.push(delta_grandeur(
                 args, &md.model, nom_cham, nom_cmp, *vale_ref, &r.action,
             )?),
+            (Event::ResiMaxi { resi_glob_maxi }, Action::Decoupe(_) | Action::Arret) => {
+                conv.events.resi_maxi = Some(*resi_glob_maxi);
+                event_actions.push(("RESI_MAXI", r.action.clone()));
+            }
+            (Event::Other(n), Action::Decoupe(_) | Action::Arret) if n == "DIVE_RESI" => {
+                conv.events.dive_resi = true;
+                event_actions.push(("DIVE_RESI", r.action.clone()));
+            }
             (
                 Event::Collision,
                 Action::Decoupe(Subdivision::AutoCollision {
@@ -1306,7 +1315,7 @@ pub(crate) fn run(
     }
     if !ignored.is_empty() {
         notes.push(format!(
-            "the time list's events {} are ignored (acted upon: ERREUR, DELTA_GRANDEUR, and with CONTACT, COLLISION and INTERPENETRATION)",
+            "the time list's events {} are ignored (acted upon: ERREUR, DELTA_GRANDEUR, RESI_MAXI, DIVE_RESI, and with CONTACT, COLLISION and INTERPENETRATION)",
             ignored.join(", ")
         ));
     }
@@ -1334,6 +1343,7 @@ pub(crate) fn run(
         ncells: md.mesh.ncells(),
         events,
         deltas,
+        event_actions,
         growth,
         hint,
     };

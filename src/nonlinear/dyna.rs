@@ -268,6 +268,9 @@ pub struct TimeLoop {
     pub events: ContactEvents,
     /// DELTA_GRANDEUR rules of the time list.
     pub deltas: Vec<DeltaGrandeur>,
+    /// The ACTION of each Newton event of the time list (RESI_MAXI,
+    /// DIVE_RESI) that the engine raises as `StepFailure::Event`.
+    pub event_actions: Vec<(&'static str, Action)>,
     /// None: METHODE='MANUEL', the list is followed as given.
     pub growth: Option<Growth>,
     /// A known weakness of the model, appended to the message of a step
@@ -515,6 +518,8 @@ pub fn run(
                 rows.push(line);
             }
         };
+        // The ACTION of the Newton event that failed this step, if one did.
+        let mut event_action: Option<Action> = None;
         // A step that does not advance the time (a PAS_MAXI below the
         // resolution of the instants) fails as what it is, not as the
         // non-finite residual a zero step gives.
@@ -551,7 +556,16 @@ pub fn run(
                     log,
                 ));
             }
-            Err(Some(failure)) => Err((describe(engine, tl, &failure), failure.is_fatal())),
+            Err(Some(failure)) => {
+                if let StepFailure::Event(name, _) = &failure {
+                    event_action = tl
+                        .event_actions
+                        .iter()
+                        .find(|(n, _)| n == name)
+                        .map(|(_, a)| a.clone());
+                }
+                Err((describe(engine, tl, &failure), failure.is_fatal()))
+            }
             Ok(rep) => match contact.as_deref_mut() {
                 Some(c) => match check_events(
                     c,
@@ -663,10 +677,13 @@ pub fn run(
                 log(&format!(
                     "  step failure from t = {t0:e} to {t_end:e} (dt = {dt:.3e}, level {level}): {reason}"
                 ));
+                let action = event_action.take().unwrap_or_else(|| tl.on_error.clone());
                 let cut = if fatal {
                     Err("cutting the step cannot cure it".to_string())
+                } else if action == Action::Arret && !matches!(tl.on_error, Action::Arret) {
+                    Err("the event's ACTION is ARRET".to_string())
                 } else {
-                    cut_step(&tl.on_error, t0, t_end, level, list_end)
+                    cut_step(&action, t0, t_end, level, list_end)
                 };
                 match cut {
                     Ok(subs) => {

@@ -48,6 +48,20 @@ pub struct ConvergenceSettings {
     pub iter_glob_maxi: usize,
     /// ARRET='NON' accepts a step not converged at ITER_GLOB_MAXI.
     pub arret: bool,
+    /// The time list's Newton events (DEFI_LIST_INST ECHEC).
+    pub events: NewtonEvents,
+}
+
+/// DEFI_LIST_INST events raised during the Newton iterations of a step
+/// (code_aster's nmevdr, nmevrm), each a failure of the step that its
+/// own ACTION treats.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct NewtonEvents {
+    /// RESI_MAXI: RESI_GLOB_MAXI above this value at an iteration.
+    pub resi_maxi: Option<f64>,
+    /// DIVE_RESI: RESI_GLOB_MAXI decreased at neither of the last two
+    /// iterations, min(r_i, r_(i-1)) > r_(i-2).
+    pub dive_resi: bool,
 }
 
 impl Default for ConvergenceSettings {
@@ -57,6 +71,7 @@ impl Default for ConvergenceSettings {
             resi_glob_maxi: None,
             iter_glob_maxi: 10,
             arret: true,
+            events: NewtonEvents::default(),
         }
     }
 }
@@ -196,6 +211,9 @@ pub enum StepFailure {
     /// A stop was requested (the signal's number, [`crate::interrupt`]):
     /// the step is abandoned, the committed state is what was done.
     Interrupted(i32),
+    /// A Newton event of the time list (`RESI_MAXI`, `DIVE_RESI`): the
+    /// event's name and what was seen.
+    Event(&'static str, String),
 }
 
 impl StepFailure {
@@ -238,6 +256,7 @@ impl std::fmt::Display for StepFailure {
                 "{} received, the step is abandoned",
                 crate::interrupt::name(*s)
             ),
+            StepFailure::Event(name, m) => write!(f, "event {name}: {m}"),
         }
     }
 }
@@ -615,6 +634,33 @@ impl Engine {
                         not_converged: !converged,
                         history,
                     });
+                }
+                if let Some(v) = self.conv.events.resi_maxi.filter(|v| rec.resi_maxi > *v) {
+                    return Err(StepFailure::Event(
+                        "RESI_MAXI",
+                        format!(
+                            "RESI_GLOB_MAXI = {:.3e} at iteration {it} exceeds the event's RESI_GLOB_MAXI = {v:e}",
+                            rec.resi_maxi
+                        ),
+                    ));
+                }
+                if self.conv.events.dive_resi && history.len() >= 3 {
+                    let r: Vec<f64> = history[history.len() - 3..]
+                        .iter()
+                        .map(|h| h.resi_maxi)
+                        .collect();
+                    if r[1].min(r[2]) > r[0] {
+                        return Err(StepFailure::Event(
+                            "DIVE_RESI",
+                            format!(
+                                "RESI_GLOB_MAXI {:.3e}, {:.3e}, {:.3e} at iterations {}..{it}: it decreased at neither of the last two",
+                                r[0],
+                                r[1],
+                                r[2],
+                                it - 2
+                            ),
+                        ));
+                    }
                 }
                 if it == self.conv.iter_glob_maxi {
                     return Err(StepFailure::NotConverged { history });
