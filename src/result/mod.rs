@@ -6,6 +6,7 @@
 //! commands (POST_RELEVE_T, TEST_RESU, RECU_FONCTION, IMPR_RESU) read them
 //! through the accessors below and never see the solver.
 
+pub mod criteria;
 pub mod elno;
 
 use indexmap::IndexMap;
@@ -102,8 +103,9 @@ pub struct Step {
     pub inst: f64,
     pub nodal: IndexMap<String, NodalField>,
     pub gauss: IndexMap<String, GaussField>,
-    /// Element fields at nodes (SIEF_ELNO, SIGM_ELNO of CALC_CHAMP): a
-    /// [`GaussField`] whose "points" of a cell are its nodes, MED order.
+    /// Element fields at nodes (SIEF_ELNO, SIGM_ELNO, SIEQ_ELNO, VARI_ELNO
+    /// of CALC_CHAMP): a [`GaussField`] whose "points" of a cell are its
+    /// nodes, MED order.
     pub elno: IndexMap<String, GaussField>,
 }
 
