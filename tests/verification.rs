@@ -261,7 +261,7 @@ fn static_bar_under_face_and_body_forces() {
     run_study("stat_distributed");
 }
 
-/// SIGM_ELGA (not built), an ELNO field tested without CALC_CHAMP, an
+/// DEFORMATION (not built), an ELNO field tested without CALC_CHAMP, an
 /// ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
 /// located errors.
 #[test]
@@ -271,12 +271,12 @@ fn bad_stresses_at_nodes_are_located_errors() {
     let comm = std::fs::read_to_string(dir().join("stress_nodes.comm")).unwrap();
     let cases = [
         (
-            "sigm_elga",
+            "epsi_elga",
             (
                 "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU')",
-                "CONTRAINTE=('SIGM_ELGA',)",
+                "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU'), DEFORMATION='EPSI_ELGA'",
             ),
-            "not implemented yet: CALC_CHAMP/CONTRAINTE",
+            "not implemented yet: CALC_CHAMP/DEFORMATION",
         ),
         (
             "not_computed",
@@ -323,6 +323,149 @@ fn bad_stresses_at_nodes_are_located_errors() {
             "{tag}: {}",
             run.term
         );
+    }
+}
+
+/// CALC_CHAMP CRITERES, SIGM_ELGA and VARI_INTERNE on homogeneous states
+/// (criteria.comm): SIEQ_ELGA, SIEQ_ELNO and SIEQ_NOEU of a biaxial 3D
+/// state, a plastic uniaxial HEXS8 state (VARI_NOEU V1 = p, TRIAX = 1/3)
+/// and the D_PLAN patch, against their closed forms to 1e-9; then the MED
+/// file IMPR_RESU wrote holds SIEQ_NOEU and SIEQ_ELGA under code_aster's
+/// 17 component names, with the biaxial von Mises stress at every node and
+/// in every HEXA8 cell.
+#[test]
+fn equivalent_stresses_and_internal_variables_at_nodes() {
+    let run = common::run_study("tests/verification/criteria.comm", "verif_criteria");
+    common::assert_all_ok(&run, "criteria.resu");
+    let (e, nu, ex, ez) = (2.0e5_f64, 0.3, -5.0e-4, 1.0e-3);
+    let c = e / (1.0 - nu * nu);
+    let (sx, sz) = (c * (ex + nu * ez), c * (ez + nu * ex));
+    let vm = (sx * sx + sz * sz - sx * sz).sqrt();
+    let names = [
+        "VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_3", "VMIS_SG", "VECT_1_X", "VECT_1_Y",
+        "VECT_1_Z", "VECT_2_X", "VECT_2_Y", "VECT_2_Z", "VECT_3_X", "VECT_3_Y", "VECT_3_Z",
+        "TRSIG", "TRIAX",
+    ];
+    let rmed = run.out.join("resu.rmed");
+    let nodal = aster::medio::read_nodal_fields(&rmed, None).unwrap();
+    let f = nodal
+        .iter()
+        .find(|f| f.name == "BIAX____SIEQ_NOEU")
+        .expect("SIEQ_NOEU in the MED file");
+    assert_eq!(f.components, names);
+    let last = f.steps.last().unwrap();
+    assert_eq!(last.values.len(), 44 * 17);
+    for node in 0..44 {
+        let v = &last.values[node * 17..(node + 1) * 17];
+        assert!((v[0] - vm).abs() < 1e-9 * vm, "node {node}: {v:?}");
+        assert!((v[2] - sx).abs() < 1e-9 * vm, "node {node}: {v:?}");
+        assert!((v[14] - 1.0).abs() < 1e-9, "node {node}: {v:?}");
+    }
+    let cells = aster::medio::read_cell_mean_fields(&rmed, None).unwrap();
+    let g = cells
+        .iter()
+        .find(|f| f.name == "BIAX____SIEQ_ELGA")
+        .expect("SIEQ_ELGA in the MED file");
+    assert_eq!(g.components, names);
+    let last = g.steps.last().unwrap();
+    let volumes: Vec<f64> = last
+        .values
+        .chunks(17)
+        .filter(|v| !v[0].is_nan())
+        .map(|v| v[0])
+        .collect();
+    assert_eq!(volumes.len(), 10);
+    assert!(
+        volumes.iter().all(|v| (v - vm).abs() < 1e-9 * vm),
+        "{volumes:?}"
+    );
+}
+
+/// Bad inputs around CRITERES, SIGM_ELGA and VARI_INTERNE are located
+/// errors (criteria.comm with one change each): a component SIEQ does not
+/// have, SIGM_ELGA of HEXS8 has no FSTAB, an SIEQ_ELNO not computed, an
+/// EPEQ option, POST_RELEVE_T on SIEQ_ELGA, an internal variable the law
+/// does not have.
+#[test]
+fn bad_criteria_requests_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("criteria_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("criteria.comm")).unwrap();
+    let cases = [
+        (
+            "no_component",
+            (
+                "NOM_CHAM='SIEQ_ELGA', NOM_CMP='VMIS', GROUP_MA='BAS', POINT=1",
+                "NOM_CHAM='SIEQ_ELGA', NOM_CMP='VMISES', GROUP_MA='BAS', POINT=1",
+            ),
+            "field SIEQ_ELGA has no component VMISES",
+        ),
+        (
+            "sigm_fstab",
+            (
+                "NOM_CHAM='SIGM_ELGA', NOM_CMP='SIXX'",
+                "NOM_CHAM='SIGM_ELGA', NOM_CMP='FSTAB1'",
+            ),
+            "field SIGM_ELGA has no component FSTAB1",
+        ),
+        (
+            "elno_not_computed",
+            (
+                "RESULTAT=PLAS, INST=1., NOM_CHAM='VARI_ELNO'",
+                "RESULTAT=PLAS, INST=1., NOM_CHAM='SIEQ_ELNO'",
+            ),
+            "compute it with CALC_CHAMP CRITERES='SIEQ_ELNO'",
+        ),
+        (
+            "epeq",
+            (
+                "DPLAN, CRITERES=('SIEQ_ELGA', 'SIEQ_NOEU')",
+                "DPLAN, CRITERES=('SIEQ_ELGA', 'EPEQ_NOEU')",
+            ),
+            "not implemented yet: CALC_CHAMP/CRITERES",
+        ),
+        (
+            "releve_elga",
+            (
+                "RESULTAT=BIAX, NOM_CHAM='SIEQ_NOEU',\n",
+                "RESULTAT=BIAX, NOM_CHAM='SIEQ_ELGA',\n",
+            ),
+            "not implemented yet: POST_RELEVE_T/ACTION/NOM_CHAM",
+        ),
+        (
+            "nom_vari",
+            (
+                "NOM_VARI='EPSPEQ', GROUP_NO='TIP'",
+                "NOM_VARI='EPSEQ', GROUP_NO='TIP'",
+            ),
+            "has no internal variable EPSEQ",
+        ),
+    ];
+    for (tag, (from, to), what) in cases {
+        let text = comm.replacen(from, to, 1);
+        assert_ne!(text, comm, "{tag}");
+        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+        std::fs::write(
+            tmp.join(format!("{tag}.export")),
+            format!(
+                "F mmed {} D 20\nF mmed {} D 21\n",
+                dir().join("../studies/hexs8_beam1.mmed").display(),
+                dir().join("patch.mmed").display()
+            ),
+        )
+        .unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+            &format!("verif_criteria_{tag}"),
+        );
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(run.term.contains(what), "{tag}: {}", run.term);
+        assert!(
+            run.term.contains(&format!("{tag}.comm:")),
+            "{tag}: {}",
+            run.term
+        );
+        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
     }
 }
 

@@ -134,6 +134,7 @@ pub const NOM_CHAM_RESU: &[&str] = &[
     "VITE",
     "ACCE",
     "SIEF_ELGA",
+    "SIGM_ELGA",
     "VARI_ELGA",
     "EPSI_ELGA",
     "SIEF_ELNO",

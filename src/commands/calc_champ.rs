@@ -49,22 +49,22 @@ pub fn def() -> CommandDef {
         text("CONTRAINTE")
             .many()
             .into(&["SIEF_ELNO", "SIGM_ELNO", "SIEF_NOEU", "SIGM_NOEU", "SIGM_ELGA"])
-            .doc("stress fields at nodes: *_ELNO extrapolated from SIEF_ELGA cell by cell, *_NOEU their mean over the cells at each node; SIGM_* the stress components only (SIGM_ELGA is not implemented)")
+            .doc("stress fields: *_ELNO extrapolated from SIEF_ELGA cell by cell, *_NOEU their mean over the cells at each node; SIGM_* the stress components SIXX..SIYZ only (SIGM_ELGA: those of SIEF_ELGA)")
             .kw(),
         text("DEFORMATION")
             .many()
             .into(&["EPSI_ELGA", "EPSI_ELNO", "EPSI_NOEU", "EPSL_ELGA", "EPSL_ELNO", "EPSL_NOEU"])
-            .doc("strain fields")
+            .doc("strain fields (not implemented)")
             .kw(),
         text("CRITERES")
             .many()
             .into(&["SIEQ_ELGA", "SIEQ_ELNO", "SIEQ_NOEU", "EPEQ_ELGA", "EPEQ_ELNO", "EPEQ_NOEU"])
-            .doc("equivalent stresses and strains")
+            .doc("equivalent stresses VMIS, TRESCA, PRIN_1..3, VMIS_SG, VECT_1_X..VECT_3_Z, TRSIG, TRIAX: SIEQ_ELGA of SIEF_ELGA, SIEQ_ELNO of SIGM_ELNO, SIEQ_NOEU the mean of SIEQ_ELNO at each node (EPEQ_* not implemented)")
             .kw(),
         text("VARI_INTERNE")
             .many()
             .into(&["VARI_ELNO", "VARI_NOEU"])
-            .doc("internal variables at nodes")
+            .doc("internal variables V1..Vn at nodes: VARI_ELNO extrapolated from VARI_ELGA cell by cell, VARI_NOEU its mean at each node")
             .kw(),
         text("ENERGIE")
             .many()
@@ -104,15 +104,19 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         Some(ConceptData::Result(r)) => (**r).clone(),
         _ => return Err(args.error("RESULTAT", format!("the result {name} holds no data"))),
     };
-    for key in ["DEFORMATION", "CRITERES", "VARI_INTERNE", "ENERGIE"] {
+    for key in ["DEFORMATION", "ENERGIE"] {
         if args.has(key) {
             return Err(args.not_implemented(key, ""));
         }
     }
-    if args.texts("CONTRAINTE").contains(&"SIGM_ELGA") {
+    if let Some(e) = args
+        .texts("CRITERES")
+        .iter()
+        .find(|c| c.starts_with("EPEQ"))
+    {
         return Err(args.not_implemented(
-            "CONTRAINTE",
-            "SIGM_ELGA (SIEF_ELGA holds the Cauchy stress of every law here); SIEF_ELNO, SIGM_ELNO, SIEF_NOEU and SIGM_NOEU are computed",
+            "CRITERES",
+            &format!("{e} (no strain field is built yet); SIEQ_ELGA, SIEQ_ELNO and SIEQ_NOEU are computed"),
         ));
     }
     for key in ["TOUT", "GROUP_MA", "MAILLE"] {
@@ -121,7 +125,7 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         }
     }
     let selected = selected_steps(study, args, &evol)?;
-    stresses_at_nodes(study, args, &name, &mut evol, &selected)?;
+    element_fields(study, args, &name, &mut evol, &selected)?;
     let options = args.texts("FORCE");
     if options.is_empty() {
         return Ok(Some(ConceptData::Result(Box::new(evol))));
@@ -352,72 +356,153 @@ fn selected_steps(
     Ok(selected)
 }
 
+/// The options computed from the Gauss fields, at the selected steps.
+///
 /// CONTRAINTE: SIEF_ELNO and SIGM_ELNO extrapolated from SIEF_ELGA cell by
 /// cell (`result::elno`), SIEF_NOEU and SIGM_NOEU their mean at each node
 /// over the elements holding it. SIGM_* are the stress components
 /// (SIXX..SIYZ) alone, SIEF_* every component of SIEF_ELGA (with the
 /// hourglass stresses FSTAB* of HEXS8 models). SIEF_ELGA holds the Cauchy
 /// stress whatever the law and the kinematics, so SIGM = SIEF on those
-/// components.
-fn stresses_at_nodes(
+/// components, and SIGM_ELGA is SIEF_ELGA without FSTAB*.
+///
+/// CRITERES (`result::criteria`): SIEQ_ELGA from SIEF_ELGA at each point;
+/// SIEQ_ELNO from SIGM_ELNO, the stress extrapolated first and the
+/// criteria taken at the nodes, and SIEQ_NOEU the mean of SIEQ_ELNO at
+/// each node. That is code_aster's order: its option SIEQ_ELNO reads
+/// SIGM_ELNO (`RESU!SIGM_ELNO!N`, catalogue `Options/sieq_elno.py`), and
+/// every *_NOEU option is the average of the *_ELNO field (`ccchno`,
+/// `cescns` with 'A'). The criteria are not linear, so extrapolating
+/// SIEQ_ELGA would differ wherever the stress varies in a cell.
+///
+/// VARI_INTERNE: VARI_ELNO extrapolated from VARI_ELGA like SIEF_ELNO,
+/// VARI_NOEU its mean at each node; components V1..Vn as VARI_ELGA.
+fn element_fields(
     study: &Study,
     args: &Args,
     name: &str,
     evol: &mut crate::result::EvolNoli,
     selected: &[usize],
 ) -> Result<(), crate::diag::Diagnostic> {
-    let options = args.texts("CONTRAINTE");
-    if options.is_empty() {
+    let stress_opts = args.texts("CONTRAINTE");
+    let crit_opts = args.texts("CRITERES");
+    let vari_opts = args.texts("VARI_INTERNE");
+    let at_nodes = stress_opts
+        .iter()
+        .chain(&crit_opts)
+        .chain(&vari_opts)
+        .any(|o| !o.ends_with("_ELGA"));
+    if stress_opts.is_empty() && crit_opts.is_empty() && vari_opts.is_empty() {
         return Ok(());
     }
-    let model_name = args.concept("MODELE").unwrap_or(&evol.model).to_string();
-    let model = match study.concepts.data(&model_name) {
-        Some(ConceptData::Model(m)) => m,
-        _ => {
-            return Err(args.error(
-                "RESULTAT",
-                format!(
+    // the model and its mesh, for the extrapolation to the nodes only
+    let geometry = if at_nodes {
+        let model_name = args.concept("MODELE").unwrap_or(&evol.model).to_string();
+        let model = match study.concepts.data(&model_name) {
+            Some(ConceptData::Model(m)) => m,
+            _ => {
+                return Err(args.error(
+                    "RESULTAT",
+                    format!(
                     "the result {name} does not say which model it was computed with: give MODELE"
                 ),
-            ))
-        }
+                ))
+            }
+        };
+        let mesh = super::model_args::mesh_of_model(study, args, "RESULTAT", model)?;
+        Some((mesh, model))
+    } else {
+        None
     };
-    let mesh = super::model_args::mesh_of_model(study, args, "RESULTAT", model)?;
     for step in evol.steps.iter_mut() {
         if !selected.contains(&step.nume_ordre) {
             continue;
         }
-        let Some(sief) = step.gauss.get("SIEF_ELGA") else {
-            return Err(args.error(
-                "CONTRAINTE",
-                format!(
-                    "NUME_ORDRE {} of {name} has no SIEF_ELGA field to extrapolate",
-                    step.nume_ordre
-                ),
-            ));
+        let nume = step.nume_ordre;
+        let gauss_of = |key: &str, field: &str| {
+            step.gauss.get(field).ok_or_else(|| {
+                args.error(
+                    key,
+                    format!(
+                        "NUME_ORDRE {nume} of {name} has no {field} field to compute {} from",
+                        args.texts(key).join(", ")
+                    ),
+                )
+            })
         };
-        let all: Vec<usize> = (0..sief.ncmp()).collect();
-        let stress: Vec<usize> = (0..sief.ncmp())
-            .filter(|&k| sief.components[k].starts_with("SI"))
-            .collect();
-        // computed from the borrowed SIEF_ELGA, stored after
+        let no_model = || {
+            args.error(
+                "RESULTAT",
+                format!("no model to extrapolate {name} to the nodes"),
+            )
+        };
+        let located =
+            |key: &'static str| move |m: String| args.error(key, format!("NUME_ORDRE {nume}: {m}"));
+        // computed from the borrowed Gauss fields, stored after
         let mut nodal_out = Vec::new();
         let mut elno_out = Vec::new();
-        for (elno_name, noeu_name, keep) in [
-            ("SIEF_ELNO", "SIEF_NOEU", &all),
-            ("SIGM_ELNO", "SIGM_NOEU", &stress),
-        ] {
-            if !options.contains(&elno_name) && !options.contains(&noeu_name) {
-                continue;
+        let mut gauss_out = Vec::new();
+        if !stress_opts.is_empty() || !crit_opts.is_empty() {
+            let key = if stress_opts.is_empty() {
+                "CRITERES"
+            } else {
+                "CONTRAINTE"
+            };
+            let sief = gauss_of(key, "SIEF_ELGA")?;
+            let all: Vec<usize> = (0..sief.ncmp()).collect();
+            let stress: Vec<usize> = (0..sief.ncmp())
+                .filter(|&k| sief.components[k].starts_with("SI"))
+                .collect();
+            if stress_opts.contains(&"SIGM_ELGA") {
+                gauss_out.push(("SIGM_ELGA", select(sief, &stress)));
             }
-            let elno = crate::result::elno::elno(sief, mesh, model, keep).map_err(|m| {
-                args.error("CONTRAINTE", format!("NUME_ORDRE {}: {m}", step.nume_ordre))
-            })?;
-            if options.contains(&noeu_name) {
-                nodal_out.push((noeu_name, crate::result::elno::noeu(&elno, mesh)));
+            if crit_opts.contains(&"SIEQ_ELGA") {
+                let q = crate::result::criteria::sieq(sief).map_err(located("CRITERES"))?;
+                gauss_out.push(("SIEQ_ELGA", q));
             }
-            if options.contains(&elno_name) {
-                elno_out.push((elno_name, elno));
+            let sieq_nodes = crit_opts
+                .iter()
+                .any(|o| o.starts_with("SIEQ_") && o != &"SIEQ_ELGA");
+            for (elno_name, noeu_name, keep) in [
+                ("SIEF_ELNO", "SIEF_NOEU", &all),
+                ("SIGM_ELNO", "SIGM_NOEU", &stress),
+            ] {
+                let wanted = stress_opts.contains(&elno_name) || stress_opts.contains(&noeu_name);
+                let for_sieq = elno_name == "SIGM_ELNO" && sieq_nodes;
+                if !wanted && !for_sieq {
+                    continue;
+                }
+                let (mesh, model) = geometry.ok_or_else(no_model)?;
+                let elno =
+                    crate::result::elno::elno(sief, mesh, model, keep).map_err(located(key))?;
+                if for_sieq {
+                    let q = crate::result::criteria::sieq(&elno).map_err(located("CRITERES"))?;
+                    if crit_opts.contains(&"SIEQ_NOEU") {
+                        nodal_out.push(("SIEQ_NOEU", crate::result::elno::noeu(&q, mesh)));
+                    }
+                    if crit_opts.contains(&"SIEQ_ELNO") {
+                        elno_out.push(("SIEQ_ELNO", q));
+                    }
+                }
+                if stress_opts.contains(&noeu_name) {
+                    nodal_out.push((noeu_name, crate::result::elno::noeu(&elno, mesh)));
+                }
+                if stress_opts.contains(&elno_name) {
+                    elno_out.push((elno_name, elno));
+                }
+            }
+        }
+        if !vari_opts.is_empty() {
+            let vari = gauss_of("VARI_INTERNE", "VARI_ELGA")?;
+            let (mesh, model) = geometry.ok_or_else(no_model)?;
+            let all: Vec<usize> = (0..vari.ncmp()).collect();
+            let elno = crate::result::elno::elno(vari, mesh, model, &all)
+                .map_err(located("VARI_INTERNE"))?;
+            if vari_opts.contains(&"VARI_NOEU") {
+                nodal_out.push(("VARI_NOEU", crate::result::elno::noeu(&elno, mesh)));
+            }
+            if vari_opts.contains(&"VARI_ELNO") {
+                elno_out.push(("VARI_ELNO", elno));
             }
         }
         for (n, f) in nodal_out {
@@ -426,6 +511,29 @@ fn stresses_at_nodes(
         for (n, f) in elno_out {
             step.elno.insert(n.to_string(), f);
         }
+        for (n, f) in gauss_out {
+            step.gauss.insert(n.to_string(), f);
+        }
     }
     Ok(())
+}
+
+/// The components `keep` (by index) of a Gauss field, same cells and
+/// points.
+fn select(f: &crate::result::GaussField, keep: &[usize]) -> crate::result::GaussField {
+    let nc = f.ncmp();
+    let values = f
+        .values
+        .chunks(nc.max(1))
+        .flat_map(|row| keep.iter().map(move |&k| row[k]))
+        .collect();
+    crate::result::GaussField {
+        components: keep.iter().map(|&k| f.components[k].clone()).collect(),
+        offsets: f
+            .offsets
+            .iter()
+            .map(|&o| o.checked_div(nc).unwrap_or(0) * keep.len())
+            .collect(),
+        values,
+    }
 }

@@ -342,9 +342,19 @@ fn result_fields(
             .iter()
             .filter_map(|s| s.nodal.get(nom_cham).map(|f| (*s, f)))
             .collect();
+        // ELNO fields (CALC_CHAMP *_ELNO) go the same way as Gauss ones,
+        // their "points" being the cell's nodes.
+        let at_nodes = nom_cham.ends_with("_ELNO");
         let gauss: Vec<(&Step, &GaussField)> = steps
             .iter()
-            .filter_map(|s| s.gauss.get(nom_cham).map(|f| (*s, f)))
+            .filter_map(|s| {
+                if at_nodes {
+                    s.elno.get(nom_cham)
+                } else {
+                    s.gauss.get(nom_cham)
+                }
+                .map(|f| (*s, f))
+            })
             .collect();
         if !nodal.is_empty() {
             let mut f = MedNodal {
@@ -397,10 +407,17 @@ fn result_fields(
                     values: cell_means(field, mesh.ncells()),
                 });
             }
-            notes.push(format!(
-                "{med_name}: the MED writer cannot store Gauss points yet; the mean over \
-                 the Gauss points of each cell is written as a cell field"
-            ));
+            notes.push(if at_nodes {
+                format!(
+                    "{med_name}: the MED writer cannot store fields by element at nodes yet; \
+                     the mean over the nodes of each cell is written as a cell field"
+                )
+            } else {
+                format!(
+                    "{med_name}: the MED writer cannot store Gauss points yet; the mean over \
+                     the Gauss points of each cell is written as a cell field"
+                )
+            });
             out.cells.push(f);
         } else {
             notes.push(format!(

@@ -262,7 +262,10 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
         if nom_cham.ends_with("_ELNO") {
             return Err(occ.not_implemented(
                 "NOM_CHAM",
-                &format!("extraction of the field by element at nodes {nom_cham}; the nodal field *_NOEU of CALC_CHAMP CONTRAINTE averages it at the nodes"),
+                &format!(
+                    "extraction of the field by element at nodes {nom_cham}; the nodal field {}_NOEU of CALC_CHAMP averages it at the nodes",
+                    nom_cham.trim_end_matches("_ELNO")
+                ),
             ));
         }
         let nodes = selected_nodes(mesh, occ, op)?;

@@ -261,9 +261,72 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
     }
     let (node, nkey, nlabel) = single_node(mesh, occ)?;
     let f = step_nodal(step, nom_cham, occ, "NOM_CHAM", rname)?;
-    let v = node_value(occ, f, nom_cham, node, cmp)?;
+    let v = match nom_vari {
+        Some(name) => {
+            let k = node_vari_index(res, mesh, node, name, occ, nom_cham)?;
+            let Some(c) = f.components.get(k) else {
+                return Err(occ.error(
+                    "NOM_VARI",
+                    format!(
+                        "{nom_cham} has {} components, {name} is V{}",
+                        f.ncmp(),
+                        k + 1
+                    ),
+                ));
+            };
+            node_value(occ, f, nom_cham, node, c)?
+        }
+        None => node_value(occ, f, nom_cham, node, cmp)?,
+    };
     header.push((nkey, nlabel));
     Ok((rname.to_string(), header, v))
+}
+
+/// The CALC_CHAMP keyword whose option computes the field `nom_cham`
+/// (for the message of a field a result does not hold).
+fn calc_champ_keyword(nom_cham: &str) -> &'static str {
+    match nom_cham.split('_').next().unwrap_or("") {
+        "SIEQ" | "EPEQ" => "CRITERES",
+        "VARI" => "VARI_INTERNE",
+        "EPSI" | "EPSL" => "DEFORMATION",
+        _ => "CONTRAINTE",
+    }
+}
+
+/// The column of internal variable `name` at a node of a VARI_NOEU field:
+/// the nodal mean mixes the cells holding the node, so their laws must
+/// agree on the variable's rank.
+fn node_vari_index(
+    res: &crate::result::EvolNoli,
+    mesh: &crate::mesh::Mesh,
+    node: usize,
+    name: &str,
+    occ: &Args,
+    nom_cham: &str,
+) -> Result<usize, Diagnostic> {
+    let mut rank: Option<usize> = None;
+    for (c, cell) in mesh.cells.iter().enumerate() {
+        if !cell.nodes.contains(&node) || !matches!(res.comportement.get(c), Some(Some(_))) {
+            continue;
+        }
+        let k = vari_index(res, c, name, occ, nom_cham)?;
+        if rank.is_some_and(|r| r != k) {
+            return Err(occ.error(
+                "NOM_VARI",
+                format!(
+                    "the cells around node {} give {name} different ranks in their laws: test NOM_CMP='V..' instead",
+                    node_name(node)
+                ),
+            ));
+        }
+        rank = Some(k);
+    }
+    rank.ok_or_else(|| {
+        occ.error(
+            "NOM_VARI",
+            format!("node {} is on no cell with a behaviour", node_name(node)),
+        )
+    })
 }
 
 /// The column of the internal variable named `name` (NOM_VARI) in the
@@ -403,8 +466,9 @@ fn elno_value(
         occ.error(
             "NOM_CHAM",
             format!(
-                "result {rname} has no field {nom_cham} at NUME_ORDRE {} (compute it with CALC_CHAMP CONTRAINTE='{nom_cham}')",
-                step.nume_ordre
+                "result {rname} has no field {nom_cham} at NUME_ORDRE {} (compute it with CALC_CHAMP {}='{nom_cham}')",
+                step.nume_ordre,
+                calc_champ_keyword(nom_cham)
             ),
         )
     })?;
@@ -417,14 +481,24 @@ fn elno_value(
         header.push(("TYPE_TEST", tt.to_string()));
         return Ok((v, header));
     }
-    let cmp = occ.text("NOM_CMP").ok_or_else(|| {
-        occ.error(
-            "NOM_CMP",
-            "NOM_CMP is needed to test one value (or give TYPE_TEST)",
-        )
-    })?;
-    header.push(("NOM_CMP", cmp.to_string()));
-    let c = component_index(&f.components, cmp, occ, "NOM_CMP", nom_cham)?;
+    let nom_vari = occ.text("NOM_VARI");
+    let cmp = match nom_vari {
+        Some(v) => v,
+        None => occ.text("NOM_CMP").ok_or_else(|| {
+            occ.error(
+                "NOM_CMP",
+                "NOM_CMP is needed to test one value (or give TYPE_TEST)",
+            )
+        })?,
+    };
+    header.push((
+        if nom_vari.is_some() {
+            "NOM_VARI"
+        } else {
+            "NOM_CMP"
+        },
+        cmp.to_string(),
+    ));
     let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
     if !(occ.has("GROUP_MA") || occ.has("MAILLE")) || !(occ.has("GROUP_NO") || occ.has("NOEUD")) {
         return Err(occ.error(
@@ -434,6 +508,10 @@ fn elno_value(
     }
     let (cell, ckey, clabel) = single_cell(mesh, occ)?;
     let (node, nkey, nlabel) = single_node(mesh, occ)?;
+    let c = match nom_vari {
+        Some(v) => vari_index(res, cell, v, occ, nom_cham)?,
+        None => component_index(&f.components, cmp, occ, "NOM_CMP", nom_cham)?,
+    };
     let Some(a) = mesh.cells[cell].nodes.iter().position(|&n| n == node) else {
         return Err(occ.error(
             nkey,
