@@ -303,27 +303,8 @@ fn bad_stresses_at_nodes_are_located_errors() {
             "not implemented yet: POST_RELEVE_T/ACTION/NOM_CHAM",
         ),
     ];
-    for (tag, (from, to), what) in cases {
-        let text = comm.replacen(from, to, 1);
-        assert_ne!(text, comm, "{tag}");
-        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
-        std::fs::write(
-            tmp.join(format!("{tag}.export")),
-            format!("F mmed {} D 20\n", dir().join("patch.mmed").display()),
-        )
-        .unwrap();
-        let run = common::run_study(
-            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
-            &format!("verif_stress_nodes_{tag}"),
-        );
-        assert_eq!(run.code, 1, "{tag}: {}", run.term);
-        assert!(run.term.contains(what), "{tag}: {}", run.term);
-        assert!(
-            run.term.contains(&format!("{tag}.comm:")),
-            "{tag}: {}",
-            run.term
-        );
-    }
+    let export = format!("F mmed {} D 20\n", dir().join("patch.mmed").display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_stress_nodes");
 }
 
 /// CALC_CHAMP CRITERES, SIGM_ELGA and VARI_INTERNE on homogeneous states
@@ -441,32 +422,12 @@ fn bad_criteria_requests_are_located_errors() {
             "has no internal variable EPSEQ",
         ),
     ];
-    for (tag, (from, to), what) in cases {
-        let text = comm.replacen(from, to, 1);
-        assert_ne!(text, comm, "{tag}");
-        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
-        std::fs::write(
-            tmp.join(format!("{tag}.export")),
-            format!(
-                "F mmed {} D 20\nF mmed {} D 21\n",
-                dir().join("../studies/hexs8_beam1.mmed").display(),
-                dir().join("patch.mmed").display()
-            ),
-        )
-        .unwrap();
-        let run = common::run_study(
-            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
-            &format!("verif_criteria_{tag}"),
-        );
-        assert_eq!(run.code, 1, "{tag}: {}", run.term);
-        assert!(run.term.contains(what), "{tag}: {}", run.term);
-        assert!(
-            run.term.contains(&format!("{tag}.comm:")),
-            "{tag}: {}",
-            run.term
-        );
-        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
-    }
+    let export = format!(
+        "F mmed {} D 20\nF mmed {} D 21\n",
+        dir().join("../studies/hexs8_beam1.mmed").display(),
+        dir().join("patch.mmed").display()
+    );
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_criteria");
 }
 
 /// An inward skin under PRES_REP (VERI_NORM), a follower pressure
@@ -1340,4 +1301,34 @@ fn a_cycling_point_is_detected_and_reported() {
         "{t}"
     );
     assert!(!t.contains("Newton did not converge"), "{t}");
+}
+
+/// Each one-change variant of `comm` (tag, (from, to), expected text) run
+/// with `export` from `tmp`: exit 1, the expected text, the variant's own
+/// file:line, no panic.
+fn expect_located_errors(
+    comm: &str,
+    cases: &[(&str, (&str, &str), &str)],
+    tmp: &Path,
+    export: &str,
+    prefix: &str,
+) {
+    for (tag, (from, to), what) in cases {
+        let text = comm.replacen(from, to, 1);
+        assert_ne!(text, comm, "{tag}");
+        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+        std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+            &format!("{prefix}_{tag}"),
+        );
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(run.term.contains(what), "{tag}: {}", run.term);
+        assert!(
+            run.term.contains(&format!("{tag}.comm:")),
+            "{tag}: {}",
+            run.term
+        );
+        assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
+    }
 }

@@ -186,24 +186,7 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
         header.push(("TYPE_TEST", tt.to_string()));
         return Ok((rname.to_string(), header, v));
     }
-    let nom_vari = occ.text("NOM_VARI");
-    let cmp = match nom_vari {
-        Some(v) => v,
-        None => occ.text("NOM_CMP").ok_or_else(|| {
-            occ.error(
-                "NOM_CMP",
-                "NOM_CMP is needed to test one value (or give TYPE_TEST)",
-            )
-        })?,
-    };
-    header.push((
-        if nom_vari.is_some() {
-            "NOM_VARI"
-        } else {
-            "NOM_CMP"
-        },
-        cmp.to_string(),
-    ));
+    let (nom_vari, cmp) = component_to_test(occ, &mut header)?;
     let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
     if gauss {
         if occ.has("GROUP_NO") || occ.has("NOEUD") {
@@ -481,24 +464,7 @@ fn elno_value(
         header.push(("TYPE_TEST", tt.to_string()));
         return Ok((v, header));
     }
-    let nom_vari = occ.text("NOM_VARI");
-    let cmp = match nom_vari {
-        Some(v) => v,
-        None => occ.text("NOM_CMP").ok_or_else(|| {
-            occ.error(
-                "NOM_CMP",
-                "NOM_CMP is needed to test one value (or give TYPE_TEST)",
-            )
-        })?,
-    };
-    header.push((
-        if nom_vari.is_some() {
-            "NOM_VARI"
-        } else {
-            "NOM_CMP"
-        },
-        cmp.to_string(),
-    ));
+    let (nom_vari, cmp) = component_to_test(occ, &mut header)?;
     let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
     if !(occ.has("GROUP_MA") || occ.has("MAILLE")) || !(occ.has("GROUP_NO") || occ.has("NOEUD")) {
         return Err(occ.error(
@@ -534,4 +500,31 @@ fn elno_value(
     header.push((ckey, clabel));
     header.push((nkey, nlabel));
     Ok((f.cell(cell)[a * f.ncmp() + c], header))
+}
+
+/// The NOM_VARI or NOM_CMP of a one-value test, added to the report's
+/// header; NOM_VARI comes back as `Some` when it was the one given.
+fn component_to_test<'a>(
+    occ: &'a Args,
+    header: &mut Vec<(&'static str, String)>,
+) -> Result<(Option<&'a str>, &'a str), Diagnostic> {
+    let nom_vari = occ.text("NOM_VARI");
+    let cmp = match nom_vari {
+        Some(v) => v,
+        None => occ.text("NOM_CMP").ok_or_else(|| {
+            occ.error(
+                "NOM_CMP",
+                "NOM_CMP is needed to test one value (or give TYPE_TEST)",
+            )
+        })?,
+    };
+    header.push((
+        if nom_vari.is_some() {
+            "NOM_VARI"
+        } else {
+            "NOM_CMP"
+        },
+        cmp.to_string(),
+    ));
+    Ok((nom_vari, cmp))
 }
