@@ -233,6 +233,7 @@ fn run_with(
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
             distributed: Vec::new(),
+            functions: Vec::new(),
         }],
     )
     .unwrap();

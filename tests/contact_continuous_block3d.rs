@@ -256,6 +256,7 @@ fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<S
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
             distributed: Vec::new(),
+            functions: Vec::new(),
         }],
     )
     .unwrap();
@@ -806,6 +807,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
             distributed: Vec::new(),
+            functions: Vec::new(),
         }],
     )
     .unwrap();

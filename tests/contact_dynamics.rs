@@ -128,6 +128,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
             distributed: Vec::new(),
+            functions: Vec::new(),
         }],
     )
     .unwrap();

@@ -89,6 +89,7 @@ fn lumped_system(mesh: &Mesh, mo: &Model, imp: &[aster::model::ImposedDof]) -> L
         nodal_forces: Vec::new(),
         pressures: Vec::new(),
         distributed: Vec::new(),
+        functions: Vec::new(),
     };
     let (mut asm, _) =
         aster::nonlinear::discretize(mesh, mo, &matfield, &materials, &occs, &[&load]).unwrap();

@@ -273,6 +273,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         nodal_forces,
         pressures,
         distributed,
+        functions: Vec::new(),
     }))))
 }
 

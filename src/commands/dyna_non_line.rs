@@ -283,15 +283,22 @@ pub(crate) fn set_loads(
 ) -> Result<(), Diagnostic> {
     let excits = args.facts("EXCIT");
     let mut parts = Vec::new();
+    let mut mult_fns = Vec::new();
     for (k, load) in loads.iter().enumerate() {
         let forces = md.load_forces(load).map_err(|m| args.error("EXCIT", m))?;
         let mult = match (mults.get(k).and_then(|m| m.as_deref()), excits.get(k)) {
             (Some(name), Some(ex)) => Some(fonc_mult(study, ex, name, instants)?),
             _ => None,
         };
+        mult_fns.push(mult.clone());
         parts.push((forces, mult));
     }
-    let mut history = crate::nonlinear::loads::LoadHistory::new(parts);
+    let functions = function_parts(md, loads, &mult_fns, &engine.asm.numbering)
+        .map_err(|(k, m)| match excits.get(k) {
+            Some(ex) => ex.error("CHARGE", m),
+            None => args.error("EXCIT", m),
+        })?;
+    let mut history = crate::nonlinear::loads::LoadHistory::new(parts).with_functions(functions);
     let varying = imposed_under_mult(args, md, loads, mults, study, instants, engine)?;
     for (entries, mult) in varying {
         history = history.with_imposed(entries, mult);
@@ -307,6 +314,86 @@ pub(crate) fn set_loads(
         engine.loads = Some(history);
     }
     Ok(())
+}
+
+/// The AFFE_CHAR_MECA_F values of the loads on the numbering `nb`, each
+/// with its load's FONC_MULT (`mults`, one per load). A dof such a load
+/// imposes is imposed by no other load (its value would not be unique in
+/// time); the error gives the index of the load to blame.
+pub(crate) fn function_parts(
+    md: &ModelData,
+    loads: &[MechLoad],
+    mults: &[Option<crate::post::function::Function>],
+    nb: &crate::nonlinear::dofs::DofNumbering,
+) -> Result<Vec<crate::nonlinear::loads::FunctionPart>, (usize, String)> {
+    use crate::model::FunctionTarget;
+    let index: std::collections::HashMap<usize, usize> = nb
+        .imposed
+        .iter()
+        .enumerate()
+        .map(|(k, &(f, _))| (f, k))
+        .collect();
+    let full = |node: usize, dof: crate::model::Dof| {
+        md.model
+            .dofs
+            .iter()
+            .position(|d| *d == dof)
+            .map(|c| node * nb.ndpn + c)
+    };
+    let mut claims: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for load in loads {
+        for imp in &load.imposed {
+            if let Some(f) = full(imp.node, imp.dof) {
+                *claims.entry(f).or_default() += 1;
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for (k, load) in loads.iter().enumerate() {
+        for nf in &load.functions {
+            let imposed = nf.target == FunctionTarget::Imposed;
+            let keyword = if imposed { "DDL_IMPO" } else { "FORCE_NODALE" };
+            let cmp = if imposed {
+                nf.dof.name().to_string()
+            } else {
+                format!("F{}", &nf.dof.name()[1..])
+            };
+            let mut entries = Vec::with_capacity(nf.nodes.len());
+            for &n in &nf.nodes {
+                let Some(f) = full(n, nf.dof) else {
+                    return Err((k, format!("{cmp} of {keyword}: the model has no {}", nf.dof.name())));
+                };
+                let i = if imposed {
+                    if claims.get(&f).copied().unwrap_or(0) > 1 {
+                        return Err((
+                            k,
+                            format!(
+                                "{} of node N{} is imposed by the function {} of this load (AFFE_CHAR_MECA_F) and by another DDL_IMPO: one value per dof and instant",
+                                nf.dof.name(),
+                                n + 1,
+                                nf.name
+                            ),
+                        ));
+                    }
+                    match index.get(&f) {
+                        Some(&i) => i,
+                        None => continue,
+                    }
+                } else {
+                    f
+                };
+                entries.push((i, n, md.mesh.coords[n]));
+            }
+            out.push(crate::nonlinear::loads::FunctionPart {
+                label: format!("{keyword} {cmp} = {}", nf.name),
+                coef: nf.coef.clone(),
+                mult: mults.get(k).cloned().flatten(),
+                imposed,
+                entries,
+            });
+        }
+    }
+    Ok(out)
 }
 
 /// (index in the numbering's imposed list, value at multiplier 1) of a

@@ -15,6 +15,7 @@ use crate::diag::Diagnostic;
 use crate::study::Study;
 
 pub mod affe_char_meca;
+pub mod affe_char_meca_f;
 pub mod affe_materiau;
 pub mod affe_modele;
 pub mod blocks;
@@ -78,6 +79,7 @@ pub fn not_implemented(_study: &mut Study, args: &Args, _result: Option<&str>) -
 pub fn all() -> Vec<CommandDef> {
     vec![
         affe_char_meca::def(),
+        affe_char_meca_f::def(),
         affe_materiau::def(),
         affe_modele::def(),
         calc_champ::def(),

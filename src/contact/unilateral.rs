@@ -9,22 +9,11 @@
 //! the penalised force ([`penalty`]). The Newton loop drives them through
 //! `nonlinear::unilateral`.
 
-use crate::post::formula::Formula;
-use crate::post::function::Function;
 
 /// COEF_MULT or COEF_IMPO: a tabulated or constant function (one
-/// parameter), or a FORMULE (evaluated by parameter name).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Coef {
-    Function(Function),
-    Formula(Formula),
-}
-
-impl From<Function> for Coef {
-    fn from(f: Function) -> Coef {
-        Coef::Function(f)
-    }
-}
+/// parameter), or a FORMULE (evaluated by parameter name); shared with
+/// AFFE_CHAR_MECA_F's function-valued loads.
+pub use crate::post::formula::Coef;
 
 /// `ALGO_CONT` of the zones (the same in every zone).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -105,24 +94,7 @@ pub fn eval_coef_mult(f: &Coef, inst: f64) -> Result<f64, String> {
 
 /// COEF_IMPO takes INST and the initial X, Y, Z of the node.
 pub fn eval_coef_impo(f: &Coef, inst: f64, x: [f64; 3]) -> Result<f64, String> {
-    let f = match f {
-        Coef::Function(f) => f,
-        Coef::Formula(g) => {
-            return g.eval(&[("INST", inst), ("X", x[0]), ("Y", x[1]), ("Z", x[2])])
-        }
-    };
-    let v = match f.para.as_str() {
-        "TOUTPARA" | "INST" => inst,
-        "X" => x[0],
-        "Y" => x[1],
-        "Z" => x[2],
-        other => {
-            return Err(format!(
-                "COEF_IMPO is evaluated with INST, X, Y, Z; the function of {other} cannot be evaluated"
-            ))
-        }
-    };
-    f.eval(v)
+    crate::post::formula::eval_inst_xyz(f, inst, x, "COEF_IMPO")
 }
 
 impl UnilDef {
@@ -413,6 +385,8 @@ pub fn penalty(gap: f64, e: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::post::formula::Formula;
+    use crate::post::function::Function;
 
     /// Dense 2×2 SPD solver for the algebraic cases of liaison-unil.md §9.1.
     fn solver(c: [[f64; 2]; 2]) -> impl FnMut(&mut [f64]) -> Result<(), String> {

@@ -150,6 +150,33 @@ pub struct MechLoad {
     /// forces per unit area, length or volume, dead loads on the initial
     /// geometry (`element::distributed`).
     pub distributed: Vec<DistributedForce>,
+    /// AFFE_CHAR_MECA_F: values that are functions of the instant and of
+    /// the node's initial coordinates, evaluated at each step's end
+    /// instant. Their DDL_IMPO dofs are also in `imposed` (value 0) so
+    /// that the numbering holds them; the engine overwrites the value.
+    pub functions: Vec<NodalFunction>,
+}
+
+/// What an AFFE_CHAR_MECA_F value gives at its nodes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FunctionTarget {
+    /// DDL_IMPO: the displacement of the component.
+    Imposed,
+    /// FORCE_NODALE: a force along the component, on each node.
+    Force,
+}
+
+/// One component of one AFFE_CHAR_MECA_F occurrence: `coef` (the concept
+/// `name`) evaluated at each node of `nodes` at its initial coordinates.
+/// A node is in at most one entry per (target, dof) of a load: a later
+/// occurrence takes it from the earlier ones.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NodalFunction {
+    pub target: FunctionTarget,
+    pub dof: Dof,
+    pub name: String,
+    pub coef: crate::post::formula::Coef,
+    pub nodes: Vec<usize>,
 }
 
 /// Which AFFE_CHAR_MECA keyword a [`DistributedForce`] came from: it

@@ -11,7 +11,56 @@
 //! drive a displacement ramp): the engine sets the imposed values of the
 //! numbering at the end instant of each step before solving it.
 
+//!
+//! AFFE_CHAR_MECA_F's values ([`FunctionPart`]) are functions of INST and
+//! of the node's initial X, Y, Z: each is evaluated at the same instants,
+//! node by node, times its FONC_MULT.
+
+use crate::post::formula::{eval_inst_xyz, Coef};
 use crate::post::function::Function;
+
+/// One AFFE_CHAR_MECA_F value resolved on the numbering.
+#[derive(Debug, Clone)]
+pub struct FunctionPart {
+    /// For messages: keyword, component and function (`DDL_IMPO DX = FDX`).
+    pub label: String,
+    pub coef: Coef,
+    /// The EXCIT FONC_MULT of the load (`None`: 1).
+    pub mult: Option<Function>,
+    /// DDL_IMPO (the entries index the numbering's `imposed` list) or
+    /// FORCE_NODALE (the entries are full dofs).
+    pub imposed: bool,
+    /// (index, node, initial coordinates of the node).
+    pub entries: Vec<(usize, usize, [f64; 3])>,
+}
+
+impl FunctionPart {
+    /// The value of each entry at `t`, FONC_MULT included.
+    fn values(&self, t: f64) -> Result<Vec<(usize, f64)>, String> {
+        let m = match &self.mult {
+            None => 1.0,
+            Some(f) => f
+                .eval(t)
+                .map_err(|e| format!("FONC_MULT at INST = {t:e}: {e}"))?,
+        };
+        self.entries
+            .iter()
+            .map(|&(k, node, x)| {
+                let v = eval_inst_xyz(&self.coef, t, x, &self.label).map_err(|e| {
+                    format!("{} at INST = {t:e}, node N{}: {e}", self.label, node + 1)
+                })?;
+                if !v.is_finite() {
+                    return Err(format!(
+                        "{} at INST = {t:e}, node N{}: the value {v} is not finite",
+                        self.label,
+                        node + 1
+                    ));
+                }
+                Ok((k, m * v))
+            })
+            .collect()
+    }
+}
 
 /// The loads of a run as (forces, multiplier): a `None` multiplier is 1.
 #[derive(Debug, Clone, Default)]
@@ -20,6 +69,7 @@ pub struct LoadHistory {
     /// Imposed values under a multiplier: (index in the numbering's
     /// `imposed` list, value at multiplier 1) and the multiplier.
     imposed: Vec<(Vec<(usize, f64)>, Function)>,
+    functions: Vec<FunctionPart>,
 }
 
 impl LoadHistory {
@@ -27,7 +77,15 @@ impl LoadHistory {
         LoadHistory {
             parts,
             imposed: Vec::new(),
+            functions: Vec::new(),
         }
+    }
+
+    /// Adds AFFE_CHAR_MECA_F values.
+    pub fn with_functions(mut self, parts: Vec<FunctionPart>) -> LoadHistory {
+        self.functions
+            .extend(parts.into_iter().filter(|p| !p.entries.is_empty()));
+        self
     }
 
     /// Adds imposed values scaled by `mult` (see [`LoadHistory::set_imposed`]).
@@ -41,7 +99,9 @@ impl LoadHistory {
     /// Whether some load has a multiplier (otherwise F_ext is constant and
     /// set once).
     pub fn varies(&self) -> bool {
-        self.parts.iter().any(|(_, f)| f.is_some()) || !self.imposed.is_empty()
+        self.parts.iter().any(|(_, f)| f.is_some())
+            || !self.imposed.is_empty()
+            || !self.functions.is_empty()
     }
 
     /// Writes the imposed values of instant `t` into the numbering's list
@@ -54,6 +114,11 @@ impl LoadHistory {
                 .map_err(|e| format!("FONC_MULT at INST = {t:e}: {e}"))?;
             for &(k, v) in entries {
                 imposed[k].1 = m * v;
+            }
+        }
+        for part in self.functions.iter().filter(|p| p.imposed) {
+            for (k, v) in part.values(t)? {
+                imposed[k].1 = v;
             }
         }
         Ok(())
@@ -76,6 +141,11 @@ impl LoadHistory {
             }
             for (o, &f) in out.iter_mut().zip(forces) {
                 *o += m * f;
+            }
+        }
+        for part in self.functions.iter().filter(|p| !p.imposed) {
+            for (f, v) in part.values(t)? {
+                out[f] += v;
             }
         }
         Ok(())
@@ -107,5 +177,44 @@ mod tests {
         let mut imposed = vec![(3, 7.0), (8, 0.0)];
         h.set_imposed(1.5, &mut imposed).unwrap();
         assert_eq!(imposed, vec![(3, 7.0), (8, -1.5)]);
+    }
+
+    #[test]
+    fn function_values_are_evaluated_per_node_and_instant() {
+        let g = crate::post::formula::Formula {
+            params: vec!["INST".into(), "X".into()],
+            text: "INST * X".into(),
+            node: crate::post::formula::Node::Bin(
+                crate::post::formula::Op::Mul,
+                Box::new(crate::post::formula::Node::Param(0)),
+                Box::new(crate::post::formula::Node::Param(1)),
+            ),
+        };
+        let two = Function::constant(2.0, "TOUTRESU");
+        let part = |imposed| FunctionPart {
+            label: "DDL_IMPO DX = F".into(),
+            coef: Coef::Formula(g.clone()),
+            mult: Some(two.clone()),
+            imposed,
+            entries: vec![(1, 0, [3.0, 0.0, 0.0]), (0, 4, [-1.0, 0.0, 0.0])],
+        };
+        let h = LoadHistory::new(vec![]).with_functions(vec![part(true), part(false)]);
+        assert!(h.varies());
+        let mut imposed = vec![(5, 9.0), (6, 9.0)];
+        h.set_imposed(0.5, &mut imposed).unwrap();
+        assert_eq!(imposed, vec![(5, -1.0), (6, 3.0)]);
+        let mut out = vec![7.0; 2];
+        h.at(0.5, &mut out).unwrap();
+        assert_eq!(out, vec![-1.0, 3.0]);
+        let temp = Function::new("TEMP", "TOUTRESU", vec![0.0, 1.0], vec![0.0, 1.0]).unwrap();
+        let bad = LoadHistory::new(vec![]).with_functions(vec![FunctionPart {
+            coef: Coef::Function(temp),
+            ..part(true)
+        }]);
+        let e = bad.set_imposed(0.5, &mut imposed).unwrap_err();
+        assert!(
+            e.contains("DDL_IMPO DX = F at INST = 5e-1, node N1") && e.contains("TEMP"),
+            "{e}"
+        );
     }
 }

@@ -180,3 +180,62 @@ impl Formula {
         })
     }
 }
+
+/// A function-valued argument: a tabulated or constant function (one
+/// parameter), or a FORMULE (evaluated by parameter name). LIAISON_UNIL's
+/// COEF_IMPO/COEF_MULT and AFFE_CHAR_MECA_F's values are of this kind.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Coef {
+    Function(super::function::Function),
+    Formula(Formula),
+}
+
+impl From<super::function::Function> for Coef {
+    fn from(f: super::function::Function) -> Coef {
+        Coef::Function(f)
+    }
+}
+
+/// The parameters a value given at a node may depend on: the instant and
+/// the node's initial coordinates (code_aster's convention for COEF_IMPO
+/// and AFFE_CHAR_MECA_F; TOUTPARA is DEFI_CONSTANTE's).
+pub const NODE_PARAMS: [&str; 4] = ["INST", "X", "Y", "Z"];
+
+impl Coef {
+    /// The first parameter of the function that is not among `allowed`
+    /// (TOUTPARA, a constant's, always is).
+    pub fn unknown_param(&self, allowed: &[&str]) -> Option<String> {
+        match self {
+            Coef::Function(f) => (f.para != "TOUTPARA" && !allowed.contains(&f.para.as_str()))
+                .then(|| f.para.clone()),
+            Coef::Formula(g) => g
+                .params
+                .iter()
+                .find(|p| !allowed.contains(&p.as_str()))
+                .cloned(),
+        }
+    }
+}
+
+/// `f` at instant `inst` and initial coordinates `x`; `what` names the
+/// keyword in the message when the function depends on another parameter.
+pub fn eval_inst_xyz(f: &Coef, inst: f64, x: [f64; 3], what: &str) -> Result<f64, String> {
+    let f = match f {
+        Coef::Function(f) => f,
+        Coef::Formula(g) => {
+            return g.eval(&[("INST", inst), ("X", x[0]), ("Y", x[1]), ("Z", x[2])])
+        }
+    };
+    let v = match f.para.as_str() {
+        "TOUTPARA" | "INST" => inst,
+        "X" => x[0],
+        "Y" => x[1],
+        "Z" => x[2],
+        other => {
+            return Err(format!(
+                "{what} is evaluated with INST, X, Y, Z; the function of {other} cannot be evaluated"
+            ))
+        }
+    };
+    f.eval(v)
+}

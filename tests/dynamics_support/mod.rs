@@ -185,6 +185,7 @@ pub fn study(
             nodal_forces: Vec::new(),
             pressures: Vec::new(),
             distributed: Vec::new(),
+            functions: Vec::new(),
         })),
     );
     if let Some(v) = vite {

@@ -1,0 +1,331 @@
+//! AFFE_CHAR_MECA_F: mechanical loads whose values are functions
+//! (DEFI_CONSTANTE, DEFI_FONCTION, FORMULE) of the instant and of the
+//! node's initial coordinates, code_aster's `affe_char_meca_f.py`. The
+//! concept is a char_meca like AFFE_CHAR_MECA's, so EXCIT (with FONC_MULT
+//! multiplying the values) and CALC_CHAMP take it; the engine evaluates
+//! the functions at each step's end instant (`nonlinear::loads`).
+
+use super::blocks::*;
+use super::model_args::{mesh_of_model, model_of, select_nodes, selection_label};
+use super::{CommandDef, ExecResult};
+use crate::catalog::args::Args;
+use crate::catalog::schema::*;
+use crate::concepts::ConceptData;
+use crate::concepts::ConceptType as C;
+use crate::diag::Diagnostic;
+use crate::model::{Dof, FunctionTarget, ImposedDof, MechLoad, NodalFunction};
+use crate::post::formula::{Coef, NODE_PARAMS};
+use crate::study::Study;
+
+/// A keyword whose value is a function of INST, X, Y, Z.
+fn function(name: &'static str, doc: &'static str) -> Keyword {
+    concept(name, &[C::Fonction, C::Formule]).doc(doc).kw()
+}
+
+/// Keywords of code_aster's catalogue that are declared (so that a
+/// command file using them reads) and refused when given.
+const NOT_BUILT: &[&str] = &[
+    "PRES_REP",
+    "FORCE_FACE",
+    "FORCE_ARETE",
+    "FORCE_CONTOUR",
+    "FORCE_INTERNE",
+    "FACE_IMPO",
+    "LIAISON_DDL",
+    "LIAISON_OBLIQUE",
+];
+
+pub fn def() -> CommandDef {
+    let mut ddl = vec![
+        tout(),
+        group_ma(),
+        maille(),
+        group_no(),
+        noeud(),
+        text("SANS_GROUP_MA").many().kw(),
+        text("SANS_MAILLE").many().hidden().kw(),
+        text("SANS_GROUP_NO")
+            .many()
+            .doc("nodes excluded from the selection")
+            .kw(),
+        text("SANS_NOEUD").many().hidden().kw(),
+    ];
+    for &c in CMP_DEPL {
+        ddl.push(function(
+            c,
+            "imposed value of this component: a function of INST and the node's initial X, Y, Z",
+        ));
+    }
+    let forces = ["FX", "FY", "FZ"];
+    let mut nodal = vec![group_no(), noeud()];
+    for c in forces {
+        nodal.push(function(
+            c,
+            "force along this axis on each node: a function of INST, X, Y, Z",
+        ));
+    }
+    for c in ["MX", "MY", "MZ"] {
+        nodal.push(concept(c, &[C::Fonction, C::Formule]).kw());
+    }
+    nodal.push(concept("ANGL_NAUT", &[C::Fonction, C::Formule]).many().kw());
+    let selection = || vec![tout(), group_ma(), maille()];
+    let not_built = |name: &'static str, cmps: &[&'static str]| {
+        let mut kws = selection();
+        kws.push(group_no());
+        for &c in cmps {
+            kws.push(concept(c, &[C::Fonction, C::Formule]).kw());
+        }
+        fact(name, kws).many().doc("not implemented yet").kw()
+    };
+    let spec = command(
+        "AFFE_CHAR_MECA_F",
+        Produces::Concept(C::CharMeca),
+        vec![
+            concept("MODELE", &[C::Modele]).required().kw(),
+            fact("DDL_IMPO", ddl)
+                .many()
+                .rules(vec![
+                    au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]),
+                    au_moins_un(CMP_DEPL),
+                ])
+                .doc("imposed dofs whose values are functions of INST and of the node's initial X, Y, Z, evaluated at each step's end instant; GROUP_MA means all nodes of those cells; a node given again by a later occurrence keeps the later function of that component")
+                .kw(),
+            fact("FORCE_NODALE", nodal)
+                .many()
+                .rules(vec![
+                    au_moins_un(&["GROUP_NO", "NOEUD"]),
+                    au_moins_un(&["FX", "FY", "FZ", "MX", "MY", "MZ"]),
+                ])
+                .doc("force on each node of the selection, global frame, a function of INST and the node's initial X, Y, Z evaluated at each step's end instant; a node given again keeps the later function of that component")
+                .kw(),
+            not_built("PRES_REP", &["PRES", "CISA_2D"]),
+            not_built("FORCE_FACE", &["FX", "FY", "FZ"]),
+            not_built("FORCE_ARETE", &["FX", "FY", "FZ", "MX", "MY", "MZ"]),
+            not_built("FORCE_CONTOUR", &["FX", "FY", "FZ", "MX", "MY", "MZ"]),
+            not_built("FORCE_INTERNE", &["FX", "FY", "FZ"]),
+            not_built("FACE_IMPO", &["DX", "DY", "DZ", "DNOR", "DTAN"]),
+            fact(
+                "LIAISON_DDL",
+                vec![
+                    group_no(),
+                    noeud(),
+                    text("DDL").many().kw(),
+                    real("COEF_MULT").many().kw(),
+                    concept("COEF_IMPO", &[C::Fonction, C::Formule]).kw(),
+                ],
+            )
+            .many()
+            .doc("not implemented yet")
+            .kw(),
+            fact(
+                "LIAISON_OBLIQUE",
+                vec![
+                    group_no(),
+                    noeud(),
+                    real("ANGL_NAUT").many().kw(),
+                    concept("DX", &[C::Fonction, C::Formule]).kw(),
+                    concept("DY", &[C::Fonction, C::Formule]).kw(),
+                    concept("DZ", &[C::Fonction, C::Formule]).kw(),
+                ],
+            )
+            .many()
+            .doc("not implemented yet")
+            .kw(),
+            oui_non("VERI_NORM", "OUI")
+                .doc("check the orientation of skin cells carrying loads")
+                .kw(),
+            oui_non("DOUBLE_LAGRANGE", "OUI")
+                .doc("two Lagrange multipliers per constraint")
+                .kw(),
+            info(),
+        ],
+    )
+    .rules(vec![au_moins_un(&[
+        "DDL_IMPO",
+        "FORCE_NODALE",
+        "PRES_REP",
+        "FORCE_FACE",
+        "FORCE_ARETE",
+        "FORCE_CONTOUR",
+        "FORCE_INTERNE",
+        "FACE_IMPO",
+        "LIAISON_DDL",
+        "LIAISON_OBLIQUE",
+    ])])
+    .doc("Defines mechanical boundary conditions and loads whose values are functions of time (INST) and of the nodes' initial coordinates (X, Y, Z).");
+    CommandDef { spec, exec }
+}
+
+/// The function concept `name` given to `key`, checked to depend on
+/// INST, X, Y, Z only (the parameters the engine evaluates it with).
+fn coef_of(study: &Study, occ: &Args, key: &str, name: &str) -> Result<Coef, Diagnostic> {
+    let coef = match study.concepts.data(name) {
+        Some(ConceptData::Function(f)) => Coef::Function((**f).clone()),
+        Some(ConceptData::Formula(f)) => Coef::Formula((**f).clone()),
+        _ => {
+            return Err(occ.error(
+                key,
+                format!("{name} holds no function (its command did not run)"),
+            ))
+        }
+    };
+    if let Some(p) = coef.unknown_param(&NODE_PARAMS) {
+        return Err(occ.error(
+            key,
+            format!(
+                "{name} is a function of {p}: AFFE_CHAR_MECA_F evaluates its functions with INST and the node's initial X, Y, Z only"
+            ),
+        ));
+    }
+    Ok(coef)
+}
+
+/// The nodes of `entries` already given the same (target, dof) lose
+/// `nodes`: the later occurrence wins.
+fn take_nodes(entries: &mut [NodalFunction], target: FunctionTarget, dof: Dof, nodes: &[usize]) {
+    let mut mask = std::collections::HashSet::new();
+    mask.extend(nodes.iter().copied());
+    for e in entries
+        .iter_mut()
+        .filter(|e| e.target == target && e.dof == dof)
+    {
+        e.nodes.retain(|n| !mask.contains(n));
+    }
+}
+
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    for &key in NOT_BUILT {
+        if let Some(occ) = args.facts(key).first() {
+            return Err(occ.not_implemented(
+                "",
+                "AFFE_CHAR_MECA_F builds DDL_IMPO and FORCE_NODALE",
+            ));
+        }
+    }
+    let (model_name, model) = model_of(study, args, "MODELE")?;
+    let model = model.clone();
+    let mesh = mesh_of_model(study, args, "MODELE", &model)?;
+    let in_model = model.node_mask(mesh);
+    let model_nodes: Vec<usize> = (0..mesh.nnodes()).filter(|&n| in_model[n]).collect();
+    let dof_names = model
+        .dofs
+        .iter()
+        .map(|d| d.name())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let mut functions: Vec<NodalFunction> = Vec::new();
+    let mut lines = Vec::new();
+    for (key, target, cmps) in [
+        ("DDL_IMPO", FunctionTarget::Imposed, CMP_DEPL),
+        ("FORCE_NODALE", FunctionTarget::Force, &["FX", "FY", "FZ"][..]),
+    ] {
+        for (k, occ) in args.facts(key).iter().enumerate() {
+            if target == FunctionTarget::Force {
+                for m in ["MX", "MY", "MZ"] {
+                    if occ.has(m) {
+                        return Err(occ.not_implemented(
+                            m,
+                            "nodal moments (no element of aster has rotational dofs)",
+                        ));
+                    }
+                }
+                if occ.has("ANGL_NAUT") {
+                    return Err(
+                        occ.not_implemented("ANGL_NAUT", "forces are given in the global frame")
+                    );
+                }
+            }
+            let mut given: Vec<(Dof, &str, Coef)> = Vec::new();
+            for &c in cmps {
+                let Some(name) = occ.concept(c) else { continue };
+                let dof = match target {
+                    FunctionTarget::Imposed => Dof::from_name(c),
+                    FunctionTarget::Force => Dof::from_name(&format!("D{}", &c[1..])),
+                };
+                let Some(dof) = dof.filter(|d| model.has_dof(*d)) else {
+                    return Err(occ.error(
+                        c,
+                        format!(
+                            "{c} is not a component of the model {model_name}, whose nodes carry {dof_names}"
+                        ),
+                    ));
+                };
+                given.push((dof, name, coef_of(study, occ, c, name)?));
+            }
+            let tout: &[usize] = match target {
+                FunctionTarget::Imposed => &model_nodes,
+                FunctionTarget::Force => &[],
+            };
+            let nodes = select_nodes(mesh, occ, tout)?;
+            if let Some(&n0) = nodes.iter().find(|&&n| !in_model[n]) {
+                return Err(occ.error(
+                    "",
+                    format!(
+                        "node N{} of {} belongs to no cell of the model {model_name}: it carries no degree of freedom",
+                        n0 + 1,
+                        selection_label(occ)
+                    ),
+                ));
+            }
+            if nodes.is_empty() {
+                lines.push(format!(
+                    "<A> <AFFE_CHAR_MECA_F> occurrence {} of {key} selects no node",
+                    k + 1
+                ));
+            }
+            lines.push(format!(
+                "      {key} {}: {} nodes of {}, {}",
+                k + 1,
+                nodes.len(),
+                selection_label(occ),
+                given
+                    .iter()
+                    .map(|(d, n, _)| match target {
+                        FunctionTarget::Imposed => format!("{}={n}", d.name()),
+                        FunctionTarget::Force => format!("F{}={n}", &d.name()[1..]),
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            ));
+            for (dof, name, coef) in given {
+                take_nodes(&mut functions, target, dof, &nodes);
+                functions.push(NodalFunction {
+                    target,
+                    dof,
+                    name: name.to_string(),
+                    coef,
+                    nodes: nodes.clone(),
+                });
+            }
+        }
+    }
+    functions.retain(|f| !f.nodes.is_empty());
+    let imposed: Vec<ImposedDof> = functions
+        .iter()
+        .filter(|f| f.target == FunctionTarget::Imposed)
+        .flat_map(|f| {
+            f.nodes.iter().map(|&node| ImposedDof {
+                node,
+                dof: f.dof,
+                value: 0.0,
+            })
+        })
+        .collect();
+    study.log(format!(
+        "    load {} on model {model_name}: {} imposed dofs, functions of INST, X, Y, Z",
+        result.unwrap_or("(unnamed)"),
+        imposed.len()
+    ));
+    for l in lines {
+        study.log(l);
+    }
+    Ok(Some(ConceptData::MechLoad(Box::new(MechLoad {
+        model: model_name,
+        imposed,
+        gravity: None,
+        nodal_forces: Vec::new(),
+        pressures: Vec::new(),
+        distributed: Vec::new(),
+        functions,
+    }))))
+}
