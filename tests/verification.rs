@@ -1332,3 +1332,119 @@ fn expect_located_errors(
         assert!(!run.term.contains("panicked"), "{tag}: {}", run.term);
     }
 }
+
+/// AFFE_CHAR_MECA_F on the distorted HEXS8 patch: the linear field u = A x
+/// given as three FORMULEs of X, Y, Z on every node but the interior ones
+/// gives the interior nodes u = A x (1e-9) and the uniform stress
+/// λ tr ε + 2 μ ε (1e-8), as the hand-written stat_patch_hexs8 study.
+#[test]
+fn function_valued_loads_pass_the_patch_test() {
+    run_study("char_f_patch");
+}
+
+/// AFFE_CHAR_MECA_F values of INST on a rod: a FORMULE ramp of the top's
+/// DZ (STAT_NON_LINE, DYNA_NON_LINE Newmark: reactions E A u / L at two
+/// instants, 1e-9), a DEFI_FONCTION ramp under FONC_MULT (the same), a
+/// FORCE_NODALE FORMULE (top DZ = F L / (E A), base reaction -F, 1e-9),
+/// and DIFF_CENT (the imposed top follows the formula, 1e-12).
+#[test]
+fn function_valued_loads_follow_time() {
+    run_study("char_f_ramp");
+}
+
+/// A prestressed HEXS8 turned rigidly by 90 degrees under PETIT_REAC by
+/// AFFE_CHAR_MECA_F formulas: the stress turns with the element (closed
+/// form with PETIT_REAC's spurious strain to 1e-9 for N = 20 and 40
+/// steps), its distance to the turned prestress halves when N doubles.
+#[test]
+fn function_valued_rotation_turns_the_prestress() {
+    run_study("char_f_rotation");
+}
+
+/// Bad AFFE_CHAR_MECA_F input: a function of another parameter than INST,
+/// X, Y, Z (FORMULE and DEFI_FONCTION), a real where a function is needed
+/// and a function where AFFE_CHAR_MECA needs a real, an unknown group, a
+/// keyword not built, a dof imposed by a function and by another load, a
+/// formula that cannot be evaluated at a node: located errors, no panic.
+#[test]
+fn bad_function_valued_loads_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("char_f_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("char_f_ramp.comm")).unwrap();
+    let cases = [
+        (
+            "formule_temp",
+            (
+                "RAMPE = FORMULE(VALE='U0 * INST', NOM_PARA='INST')",
+                "RAMPE = FORMULE(VALE='U0 * TEMP', NOM_PARA='TEMP')",
+            ),
+            "AFFE_CHAR_MECA_F/DDL_IMPO/DZ: RAMPE is a function of TEMP",
+        ),
+        (
+            "fonction_epsi",
+            (
+                "DEMI = DEFI_FONCTION(NOM_PARA='INST'",
+                "DEMI = DEFI_FONCTION(NOM_PARA='EPSI'",
+            ),
+            "DEMI is a function of EPSI",
+        ),
+        (
+            "real_for_function",
+            (
+                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE)",
+                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=0.01)",
+            ),
+            "AFFE_CHAR_MECA_F/DDL_IMPO/DZ: expected a concept of type fonction_sdaster or formule, found the real 0.01",
+        ),
+        (
+            "function_for_real",
+            (
+                "POUSSE = AFFE_CHAR_MECA_F(",
+                "POUSSE = AFFE_CHAR_MECA(",
+            ),
+            "AFFE_CHAR_MECA/FORCE_NODALE/FZ: expected a real, found the concept FTIERS",
+        ),
+        (
+            "unknown_group",
+            (
+                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE)",
+                "DDL_IMPO=_F(GROUP_NO='HOT', DZ=RAMPE)",
+            ),
+            "AFFE_CHAR_MECA_F/DDL_IMPO/GROUP_NO: the mesh TAYLOR_QUARTER has no node group (GROUP_NO) 'HOT'",
+        ),
+        (
+            "pres_rep",
+            (
+                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE)",
+                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE), PRES_REP=_F(GROUP_MA='SZZ', PRES=RAMPE)",
+            ),
+            "not implemented yet: AFFE_CHAR_MECA_F/PRES_REP",
+        ),
+        (
+            "twice_imposed",
+            (
+                "EXCIT=_F(CHARGE=TIRE2, FONC_MULT=DEUX)",
+                "EXCIT=(_F(CHARGE=BLOQ), _F(CHARGE=TIRE2, FONC_MULT=DEUX))",
+            ),
+            "and by another DDL_IMPO",
+        ),
+        (
+            "division_by_zero",
+            (
+                "RAMPE = FORMULE(VALE='U0 * INST', NOM_PARA='INST')",
+                "RAMPE = FORMULE(VALE='U0 * INST / X', NOM_PARA=('INST', 'X'))",
+            ),
+            "DDL_IMPO DZ = RAMPE at INST = 0e0, node N",
+        ),
+        (
+            "not_finite_later",
+            (
+                "RAMPE = FORMULE(VALE='U0 * INST', NOM_PARA='INST')",
+                "RAMPE = FORMULE(VALE='U0 * INST + 0. * sqrt(0.6 - INST)', NOM_PARA='INST')",
+            ),
+            "DDL_IMPO DZ = RAMPE at INST = 7.5e-1, node N",
+        ),
+    ];
+    let export = format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_char_f");
+}

@@ -196,10 +196,9 @@ fn take_nodes(entries: &mut [NodalFunction], target: FunctionTarget, dof: Dof, n
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     for &key in NOT_BUILT {
         if let Some(occ) = args.facts(key).first() {
-            return Err(occ.not_implemented(
-                "",
-                "AFFE_CHAR_MECA_F builds DDL_IMPO and FORCE_NODALE",
-            ));
+            return Err(
+                occ.not_implemented("", "AFFE_CHAR_MECA_F builds DDL_IMPO and FORCE_NODALE")
+            );
         }
     }
     let (model_name, model) = model_of(study, args, "MODELE")?;
@@ -217,7 +216,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut lines = Vec::new();
     for (key, target, cmps) in [
         ("DDL_IMPO", FunctionTarget::Imposed, CMP_DEPL),
-        ("FORCE_NODALE", FunctionTarget::Force, &["FX", "FY", "FZ"][..]),
+        (
+            "FORCE_NODALE",
+            FunctionTarget::Force,
+            &["FX", "FY", "FZ"][..],
+        ),
     ] {
         for (k, occ) in args.facts(key).iter().enumerate() {
             if target == FunctionTarget::Force {

@@ -293,11 +293,12 @@ pub(crate) fn set_loads(
         mult_fns.push(mult.clone());
         parts.push((forces, mult));
     }
-    let functions = function_parts(md, loads, &mult_fns, &engine.asm.numbering)
-        .map_err(|(k, m)| match excits.get(k) {
+    let functions = function_parts(md, loads, &mult_fns, &engine.asm.numbering).map_err(
+        |(k, m)| match excits.get(k) {
             Some(ex) => ex.error("CHARGE", m),
             None => args.error("EXCIT", m),
-        })?;
+        },
+    )?;
     let mut history = crate::nonlinear::loads::LoadHistory::new(parts).with_functions(functions);
     let varying = imposed_under_mult(args, md, loads, mults, study, instants, engine)?;
     for (entries, mult) in varying {
@@ -361,7 +362,10 @@ pub(crate) fn function_parts(
             let mut entries = Vec::with_capacity(nf.nodes.len());
             for &n in &nf.nodes {
                 let Some(f) = full(n, nf.dof) else {
-                    return Err((k, format!("{cmp} of {keyword}: the model has no {}", nf.dof.name())));
+                    return Err((
+                        k,
+                        format!("{cmp} of {keyword}: the model has no {}", nf.dof.name()),
+                    ));
                 };
                 let i = if imposed {
                     if claims.get(&f).copied().unwrap_or(0) > 1 {

@@ -9,7 +9,6 @@
 //! the penalised force ([`penalty`]). The Newton loop drives them through
 //! `nonlinear::unilateral`.
 
-
 /// COEF_MULT or COEF_IMPO: a tabulated or constant function (one
 /// parameter), or a FORMULE (evaluated by parameter name); shared with
 /// AFFE_CHAR_MECA_F's function-valued loads.
