@@ -1,6 +1,7 @@
 //! DEFI_FONCTION: a real function of one parameter given by points
-//! (enough for LIAISON_UNIL's COEF_IMPO of INST or of X, Y, Z, and for
-//! any other tabulated function of the studies).
+//! (enough for LIAISON_UNIL's COEF_IMPO and AFFE_CHAR_MECA_F's values of
+//! INST or of X, Y, Z, and for any other tabulated function of the
+//! studies).
 
 use super::blocks::*;
 use super::{CommandDef, ExecResult};

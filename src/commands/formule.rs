@@ -5,7 +5,8 @@
 //! (`H=H`) or defined earlier in the command file (the checker gathers
 //! them into CONST_NOMS/CONST_VALE). Only the
 //! commands that evaluate code_aster's "function-like" arguments by
-//! parameter name take a formula (LIAISON_UNIL's COEF_IMPO and COEF_MULT);
+//! parameter name take a formula (LIAISON_UNIL's COEF_IMPO and COEF_MULT,
+//! AFFE_CHAR_MECA_F's values);
 //! the others ask for a fonction_sdaster and refuse it by its type.
 
 use super::{CommandDef, ExecResult};

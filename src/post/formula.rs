@@ -231,9 +231,11 @@ pub fn eval_inst_xyz(f: &Coef, inst: f64, x: [f64; 3], what: &str) -> Result<f64
         "X" => x[0],
         "Y" => x[1],
         "Z" => x[2],
-        other => return Err(format!(
+        other => {
+            return Err(format!(
             "{what} is evaluated with INST, X, Y, Z; the function of {other} cannot be evaluated"
-        )),
+        ))
+        }
     };
     f.eval(v)
 }
