@@ -1,7 +1,7 @@
 //! AFFE_CHAR_MECA: mechanical loads and boundary conditions.
 
 use super::blocks::*;
-use super::model_args::{mesh_of_model, model_of, select_cells, select_nodes, selection_label};
+use super::model_args::{load_model, select_cells, select_nodes, selection_label, LoadModel};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
@@ -15,24 +15,13 @@ use crate::model::{
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
-    let mut ddl = vec![
-        tout(),
-        group_ma(),
-        maille(),
-        group_no(),
-        noeud(),
-        text("SANS_GROUP_MA").many().kw(),
-        text("SANS_MAILLE").many().hidden().kw(),
-        text("SANS_GROUP_NO")
-            .many()
-            .doc("nodes excluded from the selection")
-            .kw(),
-        text("SANS_NOEUD").many().hidden().kw(),
+    let mut ddl = ddl_selection();
+    ddl.push(
         text("LIAISON")
             .into(&["ENCASTRE"])
             .doc("'ENCASTRE' blocks every dof")
             .kw(),
-    ];
+    );
     for &c in CMP_DEPL {
         ddl.push(real(c).doc("imposed value of this component").kw());
     }
@@ -177,17 +166,14 @@ fn distributed_fact(name: &'static str, cmps: &[&'static str], doc: &'static str
 /// nodes of the model. Entries are kept in occurrence order, duplicates
 /// included (the engine keeps the last value and fails if two differ).
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
-    let (model_name, model) = model_of(study, args, "MODELE")?;
-    let model = model.clone();
-    let mesh = mesh_of_model(study, args, "MODELE", &model)?;
-    let in_model = model.node_mask(mesh);
-    let model_nodes: Vec<usize> = (0..mesh.nnodes()).filter(|&n| in_model[n]).collect();
-    let dof_names = model
-        .dofs
-        .iter()
-        .map(|d| d.name())
-        .collect::<Vec<_>>()
-        .join(", ");
+    let LoadModel {
+        name: model_name,
+        model,
+        mesh,
+        in_model,
+        nodes: model_nodes,
+        dof_names,
+    } = load_model(study, args)?;
     let mut imposed = Vec::new();
     let mut lines = Vec::new();
     for (k, occ) in args.facts("DDL_IMPO").iter().enumerate() {

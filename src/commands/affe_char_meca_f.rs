@@ -6,7 +6,7 @@
 //! the functions at each step's end instant (`nonlinear::loads`).
 
 use super::blocks::*;
-use super::model_args::{mesh_of_model, model_of, select_nodes, selection_label};
+use super::model_args::{load_model, select_nodes, selection_label, LoadModel};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
@@ -36,20 +36,7 @@ const NOT_BUILT: &[&str] = &[
 ];
 
 pub fn def() -> CommandDef {
-    let mut ddl = vec![
-        tout(),
-        group_ma(),
-        maille(),
-        group_no(),
-        noeud(),
-        text("SANS_GROUP_MA").many().kw(),
-        text("SANS_MAILLE").many().hidden().kw(),
-        text("SANS_GROUP_NO")
-            .many()
-            .doc("nodes excluded from the selection")
-            .kw(),
-        text("SANS_NOEUD").many().hidden().kw(),
-    ];
+    let mut ddl = ddl_selection();
     for &c in CMP_DEPL {
         ddl.push(function(
             c,
@@ -140,18 +127,9 @@ pub fn def() -> CommandDef {
             info(),
         ],
     )
-    .rules(vec![au_moins_un(&[
-        "DDL_IMPO",
-        "FORCE_NODALE",
-        "PRES_REP",
-        "FORCE_FACE",
-        "FORCE_ARETE",
-        "FORCE_CONTOUR",
-        "FORCE_INTERNE",
-        "FACE_IMPO",
-        "LIAISON_DDL",
-        "LIAISON_OBLIQUE",
-    ])])
+    .rules(vec![au_moins_un(
+        &[["DDL_IMPO", "FORCE_NODALE"].as_slice(), NOT_BUILT].concat(),
+    )])
     .doc("Defines mechanical boundary conditions and loads whose values are functions of time (INST) and of the nodes' initial coordinates (X, Y, Z).");
     CommandDef { spec, exec }
 }
@@ -201,17 +179,14 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             );
         }
     }
-    let (model_name, model) = model_of(study, args, "MODELE")?;
-    let model = model.clone();
-    let mesh = mesh_of_model(study, args, "MODELE", &model)?;
-    let in_model = model.node_mask(mesh);
-    let model_nodes: Vec<usize> = (0..mesh.nnodes()).filter(|&n| in_model[n]).collect();
-    let dof_names = model
-        .dofs
-        .iter()
-        .map(|d| d.name())
-        .collect::<Vec<_>>()
-        .join(", ");
+    let LoadModel {
+        name: model_name,
+        model,
+        mesh,
+        in_model,
+        nodes: model_nodes,
+        dof_names,
+    } = load_model(study, args)?;
     let mut functions: Vec<NodalFunction> = Vec::new();
     let mut lines = Vec::new();
     for (key, target, cmps) in [

@@ -914,3 +914,22 @@ pub fn c_test_reference(multi: bool, with_text: bool) -> (Vec<Keyword>, Vec<Rule
     );
     (kws, vec![Rule::Exclusive(calc)])
 }
+
+/// Where a DDL_IMPO applies: TOUT, GROUP_MA, MAILLE, GROUP_NO, NOEUD and
+/// the SANS_* exclusions (AFFE_CHAR_MECA and AFFE_CHAR_MECA_F).
+pub fn ddl_selection() -> Vec<Keyword> {
+    vec![
+        tout(),
+        group_ma(),
+        maille(),
+        group_no(),
+        noeud(),
+        text("SANS_GROUP_MA").many().kw(),
+        text("SANS_MAILLE").many().hidden().kw(),
+        text("SANS_GROUP_NO")
+            .many()
+            .doc("nodes excluded from the selection")
+            .kw(),
+        text("SANS_NOEUD").many().hidden().kw(),
+    ]
+}

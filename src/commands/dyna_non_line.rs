@@ -328,12 +328,7 @@ pub(crate) fn function_parts(
     nb: &crate::nonlinear::dofs::DofNumbering,
 ) -> Result<Vec<crate::nonlinear::loads::FunctionPart>, (usize, String)> {
     use crate::model::FunctionTarget;
-    let index: std::collections::HashMap<usize, usize> = nb
-        .imposed
-        .iter()
-        .enumerate()
-        .map(|(k, &(f, _))| (f, k))
-        .collect();
+    let index = nb.imposed_index();
     let full = |node: usize, dof: crate::model::Dof| {
         md.model
             .dofs
@@ -418,12 +413,7 @@ fn imposed_under_mult(
     engine: &crate::nonlinear::Engine,
 ) -> Result<Vec<ImposedUnderMult>, Diagnostic> {
     let nb = &engine.asm.numbering;
-    let index: std::collections::HashMap<usize, usize> = nb
-        .imposed
-        .iter()
-        .enumerate()
-        .map(|(k, &(f, _))| (f, k))
-        .collect();
+    let index = nb.imposed_index();
     let full = |imp: &crate::model::ImposedDof| {
         md.model
             .dofs

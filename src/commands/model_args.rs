@@ -192,3 +192,37 @@ pub fn real_text(v: f64) -> String {
         format!("{v}")
     }
 }
+
+/// The model a load is defined on (MODELE of AFFE_CHAR_MECA and
+/// AFFE_CHAR_MECA_F): its name, a copy, its mesh, which nodes carry dofs
+/// (as a mask and a list) and the names of those dofs for messages.
+pub struct LoadModel<'s> {
+    pub name: String,
+    pub model: Model,
+    pub mesh: &'s Mesh,
+    pub in_model: Vec<bool>,
+    pub nodes: Vec<usize>,
+    pub dof_names: String,
+}
+
+pub fn load_model<'s>(study: &'s Study, args: &Args) -> Result<LoadModel<'s>, Diagnostic> {
+    let (name, model) = model_of(study, args, "MODELE")?;
+    let model = model.clone();
+    let mesh = mesh_of_model(study, args, "MODELE", &model)?;
+    let in_model = model.node_mask(mesh);
+    let nodes: Vec<usize> = (0..mesh.nnodes()).filter(|&n| in_model[n]).collect();
+    let dof_names = model
+        .dofs
+        .iter()
+        .map(|d| d.name())
+        .collect::<Vec<_>>()
+        .join(", ");
+    Ok(LoadModel {
+        name,
+        model,
+        mesh,
+        in_model,
+        nodes,
+        dof_names,
+    })
+}

@@ -31,6 +31,16 @@ pub struct DofNumbering {
 }
 
 impl DofNumbering {
+    /// Full dof -> its row in `imposed`, for the loads that update
+    /// imposed values in place.
+    pub fn imposed_index(&self) -> std::collections::HashMap<usize, usize> {
+        self.imposed
+            .iter()
+            .enumerate()
+            .map(|(k, &(f, _))| (f, k))
+            .collect()
+    }
+
     pub fn nfull(&self) -> usize {
         self.nnodes * self.ndpn
     }
