@@ -1,7 +1,6 @@
 //! POST_RELEVE_T: extracts field values into a table.
 
 use super::blocks::*;
-use super::mesh_args::{check_groups, GroupKind};
 use super::post_args::{
     cham_no_of, concept_title, is_gauss_name, mesh_for_field, mesh_of_result, node_name, nodes_of,
     result_of, select_steps, step_nodal, table_error,
@@ -325,15 +324,11 @@ fn selected_nodes(mesh: &Mesh, occ: &Args, op: Operation) -> Result<Vec<usize>, 
     if op == Operation::Extraction {
         return Ok(nodes);
     }
-    check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
-    let mut cells: Vec<usize> = occ
-        .texts("GROUP_MA")
-        .iter()
-        .flat_map(|g| mesh.cell_groups[*g].iter().copied())
-        .collect();
-    for name in occ.texts("MAILLE") {
-        cells.push(super::post_args::cell_by_name(mesh, occ, "MAILLE", name)?);
-    }
+    let cells = if occ.has("GROUP_MA") || occ.has("MAILLE") {
+        super::model_args::select_cells(mesh, occ)?
+    } else {
+        Vec::new()
+    };
     let mut seen = vec![false; mesh.nnodes()];
     for &n in &nodes {
         seen[n] = true;
