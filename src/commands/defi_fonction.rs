@@ -11,7 +11,9 @@ use crate::concepts::{ConceptData, ConceptType as C};
 use crate::post::function::{Extrapolation, Function, Interp};
 use crate::study::Study;
 
-const PARAMETERS: &[&str] = &[
+/// The parameters a function may have (code_aster's C_PARA_FONCTION, the
+/// part the studies use).
+pub const PARAMETERS: &[&str] = &[
     "INST", "X", "Y", "Z", "ABSC", "FREQ", "TEMP", "EPSI", "SIGM", "DX", "DY", "DZ",
 ];
 

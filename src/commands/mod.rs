@@ -20,6 +20,8 @@ pub mod affe_materiau;
 pub mod affe_modele;
 pub mod blocks;
 pub mod calc_champ;
+pub mod calc_fonction;
+pub mod calc_table;
 pub mod contact_def;
 pub mod crea_champ;
 pub mod crea_maillage;
@@ -48,6 +50,7 @@ pub mod post_releve_t;
 pub mod recu_fonction;
 pub mod recu_table;
 pub mod stat_non_line;
+pub mod test_fonction;
 pub mod test_resu;
 pub mod test_table;
 
@@ -83,6 +86,8 @@ pub fn all() -> Vec<CommandDef> {
         affe_materiau::def(),
         affe_modele::def(),
         calc_champ::def(),
+        calc_fonction::def(),
+        calc_table::def(),
         crea_champ::def(),
         crea_maillage::def(),
         debut::def(),
@@ -105,6 +110,7 @@ pub fn all() -> Vec<CommandDef> {
         recu_fonction::def(),
         recu_table::def(),
         stat_non_line::def(),
+        test_fonction::def(),
         test_resu::def(),
         test_table::def(),
     ]

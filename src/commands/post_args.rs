@@ -13,7 +13,7 @@ use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
 use crate::diag::{closest, Diagnostic};
 use crate::mesh::Mesh;
-use crate::post::function::Function;
+use crate::post::function::{Extrapolation, Function, Interp};
 use crate::post::table::{CritComp, Filter, FilterValues, Table, TableError};
 use crate::post::test_report::{
     occurrence_checks, CheckLine, Critere, RefKind, Reference, TestSpec, Value as TestValue,
@@ -652,34 +652,65 @@ pub fn report_checks(study: &mut Study, occ: &Args, block: &str, lines: &[CheckL
     study.log(format!("    {}: {}", occ.key_path(""), statuses.join(", ")));
 }
 
+/// The NOM_PARA, NOM_RESU, INTERPOL and PROL_GAUCHE/PROL_DROITE keywords
+/// that RECU_FONCTION and CALC_FONCTION apply to the function they
+/// produce, when given (one INTERPOL value holds for both axes).
+pub fn function_overrides(args: &Args, f: &mut Function) -> Result<(), Diagnostic> {
+    if let Some(p) = args.text("NOM_PARA") {
+        f.para = p.to_string();
+    }
+    if let Some(r) = args.text("NOM_RESU") {
+        f.resu = r.to_string();
+    }
+    let interp = args.texts("INTERPOL");
+    if !interp.is_empty() {
+        let one = |s: &str| match s {
+            "LIN" => Ok(Interp::Lin),
+            "LOG" => Ok(Interp::Log),
+            other => Err(args.not_implemented("INTERPOL", &format!("INTERPOL='{other}'"))),
+        };
+        let x = one(interp[0])?;
+        let y = one(interp.get(1).copied().unwrap_or(interp[0]))?;
+        f.interpolation = (x, y);
+    }
+    for (key, side) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
+        if let Some(p) = args.text(key) {
+            *side = Extrapolation::parse(p)
+                .ok_or_else(|| args.error(key, format!("unknown extension '{p}'")))?;
+        }
+    }
+    Ok(())
+}
+
 /// The FILTRE occurrences of a command (TEST_TABLE, IMPR_TABLE,
 /// RECU_FONCTION), with their defaults.
 pub fn filters_of(args: &Args) -> Result<Vec<Filter>, Diagnostic> {
-    args.facts("FILTRE")
-        .iter()
-        .map(|f| {
-            let crit = f.text("CRIT_COMP").unwrap_or("EQ");
-            let crit_comp = CritComp::parse(crit)
-                .ok_or_else(|| f.error("CRIT_COMP", format!("unknown CRIT_COMP '{crit}'")))?;
-            let values = if f.has("VALE") {
-                FilterValues::Real(f.reals("VALE"))
-            } else if f.has("VALE_I") {
-                FilterValues::Int(f.ints("VALE_I"))
-            } else if f.has("VALE_K") {
-                FilterValues::Text(f.texts("VALE_K").iter().map(|s| s.to_string()).collect())
-            } else {
-                FilterValues::None
-            };
-            let mut filter = Filter::new(f.text("NOM_PARA").unwrap_or_default(), crit_comp, values);
-            if f.text("CRITERE") == Some("ABSOLU") {
-                filter.critere = Critere::Absolu;
-            }
-            if let Some(p) = f.real("PRECISION") {
-                filter.precision = p;
-            }
-            Ok(filter)
-        })
-        .collect()
+    args.facts("FILTRE").iter().map(filter_of).collect()
+}
+
+/// One filter from the keywords of `f` (a FILTRE occurrence, or CALC_TABLE's
+/// ACTION occurrence with OPERATION='FILTRE', which holds the same ones).
+pub fn filter_of(f: &Args) -> Result<Filter, Diagnostic> {
+    let crit = f.text("CRIT_COMP").unwrap_or("EQ");
+    let crit_comp = CritComp::parse(crit)
+        .ok_or_else(|| f.error("CRIT_COMP", format!("unknown CRIT_COMP '{crit}'")))?;
+    let values = if f.has("VALE") {
+        FilterValues::Real(f.reals("VALE"))
+    } else if f.has("VALE_I") {
+        FilterValues::Int(f.ints("VALE_I"))
+    } else if f.has("VALE_K") {
+        FilterValues::Text(f.texts("VALE_K").iter().map(|s| s.to_string()).collect())
+    } else {
+        FilterValues::None
+    };
+    let mut filter = Filter::new(f.text("NOM_PARA").unwrap_or_default(), crit_comp, values);
+    if f.text("CRITERE") == Some("ABSOLU") {
+        filter.critere = Critere::Absolu;
+    }
+    if let Some(p) = f.real("PRECISION") {
+        filter.precision = p;
+    }
+    Ok(filter)
 }
 
 #[cfg(test)]

@@ -2,8 +2,9 @@
 
 use super::blocks::*;
 use super::post_args::{
-    alarm, cell_name, component_index, filters_of, is_gauss_name, mesh_of_result, node_name,
-    nodes_of, result_of, select_steps, single_cell, step_gauss, step_nodal, table_error, table_of,
+    alarm, cell_name, component_index, filters_of, function_overrides, is_gauss_name,
+    mesh_of_result, node_name, nodes_of, result_of, select_steps, single_cell, step_gauss,
+    step_nodal, table_error, table_of,
 };
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
@@ -11,7 +12,7 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
-use crate::post::function::{Extrapolation, Function, Interp};
+use crate::post::function::Function;
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -127,29 +128,7 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     } else {
         from_table(study, args)?
     };
-    if let Some(p) = args.text("NOM_PARA") {
-        f.para = p.to_string();
-    }
-    if let Some(r) = args.text("NOM_RESU") {
-        f.resu = r.to_string();
-    }
-    let interp = args.texts("INTERPOL");
-    if !interp.is_empty() {
-        let one = |s: &str| match s {
-            "LIN" => Ok(Interp::Lin),
-            "LOG" => Ok(Interp::Log),
-            other => Err(args.not_implemented("INTERPOL", &format!("INTERPOL='{other}'"))),
-        };
-        let x = one(interp[0])?;
-        let y = one(interp.get(1).copied().unwrap_or(interp[0]))?;
-        f.interpolation = (x, y);
-    }
-    for (key, side) in [("PROL_GAUCHE", &mut f.left), ("PROL_DROITE", &mut f.right)] {
-        if let Some(p) = args.text(key) {
-            *side = Extrapolation::parse(p)
-                .ok_or_else(|| args.error(key, format!("unknown extension '{p}'")))?;
-        }
-    }
+    function_overrides(args, &mut f)?;
     Ok(Some(ConceptData::Function(Box::new(f))))
 }
 

@@ -1,5 +1,7 @@
 //! Post-processing: tables, the TEST_RESU/TEST_TABLE report, printed results.
 
+pub mod calc_fonction;
+pub mod calc_table;
 pub mod formula;
 pub mod function;
 pub mod table;

@@ -85,14 +85,14 @@ pub struct TableError {
 }
 
 impl TableError {
-    fn new(message: impl Into<String>) -> TableError {
+    pub(crate) fn new(message: impl Into<String>) -> TableError {
         TableError {
             keyword: None,
             message: message.into(),
         }
     }
 
-    fn at(mut self, keyword: &str) -> TableError {
+    pub(crate) fn at(mut self, keyword: &str) -> TableError {
         self.keyword = Some(keyword.to_string());
         self
     }
@@ -243,6 +243,22 @@ impl Filter {
     }
 }
 
+impl Filter {
+    /// Appends the line code_aster writes in the title of a filtered table
+    /// (impr_table_ops and calc_table_ops trace their FILTRE the same way).
+    pub fn trace_in_title(&self, title: &mut Vec<String>) {
+        if title.is_empty() {
+            title.push(String::new());
+        }
+        title.push(format!(
+            "FILTRE -> NOM_PARA: {:<16} CRIT_COMP: {:<4} VALE: {}",
+            self.nom_para,
+            self.crit_comp.as_str(),
+            self.values.py_strs().join(" ")
+        ));
+    }
+}
+
 impl Table {
     pub fn new() -> Table {
         Table::default()
@@ -270,7 +286,7 @@ impl Table {
     }
 
     /// Declared or inferred types of all the columns.
-    fn all_types(&self) -> Vec<ColumnType> {
+    pub(crate) fn all_types(&self) -> Vec<ColumnType> {
         (0..self.columns.len())
             .map(|i| self.column_type(i))
             .collect()
@@ -352,7 +368,7 @@ impl Table {
         self.push_row(row)
     }
 
-    fn index_or_error(&self, name: &str, keyword: &str) -> Result<usize, TableError> {
+    pub(crate) fn index_or_error(&self, name: &str, keyword: &str) -> Result<usize, TableError> {
         self.column_index(name).ok_or_else(|| {
             let mut msg = format!("the table has no column '{name}'");
             if let Some(c) = crate::diag::closest(name, &self.columns) {
@@ -596,17 +612,7 @@ impl Table {
         }
         for f in &opts.filters {
             t = t.filter(f)?;
-            // The filter is traced in the title, as impr_table_ops does.
-            let trace = format!(
-                "FILTRE -> NOM_PARA: {:<16} CRIT_COMP: {:<4} VALE: {}",
-                f.nom_para,
-                f.crit_comp.as_str(),
-                f.values.py_strs().join(" ")
-            );
-            if t.title.is_empty() {
-                t.title.push(String::new());
-            }
-            t.title.push(trace);
+            f.trace_in_title(&mut t.title);
         }
         if let Some((keys, descending)) = &opts.tri {
             let keys: Vec<&str> = keys.iter().map(String::as_str).collect();

@@ -711,6 +711,28 @@ pub fn resu_block(resultat: &str, fields: &[(&str, &str)], lines: &[CheckLine]) 
     out
 }
 
+/// The .resu block of one TEST_FONCTION VALEUR occurrence: the header
+/// (`---- FONCTION`, the parameter and its value), the check lines and the
+/// closing blank record, as TEST_RESU's blocks.
+pub fn function_block(function: &str, para: &str, value: f64, lines: &[CheckLine]) -> String {
+    let mut out = String::new();
+    let v = py_repr(value);
+    for l in header_lines(
+        "FONCTION",
+        function,
+        &[("NOM_PARA", para), ("VALE_PARA", &v)],
+    ) {
+        out.push_str(&l);
+        out.push('\n');
+    }
+    for l in format_checks(lines) {
+        out.push_str(&l);
+        out.push('\n');
+    }
+    out.push_str("  \n");
+    out
+}
+
 /// The .resu block of one TEST_TABLE: an empty line and 80 dashes, the
 /// header (`---- TABLE`, `NOM_PARA`, and `TYPE_TEST` when given), the check
 /// lines and the closing blank record.
