@@ -875,6 +875,8 @@ const CHEAP: &[&str] = &[
     "tests/verification/patch_axis.comm",
     "tests/verification/contact_landing.comm",
     "tests/verification/unil_axis_drop.comm",
+    "tests/verification/calc_fonction.comm",
+    "tests/verification/calc_table.comm",
 ];
 
 /// Longer than any damaged cheap study should take (they run in well under

@@ -1448,3 +1448,174 @@ fn bad_function_valued_loads_are_located_errors() {
     let export = format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display());
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_char_f");
 }
+
+/// CALC_FONCTION against closed forms and hand values: INTEGRE of a
+/// sampled sin within the trapezoid rule's bound x h^2 / 12 of 1 - cos x
+/// (and within 2e-6 of its Euler-Maclaurin term 2 - h^2/6 at pi), DERIVE
+/// of x^2 exact at the inner points, COMB (with the support cut to where
+/// both functions can be evaluated, and LIST_PARA), ABS, MULT, PUISSANCE,
+/// INVERSE and ENVELOPPE exact, by TEST_FONCTION.
+#[test]
+fn calc_fonction_matches_closed_forms() {
+    let resu = run_study("calc_fonction");
+    // COMB's support: the union of both abscissa lists cut to [0, 2].
+    let printed: Vec<(f64, f64)> = resu
+        .lines()
+        .skip_while(|l| !l.contains("TOUTRESU_0"))
+        .skip(1)
+        .take_while(|l| !l.trim().is_empty())
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            (v[0], v[1])
+        })
+        .collect();
+    assert_eq!(
+        printed,
+        vec![(0.0, 0.0), (0.5, 2.5), (1.0, 5.0), (1.5, 7.5), (2.0, 10.0)]
+    );
+}
+
+/// CALC_TABLE on POST_RELEVE_T tables of the D_PLAN patch (exact field
+/// u_y = B y): FILTRE (GT, MAXI, EQ with ABSOLU, NE on texts, LE), EXTR,
+/// SUPPRIME, TRI, RENOMME, COMB with and without labels, OPER with and
+/// without NOM_COLONNE and reuse=, each checked by TEST_TABLE against hand
+/// values; EXTR, SUPPRIME and TRI also by the printed tables.
+#[test]
+fn calc_table_on_post_releve_tables() {
+    let resu = run_study("calc_table");
+    let ex = printed_table(&resu, "T_EX");
+    assert_eq!(ex.len(), 8);
+    let mut cols: Vec<&String> = ex[0].keys().collect();
+    cols.sort();
+    assert_eq!(cols, ["DY", "NOEUD"]);
+    let sup = printed_table(&resu, "T_SUP");
+    assert_eq!(sup.len(), 8);
+    assert!(sup[0].contains_key("COOR_Y") && sup[0].contains_key("RESU"));
+    assert!(!sup[0].contains_key("COOR_X") && !sup[0].contains_key("INTITULE"));
+    let tri = printed_table(&resu, "T_TRI");
+    let order: Vec<&str> = tri.iter().map(|r| r["NOEUD"].as_str()).collect();
+    assert_eq!(order, ["N4", "N12", "N5", "N13", "N11", "N1", "N2", "N10"]);
+    let dy: Vec<f64> = tri.iter().map(|r| num(r, "DY")).collect();
+    assert!(dy.windows(2).all(|w| w[0] >= w[1]), "{dy:?}");
+}
+
+/// Bad CALC_TABLE and CALC_FONCTION input is a located error naming the
+/// command, the keyword and what would be valid.
+#[test]
+fn bad_calc_table_and_calc_fonction_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("calc_post_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("calc_table.comm")).unwrap();
+    let cases = [
+        (
+            "extr_unknown",
+            (
+                "OPERATION='EXTR', NOM_PARA=('NOEUD', 'DY')))",
+                "OPERATION='EXTR', NOM_PARA=('NOEUD', 'DZ')))",
+            ),
+            "CALC_TABLE/ACTION/NOM_PARA: the table has no column 'DZ'; did you mean 'DY'?",
+        ),
+        (
+            "operation",
+            (
+                "OPERATION='EXTR', NOM_PARA=('NOEUD', 'DY')))",
+                "OPERATION='EXTRA', NOM_PARA=('NOEUD', 'DY')))",
+            ),
+            "'EXTRA' is not an allowed value of OPERATION",
+        ),
+        (
+            "vale_on_text",
+            ("VALE_K=('N1', 'N2')", "VALE=(1., 2.)"),
+            "CALC_TABLE/ACTION/VALE: FILTRE on 'NOEUD': the column holds text values (K8), so the value must be given with VALE_K",
+        ),
+        (
+            "rename_onto",
+            (
+                "NOM_PARA=('DY', 'UY')))\nTEST",
+                "NOM_PARA=('DY', 'NOEUD')))\nTEST",
+            ),
+            "cannot rename 'DY' to 'NOEUD': the table already has a column 'NOEUD'",
+        ),
+        (
+            "comb_label",
+            (
+                "NOM_PARA=('NOEUD', 'NUME_ORDRE')))",
+                "NOM_PARA=('NOEUD', 'NUME_ORDR')))",
+            ),
+            "no column 'NUME_ORDR'; did you mean 'NUME_ORDRE'?",
+        ),
+        (
+            "oper_columns",
+            ("NOM_COLONNE='COOR_Y'", "NOM_COLONNE=('COOR_Y', 'DY')"),
+            "CALC_TABLE/ACTION/NOM_COLONNE: NOM_COLONNE gives 2 columns for the 1 parameters",
+        ),
+        (
+            "regexp",
+            (
+                "CRIT_COMP='NE',\n                                        VALE_K=('N1', 'N2')",
+                "CRIT_COMP='REGEXP', VALE_K='N1.*'",
+            ),
+            "not implemented yet: CALC_TABLE/ACTION/CRIT_COMP",
+        ),
+    ];
+    let export = format!("F mmed {} D 20\n", dir().join("patch.mmed").display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_calc_table");
+
+    let comm = std::fs::read_to_string(dir().join("calc_fonction.comm")).unwrap();
+    let comb = "C = CALC_FONCTION(COMB=(_F(FONCTION=F1, COEF=3.), _F(FONCTION=F2, COEF=1.)))";
+    let cases = [
+        (
+            "two_ops",
+            (
+                comb,
+                "C = CALC_FONCTION(COMB=_F(FONCTION=F1, COEF=3.), ABS=_F(FONCTION=F1))",
+            ),
+            "CALC_FONCTION: exactly one of INTEGRE, DERIVE, COMB",
+        ),
+        (
+            "spec_osci",
+            (
+                "V_SIN1 = CALC_FONCTION(INTEGRE=_F(FONCTION=F_SIN, COEF=1.))",
+                "V_SIN1 = CALC_FONCTION(SPEC_OSCI=_F(FONCTION=F_SIN, NORME=9.81))",
+            ),
+            "not implemented yet: CALC_FONCTION/SPEC_OSCI (operations built: INTEGRE",
+        ),
+        (
+            "simpson",
+            (
+                "_F(FONCTION=F_SIN, COEF=1.)",
+                "_F(FONCTION=F_SIN, COEF=1., METHODE='SIMPSON')",
+            ),
+            "not implemented yet: CALC_FONCTION/INTEGRE/METHODE",
+        ),
+        (
+            "disjoint",
+            (
+                "VALE=(0.5, 1., 1.5, 3., 3., 6.), PROL_GAUCHE='LINEAIRE'",
+                "VALE=(2.5, 1., 2.6, 3., 3., 6.)",
+            ),
+            "CALC_FONCTION/COMB: the domains of F2 [2.5, 3.0] and the sum of F1 [0.0, 2.0] do not overlap",
+        ),
+        (
+            "outside",
+            ("VALE_PARA=2., VALE_CALC=10.", "VALE_PARA=2.5, VALE_CALC=10."),
+            "TEST_FONCTION/VALEUR/VALE_PARA",
+        ),
+        (
+            "overflow",
+            ("_F(FONCTION=F2, COEF=1.)))\nC_L", "_F(FONCTION=F2, COEF=1.E308)))\nC_L"),
+            "CALC_FONCTION/COMB: F2: a function ordinate is not finite",
+        ),
+        (
+            "not_monotonic",
+            ("INVERSE=_F(FONCTION=F2)", "INVERSE=_F(FONCTION=FA)"),
+            "CALC_FONCTION/INVERSE/FONCTION: FA cannot be inverted, it is not strictly monotonic",
+        ),
+        (
+            "exposant",
+            ("EXPOSANT=3", "EXPOSANT=0"),
+            "CALC_FONCTION/PUISSANCE/EXPOSANT",
+        ),
+    ];
+    expect_located_errors(&comm, &cases, &tmp, "", "verif_calc_fonction");
+}

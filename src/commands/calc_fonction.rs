@@ -316,6 +316,18 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             on(ops::envelope(&fs, upper), first)?
         }
     };
+    // Large COEF or EXPOSANT values, or steps near round-off in DERIVE,
+    // overflow: refused here rather than stored and tested.
+    if let Some(i) = f.ordinates.iter().position(|y| !y.is_finite()) {
+        return Err(args.error(
+            op,
+            format!(
+                "the result of {op} is not finite at {}={} (overflow)",
+                f.para,
+                crate::post::test_report::py_repr(f.abscissas[i])
+            ),
+        ));
+    }
     function_overrides(args, &mut f)?;
     Ok(Some(ConceptData::Function(Box::new(f))))
 }

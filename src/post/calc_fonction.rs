@@ -260,13 +260,23 @@ pub fn combine(terms: &[(Named, f64)]) -> Result<Function, String> {
         return Err("COMB needs at least one function".to_string());
     };
     let mut acc: Option<Function> = None;
+    let mut so_far = String::new();
     for &(f, coef) in terms {
         let g = tabulated(f)?;
         let scaled = with_ordinates(g, g.ordinates.iter().map(|y| coef * y).collect());
         acc = Some(match acc {
             None => scaled,
-            Some(sum) => binary((f.0, &scaled), ("the sum so far", &sum), |p, q| p + q)?,
+            Some(sum) => binary(
+                (f.0, &scaled),
+                (&format!("the sum of {so_far}"), &sum),
+                |p, q| p + q,
+            )?,
         });
+        so_far = if so_far.is_empty() {
+            f.0.to_string()
+        } else {
+            format!("{so_far}, {}", f.0)
+        };
     }
     let r = acc.ok_or_else(|| "COMB needs at least one function".to_string())?;
     Ok(take_parameters(r, first.1))
@@ -278,12 +288,22 @@ pub fn multiply(factors: &[Named]) -> Result<Function, String> {
         return Err("MULT needs at least one function".to_string());
     };
     let mut acc: Option<Function> = None;
+    let mut so_far = String::new();
     for &f in factors {
         let g = tabulated(f)?;
         acc = Some(match acc {
             None => g.clone(),
-            Some(prod) => binary((f.0, g), ("the product so far", &prod), |p, q| p * q)?,
+            Some(prod) => binary(
+                (f.0, g),
+                (&format!("the product of {so_far}"), &prod),
+                |p, q| p * q,
+            )?,
         });
+        so_far = if so_far.is_empty() {
+            f.0.to_string()
+        } else {
+            format!("{so_far}, {}", f.0)
+        };
     }
     let r = acc.ok_or_else(|| "MULT needs at least one function".to_string())?;
     Ok(take_parameters(r, first.1))
