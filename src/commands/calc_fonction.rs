@@ -9,7 +9,7 @@
 
 use super::blocks::*;
 use super::defi_fonction::PARAMETERS;
-use super::post_args::{function_of, function_overrides};
+use super::post_args::{function_named, function_of, function_overrides};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
@@ -310,7 +310,7 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         _ => {
             let mut fs = Vec::new();
             for name in first.concepts("FONCTION") {
-                fs.push(named_function(study, first, name)?);
+                fs.push(function_named(study, first, "FONCTION", name)?);
             }
             let upper = first.text("CRITERE") != Some("INF");
             on(ops::envelope(&fs, upper), first)?
@@ -330,26 +330,6 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     }
     function_overrides(args, &mut f)?;
     Ok(Some(ConceptData::Function(Box::new(f))))
-}
-
-/// One function of a list-valued FONCTION (ENVELOPPE).
-fn named_function<'s>(
-    study: &'s Study,
-    at: &Args,
-    name: &str,
-) -> Result<(&'s str, &'s Function), Diagnostic> {
-    match study.concepts.get(name) {
-        Some(c) => match &c.data {
-            ConceptData::Function(f) => Ok((c.name.as_str(), f)),
-            _ => Err(at.error(
-                "FONCTION",
-                format!(
-                    "{name} holds no function (its command did not run or produced something else)"
-                ),
-            )),
-        },
-        None => Err(at.error("FONCTION", format!("{name} is not a concept of this study"))),
-    }
 }
 
 /// The COMB / MULT result evaluated at LIST_PARA, when given.

@@ -127,6 +127,17 @@ pub fn function_of<'s>(
     let name = args
         .concept(key)
         .ok_or_else(|| args.error(key, "a function concept is expected"))?;
+    function_named(study, args, key, name)
+}
+
+/// The function `name`, one of the values of `key` (ENVELOPPE's FONCTION
+/// list), with its name.
+pub fn function_named<'s>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+    name: &str,
+) -> Result<(&'s str, &'s Function), Diagnostic> {
     match study.concepts.get(name) {
         Some(c) => match &c.data {
             ConceptData::Function(f) => Ok((c.name.as_str(), f)),
