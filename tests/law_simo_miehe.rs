@@ -256,12 +256,19 @@ fn uniaxial(law: &SimoMiehe, lambda: f64, n: usize) -> (FiniteStrainOutput, f64)
 /// with ε_iso = ln λ − ⅓ ln J the isochoric axial log strain, and
 /// a = exp(2 ε_iso) while elastic. Returns p at stretch λ.
 fn uniaxial_reference_p(law: &SimoMiehe, lambda: f64) -> f64 {
-    let (mu, k, h, sy) = (
-        law.elas.mu(),
-        law.elas.bulk(),
-        law.hardening_modulus(),
-        law.ecro.sy,
-    );
+    let (sy, h) = (law.ecro.sy, law.hardening_modulus());
+    uniaxial_reference_p_of(law, |p| sy + h * p, |_| h, lambda)
+}
+
+/// [`uniaxial_reference_p`] for any hardening R(p) with slope R'(p) (the
+/// hand derivation holds with H = R'(p) at each p).
+fn uniaxial_reference_p_of(
+    law: &SimoMiehe,
+    r: impl Fn(f64) -> f64,
+    rp: impl Fn(f64) -> f64,
+    lambda: f64,
+) -> f64 {
+    let (mu, k) = (law.elas.mu(), law.elas.bulk());
     let g = |a: f64| a - a.powf(-0.5);
     let a_of_tau = |t: f64| {
         let mut a = 1.0;
@@ -272,11 +279,11 @@ fn uniaxial_reference_p(law: &SimoMiehe, lambda: f64) -> f64 {
     };
     let j_of_a = |a: f64| (1.0 + 2.0 * mu * g(a) / (3.0 * k)).sqrt();
     let deps_dp = |p: f64| {
-        let a = a_of_tau(sy + h * p);
+        let a = a_of_tau(r(p));
         let i = (a + 2.0 * a.powf(-0.5)) / 3.0;
-        (i + h / (3.0 * mu)) / (2.0 / 3.0 * (a + 0.5 * a.powf(-0.5)))
+        (i + rp(p) / (3.0 * mu)) / (2.0 / 3.0 * (a + 0.5 * a.powf(-0.5)))
     };
-    let a_y = a_of_tau(sy);
+    let a_y = a_of_tau(r(0.0));
     // ln λ as a function of p (composite Simpson on 2000 intervals).
     let ln_lambda = |p: f64| {
         let n = 2000;
@@ -285,7 +292,7 @@ fn uniaxial_reference_p(law: &SimoMiehe, lambda: f64) -> f64 {
         for i in 1..n {
             s += if i % 2 == 1 { 4.0 } else { 2.0 } * deps_dp(i as f64 * dx);
         }
-        0.5 * a_y.ln() + s * dx / 3.0 + j_of_a(a_of_tau(sy + h * p)).ln() / 3.0
+        0.5 * a_y.ln() + s * dx / 3.0 + j_of_a(a_of_tau(r(p))).ln() / 3.0
     };
     let (mut lo, mut hi) = (0.0, 2.0 * lambda.ln());
     for _ in 0..60 {
@@ -297,6 +304,42 @@ fn uniaxial_reference_p(law: &SimoMiehe, lambda: f64) -> f64 {
         }
     }
     0.5 * (lo + hi)
+}
+
+/// VMIS_ISOT_TRAC under SIMO_MIEHE (a traction curve of three points,
+/// continued linearly) against the same continuum solution with R(p) the
+/// curve: first-order convergence in the step, the extrapolation within
+/// 1e-4 (Simpson across the curve's kinks is the reference's own limit),
+/// and τ = R(p) at the end.
+#[test]
+fn traction_curve_uniaxial_matches_the_continuum_solution() {
+    use aster::law::vmis_isot_trac::{RightExtension, TractionCurve};
+    let elas = ElasParams::new(117e3, 0.35, None).unwrap();
+    let eps1 = 400.0 / 117e3;
+    let curve = TractionCurve::new(
+        &[eps1, 0.05, 0.3],
+        &[400.0, 600.0, 700.0],
+        RightExtension::Linear,
+    )
+    .unwrap();
+    let law = SimoMiehe::with_curve(elas, curve.clone());
+    let h = 1e-6;
+    let rp = |p: f64| (curve.r(p + h) - curve.r(p)) / h;
+    let lambda = 1.5;
+    let p_ref = uniaxial_reference_p_of(&law, |p| curve.r(p), rp, lambda);
+    let (o200, _) = uniaxial(&law, lambda, 200);
+    let (o400, _) = uniaxial(&law, lambda, 400);
+    let p200 = o200.internal.as_slice()[0];
+    let p400 = o400.internal.as_slice()[0];
+    assert!(p400 > 0.3, "the path passes both kinks: p = {p400}");
+    let p_extra = 2.0 * p400 - p200;
+    assert!(
+        (p_extra - p_ref).abs() < 1e-4 * p_ref,
+        "extrapolated p {p_extra} vs {p_ref}"
+    );
+    assert!((p400 - p_ref).abs() < 2e-3 * p_ref, "p {p400} vs {p_ref}");
+    let tau = o400.kirchhoff[(0, 0)];
+    assert!((tau - curve.r(p400)).abs() < 1e-9 * tau);
 }
 
 #[test]

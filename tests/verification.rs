@@ -1303,6 +1303,68 @@ fn a_cycling_point_is_detected_and_reported() {
     assert!(!t.contains("Newton did not converge"), "{t}");
 }
 
+/// VMIS_ISOT_TRAC on a column under uniaxial stress, loaded past both
+/// kinks and the last point of its traction curve then unloaded: the
+/// stress is the curve itself (HEXA8 and HEXS8 in PETIT, the curve of the
+/// logarithmic strain in GDEF_LOG), p = e - sigma/E, elastic unloading
+/// with the curve's E (1e-9).
+#[test]
+fn traction_curve_hardening_gives_back_the_curve() {
+    run_study("trac_bar");
+}
+
+/// Bad VMIS_ISOT_TRAC input: a curve of another parameter than EPSI, a
+/// segment steeper than the first slope, a falling curve, VMIS_ISOT_TRAC
+/// on a material without TRACTION, a strain past the last point of a
+/// curve excluded there: located errors, no panic.
+#[test]
+fn bad_traction_curves_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("trac_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("trac_bar.comm")).unwrap();
+    let curve =
+        "SIG1 = DEFI_FONCTION(NOM_PARA='EPSI', VALE=(1.E-3, 200., 0.011, 300., 0.061, 400.),";
+    let cases = [
+        (
+            "para",
+            (curve, &curve.replace("'EPSI'", "'INST'")[..]),
+            "must be a function of NOM_PARA='EPSI'",
+        ),
+        (
+            "steep",
+            (curve, &curve.replace("0.011, 300.", "1.1E-3, 300.")[..]),
+            "at least as steep as the first slope",
+        ),
+        (
+            "softening",
+            (curve, &curve.replace("0.061, 400.", "0.061, 250.")[..]),
+            "not implemented yet: a falling traction curve",
+        ),
+        (
+            "no_traction",
+            (
+                "TRACTION=_F(SIGM=SIG1))",
+                "ECRO_LINE=_F(SY=200., D_SIGM_EPSI=2000.))",
+            ),
+            "TRACTION/SIGM is needed by RELATION='VMIS_ISOT_TRAC'",
+        ),
+        (
+            "excluded",
+            ("PROL_DROITE='LINEAIRE')\n", "PROL_DROITE='EXCLU')\n"),
+            "PROL_DROITE='EXCLU'",
+        ),
+    ];
+    let cases: Vec<(&str, (&str, &str), &str)> = cases
+        .iter()
+        .map(|(t, (a, b), w)| (*t, (*a, *b), *w))
+        .collect();
+    let export = format!(
+        "F mmed {} D 20\n",
+        dir().join("../studies/hexs8_beam1.mmed").display()
+    );
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_trac");
+}
+
 /// Each one-change variant of `comm` (tag, (from, to), expected text) run
 /// with `export` from `tmp`: exit 1, the expected text, the variant's own
 /// file:line, no panic.

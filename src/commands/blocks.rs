@@ -157,7 +157,7 @@ pub const NOM_CHAM_RESU: &[&str] = &[
 /// The constitutive laws aster knows by name (code_aster's `C_RELATION`
 /// restricted to the laws of the impact studies); the law registry
 /// decides which ones actually run.
-pub const RELATIONS: &[&str] = &["ELAS", "VMIS_ISOT_LINE", "VMIS_JOHN_COOK"];
+pub const RELATIONS: &[&str] = &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC", "VMIS_JOHN_COOK"];
 
 /// Solid modelisations of `AFFE_MODELE` (code_aster's list restricted to
 /// continuum mechanics; shells, beams and THM are outside aster's scope).
@@ -262,7 +262,7 @@ pub fn c_comportement() -> Keyword {
             oui_non("REGU_VISC", "NON").kw(),
             block(
                 "b_crirupt",
-                eq("RELATION", "VMIS_ISOT_LINE"),
+                is_in("RELATION", &["VMIS_ISOT_LINE", "VMIS_ISOT_TRAC"]),
                 vec![text("POST_ITER")
                     .into(&["CRIT_RUPT"])
                     .doc("element deletion on a critical stress")

@@ -9,7 +9,10 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
-use crate::model::Material;
+use crate::diag::Diagnostic;
+use crate::law::vmis_isot_trac::{RightExtension, TractionCurve};
+use crate::model::{Material, MaterialCurve};
+use crate::post::function::Extrapolation;
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -57,6 +60,15 @@ pub fn def() -> CommandDef {
             .doc("linear isotropic hardening (VMIS_ISOT_LINE)")
             .kw(),
             fact(
+                "TRACTION",
+                vec![concept("SIGM", &[C::Fonction])
+                    .required()
+                    .doc("uniaxial traction curve σ(ε), NOM_PARA='EPSI': the first point is the elastic limit and sets the law's Young's modulus SIGM/EPSI; PROL_DROITE says what lies past the last point")
+                    .kw()],
+            )
+            .doc("isotropic hardening by a traction curve (VMIS_ISOT_TRAC)")
+            .kw(),
+            fact(
                 "ECRO_COOK",
                 vec![
                     real("A").required().min_val(0.0).doc("initial yield stress").kw(),
@@ -83,7 +95,7 @@ pub fn def() -> CommandDef {
         ],
     )
     .rules(vec![
-        au_moins_un(&["ELAS", "ECRO_LINE", "ECRO_COOK"]),
+        au_moins_un(&["ELAS", "ECRO_LINE", "ECRO_COOK", "TRACTION"]),
         exclus(&["ECRO_LINE", "ECRO_COOK"]),
     ])
     .doc("Defines a material: one factor keyword per behaviour ingredient.");
@@ -109,6 +121,7 @@ const ECRO_COOK_ABSENT: [(&str, f64); 5] = [
 /// what code_aster checks before any computation can use the material.
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut mat = Material::default();
+    let mut notes = Vec::new();
     for block in BLOCKS {
         let Some(occ) = args.fact(block) else {
             continue;
@@ -126,7 +139,18 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         }
         mat.blocks.insert(block.to_string(), params);
     }
-    for block in ["ECRO_LINE", "ECRO_COOK"] {
+    if let Some(occ) = args.fact("TRACTION") {
+        let curve = traction_curve(study, occ)?;
+        notes.push(format!(
+            "      TRACTION: {} points, Young's modulus of VMIS_ISOT_TRAC SIGM/EPSI of the first point = {}, yield stress {}",
+            curve.abscissas.len(),
+            curve.ordinates[0] / curve.abscissas[0],
+            curve.ordinates[0]
+        ));
+        mat.curves.insert("TRACTION/SIGM".to_string(), curve);
+        mat.blocks.insert("TRACTION".to_string(), IndexMap::new());
+    }
+    for block in ["ECRO_LINE", "ECRO_COOK", "TRACTION"] {
         if mat.blocks.contains_key(block) && !mat.blocks.contains_key("ELAS") {
             return Err(args.error(
                 block,
@@ -151,7 +175,15 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             return Err(occ.error("NU", format!("{why} (NU = {nu})")));
         }
     }
-    let mut notes = Vec::new();
+    if let (Some(e), Some(c)) = (mat.get("ELAS", "E"), mat.curve("TRACTION", "SIGM")) {
+        let ec = c.ordinates[0] / c.abscissas[0];
+        if ((ec - e) / e).abs() > 1e-3 {
+            notes.push(format!(
+                "      alarm: ELAS/E = {e} but the first point of TRACTION/SIGM gives E = {ec}: \
+                 VMIS_ISOT_TRAC uses the latter (as code_aster's rctrac), ELAS/E serves the other laws"
+            ));
+        }
+    }
     if let (Some(e), Some(et)) = (mat.get("ELAS", "E"), mat.get("ECRO_LINE", "D_SIGM_EPSI")) {
         if et >= e {
             let occ = args.fact("ECRO_LINE").unwrap_or(args);
@@ -186,4 +218,38 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         study.log(n);
     }
     Ok(Some(ConceptData::Material(Box::new(mat))))
+}
+
+/// TRACTION/SIGM: a tabulated function of EPSI that makes a valid R(p)
+/// (checked here so that the error names DEFI_MATERIAU, not the first
+/// step); a constant function is refused as by code_aster (MODELISA6_88).
+fn traction_curve(study: &Study, occ: &Args) -> Result<MaterialCurve, Diagnostic> {
+    let name = occ.concept("SIGM").unwrap_or("");
+    let Some(ConceptData::Function(f)) = study.concepts.data(name) else {
+        return Err(occ.error(
+            "SIGM",
+            format!("{name} holds no function (its command did not run)"),
+        ));
+    };
+    if f.para != "EPSI" {
+        return Err(occ.error(
+            "SIGM",
+            format!(
+                "the traction curve {name} must be a function of NOM_PARA='EPSI' (the strain), not '{}'",
+                f.para
+            ),
+        ));
+    }
+    let right = match f.right {
+        Extrapolation::Excluded => RightExtension::Excluded,
+        Extrapolation::Constant => RightExtension::Constant,
+        Extrapolation::Linear => RightExtension::Linear,
+    };
+    TractionCurve::new(&f.abscissas, &f.ordinates, right)
+        .map_err(|e| occ.error("SIGM", format!("{name}: {}", e.message)))?;
+    Ok(MaterialCurve {
+        abscissas: f.abscissas.clone(),
+        ordinates: f.ordinates.clone(),
+        right: f.right,
+    })
 }

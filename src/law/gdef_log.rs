@@ -36,6 +36,7 @@ use nalgebra::{Matrix3, SymmetricEigen};
 use super::john_cook;
 use super::simo_miehe::{FiniteStrainInput, FiniteStrainOutput, Mat9};
 use super::vmis_isot_line;
+use super::vmis_isot_trac;
 use super::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
 use super::{
     IntegrationFailure, InternalVars, LawMetadata, SmallStrainBehaviour, SmallStrainInput,
@@ -48,6 +49,15 @@ pub const EXTRA: [&str; 6] = ["TXX", "TYY", "TZZ", "TXY", "TXZ", "TYZ"];
 /// VMIS_ISOT_LINE + GDEF_LOG: V1..V2 then the six extra variables.
 pub static ISOT_LINE_LOG: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_LINE",
+    internal_variables: &[
+        "EPSPEQ", "INDIPLAS", "TXX", "TYY", "TZZ", "TXY", "TXZ", "TYZ",
+    ],
+    strain_measures: &[StrainMeasure::GdefLog],
+};
+
+/// VMIS_ISOT_TRAC + GDEF_LOG: as VMIS_ISOT_LINE.
+pub static ISOT_TRAC_LOG: LawMetadata = LawMetadata {
+    name: "VMIS_ISOT_TRAC",
     internal_variables: &[
         "EPSPEQ", "INDIPLAS", "TXX", "TYY", "TZZ", "TXY", "TXZ", "TYZ",
     ],
@@ -222,6 +232,7 @@ impl<L: SmallStrainBehaviour> FiniteStrainBehaviour for GdefLog<L> {
     fn metadata(&self) -> &'static LawMetadata {
         match self.law.metadata().name {
             "VMIS_JOHN_COOK" => &JOHN_COOK_LOG,
+            "VMIS_ISOT_TRAC" => &ISOT_TRAC_LOG,
             _ => &ISOT_LINE_LOG,
         }
     }
@@ -313,8 +324,9 @@ impl<L: SmallStrainBehaviour> FiniteStrainBehaviour for GdefLog<L> {
     }
 }
 
-/// Both laws that accept GDEF_LOG in aster.
+/// The laws that accept GDEF_LOG in aster.
 pub type IsotLineLog = GdefLog<vmis_isot_line::VmisIsotLine>;
+pub type IsotTracLog = GdefLog<vmis_isot_trac::VmisIsotTrac>;
 pub type JohnCookLog = GdefLog<john_cook::VmisJohnCook>;
 
 /// The Cauchy stress of a T state at F (post-processing alone).

@@ -20,6 +20,7 @@ pub mod john_cook;
 pub mod root1d;
 pub mod simo_miehe;
 pub mod vmis_isot_line;
+pub mod vmis_isot_trac;
 pub mod voigt;
 
 use std::fmt;
@@ -379,6 +380,9 @@ pub fn internal_variable_names(
         ("VMIS_ISOT_LINE", "PETIT" | "PETIT_REAC") => vmis_isot_line::METADATA.internal_variables,
         ("VMIS_ISOT_LINE", "SIMO_MIEHE") => simo_miehe::METADATA.internal_variables,
         ("VMIS_ISOT_LINE", "GDEF_LOG") => gdef_log::ISOT_LINE_LOG.internal_variables,
+        ("VMIS_ISOT_TRAC", "PETIT" | "PETIT_REAC") => vmis_isot_trac::METADATA.internal_variables,
+        ("VMIS_ISOT_TRAC", "SIMO_MIEHE") => simo_miehe::METADATA.internal_variables,
+        ("VMIS_ISOT_TRAC", "GDEF_LOG") => gdef_log::ISOT_TRAC_LOG.internal_variables,
         ("VMIS_JOHN_COOK", "GDEF_LOG") => gdef_log::JOHN_COOK_LOG.internal_variables,
         ("VMIS_JOHN_COOK", _) => john_cook::METADATA.internal_variables,
         _ => return None,

@@ -30,6 +30,8 @@
 
 use nalgebra::{Matrix3, SMatrix};
 
+use super::vmis_isot_line::IsotropicHardening;
+use super::vmis_isot_trac::TractionCurve;
 use super::voigt::{stress_to_tensor, tensor_to_stress};
 use super::{
     EcroLineParams, ElasParams, IntegrationFailure, InternalVars, LawMetadata, Regime,
@@ -106,15 +108,28 @@ struct Trial {
     plastic: bool,
     beta: f64,
     m: f64,
+    /// R' at the end of the step (H for a line).
+    h: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// VMIS_ISOT_TRAC under SIMO_MIEHE (code_aster's VMIS2ISOT_TRAC): the
+/// same variables as VMIS_ISOT_LINE's.
+pub static TRAC_METADATA: LawMetadata = LawMetadata {
+    name: "VMIS_ISOT_TRAC",
+    internal_variables: METADATA.internal_variables,
+    strain_measures: &[StrainMeasure::SimoMiehe],
+};
+
+#[derive(Debug, Clone, PartialEq)]
 pub struct SimoMiehe {
     pub elas: ElasParams,
+    /// SY and E_T of a line; for a traction curve SY = R(0), E_T unused.
     pub ecro: EcroLineParams,
     mu: f64,
     bulk: f64,
     h: f64,
+    /// R(p) of VMIS_ISOT_TRAC; None: the line SY + H p.
+    curve: Option<TractionCurve>,
 }
 
 impl SimoMiehe {
@@ -125,11 +140,57 @@ impl SimoMiehe {
             mu: elas.mu(),
             bulk: elas.bulk(),
             h: ecro.hardening(&elas),
+            curve: None,
+        }
+    }
+
+    /// VMIS_ISOT_TRAC: `elas` holds the curve's Young's modulus
+    /// ([`VmisIsotTrac::new`](super::vmis_isot_trac::VmisIsotTrac::new)).
+    pub fn with_curve(elas: ElasParams, curve: TractionCurve) -> SimoMiehe {
+        SimoMiehe {
+            elas,
+            ecro: EcroLineParams {
+                sy: curve.r(0.0),
+                d_sigm_epsi: 0.0,
+            },
+            mu: elas.mu(),
+            bulk: elas.bulk(),
+            h: 0.0,
+            curve: Some(curve),
         }
     }
 
     pub fn metadata(&self) -> &'static LawMetadata {
-        &METADATA
+        if self.curve.is_some() {
+            &TRAC_METADATA
+        } else {
+            &METADATA
+        }
+    }
+
+    /// The plastic multiplier Δγ of the return (‖s‖ = ‖s_tr‖ − 2μ̄Δγ =
+    /// √(2/3) R(p_n + √(2/3) Δγ), q = ‖s_tr‖, c0 = √(2/3) R(p_n)), R' at
+    /// its end, and the c0 of the line through the end point's segment
+    /// (Δγ = (q − c0)/(2μ̄ + 2R'/3) with it, the form the tangent
+    /// differentiates; c0 itself unless the step crossed a kink). For a
+    /// line it is the closed form written as it always was (B's answer to
+    /// the bit); a traction curve solves the same equation in terms of the
+    /// equivalent stress √(3/2) q, whose multiplier is 3μ̄.
+    fn plastic_multiplier(
+        &self,
+        q: f64,
+        c0: f64,
+        p_n: f64,
+        mu_bar: f64,
+    ) -> Result<(f64, f64, f64), IntegrationFailure> {
+        match &self.curve {
+            None => Ok(((q - c0) / (2.0 * mu_bar + 2.0 * self.h / 3.0), self.h, c0)),
+            Some(curve) => {
+                let (dp, h) = curve.return_map(1.5f64.sqrt() * q, p_n, 3.0 * mu_bar)?;
+                let dgamma = dp * 1.5f64.sqrt();
+                Ok((dgamma, h, q - (2.0 * mu_bar + 2.0 * h / 3.0) * dgamma))
+            }
+        }
     }
 
     pub fn initial_internal(&self) -> InternalVars {
@@ -141,9 +202,13 @@ impl SimoMiehe {
         self.h
     }
 
-    /// Yield stress R(p) = SY + H p (a Kirchhoff equivalent stress).
+    /// Yield stress R(p) = SY + H p, or the traction curve's (a
+    /// Kirchhoff equivalent stress).
     pub fn yield_stress(&self, p: f64) -> f64 {
-        self.ecro.sy + self.h * p
+        match &self.curve {
+            None => self.ecro.sy + self.h * p,
+            Some(c) => c.r(p),
+        }
     }
 
     /// b̄ᵉ stored in internal variables V3..V8.
@@ -200,7 +265,7 @@ impl SimoMiehe {
         start: &StepStart,
         columns: u16,
     ) -> Result<FiniteStrainOutput, IntegrationFailure> {
-        let name = METADATA.name;
+        let name = self.metadata().name;
         let j = input.f_np1.determinant();
         if input.f_np1.iter().any(|v| !v.is_finite()) {
             return Err(IntegrationFailure::invalid(
@@ -277,10 +342,10 @@ impl SimoMiehe {
         j: f64,
         start: &StepStart,
     ) -> Result<(StressUpdate, Trial), IntegrationFailure> {
-        let name = METADATA.name;
+        let name = self.metadata().name;
         let f = input.f_np1;
         let (j_n, a) = (start.j_n, start.a);
-        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let (mu, k) = (self.mu, self.bulk);
         let p_n = input.internal[0];
         // b̄ᵉ_tr = (J_n/J)^{2/3} F A Fᵀ with A = F_n⁻¹ b̄ᵉ_n F_n⁻ᵀ.
         let b = f * a * f.transpose();
@@ -293,10 +358,13 @@ impl SimoMiehe {
         let pressure_part = Matrix3::identity() * (0.5 * k * (j * j - 1.0));
 
         let plastic = q > c0;
+        let mut h = self.h;
+        let mut c0_segment = c0;
         let (s, be_new, p_new, beta, m) = if plastic {
             let mu_bar = mu * i_e;
+            let dgamma;
+            (dgamma, h, c0_segment) = self.plastic_multiplier(q, c0, p_n, mu_bar)?;
             let m = mu_bar / (mu_bar + h / 3.0);
-            let dgamma = (q - c0) / (2.0 * mu_bar + 2.0 * h / 3.0);
             let beta = 1.0 - 2.0 * mu_bar * dgamma / q;
             let s = s_tr * beta;
             let dev_be = s / mu;
@@ -332,10 +400,11 @@ impl SimoMiehe {
                 i_e,
                 s_tr,
                 q,
-                c0,
+                c0: c0_segment,
                 plastic,
                 beta,
                 m,
+                h,
             },
         ))
     }
@@ -348,10 +417,10 @@ impl SimoMiehe {
         start: &StepStart,
         columns: u16,
     ) -> Result<FiniteStrainOutput, IntegrationFailure> {
-        let name = METADATA.name;
+        let name = self.metadata().name;
         let f = input.f_np1;
         let a = start.a;
-        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let (mu, k) = (self.mu, self.bulk);
         let (out, trial) = self.update(input, j, start)?;
         let Trial {
             b,
@@ -363,6 +432,7 @@ impl SimoMiehe {
             plastic,
             beta,
             m,
+            h,
         } = trial;
 
         let dtau_df = match input.tangent {
@@ -429,7 +499,7 @@ impl SimoMiehe {
 
     /// `j_n`, `j`: det F_n and det F of `input`.
     fn check(&self, input: &FiniteStrainInput, j_n: f64, j: f64) -> Result<(), IntegrationFailure> {
-        let name = METADATA.name;
+        let name = self.metadata().name;
         if input
             .f_n
             .iter()
@@ -710,7 +780,7 @@ impl SimoMiehe {
         internal: &[f64],
         dt: f64,
     ) -> Option<Result<AxiUpdate, IntegrationFailure>> {
-        let name = METADATA.name;
+        let name = self.metadata().name;
         if internal.len() != METADATA.internal_variables.len()
             || internal[6] != 0.0
             || internal[7] != 0.0
@@ -775,7 +845,7 @@ impl SimoMiehe {
         a: &Axi,
         internal: &[f64],
     ) -> Result<AxiUpdate, IntegrationFailure> {
-        let (mu, k, h) = (self.mu, self.bulk, self.h);
+        let (mu, k) = (self.mu, self.bulk);
         let p_n = internal[0];
         let b = f.mul(a).mul_t(f);
         let c = two_thirds_power(j_n / j);
@@ -794,7 +864,7 @@ impl SimoMiehe {
         let plastic = q > c0;
         let (s, be_new, p_new) = if plastic {
             let mu_bar = mu * i_e;
-            let dgamma = (q - c0) / (2.0 * mu_bar + 2.0 * h / 3.0);
+            let (dgamma, _, _) = self.plastic_multiplier(q, c0, p_n, mu_bar)?;
             let beta = 1.0 - 2.0 * mu_bar * dgamma / q;
             let s = s_tr.map(|x| x * beta);
             let dev_be = s.map(|x| x / mu);

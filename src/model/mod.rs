@@ -101,16 +101,32 @@ impl Model {
 }
 
 /// The result of DEFI_MATERIAU: named blocks (ELAS, ECRO_LINE, ECRO_COOK)
-/// of named real parameters, as the user gave them plus defaults.
+/// of named real parameters, as the user gave them plus defaults, and the
+/// parameters that are functions (TRACTION/SIGM), by "BLOCK/PARAM".
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Material {
     pub blocks: IndexMap<String, IndexMap<String, f64>>,
+    pub curves: IndexMap<String, MaterialCurve>,
+}
+
+/// A material parameter given as a tabulated function of one variable
+/// (the law decides what it means: TRACTION/SIGM is σ(ε)).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialCurve {
+    pub abscissas: Vec<f64>,
+    pub ordinates: Vec<f64>,
+    /// The function's PROL_DROITE.
+    pub right: crate::post::function::Extrapolation,
 }
 
 impl Material {
     /// A parameter, e.g. `get("ELAS", "E")`.
     pub fn get(&self, block: &str, param: &str) -> Option<f64> {
         self.blocks.get(block)?.get(param).copied()
+    }
+    /// A function parameter, e.g. `curve("TRACTION", "SIGM")`.
+    pub fn curve(&self, block: &str, param: &str) -> Option<&MaterialCurve> {
+        self.curves.get(&format!("{block}/{param}"))
     }
 }
 

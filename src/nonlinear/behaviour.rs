@@ -13,13 +13,15 @@ use indexmap::IndexMap;
 
 use crate::element::{Kinematics, LawRef};
 use crate::law::elas::Elas;
-use crate::law::gdef_log::{GdefLog, IsotLineLog, JohnCookLog};
+use crate::law::gdef_log::{GdefLog, IsotLineLog, IsotTracLog, JohnCookLog};
 use crate::law::john_cook::{EcroCookParams, LocalControls, VmisJohnCook};
 use crate::law::root1d::RootMethod;
 use crate::law::simo_miehe::SimoMiehe;
 use crate::law::vmis_isot_line::VmisIsotLine;
+use crate::law::vmis_isot_trac::{RightExtension, TractionCurve, VmisIsotTrac};
 use crate::law::{EcroLineParams, ElasParams, StrainMeasure};
 use crate::model::{CellRole, Material, MaterialField, Model};
+use crate::post::function::Extrapolation;
 
 /// A law instance, built once per (material, relation, kinematics); a
 /// handful per computation, so the size of the variants does not matter.
@@ -28,9 +30,11 @@ use crate::model::{CellRole, Material, MaterialField, Model};
 pub enum CellLaw {
     Elas(Elas),
     VmisIsotLine(VmisIsotLine),
+    VmisIsotTrac(VmisIsotTrac),
     SimoMiehe(SimoMiehe),
     JohnCook(VmisJohnCook),
     IsotLineLog(IsotLineLog),
+    IsotTracLog(IsotTracLog),
     JohnCookLog(JohnCookLog),
 }
 
@@ -39,9 +43,11 @@ impl CellLaw {
         match self {
             CellLaw::Elas(l) => LawRef::Small(l),
             CellLaw::VmisIsotLine(l) => LawRef::Small(l),
+            CellLaw::VmisIsotTrac(l) => LawRef::Small(l),
             CellLaw::SimoMiehe(l) => LawRef::SimoMiehe(l),
             CellLaw::JohnCook(l) => LawRef::Small(l),
             CellLaw::IsotLineLog(l) => LawRef::GdefLog(l),
+            CellLaw::IsotTracLog(l) => LawRef::GdefLog(l),
             CellLaw::JohnCookLog(l) => LawRef::GdefLog(l),
         }
     }
@@ -243,7 +249,7 @@ fn kinematics_of(
         )
     })?;
     match relation {
-        "ELAS" | "VMIS_ISOT_LINE" | "VMIS_JOHN_COOK" => {}
+        "ELAS" | "VMIS_ISOT_LINE" | "VMIS_ISOT_TRAC" | "VMIS_JOHN_COOK" => {}
         other => return Err(err(occ, "RELATION", format!("unknown RELATION '{other}'"))),
     }
     if relation == "ELAS" && matches!(measure, StrainMeasure::SimoMiehe | StrainMeasure::GdefLog) {
@@ -374,6 +380,27 @@ fn make_law(
         return Ok(match kin {
             Kinematics::GdefLog => CellLaw::JohnCookLog(GdefLog::new(law)),
             _ => CellLaw::JohnCook(law),
+        });
+    }
+    if relation == "VMIS_ISOT_TRAC" {
+        let c = mat.curve("TRACTION", "SIGM").ok_or_else(|| {
+            err(
+                occ,
+                "RELATION",
+                format!("material {name}: TRACTION/SIGM is needed by RELATION='{relation}'"),
+            )
+        })?;
+        let right = match c.right {
+            Extrapolation::Excluded => RightExtension::Excluded,
+            Extrapolation::Constant => RightExtension::Constant,
+            Extrapolation::Linear => RightExtension::Linear,
+        };
+        let curve = TractionCurve::new(&c.abscissas, &c.ordinates, right).map_err(bad)?;
+        let law = VmisIsotTrac::new(curve.clone(), elas.nu, elas.rho).map_err(bad)?;
+        return Ok(match kin {
+            Kinematics::SimoMiehe => CellLaw::SimoMiehe(SimoMiehe::with_curve(law.elas, curve)),
+            Kinematics::GdefLog => CellLaw::IsotTracLog(GdefLog::new(law)),
+            _ => CellLaw::VmisIsotTrac(law),
         });
     }
     let ecro = EcroLineParams::new(
