@@ -10,9 +10,8 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
-use crate::law::vmis_isot_trac::{RightExtension, TractionCurve};
+use crate::law::vmis_isot_trac::TractionCurve;
 use crate::model::{Material, MaterialCurve};
-use crate::post::function::Extrapolation;
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -240,12 +239,7 @@ fn traction_curve(study: &Study, occ: &Args) -> Result<MaterialCurve, Diagnostic
             ),
         ));
     }
-    let right = match f.right {
-        Extrapolation::Excluded => RightExtension::Excluded,
-        Extrapolation::Constant => RightExtension::Constant,
-        Extrapolation::Linear => RightExtension::Linear,
-    };
-    TractionCurve::new(&f.abscissas, &f.ordinates, right)
+    TractionCurve::new(&f.abscissas, &f.ordinates, f.right)
         .map_err(|e| occ.error("SIGM", format!("{name}: {}", e.message)))?;
     Ok(MaterialCurve {
         abscissas: f.abscissas.clone(),

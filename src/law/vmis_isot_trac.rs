@@ -32,14 +32,9 @@ pub static METADATA: LawMetadata = LawMetadata {
     ],
 };
 
-/// What R(p) does past the last point of the curve (the function's
-/// PROL_DROITE).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RightExtension {
-    Excluded,
-    Constant,
-    Linear,
-}
+/// What R(p) does past the last point of the curve: the function's
+/// PROL_DROITE, read as it is.
+pub use crate::post::function::Extrapolation as RightExtension;
 
 /// R(p), piecewise linear through (p_k, R_k), p_0 = 0.
 #[derive(Debug, Clone, PartialEq)]

@@ -18,10 +18,9 @@ use crate::law::john_cook::{EcroCookParams, LocalControls, VmisJohnCook};
 use crate::law::root1d::RootMethod;
 use crate::law::simo_miehe::SimoMiehe;
 use crate::law::vmis_isot_line::VmisIsotLine;
-use crate::law::vmis_isot_trac::{RightExtension, TractionCurve, VmisIsotTrac};
+use crate::law::vmis_isot_trac::{TractionCurve, VmisIsotTrac};
 use crate::law::{EcroLineParams, ElasParams, StrainMeasure};
 use crate::model::{CellRole, Material, MaterialField, Model};
-use crate::post::function::Extrapolation;
 
 /// A law instance, built once per (material, relation, kinematics); a
 /// handful per computation, so the size of the variants does not matter.
@@ -390,12 +389,7 @@ fn make_law(
                 format!("material {name}: TRACTION/SIGM is needed by RELATION='{relation}'"),
             )
         })?;
-        let right = match c.right {
-            Extrapolation::Excluded => RightExtension::Excluded,
-            Extrapolation::Constant => RightExtension::Constant,
-            Extrapolation::Linear => RightExtension::Linear,
-        };
-        let curve = TractionCurve::new(&c.abscissas, &c.ordinates, right).map_err(bad)?;
+        let curve = TractionCurve::new(&c.abscissas, &c.ordinates, c.right).map_err(bad)?;
         let law = VmisIsotTrac::new(curve.clone(), elas.nu, elas.rho).map_err(bad)?;
         return Ok(match kin {
             Kinematics::SimoMiehe => CellLaw::SimoMiehe(SimoMiehe::with_curve(law.elas, curve)),
