@@ -364,9 +364,9 @@ fn equivalent_stresses_and_internal_variables_at_nodes() {
 
 /// Bad inputs around CRITERES, SIGM_ELGA and VARI_INTERNE are located
 /// errors (criteria.comm with one change each): a component SIEQ does not
-/// have, SIGM_ELGA of HEXS8 has no FSTAB, an SIEQ_ELNO not computed, an
-/// EPEQ option, POST_RELEVE_T on SIEQ_ELGA, an internal variable the law
-/// does not have.
+/// have, SIGM_ELGA of HEXS8 has no FSTAB, an SIEQ_ELNO not computed,
+/// POST_RELEVE_T on SIEQ_ELGA, an internal variable the law does not
+/// have.
 #[test]
 fn bad_criteria_requests_are_located_errors() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("criteria_bad");
@@ -398,14 +398,6 @@ fn bad_criteria_requests_are_located_errors() {
             "compute it with CALC_CHAMP CRITERES='SIEQ_ELNO'",
         ),
         (
-            "epeq",
-            (
-                "DPLAN, CRITERES=('SIEQ_ELGA', 'SIEQ_NOEU')",
-                "DPLAN, CRITERES=('SIEQ_ELGA', 'EPEQ_NOEU')",
-            ),
-            "not implemented yet: CALC_CHAMP/CRITERES",
-        ),
-        (
             "releve_elga",
             (
                 "RESULTAT=BIAX, NOM_CHAM='SIEQ_NOEU',\n",
@@ -428,6 +420,111 @@ fn bad_criteria_requests_are_located_errors() {
         dir().join("patch.mmed").display()
     );
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_criteria");
+}
+
+/// CALC_CHAMP DEFORMATION and EPEQ on imposed displacement fields
+/// (strain.comm): EPSI of u = A x on the distorted HEXS8 and HEXA8 patch
+/// (sym A, tensor shears), of the AXIS QUAD8 patch (hoop EPZZ = u_r/r,
+/// EPXY = D/2), EPSG = (L² − 1)/2 and EPSL = ln L of a rotated stretch,
+/// EPEQ by hand, and the GROUP_MA-restricted EPSI_NOEU at a node shared
+/// with unselected cells (the selected cell's value, against the mean of
+/// both without GROUP_MA), all to 1e-12 relative; then the MED file of
+/// IMPR_RESU holds EPSL_NOEU with ln L1 at every node and EPSG_ELGA with
+/// (L1² − 1)/2 in every cell.
+#[test]
+fn strains_of_imposed_displacements() {
+    let run = common::run_study("tests/verification/strain.comm", "verif_strain");
+    common::assert_all_ok(&run, "strain.resu");
+    let e = std::f64::consts::E;
+    let (k1, k2) = (0.4, -0.2);
+    let l1 = e.powf(k1);
+    let names = ["EPXX", "EPYY", "EPZZ", "EPXY", "EPXZ", "EPYZ"];
+    let rmed = run.out.join("resu.rmed");
+    let nodal = aster::medio::read_nodal_fields(&rmed, None).unwrap();
+    let f = nodal
+        .iter()
+        .find(|f| f.name == "R_GD____EPSL_NOEU")
+        .expect("EPSL_NOEU in the MED file");
+    assert_eq!(f.components, names);
+    let last = f.steps.last().unwrap();
+    assert_eq!(last.values.len(), 64 * 6);
+    for node in 0..64 {
+        let v = &last.values[node * 6..(node + 1) * 6];
+        assert!((v[0] - k1).abs() < 1e-12, "node {node}: {v:?}");
+        assert!((v[1] - k2).abs() < 1e-12, "node {node}: {v:?}");
+        assert!(v[3].abs() < 1e-12, "node {node}: {v:?}");
+    }
+    let cells = aster::medio::read_cell_mean_fields(&rmed, None).unwrap();
+    let g = cells
+        .iter()
+        .find(|f| f.name == "R_GD____EPSG_ELGA")
+        .expect("EPSG_ELGA in the MED file");
+    assert_eq!(g.components, names);
+    let means: Vec<f64> = g
+        .steps
+        .last()
+        .unwrap()
+        .values
+        .chunks(6)
+        .map(|v| v[0])
+        .collect();
+    assert_eq!(means.len(), 27);
+    let eg = (l1 * l1 - 1.0) / 2.0;
+    assert!(
+        means.iter().all(|v| (v - eg).abs() < 1e-12 * eg),
+        "{means:?}"
+    );
+}
+
+/// Bad strain requests are located errors (strain.comm with one change
+/// each): FORCE with GROUP_MA, an unknown group, a component EPEQ does not
+/// have, a group without an element of the model.
+#[test]
+fn bad_strain_requests_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("strain_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("strain.comm")).unwrap();
+    let cases = [
+        (
+            "force_group",
+            (
+                "GROUP_MA='BAS', DEFORMATION=('EPSI_ELGA', 'EPSI_NOEU')",
+                "GROUP_MA='BAS', DEFORMATION=('EPSI_ELGA', 'EPSI_NOEU'), FORCE='FORC_NODA'",
+            ),
+            "not implemented yet: CALC_CHAMP/GROUP_MA",
+        ),
+        (
+            "unknown_group",
+            (
+                "GROUP_MA='BAS', DEFORMATION=('EPSI_ELGA', 'EPSI_NOEU')",
+                "GROUP_MA='BASE', DEFORMATION=('EPSI_ELGA', 'EPSI_NOEU')",
+            ),
+            "BASE",
+        ),
+        (
+            "skin_group",
+            (
+                "GROUP_MA='BAS', DEFORMATION=('EPSI_ELGA', 'EPSI_NOEU')",
+                "GROUP_MA='ZMIN', DEFORMATION=('EPSI_ELGA', 'EPSI_NOEU')",
+            ),
+            "holds no cell of an element of the model",
+        ),
+        (
+            "epeq_component",
+            (
+                "NOM_CHAM='EPEQ_NOEU', NOM_CMP='INVA_2SG', TYPE_TEST='MIN'",
+                "NOM_CHAM='EPEQ_NOEU', NOM_CMP='VMIS', TYPE_TEST='MIN'",
+            ),
+            "EPEQ_NOEU has no component VMIS",
+        ),
+    ];
+    let export = format!(
+        "F mmed {} D 20\nF mmed {} D 21\nF mmed {} D 22\n",
+        dir().join("../studies/stat_patch.mmed").display(),
+        dir().join("patch.mmed").display(),
+        dir().join("../studies/hexs8_beam1.mmed").display()
+    );
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_strain");
 }
 
 /// An inward skin under PRES_REP (VERI_NORM), a follower pressure

@@ -7,9 +7,10 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::{ConceptData, ConceptType as C};
 use crate::law::TangentKind;
+use crate::model::CellRole;
 use crate::model::MechLoad;
 use crate::nonlinear::{self, fields, Occurrence};
-use crate::result::Access;
+use crate::result::{Access, GaussField, NodalField};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -44,7 +45,10 @@ pub fn def() -> CommandDef {
     kws.extend(critere_precision(1e-6));
     kws.extend([
         tout(),
-        group_ma(),
+        text("GROUP_MA")
+            .many()
+            .doc("cells the element options are computed on (*_NOEU: the mean over them); FORCE needs the whole model")
+            .kw(),
         maille(),
         text("CONTRAINTE")
             .many()
@@ -53,13 +57,16 @@ pub fn def() -> CommandDef {
             .kw(),
         text("DEFORMATION")
             .many()
-            .into(&["EPSI_ELGA", "EPSI_ELNO", "EPSI_NOEU", "EPSL_ELGA", "EPSL_ELNO", "EPSL_NOEU"])
-            .doc("strain fields (not implemented)")
+            .into(&[
+                "EPSI_ELGA", "EPSI_ELNO", "EPSI_NOEU", "EPSG_ELGA", "EPSG_ELNO", "EPSG_NOEU",
+                "EPSL_ELGA", "EPSL_ELNO", "EPSL_NOEU",
+            ])
+            .doc("strains of DEPL on the initial geometry, tensor shears (EPXY = γxy/2): EPSI linearised ½(H + Hᵀ), EPSG Green-Lagrange ½(FᵀF − 1), EPSL logarithmic ½ ln(FᵀF); *_ELGA at the SIEF_ELGA points, *_ELNO extrapolated cell by cell, *_NOEU their mean at each node")
             .kw(),
         text("CRITERES")
             .many()
             .into(&["SIEQ_ELGA", "SIEQ_ELNO", "SIEQ_NOEU", "EPEQ_ELGA", "EPEQ_ELNO", "EPEQ_NOEU"])
-            .doc("equivalent stresses VMIS, TRESCA, PRIN_1..3, VMIS_SG, VECT_1_X..VECT_3_Z, TRSIG, TRIAX: SIEQ_ELGA of SIEF_ELGA, SIEQ_ELNO of SIGM_ELNO, SIEQ_NOEU the mean of SIEQ_ELNO at each node (EPEQ_* not implemented)")
+            .doc("equivalent stresses VMIS, TRESCA, PRIN_1..3, VMIS_SG, VECT_1_X..VECT_3_Z, TRSIG, TRIAX: SIEQ_ELGA of SIEF_ELGA, SIEQ_ELNO of SIGM_ELNO, SIEQ_NOEU the mean of SIEQ_ELNO at each node ; EPEQ_ELGA, EPEQ_ELNO, EPEQ_NOEU the equivalent strains INVA_2, PRIN_1..3, INVA_2SG, VECT_1_X..VECT_3_Z of EPSI_ELGA, EPSI_ELNO and the mean of EPEQ_ELNO")
             .kw(),
         text("VARI_INTERNE")
             .many()
@@ -104,24 +111,17 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         Some(ConceptData::Result(r)) => (**r).clone(),
         _ => return Err(args.error("RESULTAT", format!("the result {name} holds no data"))),
     };
-    for key in ["DEFORMATION", "ENERGIE"] {
-        if args.has(key) {
-            return Err(args.not_implemented(key, ""));
-        }
+    if args.has("ENERGIE") {
+        return Err(args.not_implemented("ENERGIE", ""));
     }
-    if let Some(e) = args
-        .texts("CRITERES")
-        .iter()
-        .find(|c| c.starts_with("EPEQ"))
-    {
-        return Err(args.not_implemented(
-            "CRITERES",
-            &format!("{e} (no strain field is built yet); SIEQ_ELGA, SIEQ_ELNO and SIEQ_NOEU are computed"),
-        ));
-    }
-    for key in ["TOUT", "GROUP_MA", "MAILLE"] {
-        if args.given(key) {
-            return Err(args.not_implemented(key, "the whole model is always used"));
+    // GROUP_MA/MAILLE restrict the element options; FORC_NODA and
+    // REAC_NODA are assembled over the whole model.
+    if let Some(key) = ["GROUP_MA", "MAILLE"].into_iter().find(|k| args.has(k)) {
+        if args.has("FORCE") {
+            return Err(args.not_implemented(
+                key,
+                "FORCE (FORC_NODA, REAC_NODA) on part of the model; the element options (CONTRAINTE, DEFORMATION, CRITERES, VARI_INTERNE) are restricted",
+            ));
         }
     }
     let selected = selected_steps(study, args, &evol)?;
@@ -359,7 +359,8 @@ fn selected_steps(
     Ok(selected)
 }
 
-/// The options computed from the Gauss fields, at the selected steps.
+/// The options computed from the Gauss fields and the displacement, at
+/// the selected steps, on the selected cells.
 ///
 /// CONTRAINTE: SIEF_ELNO and SIGM_ELNO extrapolated from SIEF_ELGA cell by
 /// cell (`result::elno`), SIEF_NOEU and SIGM_NOEU their mean at each node
@@ -369,6 +370,10 @@ fn selected_steps(
 /// stress whatever the law and the kinematics, so SIGM = SIEF on those
 /// components, and SIGM_ELGA is SIEF_ELGA without FSTAB*.
 ///
+/// DEFORMATION (`element::strain`): EPSI_ELGA, EPSG_ELGA, EPSL_ELGA from
+/// DEPL at the SIEF_ELGA points, their *_ELNO extrapolated and *_NOEU
+/// averaged as SIEF's.
+///
 /// CRITERES (`result::criteria`): SIEQ_ELGA from SIEF_ELGA at each point;
 /// SIEQ_ELNO from SIGM_ELNO, the stress extrapolated first and the
 /// criteria taken at the nodes, and SIEQ_NOEU the mean of SIEQ_ELNO at
@@ -376,10 +381,17 @@ fn selected_steps(
 /// SIGM_ELNO (`RESU!SIGM_ELNO!N`, catalogue `Options/sieq_elno.py`), and
 /// every *_NOEU option is the average of the *_ELNO field (`ccchno`,
 /// `cescns` with 'A'). The criteria are not linear, so extrapolating
-/// SIEQ_ELGA would differ wherever the stress varies in a cell.
+/// SIEQ_ELGA would differ wherever the stress varies in a cell. EPEQ_*
+/// likewise from EPSI_ELGA and EPSI_ELNO (its EPEQ_ELNO reads
+/// PDEFORR of EPSI_ELNO).
 ///
 /// VARI_INTERNE: VARI_ELNO extrapolated from VARI_ELGA like SIEF_ELNO,
 /// VARI_NOEU its mean at each node; components V1..Vn as VARI_ELGA.
+///
+/// TOUT/GROUP_MA/MAILLE: the fields exist on the selected cells only
+/// (the Gauss fields read are cut to them first), so a *_NOEU value is the
+/// mean over the selected cells holding the node, as code_aster's
+/// averaging over the cells of the field's ligrel.
 fn element_fields(
     study: &Study,
     args: &Args,
@@ -390,40 +402,59 @@ fn element_fields(
     let stress_opts = args.texts("CONTRAINTE");
     let crit_opts = args.texts("CRITERES");
     let vari_opts = args.texts("VARI_INTERNE");
-    let at_nodes = stress_opts
-        .iter()
-        .chain(&crit_opts)
-        .chain(&vari_opts)
-        .any(|o| !o.ends_with("_ELGA"));
-    if stress_opts.is_empty() && crit_opts.is_empty() && vari_opts.is_empty() {
+    let strain_opts = args.texts("DEFORMATION");
+    if stress_opts.is_empty()
+        && crit_opts.is_empty()
+        && vari_opts.is_empty()
+        && strain_opts.is_empty()
+    {
         return Ok(());
     }
-    // the model and its mesh, for the extrapolation to the nodes only
-    let geometry = if at_nodes {
-        let model_name = args.concept("MODELE").unwrap_or(&evol.model).to_string();
-        let model = match study.concepts.data(&model_name) {
+    let model_name = args.concept("MODELE").unwrap_or(&evol.model).to_string();
+    let model =
+        match study.concepts.data(&model_name) {
             Some(ConceptData::Model(m)) => m,
-            _ => {
-                return Err(args.error(
-                    "RESULTAT",
-                    format!(
+            _ => return Err(args.error(
+                "RESULTAT",
+                format!(
                     "the result {name} does not say which model it was computed with: give MODELE"
                 ),
-                ))
-            }
+            )),
         };
-        let mesh = super::model_args::mesh_of_model(study, args, "RESULTAT", model)?;
-        Some((mesh, model))
+    let mesh = super::model_args::mesh_of_model(study, args, "RESULTAT", model)?;
+    let cells: Vec<bool> = if ["TOUT", "GROUP_MA", "MAILLE"].iter().any(|k| args.has(k)) {
+        let mut mask = vec![false; mesh.ncells()];
+        for c in super::model_args::select_cells(mesh, args)? {
+            mask[c] = true;
+        }
+        if !(0..mesh.ncells())
+            .any(|c| mask[c] && matches!(model.cells.get(c), Some(CellRole::Element(_))))
+        {
+            let key = ["GROUP_MA", "MAILLE", "TOUT"]
+                .into_iter()
+                .find(|k| args.has(k))
+                .unwrap_or("GROUP_MA");
+            return Err(args.error(
+                key,
+                format!(
+                    "{} holds no cell of an element of the model {model_name}",
+                    super::model_args::selection_label(args)
+                ),
+            ));
+        }
+        mask
     } else {
-        None
+        vec![true; mesh.ncells()]
     };
+    let restrict = |f: &GaussField| f.restricted(&cells);
+    let noeu = |f: &GaussField| crate::result::elno::noeu(f, mesh);
     for step in evol.steps.iter_mut() {
         if !selected.contains(&step.nume_ordre) {
             continue;
         }
         let nume = step.nume_ordre;
         let gauss_of = |key: &str, field: &str| {
-            step.gauss.get(field).ok_or_else(|| {
+            step.gauss.get(field).map(restrict).ok_or_else(|| {
                 args.error(
                     key,
                     format!(
@@ -433,19 +464,19 @@ fn element_fields(
                 )
             })
         };
-        let no_model = || {
-            args.error(
-                "RESULTAT",
-                format!("no model to extrapolate {name} to the nodes"),
-            )
-        };
         let located =
             |key: &'static str| move |m: String| args.error(key, format!("NUME_ORDRE {nume}: {m}"));
-        // computed from the borrowed Gauss fields, stored after
-        let mut nodal_out = Vec::new();
-        let mut elno_out = Vec::new();
-        let mut gauss_out = Vec::new();
-        if !stress_opts.is_empty() || !crit_opts.is_empty() {
+        let elno_of = |f: &GaussField, keep: &[usize], key: &'static str| {
+            crate::result::elno::elno(f, mesh, model, keep).map_err(located(key))
+        };
+        // computed from the borrowed fields, stored after
+        let mut nodal_out: Vec<(String, NodalField)> = Vec::new();
+        let mut elno_out: Vec<(String, GaussField)> = Vec::new();
+        let mut gauss_out: Vec<(String, GaussField)> = Vec::new();
+        let wants = |opts: &[&str], prefix: &str, loc: &str| {
+            opts.contains(&format!("{prefix}_{loc}").as_str())
+        };
+        if !stress_opts.is_empty() || crit_opts.iter().any(|o| o.starts_with("SIEQ")) {
             let key = if stress_opts.is_empty() {
                 "CRITERES"
             } else {
@@ -457,65 +488,112 @@ fn element_fields(
                 .filter(|&k| sief.components[k].starts_with("SI"))
                 .collect();
             if stress_opts.contains(&"SIGM_ELGA") {
-                gauss_out.push(("SIGM_ELGA", select(sief, &stress)));
+                gauss_out.push(("SIGM_ELGA".into(), select(&sief, &stress)));
             }
             if crit_opts.contains(&"SIEQ_ELGA") {
-                let q = crate::result::criteria::sieq(sief).map_err(located("CRITERES"))?;
-                gauss_out.push(("SIEQ_ELGA", q));
+                let q = crate::result::criteria::sieq(&sief).map_err(located("CRITERES"))?;
+                gauss_out.push(("SIEQ_ELGA".into(), q));
             }
-            let sieq_nodes = crit_opts
-                .iter()
-                .any(|o| o.starts_with("SIEQ_") && o != &"SIEQ_ELGA");
-            for (elno_name, noeu_name, keep) in [
-                ("SIEF_ELNO", "SIEF_NOEU", &all),
-                ("SIGM_ELNO", "SIGM_NOEU", &stress),
-            ] {
-                let wanted = stress_opts.contains(&elno_name) || stress_opts.contains(&noeu_name);
-                let for_sieq = elno_name == "SIGM_ELNO" && sieq_nodes;
+            let sieq_nodes = wants(&crit_opts, "SIEQ", "ELNO") || wants(&crit_opts, "SIEQ", "NOEU");
+            for (prefix, keep) in [("SIEF", &all), ("SIGM", &stress)] {
+                let wanted =
+                    wants(&stress_opts, prefix, "ELNO") || wants(&stress_opts, prefix, "NOEU");
+                let for_sieq = prefix == "SIGM" && sieq_nodes;
                 if !wanted && !for_sieq {
                     continue;
                 }
-                let (mesh, model) = geometry.ok_or_else(no_model)?;
-                let elno =
-                    crate::result::elno::elno(sief, mesh, model, keep).map_err(located(key))?;
+                let elno = elno_of(&sief, keep, key)?;
                 if for_sieq {
                     let q = crate::result::criteria::sieq(&elno).map_err(located("CRITERES"))?;
-                    if crit_opts.contains(&"SIEQ_NOEU") {
-                        nodal_out.push(("SIEQ_NOEU", crate::result::elno::noeu(&q, mesh)));
+                    if wants(&crit_opts, "SIEQ", "NOEU") {
+                        nodal_out.push(("SIEQ_NOEU".into(), noeu(&q)));
                     }
-                    if crit_opts.contains(&"SIEQ_ELNO") {
-                        elno_out.push(("SIEQ_ELNO", q));
+                    if wants(&crit_opts, "SIEQ", "ELNO") {
+                        elno_out.push(("SIEQ_ELNO".into(), q));
                     }
                 }
-                if stress_opts.contains(&noeu_name) {
-                    nodal_out.push((noeu_name, crate::result::elno::noeu(&elno, mesh)));
+                if wants(&stress_opts, prefix, "NOEU") {
+                    nodal_out.push((format!("{prefix}_NOEU"), noeu(&elno)));
                 }
-                if stress_opts.contains(&elno_name) {
-                    elno_out.push((elno_name, elno));
+                if wants(&stress_opts, prefix, "ELNO") {
+                    elno_out.push((format!("{prefix}_ELNO"), elno));
                 }
+            }
+        }
+        let epeq = crit_opts.iter().any(|o| o.starts_with("EPEQ"));
+        for prefix in ["EPSI", "EPSG", "EPSL"] {
+            let for_epeq = prefix == "EPSI" && epeq;
+            if !strain_opts.iter().any(|o| o.starts_with(prefix)) && !for_epeq {
+                continue;
+            }
+            let key = if for_epeq && !strain_opts.iter().any(|o| o.starts_with(prefix)) {
+                "CRITERES"
+            } else {
+                "DEFORMATION"
+            };
+            let depl = step.nodal.get("DEPL").ok_or_else(|| {
+                args.error(
+                    key,
+                    format!(
+                        "NUME_ORDRE {nume} of {name} has no DEPL field to compute {prefix} from"
+                    ),
+                )
+            })?;
+            let measure = crate::element::strain::Measure::of_prefix(prefix)
+                .expect("the three strain prefixes have a measure");
+            let gauss = crate::element::strain::strain_field(measure, mesh, model, depl, &cells)
+                .map_err(located(key))?;
+            let all: Vec<usize> = (0..gauss.ncmp()).collect();
+            if for_epeq && wants(&crit_opts, "EPEQ", "ELGA") {
+                let q = crate::result::criteria::epeq(&gauss).map_err(located("CRITERES"))?;
+                gauss_out.push(("EPEQ_ELGA".into(), q));
+            }
+            let epeq_nodes = for_epeq
+                && (wants(&crit_opts, "EPEQ", "ELNO") || wants(&crit_opts, "EPEQ", "NOEU"));
+            if wants(&strain_opts, prefix, "ELNO")
+                || wants(&strain_opts, prefix, "NOEU")
+                || epeq_nodes
+            {
+                let elno = elno_of(&gauss, &all, key)?;
+                if epeq_nodes {
+                    let q = crate::result::criteria::epeq(&elno).map_err(located("CRITERES"))?;
+                    if wants(&crit_opts, "EPEQ", "NOEU") {
+                        nodal_out.push(("EPEQ_NOEU".into(), noeu(&q)));
+                    }
+                    if wants(&crit_opts, "EPEQ", "ELNO") {
+                        elno_out.push(("EPEQ_ELNO".into(), q));
+                    }
+                }
+                if wants(&strain_opts, prefix, "NOEU") {
+                    nodal_out.push((format!("{prefix}_NOEU"), noeu(&elno)));
+                }
+                if wants(&strain_opts, prefix, "ELNO") {
+                    elno_out.push((format!("{prefix}_ELNO"), elno));
+                }
+            }
+            if wants(&strain_opts, prefix, "ELGA") {
+                gauss_out.push((format!("{prefix}_ELGA"), gauss));
             }
         }
         if !vari_opts.is_empty() {
             let vari = gauss_of("VARI_INTERNE", "VARI_ELGA")?;
-            let (mesh, model) = geometry.ok_or_else(no_model)?;
             let all: Vec<usize> = (0..vari.ncmp()).collect();
-            let elno = crate::result::elno::elno(vari, mesh, model, &all)
-                .map_err(located("VARI_INTERNE"))?;
+            let elno = elno_of(&vari, &all, "VARI_INTERNE")?;
             if vari_opts.contains(&"VARI_NOEU") {
-                nodal_out.push(("VARI_NOEU", crate::result::elno::noeu(&elno, mesh)));
+                nodal_out.push(("VARI_NOEU".into(), noeu(&elno)));
             }
             if vari_opts.contains(&"VARI_ELNO") {
-                elno_out.push(("VARI_ELNO", elno));
+                elno_out.push(("VARI_ELNO".into(), elno));
             }
         }
         for (n, f) in nodal_out {
-            step.nodal.insert(n.to_string(), f);
+            step.nodal.insert(n, f);
         }
         for (n, f) in elno_out {
-            step.elno.insert(n.to_string(), f);
+            step.elno.insert(n, f);
         }
         for (n, f) in gauss_out {
-            step.gauss.insert(n.to_string(), f);
+            step.gauss.insert(n, f);
         }
     }
     Ok(())

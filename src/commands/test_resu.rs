@@ -271,7 +271,7 @@ fn calc_champ_keyword(nom_cham: &str) -> &'static str {
     match nom_cham.split('_').next().unwrap_or("") {
         "SIEQ" | "EPEQ" => "CRITERES",
         "VARI" => "VARI_INTERNE",
-        "EPSI" | "EPSL" => "DEFORMATION",
+        "EPSI" | "EPSG" | "EPSL" => "DEFORMATION",
         _ => "CONTRAINTE",
     }
 }

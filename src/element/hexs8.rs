@@ -598,6 +598,26 @@ fn reference() -> &'static Reference {
     })
 }
 
+/// The displacement gradient Grad u of the centre point, in global axes,
+/// on the cell `x` (initial coordinates) for the nodal displacements `u`
+/// (3 per node): the gradient whose symmetric part is the strain the law
+/// sees at the element's one point (b̄ for the published variant, the
+/// point gradient at ξ = 0 for code_aster's), so that CALC_CHAMP's
+/// EPSI_ELGA of a HEXS8 cell is the strain of its SIEF_ELGA.
+pub fn centre_gradient(x: &[[f64; 3]; 8], u: &[f64]) -> Result<Matrix3<f64>, String> {
+    let geom = Geometry::new(x, Variant::current())
+        .map_err(|(point, m)| format!("point {}: {m}", point + 1))?;
+    let mut h = Matrix3::zeros();
+    for (a, g) in geom.centre.iter().enumerate() {
+        for i in 0..3 {
+            for k in 0..3 {
+                h[(i, k)] += u[3 * a + i] * g[k];
+            }
+        }
+    }
+    Ok(h)
+}
+
 /// ∂h_α/∂ξ at ξ.
 fn dh_dxi(p: &[f64; 3]) -> [[f64; 3]; 4] {
     let (xi, eta, zeta) = (p[0], p[1], p[2]);
@@ -627,8 +647,9 @@ fn gradient(s: &ShapeEval, inv: &Matrix3<f64>) -> [[f64; 3]; 8] {
 
 /// The element's geometric operators on one configuration.
 struct Geometry {
-    /// Engineering strain operator of the centre (b̄ or the point
-    /// gradient at ξ = 0).
+    /// ∇N_a of the centre strain (b̄ or the point gradient at ξ = 0).
+    centre: [[f64; 3]; 8],
+    /// Engineering strain operator of the centre (of `centre`).
     b0: B,
     /// Weight of the centre stiffness (V or 8J₀).
     w0: f64,
@@ -704,6 +725,7 @@ impl Geometry {
             Variant::CodeAster => (grad0, 8.0 * j0),
         };
         Ok(Geometry {
+            centre,
             b0: strain_operator(&centre),
             w0,
             vol,

@@ -230,6 +230,38 @@ pub fn output_points(spec: &ElementSpec) -> usize {
     tabulated(spec.cell, spec.rigi).map_or(0, |t| t.weights.len())
 }
 
+/// The displacement gradient Grad_X u on the initial geometry `x` at each
+/// point of the element's SIEF_ELGA (its RIGI points; HEXS8's one centre
+/// point, [`super::hexs8::centre_gradient`]), for the nodal displacements
+/// `u` (`dofs_per_node` per node, node order of the cell). In AXIS the
+/// θθ entry is u_r/r, so that the strain measures of CALC_CHAMP
+/// (EPSI/EPSG/EPSL) read (rr, zz, θθ, rz) like SIEF_ELGA. A point the
+/// geometry makes invalid (folded cell, radius ≤ 0) is an error naming it.
+pub fn displacement_gradients(
+    spec: &ElementSpec,
+    x: &[[f64; 3]],
+    u: &[f64],
+) -> Result<Vec<Matrix3<f64>>, String> {
+    if spec.is_hexs8() {
+        let xs: &[[f64; 3]; 8] = x
+            .try_into()
+            .map_err(|_| format!("{} needs 8 nodes, got {}", spec.name, x.len()))?;
+        return Ok(vec![super::hexs8::centre_gradient(xs, u)?]);
+    }
+    let t = table(spec, spec.rigi).map_err(|e| e.to_string())?;
+    let d = spec.formulation.dofs_per_node();
+    t.shapes
+        .iter()
+        .zip(&t.weights)
+        .enumerate()
+        .map(|(g, (s, &w))| {
+            let pg = point_geometry(spec.formulation, s, x, w)
+                .map_err(|m| format!("point {}: {m}", g + 1))?;
+            Ok(pg.gradient(u, d))
+        })
+        .collect()
+}
+
 /// Reusable output of [`internal_forces_into`]: the engine keeps one per
 /// element, so that an iteration of the element loop allocates nothing.
 #[derive(Debug, Clone, Default)]

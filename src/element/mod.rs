@@ -13,6 +13,7 @@ pub mod distributed;
 pub mod hexs8;
 pub mod mechanics;
 pub mod pressure;
+pub mod strain;
 
 pub use mechanics::{
     check_initial_geometry, initial_states, internal_forces, internal_forces_into,

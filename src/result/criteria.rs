@@ -1,5 +1,6 @@
 //! Equivalent stresses (CALC_CHAMP CRITERES SIEQ_ELGA, SIEQ_ELNO,
-//! SIEQ_NOEU) from a stress field.
+//! SIEQ_NOEU) from a stress field, and equivalent strains (EPEQ_ELGA,
+//! EPEQ_ELNO, EPEQ_NOEU) from a strain field.
 //!
 //! The components, their names and order are code_aster's for the SIEQ
 //! options (the located components `ECOEQPG`/`ECOEQNO` of the physical
@@ -31,9 +32,25 @@
 //! of their eigenspace; a zero tensor has zero vectors (code_aster's
 //! `fgequi` leaves them at zero too).
 
+//! The EPEQ components are `fgequi`'s for a strain (type 'EPSI',
+//! located components EDFEQPG of EPSI_R), 14 values: INVA_2 =
+//! sqrt(2/3 d:d), d the deviator of the strain tensor (`lciv2e`, with
+//! the tensor shears: `fgequi` turns EPXY into the Mandel √2 ε_xy first);
+//! PRIN_1 <= PRIN_2 <= PRIN_3 the principal strains; INVA_2SG = INVA_2
+//! with the sign of the trace (+ for a zero trace); VECT_1_X ... VECT_3_Z
+//! their directions, signed and completed (plane models: EPXZ = EPYZ =
+//! 0, EPZZ among the principal strains) as the stresses' are.
+
 use nalgebra::{Matrix3, SymmetricEigen};
 
 use super::GaussField;
+
+/// The EPEQ components, in code_aster's order (located components
+/// EDFEQPG of EPSI_R).
+pub const EPEQ_COMPONENTS: [&str; 14] = [
+    "INVA_2", "PRIN_1", "PRIN_2", "PRIN_3", "INVA_2SG", "VECT_1_X", "VECT_1_Y", "VECT_1_Z",
+    "VECT_2_X", "VECT_2_Y", "VECT_2_Z", "VECT_3_X", "VECT_3_Y", "VECT_3_Z",
+];
 
 /// The SIEQ components, in code_aster's order.
 pub const SIEQ_COMPONENTS: [&str; 17] = [
@@ -41,10 +58,43 @@ pub const SIEQ_COMPONENTS: [&str; 17] = [
     "VECT_2_X", "VECT_2_Y", "VECT_2_Z", "VECT_3_X", "VECT_3_Y", "VECT_3_Z", "TRSIG", "TRIAX",
 ];
 
+/// Principal values of the symmetric tensor `s` = (XX, YY, ZZ, XY, XZ,
+/// YZ) in ascending order, with their unit directions (each turned so
+/// that its largest component is positive); a zero tensor has zero
+/// values and zero directions, as `fgequi` leaves them.
+fn principal(s: [f64; 6]) -> ([f64; 3], [[f64; 3]; 3]) {
+    let mut values = [0.0; 3];
+    let mut vectors = [[0.0; 3]; 3];
+    if s.iter().all(|&v| v == 0.0) {
+        return (values, vectors);
+    }
+    let [xx, yy, zz, xy, xz, yz] = s;
+    let a = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+    let eig = SymmetricEigen::new(a);
+    let mut order = [0usize, 1, 2];
+    order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
+    for (k, &i) in order.iter().enumerate() {
+        values[k] = eig.eigenvalues[i];
+        let v = eig.eigenvectors.column(i);
+        let mut big = 0;
+        for c in 1..3 {
+            if v[c].abs() > v[big].abs() {
+                big = c;
+            }
+        }
+        let sign = if v[big] < 0.0 { -1.0 } else { 1.0 };
+        let norm = v.norm();
+        for c in 0..3 {
+            vectors[k][c] = sign * v[c] / norm;
+        }
+    }
+    (values, vectors)
+}
+
 /// The SIEQ values of the stress `s` = (XX, YY, ZZ, XY, XZ, YZ).
 pub fn equivalent_stresses(s: [f64; 6]) -> [f64; 17] {
-    let [xx, yy, zz, xy, xz, yz] = s;
     let mut out = [0.0; 17];
+    let [xx, yy, zz, xy, xz, yz] = s;
     let trace = xx + yy + zz;
     let m = trace / 3.0;
     let (dx, dy, dz) = (xx - m, yy - m, zz - m);
@@ -58,29 +108,33 @@ pub fn equivalent_stresses(s: [f64; 6]) -> [f64; 17] {
     } else {
         0.0
     };
-    if s.iter().all(|&v| v == 0.0) {
-        return out;
-    }
-    let a = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    let eig = SymmetricEigen::new(a);
-    let mut order = [0usize, 1, 2];
-    order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
-    for (k, &i) in order.iter().enumerate() {
-        out[2 + k] = eig.eigenvalues[i];
-        let v = eig.eigenvectors.column(i);
-        let mut big = 0;
-        for c in 1..3 {
-            if v[c].abs() > v[big].abs() {
-                big = c;
-            }
-        }
-        let sign = if v[big] < 0.0 { -1.0 } else { 1.0 };
-        let norm = v.norm();
-        for c in 0..3 {
-            out[6 + 3 * k + c] = sign * v[c] / norm;
-        }
+    let (values, vectors) = principal(s);
+    out[2..5].copy_from_slice(&values);
+    for k in 0..3 {
+        out[6 + 3 * k..9 + 3 * k].copy_from_slice(&vectors[k]);
     }
     out[1] = out[4] - out[2];
+    out
+}
+
+/// The EPEQ values of the strain `e` = (XX, YY, ZZ, XY, XZ, YZ), tensor
+/// shear components.
+pub fn equivalent_strains(e: [f64; 6]) -> [f64; 14] {
+    let mut out = [0.0; 14];
+    let [xx, yy, zz, xy, xz, yz] = e;
+    let trace = xx + yy + zz;
+    let m = trace / 3.0;
+    let (dx, dy, dz) = (xx - m, yy - m, zz - m);
+    // d:d with the tensor shears counted twice (ε_xy and ε_yx)
+    let dd = dx * dx + dy * dy + dz * dz + 2.0 * (xy * xy + xz * xz + yz * yz);
+    let inva2 = (2.0 / 3.0 * dd).sqrt();
+    out[0] = inva2;
+    out[4] = if trace >= 0.0 { inva2 } else { -inva2 };
+    let (values, vectors) = principal(e);
+    out[1..4].copy_from_slice(&values);
+    for k in 0..3 {
+        out[5 + 3 * k..8 + 3 * k].copy_from_slice(&vectors[k]);
+    }
     out
 }
 
@@ -89,31 +143,62 @@ pub fn equivalent_stresses(s: [f64; 6]) -> [f64; 17] {
 /// by component name; SIXZ and SIYZ absent (plane models) are 0, a point
 /// where a stress component is absent (NaN) has every SIEQ value absent.
 pub fn sieq(stress: &GaussField) -> Result<GaussField, String> {
-    let names = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
+    map_tensor_field(
+        stress,
+        ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"],
+        "stress",
+        &SIEQ_COMPONENTS,
+        |s, out| out.extend_from_slice(&equivalent_stresses(s)),
+    )
+}
+
+/// The EPEQ field of a strain field (EPSI_ELGA, EPSI_ELNO): the 14 EPEQ
+/// components at each point, read and completed as [`sieq`] does.
+pub fn epeq(strain: &GaussField) -> Result<GaussField, String> {
+    map_tensor_field(
+        strain,
+        ["EPXX", "EPYY", "EPZZ", "EPXY", "EPXZ", "EPYZ"],
+        "strain",
+        &EPEQ_COMPONENTS,
+        |e, out| out.extend_from_slice(&equivalent_strains(e)),
+    )
+}
+
+/// A field of `out_names` computed point by point from the symmetric
+/// tensor whose components are `names` in `field` (the last two may be
+/// absent: plane models, read as 0).
+fn map_tensor_field(
+    field: &GaussField,
+    names: [&str; 6],
+    what: &str,
+    out_names: &[&str],
+    f: impl Fn([f64; 6], &mut Vec<f64>),
+) -> Result<GaussField, String> {
     let idx: Vec<Option<usize>> = names
         .iter()
-        .map(|n| stress.components.iter().position(|c| c == n))
+        .map(|n| field.components.iter().position(|c| c == n))
         .collect();
-    if idx[..4].iter().any(Option::is_none) {
+    if let Some(k) = idx[..4].iter().position(Option::is_none) {
         return Err(format!(
-            "the stress field has no {} component (components: {})",
-            names[idx.iter().position(Option::is_none).unwrap_or(0)],
-            stress.components.join(", ")
+            "the {what} field has no {} component (components: {})",
+            names[k],
+            field.components.join(", ")
         ));
     }
-    let nc = stress.ncmp();
-    let npoints = stress.values.len().checked_div(nc).unwrap_or(0);
+    let nc = field.ncmp();
+    let no = out_names.len();
+    let npoints = field.values.len().checked_div(nc).unwrap_or(0);
     let mut out = GaussField {
-        components: SIEQ_COMPONENTS.iter().map(|s| s.to_string()).collect(),
-        offsets: stress
+        components: out_names.iter().map(|s| s.to_string()).collect(),
+        offsets: field
             .offsets
             .iter()
-            .map(|&o| o.checked_div(nc).unwrap_or(0) * SIEQ_COMPONENTS.len())
+            .map(|&o| o.checked_div(nc).unwrap_or(0) * no)
             .collect(),
-        values: Vec::with_capacity(npoints * SIEQ_COMPONENTS.len()),
+        values: Vec::with_capacity(npoints * no),
     };
     for p in 0..npoints {
-        let row = &stress.values[p * nc..(p + 1) * nc];
+        let row = &field.values[p * nc..(p + 1) * nc];
         let mut s = [0.0; 6];
         for (k, i) in idx.iter().enumerate() {
             if let Some(i) = i {
@@ -121,10 +206,9 @@ pub fn sieq(stress: &GaussField) -> Result<GaussField, String> {
             }
         }
         if s.iter().any(|v| v.is_nan()) {
-            out.values
-                .extend(std::iter::repeat_n(f64::NAN, SIEQ_COMPONENTS.len()));
+            out.values.extend(std::iter::repeat_n(f64::NAN, no));
         } else {
-            out.values.extend_from_slice(&equivalent_stresses(s));
+            f(s, &mut out.values);
         }
     }
     Ok(out)
@@ -193,6 +277,30 @@ mod tests {
         assert_eq!((e[0], e[16], e[15]), (0.0, 0.0, 15.0));
         let z = equivalent_stresses([0.0; 6]);
         assert!(z.iter().all(|&v| v == 0.0));
+    }
+
+    /// Uniaxial strain ε along z with lateral −ν ε: INVA_2 = 2/3 (1 + ν)
+    /// |ε| (the von Mises equivalent strain), sign of the trace; a pure
+    /// shear ε_xy = g/2 (tensor component) gives INVA_2 = g/√3 and
+    /// principal strains ∓ g/2 along (1, ∓1)/√2.
+    #[test]
+    fn equivalent_strains_closed_forms() {
+        let (eps, nu) = (2e-3, 0.3);
+        let e = equivalent_strains([-nu * eps, -nu * eps, eps, 0.0, 0.0, 0.0]);
+        assert!(close(e[0], 2.0 / 3.0 * (1.0 + nu) * eps, eps), "{e:?}");
+        assert_eq!(e[4], e[0]);
+        assert!(close(e[1], -nu * eps, eps) && close(e[3], eps, eps));
+        assert_eq!(&e[11..14], &[0.0, 0.0, 1.0]);
+        let c = equivalent_strains([nu * eps, nu * eps, -eps, 0.0, 0.0, 0.0]);
+        assert_eq!(c[4], -c[0]);
+        let g = 1e-3;
+        let s = equivalent_strains([0.0, 0.0, 0.0, g / 2.0, 0.0, 0.0]);
+        assert!(close(s[0], g / 3.0_f64.sqrt(), g), "{s:?}");
+        assert!(close(s[1], -g / 2.0, g) && close(s[2], 0.0, g) && close(s[3], g / 2.0, g));
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(close(s[5], h, 1.0) && close(s[6], -h, 1.0), "{s:?}");
+        assert!(close(s[11], h, 1.0) && close(s[12], h, 1.0), "{s:?}");
+        assert!(equivalent_strains([0.0; 6]).iter().all(|&v| v == 0.0));
     }
 
     /// A plane field: SIXZ = SIYZ = 0 and SIZZ a principal stress.

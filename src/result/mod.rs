@@ -88,6 +88,23 @@ impl GaussField {
     pub fn cell(&self, cell: usize) -> &[f64] {
         &self.values[self.offsets[cell]..self.offsets[cell + 1]]
     }
+    /// The same field on the cells where `keep` is true (others, and
+    /// cells beyond `keep`, have no point): CALC_CHAMP's GROUP_MA.
+    pub fn restricted(&self, keep: &[bool]) -> GaussField {
+        let mut out = GaussField {
+            components: self.components.clone(),
+            offsets: Vec::with_capacity(self.offsets.len()),
+            values: Vec::new(),
+        };
+        for c in 0..self.offsets.len().saturating_sub(1) {
+            out.offsets.push(out.values.len());
+            if keep.get(c).copied().unwrap_or(false) {
+                out.values.extend_from_slice(self.cell(c));
+            }
+        }
+        out.offsets.push(out.values.len());
+        out
+    }
     /// Number of Gauss points of a cell.
     pub fn npg(&self, cell: usize) -> usize {
         (self.offsets[cell + 1] - self.offsets[cell])
