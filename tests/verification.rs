@@ -477,8 +477,9 @@ fn strains_of_imposed_displacements() {
 }
 
 /// Bad strain requests are located errors (strain.comm with one change
-/// each): FORCE with GROUP_MA, an unknown group, a component EPEQ does not
-/// have, a group without an element of the model.
+/// each): FORCE with GROUP_MA, an unknown group, a group without an
+/// element of the model, SOUS_POINT 2, ENEL of a GDEF_LOG result, a
+/// component EPEQ does not have.
 #[test]
 fn bad_strain_requests_are_located_errors() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("strain_bad");
@@ -508,6 +509,22 @@ fn bad_strain_requests_are_located_errors() {
                 "GROUP_MA='ZMIN', DEFORMATION=('EPSI_ELGA', 'EPSI_NOEU')",
             ),
             "holds no cell of an element of the model",
+        ),
+        (
+            "sous_point",
+            (
+                "MAILLE='M14', POINT=1, SOUS_POINT=1,",
+                "MAILLE='M14', POINT=1, SOUS_POINT=2,",
+            ),
+            "SOUS_POINT must be 1",
+        ),
+        (
+            "enel_large_strain",
+            (
+                "'EPSL_ELGA', 'EPSL_ELNO', 'EPSL_NOEU'))",
+                "'EPSL_ELGA', 'EPSL_ELNO', 'EPSL_NOEU'), ENERGIE='ENEL_ELGA')",
+            ),
+            "DEFORMATION='GDEF_LOG' (only PETIT and PETIT_REAC)",
         ),
         (
             "epeq_component",

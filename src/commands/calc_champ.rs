@@ -76,6 +76,7 @@ pub fn def() -> CommandDef {
         text("ENERGIE")
             .many()
             .into(&["ENEL_ELGA", "ENEL_ELNO", "ENEL_NOEU", "ETOT_ELGA", "ETOT_ELNO", "ETOT_NOEU"])
+            .doc("ENEL_ELGA: the elastic energy density TOTALE = ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance; DEFORMATION PETIT and PETIT_REAC), ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* not implemented)")
             .kw(),
         text("FORCE")
             .many()
@@ -111,8 +112,11 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         Some(ConceptData::Result(r)) => (**r).clone(),
         _ => return Err(args.error("RESULTAT", format!("the result {name} holds no data"))),
     };
-    if args.has("ENERGIE") {
-        return Err(args.not_implemented("ENERGIE", ""));
+    if let Some(o) = args.texts("ENERGIE").iter().find(|o| o.starts_with("ETOT")) {
+        return Err(args.not_implemented(
+            "ENERGIE",
+            &format!("{o}; ENEL_ELGA, ENEL_ELNO and ENEL_NOEU are computed"),
+        ));
     }
     // GROUP_MA/MAILLE restrict the element options; FORC_NODA and
     // REAC_NODA are assembled over the whole model.
@@ -403,24 +407,27 @@ fn element_fields(
     let crit_opts = args.texts("CRITERES");
     let vari_opts = args.texts("VARI_INTERNE");
     let strain_opts = args.texts("DEFORMATION");
+    let energy_opts = args.texts("ENERGIE");
     if stress_opts.is_empty()
         && crit_opts.is_empty()
         && vari_opts.is_empty()
         && strain_opts.is_empty()
+        && energy_opts.is_empty()
     {
         return Ok(());
     }
     let model_name = args.concept("MODELE").unwrap_or(&evol.model).to_string();
-    let model =
-        match study.concepts.data(&model_name) {
-            Some(ConceptData::Model(m)) => m,
-            _ => return Err(args.error(
+    let model = match study.concepts.data(&model_name) {
+        Some(ConceptData::Model(m)) => m,
+        _ => {
+            return Err(args.error(
                 "RESULTAT",
                 format!(
                     "the result {name} does not say which model it was computed with: give MODELE"
                 ),
-            )),
-        };
+            ))
+        }
+    };
     let mesh = super::model_args::mesh_of_model(study, args, "RESULTAT", model)?;
     let cells: Vec<bool> = if ["TOUT", "GROUP_MA", "MAILLE"].iter().any(|k| args.has(k)) {
         let mut mask = vec![false; mesh.ncells()];
@@ -445,6 +452,11 @@ fn element_fields(
         mask
     } else {
         vec![true; mesh.ncells()]
+    };
+    let elastic = if energy_opts.is_empty() {
+        Vec::new()
+    } else {
+        elastic_constants(study, args, evol, mesh, model, &cells)?
     };
     let restrict = |f: &GaussField| f.restricted(&cells);
     let noeu = |f: &GaussField| crate::result::elno::noeu(f, mesh);
@@ -575,6 +587,22 @@ fn element_fields(
                 gauss_out.push((format!("{prefix}_ELGA"), gauss));
             }
         }
+        if !energy_opts.is_empty() {
+            let sief = gauss_of("ENERGIE", "SIEF_ELGA")?;
+            let w = crate::result::energy::enel(&sief, &elastic).map_err(located("ENERGIE"))?;
+            if wants(&energy_opts, "ENEL", "ELNO") || wants(&energy_opts, "ENEL", "NOEU") {
+                let elno = elno_of(&w, &[0], "ENERGIE")?;
+                if wants(&energy_opts, "ENEL", "NOEU") {
+                    nodal_out.push(("ENEL_NOEU".into(), noeu(&elno)));
+                }
+                if wants(&energy_opts, "ENEL", "ELNO") {
+                    elno_out.push(("ENEL_ELNO".into(), elno));
+                }
+            }
+            if wants(&energy_opts, "ENEL", "ELGA") {
+                gauss_out.push(("ENEL_ELGA".into(), w));
+            }
+        }
         if !vari_opts.is_empty() {
             let vari = gauss_of("VARI_INTERNE", "VARI_ELGA")?;
             let all: Vec<usize> = (0..vari.ncmp()).collect();
@@ -597,6 +625,79 @@ fn element_fields(
         }
     }
     Ok(())
+}
+
+/// (E, ν) of the ELAS block of each selected element cell, for ENEL_*:
+/// code_aster's small-strain energy (`enelpg` under PETIT and
+/// PETIT_REAC). A cell computed in SIMO_MIEHE or GDEF_LOG, whose energy
+/// code_aster takes from internal variables of its own layout, is refused.
+fn elastic_constants(
+    study: &Study,
+    args: &Args,
+    evol: &crate::result::EvolNoli,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    cells: &[bool],
+) -> Result<Vec<Option<(f64, f64)>>, crate::diag::Diagnostic> {
+    let mat_name = args.concept("CHAM_MATER").unwrap_or(&evol.cham_mater);
+    let matfield = match study.concepts.data(mat_name) {
+        Some(ConceptData::MaterialField(m)) => m,
+        _ => {
+            return Err(args.error(
+                "ENERGIE",
+                format!(
+                    "no material field for the elastic energy: the result does not name one{}; give CHAM_MATER",
+                    if mat_name.is_empty() { String::new() } else { format!(" that holds data ({mat_name})") }
+                ),
+            ))
+        }
+    };
+    let mut out = vec![None; mesh.ncells()];
+    for c in 0..mesh.ncells() {
+        if !cells[c] || !matches!(model.cells.get(c), Some(CellRole::Element(_))) {
+            continue;
+        }
+        let cell = || super::post_args::cell_name(c);
+        if let Some(Some((rel, def))) = evol.comportement.get(c) {
+            if def != "PETIT" && def != "PETIT_REAC" {
+                return Err(args.not_implemented(
+                    "ENERGIE",
+                    &format!(
+                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (only PETIT and PETIT_REAC)",
+                        cell()
+                    ),
+                ));
+            }
+        }
+        let name = matfield
+            .cell_material
+            .get(c)
+            .cloned()
+            .flatten()
+            .ok_or_else(|| {
+                args.error(
+                    "ENERGIE",
+                    format!("cell {} has no material in {mat_name}", cell()),
+                )
+            })?;
+        let mat = match study.concepts.data(&name) {
+            Some(ConceptData::Material(m)) => m,
+            _ => return Err(args.error("ENERGIE", format!("the material {name} holds no data"))),
+        };
+        match (mat.get("ELAS", "E"), mat.get("ELAS", "NU")) {
+            (Some(e), Some(nu)) => out[c] = Some((e, nu)),
+            _ => {
+                return Err(args.error(
+                    "ENERGIE",
+                    format!(
+                        "the material {name} of cell {} has no ELAS E and NU",
+                        cell()
+                    ),
+                ))
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// The components `keep` (by index) of a Gauss field, same cells and

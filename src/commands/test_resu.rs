@@ -37,7 +37,9 @@ pub fn def() -> CommandDef {
             .doc("must hold exactly one node")
             .kw(),
         int("POINT").doc("Gauss point of an ELGA field").kw(),
-        int("SOUS_POINT").kw(),
+        int("SOUS_POINT")
+            .doc("sub-point of POINT: 1, the volume elements having one")
+            .kw(),
     ];
     resu.extend(refe_kws);
     let mut rules = vec![
@@ -129,10 +131,8 @@ type Header = Vec<(&'static str, String)>;
 /// The value a RESU occurrence tests, with the result name and the header
 /// columns.
 fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagnostic> {
-    for k in ["PARA", "SOUS_POINT"] {
-        if occ.has(k) {
-            return Err(occ.not_implemented(k, ""));
-        }
+    if occ.has("PARA") {
+        return Err(occ.not_implemented("PARA", ""));
     }
     let (rname, res) = result_of(study, occ, "RESULTAT")?;
     let (access, key) = match occ.int("NUME_ORDRE") {
@@ -167,6 +167,12 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
         ("NOM_CHAM", nom_cham.to_string()),
     ];
     let gauss = is_gauss_name(nom_cham);
+    if occ.has("SOUS_POINT") && (!gauss || occ.has("TYPE_TEST")) {
+        return Err(occ.error(
+            "SOUS_POINT",
+            format!("SOUS_POINT selects a sub-point of one Gauss point (with POINT) of an ELGA field, not of {nom_cham}{}", if occ.has("TYPE_TEST") { " with TYPE_TEST" } else { "" }),
+        ));
+    }
     if nom_cham.ends_with("_ELNO") {
         let (v, more) = elno_value(study, occ, rname, res, step, nom_cham)?;
         header.extend(more);
@@ -230,6 +236,20 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
         }
         header.push((ckey, clabel));
         header.push(("POINT", point.to_string()));
+        // The volume elements have one sub-point per Gauss point (sub-
+        // points are the layers and fibres of shells, pipes and beams).
+        if let Some(sp) = occ.int("SOUS_POINT") {
+            if sp != 1 {
+                return Err(occ.error(
+                    "SOUS_POINT",
+                    format!(
+                        "the points of cell {} in {nom_cham} have one sub-point each: SOUS_POINT must be 1",
+                        super::post_args::cell_name(cell)
+                    ),
+                ));
+            }
+            header.push(("SOUS_POINT", "1".to_string()));
+        }
         return Ok((rname.to_string(), header, v));
     }
     if occ.has("GROUP_MA") || occ.has("MAILLE") {
@@ -271,6 +291,7 @@ fn calc_champ_keyword(nom_cham: &str) -> &'static str {
     match nom_cham.split('_').next().unwrap_or("") {
         "SIEQ" | "EPEQ" => "CRITERES",
         "VARI" => "VARI_INTERNE",
+        "ENEL" => "ENERGIE",
         "EPSI" | "EPSG" | "EPSL" => "DEFORMATION",
         _ => "CONTRAINTE",
     }

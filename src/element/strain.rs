@@ -57,7 +57,11 @@ impl Measure {
                 let f = Matrix3::identity() + h;
                 let c = f.transpose() * f;
                 let eig = SymmetricEigen::new(c);
-                if let Some(l) = eig.eigenvalues.iter().find(|l| !(**l > f64::EPSILON)) {
+                if let Some(l) = eig
+                    .eigenvalues
+                    .iter()
+                    .find(|l| l.is_nan() || **l <= f64::EPSILON)
+                {
                     return Err(format!(
                         "FᵀF has the eigenvalue {l:e}: no logarithmic strain (det F = {:e})",
                         f.determinant()

@@ -8,6 +8,7 @@
 
 pub mod criteria;
 pub mod elno;
+pub mod energy;
 
 use indexmap::IndexMap;
 
