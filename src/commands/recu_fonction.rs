@@ -149,7 +149,7 @@ fn from_result(study: &mut Study, args: &Args) -> Result<Function, Diagnostic> {
     if nom_cham.ends_with("_ELNO") {
         return Err(args.not_implemented(
             "NOM_CHAM",
-            &format!("a function of the field by element at nodes {nom_cham}; the nodal field *_NOEU of CALC_CHAMP CONTRAINTE averages it at the nodes"),
+            &format!("a function of the field by element at nodes {nom_cham}; the nodal field {}_NOEU of CALC_CHAMP averages it at the nodes", nom_cham.trim_end_matches("_ELNO")),
         ));
     }
     if is_gauss_name(nom_cham) {
