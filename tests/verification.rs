@@ -430,7 +430,8 @@ fn bad_criteria_requests_are_located_errors() {
 /// with unselected cells (the selected cell's value, against the mean of
 /// both without GROUP_MA), all to 1e-12 relative; then the MED file of
 /// IMPR_RESU holds EPSL_NOEU with ln L1 at every node and EPSG_ELGA with
-/// (L1² − 1)/2 in every cell.
+/// (L1² − 1)/2 in every cell. ENEL: ½ σ:ε of the elastic patches (3D,
+/// HEXS8, AXIS) and the SIMO_MIEHE stored energy of the rotated stretch.
 #[test]
 fn strains_of_imposed_displacements() {
     let run = common::run_study("tests/verification/strain.comm", "verif_strain");
@@ -524,7 +525,7 @@ fn bad_strain_requests_are_located_errors() {
                 "'EPSL_ELGA', 'EPSL_ELNO', 'EPSL_NOEU'))",
                 "'EPSL_ELGA', 'EPSL_ELNO', 'EPSL_NOEU'), ENERGIE='ENEL_ELGA')",
             ),
-            "DEFORMATION='GDEF_LOG' (only PETIT and PETIT_REAC)",
+            "DEFORMATION='GDEF_LOG' (PETIT, PETIT_REAC",
         ),
         (
             "epeq_component",

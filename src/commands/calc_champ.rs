@@ -10,6 +10,7 @@ use crate::law::TangentKind;
 use crate::model::CellRole;
 use crate::model::MechLoad;
 use crate::nonlinear::{self, fields, Occurrence};
+use crate::result::energy::CellEnergy;
 use crate::result::{Access, GaussField, NodalField};
 use crate::study::Study;
 
@@ -76,7 +77,7 @@ pub fn def() -> CommandDef {
         text("ENERGIE")
             .many()
             .into(&["ENEL_ELGA", "ENEL_ELNO", "ENEL_NOEU", "ETOT_ELGA", "ETOT_ELNO", "ETOT_NOEU"])
-            .doc("ENEL_ELGA: the elastic energy density TOTALE = ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance; DEFORMATION PETIT and PETIT_REAC), ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* not implemented)")
+            .doc("ENEL_ELGA: the elastic energy density TOTALE, ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance) under PETIT and PETIT_REAC, the stored energy K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3) for VMIS_ISOT_LINE in SIMO_MIEHE; ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* and GDEF_LOG not implemented)")
             .kw(),
         text("FORCE")
             .many()
@@ -589,7 +590,24 @@ fn element_fields(
         }
         if !energy_opts.is_empty() {
             let sief = gauss_of("ENERGIE", "SIEF_ELGA")?;
-            let w = crate::result::energy::enel(&sief, &elastic).map_err(located("ENERGIE"))?;
+            let finite = elastic
+                .iter()
+                .any(|l| matches!(l, Some(CellEnergy::SimoMiehe { .. })));
+            let (jac, vari) = if finite {
+                let depl = step.nodal.get("DEPL").ok_or_else(|| {
+                    args.error(
+                        "ENERGIE",
+                        format!("NUME_ORDRE {nume} of {name} has no DEPL field for the SIMO_MIEHE energy"),
+                    )
+                })?;
+                let jac = crate::element::strain::jacobian_field(mesh, model, depl, &cells)
+                    .map_err(located("ENERGIE"))?;
+                (Some(jac), Some(gauss_of("ENERGIE", "VARI_ELGA")?))
+            } else {
+                (None, None)
+            };
+            let w = crate::result::energy::enel(&sief, jac.as_ref(), vari.as_ref(), &elastic)
+                .map_err(located("ENERGIE"))?;
             if wants(&energy_opts, "ENEL", "ELNO") || wants(&energy_opts, "ENEL", "NOEU") {
                 let elno = elno_of(&w, &[0], "ENERGIE")?;
                 if wants(&energy_opts, "ENEL", "NOEU") {
@@ -627,10 +645,12 @@ fn element_fields(
     Ok(())
 }
 
-/// (E, ν) of the ELAS block of each selected element cell, for ENEL_*:
-/// code_aster's small-strain energy (`enelpg` under PETIT and
-/// PETIT_REAC). A cell computed in SIMO_MIEHE or GDEF_LOG, whose energy
-/// code_aster takes from internal variables of its own layout, is refused.
+/// How ENEL_* takes the energy of each selected element cell (its ELAS E
+/// and ν): code_aster's `enelpg` under PETIT and PETIT_REAC (½ σ:S:σ) and
+/// for VMIS_ISOT_LINE in SIMO_MIEHE (the stored energy, from J and b̄ᵉ).
+/// A cell computed in GDEF_LOG, whose energy code_aster takes from its
+/// own internal variables (the stress T of the log formalism, which this
+/// law does not keep), is refused.
 fn elastic_constants(
     study: &Study,
     args: &Args,
@@ -638,7 +658,7 @@ fn elastic_constants(
     mesh: &crate::mesh::Mesh,
     model: &crate::model::Model,
     cells: &[bool],
-) -> Result<Vec<Option<(f64, f64)>>, crate::diag::Diagnostic> {
+) -> Result<Vec<Option<CellEnergy>>, crate::diag::Diagnostic> {
     let mat_name = args.concept("CHAM_MATER").unwrap_or(&evol.cham_mater);
     let matfield = match study.concepts.data(mat_name) {
         Some(ConceptData::MaterialField(m)) => m,
@@ -658,12 +678,14 @@ fn elastic_constants(
             continue;
         }
         let cell = || super::post_args::cell_name(c);
+        let mut simo_miehe = false;
         if let Some(Some((rel, def))) = evol.comportement.get(c) {
-            if def != "PETIT" && def != "PETIT_REAC" {
+            simo_miehe = def == "SIMO_MIEHE";
+            if def != "PETIT" && def != "PETIT_REAC" && !(simo_miehe && rel == "VMIS_ISOT_LINE") {
                 return Err(args.not_implemented(
                     "ENERGIE",
                     &format!(
-                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (only PETIT and PETIT_REAC)",
+                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC, and VMIS_ISOT_LINE in SIMO_MIEHE)",
                         cell()
                     ),
                 ));
@@ -685,7 +707,14 @@ fn elastic_constants(
             _ => return Err(args.error("ENERGIE", format!("the material {name} holds no data"))),
         };
         match (mat.get("ELAS", "E"), mat.get("ELAS", "NU")) {
-            (Some(e), Some(nu)) => out[c] = Some((e, nu)),
+            (Some(e), Some(nu)) if simo_miehe => {
+                out[c] = Some(CellEnergy::SimoMiehe {
+                    e,
+                    nu,
+                    be: simo_miehe_be(),
+                })
+            }
+            (Some(e), Some(nu)) => out[c] = Some(CellEnergy::Small { e, nu }),
             _ => {
                 return Err(args.error(
                     "ENERGIE",
@@ -698,6 +727,14 @@ fn elastic_constants(
         }
     }
     Ok(out)
+}
+
+/// The VARI_ELGA columns of b̄ᵉ_xx − 1, b̄ᵉ_yy − 1, b̄ᵉ_zz − 1 of
+/// VMIS_ISOT_LINE in SIMO_MIEHE, from the law's variable names.
+fn simo_miehe_be() -> [usize; 3] {
+    let names = crate::law::simo_miehe::METADATA.internal_variables;
+    let at = |n: &str| names.iter().position(|v| *v == n).unwrap_or(usize::MAX);
+    [at("BE_XX"), at("BE_YY"), at("BE_ZZ")]
 }
 
 /// The components `keep` (by index) of a Gauss field, same cells and

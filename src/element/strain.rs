@@ -98,6 +98,55 @@ pub fn strain_field(
 ) -> Result<GaussField, String> {
     let components = components(model.formulation());
     let nc = components.len();
+    point_field(mesh, model, depl, selected, components, |h, c, g, out| {
+        let e = measure
+            .tensor(h)
+            .map_err(|m| format!("cell M{} point {}: {m}", c + 1, g + 1))?;
+        let v = [
+            e[(0, 0)],
+            e[(1, 1)],
+            e[(2, 2)],
+            e[(0, 1)],
+            e[(0, 2)],
+            e[(1, 2)],
+        ];
+        out.extend_from_slice(&v[..nc]);
+        Ok(())
+    })
+}
+
+/// J = det F at the SIEF_ELGA points of the selected element cells (one
+/// component J), for the energy of SIMO_MIEHE results.
+pub fn jacobian_field(
+    mesh: &Mesh,
+    model: &Model,
+    depl: &NodalField,
+    selected: &[bool],
+) -> Result<GaussField, String> {
+    point_field(
+        mesh,
+        model,
+        depl,
+        selected,
+        vec!["J".into()],
+        |h, _, _, out| {
+            out.push((Matrix3::identity() + h).determinant());
+            Ok(())
+        },
+    )
+}
+
+/// A field with `components` at the SIEF_ELGA points of the selected
+/// element cells, `f(H, cell, point, out)` pushing the values of one point
+/// from its displacement gradient.
+fn point_field(
+    mesh: &Mesh,
+    model: &Model,
+    depl: &NodalField,
+    selected: &[bool],
+    components: Vec<String>,
+    f: impl Fn(&Matrix3<f64>, usize, usize, &mut Vec<f64>) -> Result<(), String>,
+) -> Result<GaussField, String> {
     let mut out = GaussField {
         components,
         offsets: Vec::with_capacity(mesh.ncells() + 1),
@@ -128,18 +177,7 @@ pub fn strain_field(
         let grads = super::mechanics::displacement_gradients(spec, &x, &u)
             .map_err(|m| format!("cell M{}: {m}", c + 1))?;
         for (g, h) in grads.iter().enumerate() {
-            let e = measure
-                .tensor(h)
-                .map_err(|m| format!("cell M{} point {}: {m}", c + 1, g + 1))?;
-            let v = [
-                e[(0, 0)],
-                e[(1, 1)],
-                e[(2, 2)],
-                e[(0, 1)],
-                e[(0, 2)],
-                e[(1, 2)],
-            ];
-            out.values.extend_from_slice(&v[..nc]);
+            f(h, c, g, &mut out.values)?;
         }
     }
     out.offsets.push(out.values.len());

@@ -9,6 +9,12 @@
 //! isotropic material, with the tensor shears,
 //! W = [(1 + ν) σ:σ − ν (tr σ)²] / (2E). Plane models read σ_xz = σ_yz =
 //! 0 and keep the out-of-plane σ_zz.
+//!
+//! Under SIMO_MIEHE (VMIS_ISOT_LINE) `enelpg` takes the stored energy of
+//! the model instead, W = K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3), per
+//! unit initial volume, K = E/(3(1 − 2ν)), μ = E/(2(1 + ν)), J = det F
+//! and b̄ᵉ the isochoric elastic left Cauchy-Green tensor the law keeps in
+//! its internal variables (here V3..V5 hold its diagonal minus 1).
 
 use super::GaussField;
 
@@ -21,10 +27,33 @@ pub fn elastic_energy_density(s: [f64; 6], e: f64, nu: f64) -> f64 {
     ((1.0 + nu) * ss - nu * tr * tr) / (2.0 * e)
 }
 
-/// The ENEL field of the stress field `sief` (components SIXX.. by name):
-/// one component TOTALE at each point of the cells `elastic` gives
-/// (E, ν) for; other cells have no point.
-pub fn enel(sief: &GaussField, elastic: &[Option<(f64, f64)>]) -> Result<GaussField, String> {
+/// W of SIMO_MIEHE for J = det F and tr b̄ᵉ.
+pub fn simo_miehe_energy_density(j: f64, tr_be_bar: f64, e: f64, nu: f64) -> f64 {
+    let k = e / (3.0 * (1.0 - 2.0 * nu));
+    let mu = e / (2.0 * (1.0 + nu));
+    0.5 * k * (0.5 * (j * j - 1.0) - j.ln()) + 0.5 * mu * (tr_be_bar - 3.0)
+}
+
+/// How the energy of a cell is taken: its ELAS (E, ν) and the kinematics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CellEnergy {
+    /// PETIT, PETIT_REAC: ½ σ:S:σ.
+    Small { e: f64, nu: f64 },
+    /// SIMO_MIEHE: the stored energy, from J and the internal variables
+    /// `be` (the columns of b̄ᵉ_xx − 1, b̄ᵉ_yy − 1, b̄ᵉ_zz − 1 in VARI_ELGA).
+    SimoMiehe { e: f64, nu: f64, be: [usize; 3] },
+}
+
+/// The ENEL field: one component TOTALE at each point of the cells
+/// `laws` gives a [`CellEnergy`] for (other cells have no point), from
+/// the stress `sief` (components SIXX.. by name) or, for SIMO_MIEHE, from
+/// `jac` (one component, det F at the same points) and `vari`.
+pub fn enel(
+    sief: &GaussField,
+    jac: Option<&GaussField>,
+    vari: Option<&GaussField>,
+    laws: &[Option<CellEnergy>],
+) -> Result<GaussField, String> {
     let names = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
     let idx: Vec<Option<usize>> = names
         .iter()
@@ -45,8 +74,33 @@ pub fn enel(sief: &GaussField, elastic: &[Option<(f64, f64)>]) -> Result<GaussFi
     };
     for c in 0..sief.offsets.len().saturating_sub(1) {
         out.offsets.push(out.values.len());
-        let Some(Some((e, nu))) = elastic.get(c) else {
-            continue;
+        let (e, nu) = match laws.get(c) {
+            Some(Some(CellEnergy::Small { e, nu })) => (e, nu),
+            Some(Some(CellEnergy::SimoMiehe { e, nu, be })) => {
+                let (Some(jac), Some(vari)) = (jac, vari) else {
+                    return Err(format!(
+                        "cell M{}: no J or VARI_ELGA for its SIMO_MIEHE energy",
+                        c + 1
+                    ));
+                };
+                let nv = vari.ncmp();
+                let (js, vs) = (jac.cell(c), vari.cell(c));
+                if nv == 0 || vs.len() != js.len() * nv || be.iter().any(|&k| k >= nv) {
+                    return Err(format!(
+                        "cell M{}: VARI_ELGA has {} values for {} points, not the law's b̄ᵉ",
+                        c + 1,
+                        vs.len(),
+                        js.len()
+                    ));
+                }
+                for (g, j) in js.iter().enumerate() {
+                    let row = &vs[g * nv..(g + 1) * nv];
+                    let tr = 3.0 + row[be[0]] + row[be[1]] + row[be[2]];
+                    out.values.push(simo_miehe_energy_density(*j, tr, *e, *nu));
+                }
+                continue;
+            }
+            _ => continue,
         };
         for row in sief.cell(c).chunks(nc.max(1)) {
             let mut s = [0.0; 6];
@@ -79,5 +133,19 @@ mod tests {
         let g = e / (2.0 * (1.0 + nu));
         let w = elastic_energy_density([0.0, 0.0, 0.0, 0.0, 50.0, 0.0], e, nu);
         assert!((w - 50.0 * 50.0 / (2.0 * g)).abs() < 1e-15 * w);
+    }
+
+    /// No deformation, no energy; a pure volume change J stores only the
+    /// volumetric part, whose second derivative at J = 1 is K.
+    #[test]
+    fn simo_miehe_energy_volumetric_part() {
+        let (e, nu) = (2.0e5, 0.3);
+        assert_eq!(simo_miehe_energy_density(1.0, 3.0, e, nu), 0.0);
+        let k = e / (3.0 * (1.0 - 2.0 * nu));
+        let h = 1e-4;
+        let d2 = (simo_miehe_energy_density(1.0 + h, 3.0, e, nu)
+            + simo_miehe_energy_density(1.0 - h, 3.0, e, nu))
+            / (h * h);
+        assert!((d2 - k).abs() < 1e-6 * k, "{d2} vs {k}");
     }
 }

@@ -267,6 +267,21 @@ mod tests {
         assert!(r.find(Access::NumeOrdre(9)).is_err());
     }
 
+    /// Cutting a field to cells keeps their points and leaves the others
+    /// (and cells beyond the mask) without any.
+    #[test]
+    fn restricted_fields_keep_the_selected_cells_only() {
+        let f = GaussField {
+            components: vec!["A".into(), "B".into()],
+            offsets: vec![0, 4, 6, 10],
+            values: (0..10).map(f64::from).collect(),
+        };
+        let r = f.restricted(&[false, true]);
+        assert_eq!(r.offsets, vec![0, 0, 2, 2]);
+        assert_eq!(r.values, vec![4.0, 5.0]);
+        assert_eq!((r.npg(0), r.npg(1), r.npg(2)), (0, 1, 0));
+    }
+
     #[test]
     fn absent_components_are_not_zero() {
         let mut f = NodalField::absent(vec!["DX".into(), "DY".into()], 3);
