@@ -261,8 +261,8 @@ fn static_bar_under_face_and_body_forces() {
     run_study("stat_distributed");
 }
 
-/// DEFORMATION (not built), an ELNO field tested without CALC_CHAMP, an
-/// ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
+/// ENERGIE ETOT_* (not built), an ELNO field tested without CALC_CHAMP,
+/// an ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
 /// located errors.
 #[test]
 fn bad_stresses_at_nodes_are_located_errors() {
@@ -271,12 +271,12 @@ fn bad_stresses_at_nodes_are_located_errors() {
     let comm = std::fs::read_to_string(dir().join("stress_nodes.comm")).unwrap();
     let cases = [
         (
-            "epsi_elga",
+            "etot_elga",
             (
                 "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU')",
-                "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU'), DEFORMATION='EPSI_ELGA'",
+                "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU'), ENERGIE='ETOT_ELGA'",
             ),
-            "not implemented yet: CALC_CHAMP/DEFORMATION",
+            "not implemented yet: CALC_CHAMP/ENERGIE (ETOT_ELGA",
         ),
         (
             "not_computed",
