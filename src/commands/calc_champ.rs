@@ -77,7 +77,7 @@ pub fn def() -> CommandDef {
         text("ENERGIE")
             .many()
             .into(&["ENEL_ELGA", "ENEL_ELNO", "ENEL_NOEU", "ETOT_ELGA", "ETOT_ELNO", "ETOT_NOEU"])
-            .doc("ENEL_ELGA: the elastic energy density TOTALE, ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance) under PETIT and PETIT_REAC, the stored energy K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3) for VMIS_ISOT_LINE in SIMO_MIEHE; ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* and GDEF_LOG not implemented)")
+            .doc("ENEL_ELGA: the elastic energy density TOTALE, ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance) under PETIT and PETIT_REAC, the stored energy K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3) for VMIS_ISOT_LINE and VMIS_ISOT_TRAC in SIMO_MIEHE; ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* and GDEF_LOG not implemented)")
             .kw(),
         text("FORCE")
             .many()
@@ -647,7 +647,8 @@ fn element_fields(
 
 /// How ENEL_* takes the energy of each selected element cell (its ELAS E
 /// and ν): code_aster's `enelpg` under PETIT and PETIT_REAC (½ σ:S:σ) and
-/// for VMIS_ISOT_LINE in SIMO_MIEHE (the stored energy, from J and b̄ᵉ).
+/// for VMIS_ISOT_* in SIMO_MIEHE (the stored energy, from J and b̄ᵉ; both
+/// laws share the variables of `law::simo_miehe`).
 /// A cell computed in GDEF_LOG, whose energy code_aster takes from its
 /// own internal variables (the stress T of the log formalism, which this
 /// law does not keep), is refused.
@@ -681,11 +682,14 @@ fn elastic_constants(
         let mut simo_miehe = false;
         if let Some(Some((rel, def))) = evol.comportement.get(c) {
             simo_miehe = def == "SIMO_MIEHE";
-            if def != "PETIT" && def != "PETIT_REAC" && !(simo_miehe && rel == "VMIS_ISOT_LINE") {
+            if def != "PETIT"
+                && def != "PETIT_REAC"
+                && !(simo_miehe && rel.starts_with("VMIS_ISOT"))
+            {
                 return Err(args.not_implemented(
                     "ENERGIE",
                     &format!(
-                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC, and VMIS_ISOT_LINE in SIMO_MIEHE)",
+                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC, and VMIS_ISOT_LINE/VMIS_ISOT_TRAC in SIMO_MIEHE)",
                         cell()
                     ),
                 ));
@@ -730,7 +734,8 @@ fn elastic_constants(
 }
 
 /// The VARI_ELGA columns of b̄ᵉ_xx − 1, b̄ᵉ_yy − 1, b̄ᵉ_zz − 1 of
-/// VMIS_ISOT_LINE in SIMO_MIEHE, from the law's variable names.
+/// VMIS_ISOT_LINE and VMIS_ISOT_TRAC in SIMO_MIEHE, from the law's
+/// variable names.
 fn simo_miehe_be() -> [usize; 3] {
     let names = crate::law::simo_miehe::METADATA.internal_variables;
     let at = |n: &str| names.iter().position(|v| *v == n).unwrap_or(usize::MAX);
