@@ -148,3 +148,56 @@ fn quarter_mesh_groups_as_the_3d_command_files_build_them() {
     );
     assert_eq!(lin.node_groups["A2"].len(), 1);
 }
+
+/// ORIE_PEAU, code_aster 15's merge of ORIE_PEAU_2D and ORIE_PEAU_3D (the
+/// keyword of current code_aster files, GROUP_MA_PEAU): on the 2D and the
+/// 3D SDNV103 meshes it orients every skin cell as the old keyword of its
+/// dimension does, and a skin group holding volume cells is a located
+/// error.
+#[test]
+fn orie_peau_orients_as_the_keyword_of_its_dimension() {
+    for (mesh_file, old) in [
+        ("sdnv103b", "ORIE_PEAU_2D=_F(GROUP_MA=('SZZ', 'RIGID'))"),
+        ("sdnv103a", "ORIE_PEAU_3D=_F(GROUP_MA=('SZZ', 'RIGID'))"),
+    ] {
+        let study = |key: &str| {
+            let text = format!(
+                "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+                 MAIL = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, {key})\nFIN()\n"
+            );
+            run_in_process(&text, &root().join(format!("med/{mesh_file}.mmed")))
+        };
+        let new = mesh(
+            &study("ORIE_PEAU=_F(GROUP_MA_PEAU=('SZZ', 'RIGID'))"),
+            "MAIL",
+        );
+        let reference = mesh(&study(old), "MAIL");
+        let original = {
+            let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\nFIN()\n";
+            mesh(
+                &run_in_process(text, &root().join(format!("med/{mesh_file}.mmed"))),
+                "MAIL",
+            )
+        };
+        let cells = |m: &aster::mesh::Mesh| {
+            ["SZZ", "RIGID"]
+                .iter()
+                .flat_map(|g| m.cell_groups[*g].iter().map(|&c| m.cells[c].nodes.clone()))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(cells(&new), cells(&reference), "{mesh_file}");
+        assert_ne!(
+            cells(&new),
+            cells(&original),
+            "{mesh_file}: some skin cell is reoriented"
+        );
+    }
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+        MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, CREA_GROUP_MA=_F(NOM='MIX', UNION=('SZZ', 'VOL')))\n\
+        MAIL = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ORIE_PEAU=_F(GROUP_MA_PEAU='MIX'))\nFIN()\n";
+    let (code, out, _) = run("orie_peau_mix", text, &root().join("med/sdnv103a.mmed"));
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("MODI_MAILLAGE/ORIE_PEAU"), "{out}");
+    assert!(out.contains("orie_peau_mix.comm:4"), "{out}");
+    assert!(out.contains("PENTA15"), "{out}");
+}
