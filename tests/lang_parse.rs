@@ -10,7 +10,7 @@
 //! and read them before committing.
 
 use aster::diag::{Source, Span};
-use aster::lang::ast::{Expr, ExprKind, Program, StmtKind, UnOp};
+use aster::lang::ast::{Expr, ExprKind, LogicOp, Program, Stmt, StmtKind, Target, UnOp};
 use aster::lang::parser::parse;
 use std::path::Path;
 
@@ -77,13 +77,15 @@ fn check_corpus_contract(src: &Source, program: &Program) {
         src.name
     );
     let mut defined: Vec<String> = Vec::new();
-    for stmt in &program.stmts {
-        let (value, target) = match &stmt.kind {
-            StmtKind::Assign { target, value } => (value, Some(&target.name)),
-            StmtKind::Expr(e) => (e, None),
-        };
+    contract(src, &program.stmts, &mut defined);
+}
+
+/// Every name read is assigned before (in the text order, blocks
+/// included).
+fn contract(src: &Source, stmts: &[Stmt], defined: &mut Vec<String>) {
+    let read = |e: &Expr, defined: &Vec<String>| {
         let mut used = Vec::new();
-        names(value, &mut used);
+        names(e, &mut used);
         for (name, span) in used {
             assert!(
                 defined.contains(&name),
@@ -92,23 +94,70 @@ fn check_corpus_contract(src: &Source, program: &Program) {
                 src.line_col(span.start)
             );
         }
-        if let Some(t) = target {
-            defined.push(t.clone());
+    };
+    let bind = |t: &Target, defined: &mut Vec<String>| match t {
+        Target::Name(n) => defined.push(n.name.clone()),
+        Target::Tuple(v) => defined.extend(v.iter().map(|n| n.name.clone())),
+    };
+    for stmt in stmts {
+        match &stmt.kind {
+            StmtKind::Assign { target, value } => {
+                read(value, defined);
+                defined.push(target.name.clone());
+            }
+            StmtKind::Unpack { targets, value } => {
+                read(value, defined);
+                defined.extend(targets.iter().map(|n| n.name.clone()));
+            }
+            StmtKind::Expr(e) => read(e, defined),
+            StmtKind::Pass => {}
+            StmtKind::FromImport { names, .. } => defined.extend(
+                names
+                    .iter()
+                    .flatten()
+                    .map(|(n, a)| a.as_ref().unwrap_or(n).name.clone()),
+            ),
+            StmtKind::Import(items) => defined.extend(
+                items
+                    .iter()
+                    .map(|i| i.alias.as_ref().unwrap_or(&i.module).name.clone()),
+            ),
+            StmtKind::If { branches, orelse } => {
+                for (c, b) in branches {
+                    read(c, defined);
+                    contract(src, b, defined);
+                }
+                contract(src, orelse, defined);
+            }
+            StmtKind::For { target, iter, body } => {
+                read(iter, defined);
+                bind(target, defined);
+                contract(src, body, defined);
+            }
         }
     }
 }
 
+/// The names an expression reads (a comprehension's own variables and the
+/// attributes of modules excluded).
 fn names(e: &Expr, out: &mut Vec<(String, Span)>) {
     match &e.kind {
         ExprKind::Name(n) => out.push((n.clone(), e.span)),
-        ExprKind::Tuple(items) => items.iter().for_each(|i| names(i, out)),
-        ExprKind::Call { args, .. } => args.iter().for_each(|a| names(&a.value, out)),
-        ExprKind::Unary { operand, .. } => names(operand, out),
-        ExprKind::Binary { lhs, rhs, .. } => {
-            names(lhs, out);
-            names(rhs, out);
+        ExprKind::ListComp { generators, .. } => {
+            let mut inner = Vec::new();
+            for c in e.children() {
+                names(c, &mut inner);
+            }
+            let bound: Vec<String> = generators
+                .iter()
+                .flat_map(|g| match &g.target {
+                    Target::Name(n) => vec![n.name.clone()],
+                    Target::Tuple(v) => v.iter().map(|n| n.name.clone()).collect(),
+                })
+                .collect();
+            out.extend(inner.into_iter().filter(|(n, _)| !bound.contains(n)));
         }
-        ExprKind::Int(_) | ExprKind::Real(_) | ExprKind::Str(_) | ExprKind::NoneLit => {}
+        _ => e.children().into_iter().for_each(|c| names(c, out)),
     }
 }
 
@@ -156,15 +205,116 @@ impl Dump<'_> {
                 }
                 self.line(None, depth, ")");
             }
-            ExprKind::Tuple(items) => {
-                self.line(Some(at), depth, &format!("{prefix}("));
+            ExprKind::Tuple(items) | ExprKind::List(items) => {
+                let (o, c) = if matches!(e.kind, ExprKind::List(_)) {
+                    ("[", "]")
+                } else {
+                    ("(", ")")
+                };
+                self.line(Some(at), depth, &format!("{prefix}{o}"));
                 for i in items {
                     self.expr(i.span, depth + 1, "", i);
                 }
-                self.line(None, depth, ")");
+                self.line(None, depth, c);
             }
-            _ => unreachable!("every other expression is inline"),
+            _ => self.line(Some(at), depth, &format!("{prefix}{}", long(e))),
         }
+    }
+}
+
+/// An expression on one line, however long.
+fn long(e: &Expr) -> String {
+    let l = |x: &Expr| long(x);
+    match &e.kind {
+        ExprKind::Int(i) => i.to_string(),
+        ExprKind::Real(r) => format!("{r:?}"),
+        ExprKind::Str(s) => format!("{s:?}"),
+        ExprKind::Bool(b) => format!("{}", if *b { "True" } else { "False" }),
+        ExprKind::NoneLit => "None".into(),
+        ExprKind::Name(n) => n.clone(),
+        ExprKind::Tuple(items) => {
+            let v: Vec<String> = items.iter().map(l).collect();
+            match v.len() {
+                1 => format!("({},)", v[0]),
+                _ => format!("({})", v.join(", ")),
+            }
+        }
+        ExprKind::List(items) => {
+            let v: Vec<String> = items.iter().map(l).collect();
+            format!("[{}]", v.join(", "))
+        }
+        ExprKind::ListComp { elt, generators } => {
+            let mut s = format!("[{}", l(elt));
+            for g in generators {
+                s.push_str(&format!(" for {} in {}", target(&g.target), l(&g.iter)));
+                for c in &g.ifs {
+                    s.push_str(&format!(" if {}", l(c)));
+                }
+            }
+            s + "]"
+        }
+        ExprKind::Call { func, args } => format!("{}({})", func.name, arg_list(args)),
+        ExprKind::MethodCall {
+            value,
+            method,
+            args,
+        } => format!("{}.{}({})", l(value), method.name, arg_list(args)),
+        ExprKind::Attribute { value, attr } => format!("{}.{}", l(value), attr.name),
+        ExprKind::Index { value, index } => format!("{}[{}]", l(value), l(index)),
+        ExprKind::Slice {
+            value,
+            lower,
+            upper,
+            step,
+        } => {
+            let b = |x: &Option<Box<Expr>>| x.as_ref().map_or(String::new(), |e| long(e));
+            format!("{}[{}:{}:{}]", l(value), b(lower), b(upper), b(step))
+        }
+        ExprKind::Unary { op, operand } => {
+            let o = match op {
+                UnOp::Neg => "-",
+                UnOp::Pos => "+",
+                UnOp::Not => "not ",
+            };
+            format!("({o}{})", l(operand))
+        }
+        ExprKind::Binary { op, lhs, rhs } => format!("({} {} {})", l(lhs), op.symbol(), l(rhs)),
+        ExprKind::Compare { first, rest } => {
+            let mut s = format!("({}", l(first));
+            for (op, x) in rest {
+                s.push_str(&format!(" {} {}", op.symbol(), l(x)));
+            }
+            s + ")"
+        }
+        ExprKind::Logic { op, lhs, rhs } => {
+            let o = if *op == LogicOp::And { "and" } else { "or" };
+            format!("({} {o} {})", l(lhs), l(rhs))
+        }
+        ExprKind::IfElse { cond, then, orelse } => {
+            format!("({} if {} else {})", l(then), l(cond), l(orelse))
+        }
+    }
+}
+
+fn arg_list(args: &[aster::lang::ast::Arg]) -> String {
+    let v: Vec<String> = args
+        .iter()
+        .map(|a| match &a.name {
+            Some(n) => format!("{}={}", n.name, long(&a.value)),
+            None => long(&a.value),
+        })
+        .collect();
+    v.join(", ")
+}
+
+fn target(t: &Target) -> String {
+    match t {
+        Target::Name(n) => n.name.clone(),
+        Target::Tuple(v) => v
+            .iter()
+            .map(|n| n.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
     }
 }
 
@@ -190,13 +340,22 @@ fn inline(e: &Expr) -> Option<String> {
             let v: Option<Vec<String>> = args.iter().map(|a| inline(&a.value)).collect();
             format!("{}({})", func.name, v?.join(", "))
         }
+        ExprKind::List(items) => {
+            let v: Option<Vec<String>> = items.iter().map(inline).collect();
+            format!("[{}]", v?.join(", "))
+        }
         ExprKind::Unary { op, operand } => {
-            let o = if *op == UnOp::Neg { "-" } else { "+" };
+            let o = match op {
+                UnOp::Neg => "-",
+                UnOp::Pos => "+",
+                UnOp::Not => "not ",
+            };
             format!("({o}{})", inline(operand)?)
         }
         ExprKind::Binary { op, lhs, rhs } => {
             format!("({} {} {})", inline(lhs)?, op.symbol(), inline(rhs)?)
         }
+        _ => long(e),
     };
     (s.len() <= 70).then_some(s)
 }
@@ -206,13 +365,66 @@ fn dump(src: &Source, program: &Program) -> String {
         src,
         out: String::new(),
     };
-    for stmt in &program.stmts {
+    dump_block(&mut d, &program.stmts, 0);
+    d.out
+}
+
+fn dump_block(d: &mut Dump<'_>, stmts: &[Stmt], depth: usize) {
+    for stmt in stmts {
+        let at = Some(stmt.span);
         match &stmt.kind {
             StmtKind::Assign { target, value } => {
-                d.expr(stmt.span, 0, &format!("{} = ", target.name), value)
+                d.expr(stmt.span, depth, &format!("{} = ", target.name), value)
             }
-            StmtKind::Expr(e) => d.expr(stmt.span, 0, "", e),
+            StmtKind::Unpack { targets, value } => {
+                let n: Vec<&str> = targets.iter().map(|t| t.name.as_str()).collect();
+                d.expr(stmt.span, depth, &format!("{} = ", n.join(", ")), value)
+            }
+            StmtKind::Expr(e) => d.expr(stmt.span, depth, "", e),
+            StmtKind::Pass => d.line(at, depth, "pass"),
+            StmtKind::Import(items) => {
+                let v: Vec<String> = items
+                    .iter()
+                    .map(|i| match &i.alias {
+                        Some(a) => format!("{} as {}", i.module.name, a.name),
+                        None => i.module.name.clone(),
+                    })
+                    .collect();
+                d.line(at, depth, &format!("import {}", v.join(", ")))
+            }
+            StmtKind::FromImport { module, names } => {
+                let n = match names {
+                    None => "*".to_string(),
+                    Some(v) => v
+                        .iter()
+                        .map(|(n, a)| match a {
+                            Some(a) => format!("{} as {}", n.name, a.name),
+                            None => n.name.clone(),
+                        })
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                };
+                d.line(at, depth, &format!("from {} import {n}", module.name))
+            }
+            StmtKind::If { branches, orelse } => {
+                for (i, (c, b)) in branches.iter().enumerate() {
+                    let kw = if i == 0 { "if" } else { "elif" };
+                    d.line(Some(c.span), depth, &format!("{kw} {}:", long(c)));
+                    dump_block(d, b, depth + 1);
+                }
+                if !orelse.is_empty() {
+                    d.line(None, depth, "else:");
+                    dump_block(d, orelse, depth + 1);
+                }
+            }
+            StmtKind::For {
+                target: t,
+                iter,
+                body,
+            } => {
+                d.line(at, depth, &format!("for {} in {}:", target(t), long(iter)));
+                dump_block(d, body, depth + 1);
+            }
         }
     }
-    d.out
 }

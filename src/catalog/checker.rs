@@ -12,12 +12,26 @@
 
 use crate::catalog::args::{Args, Entry, EntryData, Value};
 use crate::catalog::concept_type::ConceptType;
-use crate::catalog::eval::{Binding, Env, PyVal, SpVal};
+use crate::catalog::eval::builtins;
+use crate::catalog::eval::{
+    find_stale, for_keyword, holds_list, make_stale, unpack, unpack_target, Binding, Env, PyVal,
+    SpVal,
+};
 use crate::catalog::schema::{
     CommandSpec, Cond, Factor, Keyword, Lit, Produces, Reentrant, Rule, Simple, Status, Ty,
 };
 use crate::diag::{closest, Diagnostic, Span};
-use crate::lang::ast::{ExprKind, Ident, Program, StmtKind};
+use crate::lang::ast::{CmpOp, ExprKind, Ident, Program, Stmt, StmtKind};
+
+/// A module that command files cannot import.
+fn unknown_module(module: &Ident) -> Diagnostic {
+    Diagnostic::error(format!(
+        "module '{}' is not available in command files",
+        module.name
+    ))
+    .at(module.span)
+    .note("the modules are math, numpy (a few scalar functions: np.sqrt, np.pi...) and code_aster.Commands")
+}
 
 /// One command ready to run.
 #[derive(Debug, Clone)]
@@ -44,115 +58,38 @@ pub struct CheckedProgram {
 
 /// Checks a whole program. On failure, returns every error found (and the
 /// warnings, after them).
+///
+/// The Python around the commands is evaluated here, before anything runs:
+/// plain statements, imports, and the `if`/`for` blocks, whose conditions
+/// and iterables are values known now (numbers, texts, lists, tuples,
+/// ranges). A block's commands are checked where the evaluation reaches
+/// them, once per iteration, so the runner receives the flat list of
+/// commands the file stands for, each with the span of its own text.
 pub fn check_program<D: AsRef<CommandSpec>>(
     program: &Program,
     registry: &[D],
 ) -> Result<CheckedProgram, Vec<Diagnostic>> {
     let registry: Vec<&CommandSpec> = registry.iter().map(AsRef::as_ref).collect();
+    let names: Vec<&str> = registry.iter().map(|d| d.name).collect();
     let mut ck = Checker {
         registry: &registry,
+        names: &names,
         env: Env::default(),
         errors: Vec::new(),
         warnings: Vec::new(),
+        out: Vec::new(),
+        seen_debut: false,
+        fin_at: None,
+        iterating: Vec::new(),
     };
-    let mut out = Vec::new();
-    let mut seen_debut = false;
-    let mut fin_at: Option<Span> = None;
-    let names: Vec<&str> = registry.iter().map(|d| d.name).collect();
-
-    for stmt in &program.stmts {
-        let (target, expr) = match &stmt.kind {
-            StmtKind::Assign { target, value } => (Some(target), value),
-            StmtKind::Expr(e) => (None, e),
-        };
-        let call = match &expr.kind {
-            ExprKind::Call { func, args } if names.contains(&func.name.as_str()) => {
-                Some((func, args))
-            }
-            _ => None,
-        };
-        if let Some(fin) = fin_at {
-            ck.warnings.push(
-                Diagnostic::warning("statement after FIN() is ignored, as code_aster does")
-                    .at(stmt.span)
-                    .note(format!("FIN() is at byte {}", fin.start)),
-            );
-            continue;
-        }
-        let Some((func, args)) = call else {
-            // A plain Python statement: evaluate it now. A call of an
-            // unknown name at statement level is most likely a misspelt
-            // command.
-            if let ExprKind::Call { func, .. } = &expr.kind {
-                let known = func.name == "_F"
-                    || crate::catalog::eval::BUILTINS.contains(&func.name.as_str());
-                if !known {
-                    ck.unknown_call(func, &names);
-                    if let Some(t) = target {
-                        ck.env
-                            .names
-                            .insert(t.name.clone(), Binding::Var(PyVal::Poison));
-                    }
-                    continue;
-                }
-            }
-            match ck.env.eval(expr, &|n| names.contains(&n)) {
-                Ok(v) => match target {
-                    Some(t) => {
-                        if v.v == PyVal::None {
-                            ck.env.names.shift_remove(&t.name);
-                        }
-                        ck.env.names.insert(t.name.clone(), Binding::Var(v.v));
-                    }
-                    None => ck
-                        .warnings
-                        .push(Diagnostic::warning("this statement has no effect").at(stmt.span)),
-                },
-                Err(d) => {
-                    ck.errors.push(d);
-                    if let Some(t) = target {
-                        ck.env
-                            .names
-                            .insert(t.name.clone(), Binding::Var(PyVal::Poison));
-                    }
-                }
-            }
-            continue;
-        };
-        let name = func.name.as_str();
-        if !seen_debut && name != "DEBUT" {
-            ck.errors.push(
-                Diagnostic::error(format!(
-                    "the study must begin with DEBUT(); {name} comes before it"
-                ))
-                .at(func.span)
-                .in_command(name),
-            );
-            seen_debut = true; // report it once
-        } else if name == "DEBUT" {
-            if seen_debut {
-                ck.errors.push(
-                    Diagnostic::error("DEBUT() may appear only once, at the start")
-                        .at(func.span)
-                        .in_command(name),
-                );
-            }
-            seen_debut = true;
-        }
-        if name == "FIN" {
-            fin_at = Some(stmt.span);
-        }
-        if let Some(c) = ck.command(target, func, args, stmt.span) {
-            out.push(c);
-        }
-    }
-    if !seen_debut {
+    ck.stmts(&program.stmts);
+    if !ck.seen_debut {
         ck.errors.push(
             Diagnostic::error("the study has no DEBUT(): a command file must begin with DEBUT()")
                 .at(Span::new(0, 0)),
         );
     }
-    if fin_at.is_none() && seen_debut {
+    if ck.fin_at.is_none() && ck.seen_debut {
         // Located where FIN() would go: after the last statement.
         let end = program.stmts.last().map_or(0, |s| s.span.end);
         ck.warnings.push(
@@ -160,29 +97,357 @@ pub fn check_program<D: AsRef<CommandSpec>>(
                 .at(Span::new(end, end)),
         );
     }
+    // A mistake inside a loop is found at every iteration: say it once.
+    let dedup = |v: Vec<Diagnostic>| {
+        let mut seen = std::collections::HashSet::new();
+        v.into_iter()
+            .filter(|d| seen.insert((d.message.clone(), d.span.map(|s| (s.start, s.end)))))
+            .collect::<Vec<_>>()
+    };
+    let warnings = dedup(ck.warnings);
     if ck.errors.is_empty() {
         Ok(CheckedProgram {
-            commands: out,
-            warnings: ck.warnings,
+            commands: ck.out,
+            warnings,
         })
     } else {
-        let mut all = ck.errors;
-        all.extend(ck.warnings);
+        let mut all = dedup(ck.errors);
+        all.extend(warnings);
         Err(all)
     }
 }
 
 struct Checker<'a> {
     registry: &'a [&'a CommandSpec],
+    /// The names of the commands of the registry.
+    names: &'a [&'a str],
     env: Env,
     errors: Vec<Diagnostic>,
     warnings: Vec<Diagnostic>,
+    /// The commands to run, in order, loops unrolled.
+    out: Vec<CheckedCommand>,
+    seen_debut: bool,
+    fin_at: Option<Span>,
+    /// The identities of the lists the enclosing `for`s go through.
+    iterating: Vec<u64>,
 }
 
 /// The values present at one level, for conditions and rules.
 type Present<'v> = Vec<(&'v str, Option<&'v PyVal>)>;
 
+fn is_cmd<'n>(names: &'n [&'n str]) -> impl Fn(&str) -> bool + 'n {
+    move |n| names.contains(&n)
+}
+
 impl Checker<'_> {
+    fn stmts(&mut self, stmts: &[Stmt]) {
+        for s in stmts {
+            self.stmt(s);
+        }
+    }
+
+    fn bind(&mut self, name: &str, v: PyVal) {
+        if v == PyVal::None {
+            self.env.names.shift_remove(name);
+        }
+        self.env.names.insert(name.to_string(), Binding::Var(v));
+    }
+
+    fn stmt(&mut self, stmt: &Stmt) {
+        if let Some(fin) = self.fin_at {
+            self.warnings.push(
+                Diagnostic::warning("statement after FIN() is ignored, as code_aster does")
+                    .at(stmt.span)
+                    .note(format!("FIN() is at byte {}", fin.start)),
+            );
+            return;
+        }
+        match &stmt.kind {
+            StmtKind::Assign { target, value } => self.statement(Some(target), value, stmt.span),
+            StmtKind::Expr(e) => match &e.kind {
+                ExprKind::MethodCall {
+                    value,
+                    method,
+                    args,
+                } if method.name == "append" && matches!(value.kind, ExprKind::Name(_)) => {
+                    if let Err(d) = self.append(value, args, e.span) {
+                        self.errors.push(d);
+                    }
+                }
+                _ => self.statement(None, e, stmt.span),
+            },
+            StmtKind::Unpack { targets, value } => {
+                let r = self
+                    .env
+                    .eval(value, &is_cmd(self.names))
+                    .and_then(|v| unpack(v, targets.len()));
+                match r {
+                    Ok(vals) => {
+                        for (t, v) in targets.iter().zip(vals) {
+                            self.bind(&t.name, v.v);
+                        }
+                    }
+                    Err(d) => {
+                        self.errors.push(d);
+                        for t in targets {
+                            self.bind(&t.name, PyVal::Poison);
+                        }
+                    }
+                }
+            }
+            StmtKind::Pass => {}
+            StmtKind::Import(items) => {
+                for it in items {
+                    match builtins::module(&it.module.name) {
+                        Some(m) => {
+                            let name = it.alias.as_ref().unwrap_or(&it.module);
+                            self.bind(&name.name, PyVal::Module(m));
+                        }
+                        None => self.errors.push(unknown_module(&it.module)),
+                    }
+                }
+            }
+            StmtKind::FromImport { module, names } => self.from_import(module, names.as_deref()),
+            StmtKind::If { branches, orelse } => {
+                for (cond, body) in branches {
+                    let c = match self.env.eval(cond, &is_cmd(self.names)) {
+                        Ok(c) => c,
+                        Err(d) => return self.errors.push(d),
+                    };
+                    if c.v == PyVal::Poison {
+                        return;
+                    }
+                    match self.env.truth(&c) {
+                        Ok(true) => return self.stmts(body),
+                        Ok(false) => {}
+                        Err(d) => return self.errors.push(d.at_if_none(cond.span)),
+                    }
+                }
+                self.stmts(orelse);
+            }
+            StmtKind::For { target, iter, body } => {
+                let v = match self.env.eval(iter, &is_cmd(self.names)) {
+                    Ok(v) => v,
+                    Err(d) => return self.errors.push(d),
+                };
+                if v.v == PyVal::Poison {
+                    return;
+                }
+                let items = match self.env.iterate(&v) {
+                    Ok(items) => items,
+                    Err(d) => return self.errors.push(d),
+                };
+                let id = match v.v {
+                    PyVal::List(id, _) => Some(id),
+                    _ => None,
+                };
+                self.iterating.extend(id);
+                for item in items {
+                    if let Err(d) = self.env.step(iter.span) {
+                        self.errors.push(d);
+                        break;
+                    }
+                    match unpack_target(target, item) {
+                        Ok(binds) => {
+                            for (n, v) in binds {
+                                self.bind(&n, v);
+                            }
+                        }
+                        Err(d) => {
+                            self.errors.push(d);
+                            break;
+                        }
+                    }
+                    self.stmts(body);
+                    if self.fin_at.is_some() {
+                        break;
+                    }
+                }
+                if id.is_some() {
+                    self.iterating.pop();
+                }
+            }
+        }
+    }
+
+    /// `L.append(x)` on a list variable. aster's values are copies, so the
+    /// cases where Python's shared list would make a difference are refused.
+    fn append(
+        &mut self,
+        value: &crate::lang::ast::Expr,
+        args: &[crate::lang::ast::Arg],
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        let ExprKind::Name(name) = &value.kind else {
+            unreachable!("append on a name")
+        };
+        let list = self.env.eval(value, &is_cmd(self.names))?;
+        let id = match list.v {
+            PyVal::List(id, _) => id,
+            PyVal::Poison => return Ok(()),
+            v => {
+                return Err(Diagnostic::error(format!(
+                    "append needs a list, and {name} is {}",
+                    v.describe()
+                ))
+                .at(value.span))
+            }
+        };
+        let [arg] = args else {
+            return Err(Diagnostic::error(format!(
+                "append takes exactly one argument ({} given)",
+                args.len()
+            ))
+            .at(span));
+        };
+        if arg.name.is_some() {
+            return Err(Diagnostic::error("append takes no keyword argument").at(arg.span));
+        }
+        let x = self.env.eval(&arg.value, &is_cmd(self.names))?;
+        let shared = self
+            .env
+            .names
+            .iter()
+            .find(|(n, b)| *n != name && matches!(b, Binding::Var(v) if holds_list(v, id)));
+        if let Some((other, _)) = shared {
+            return Err(Diagnostic::error(format!(
+                "{name} is the same list as {other}: Python's append would change both, aster's values are copies"
+            ))
+            .at(value.span)
+            .note(format!("build {other} after the appends, or copy the list with list({name})")));
+        }
+        if holds_list(&x.v, id) || self.iterating.contains(&id) {
+            return Err(Diagnostic::error(format!(
+                "appending to {name} while it is being looped over, or to itself, is not supported"
+            ))
+            .at(span));
+        }
+        if let Some(Binding::Var(PyVal::List(_, items))) = self.env.names.get_mut(name.as_str()) {
+            if items.len() >= crate::catalog::eval::MAX_ITEMS {
+                return Err(Diagnostic::error(format!(
+                    "the list {name} would have more than {} items",
+                    crate::catalog::eval::MAX_ITEMS
+                ))
+                .at(span));
+            }
+            items.push(x);
+        }
+        Ok(())
+    }
+
+    fn from_import(&mut self, module: &Ident, names: Option<&[(Ident, Option<Ident>)]>) {
+        if module.name == "code_aster.Commands" {
+            // The commands are always there.
+            for (n, _) in names.unwrap_or_default() {
+                if !self.names.contains(&n.name.as_str()) {
+                    let mut d =
+                        Diagnostic::error(format!("code_aster.Commands has no command {}", n.name))
+                            .at(n.span);
+                    d.suggestion = closest(&n.name, self.names);
+                    self.errors.push(d);
+                }
+            }
+            return;
+        }
+        let Some(m) = builtins::module(&module.name) else {
+            return self.errors.push(unknown_module(module));
+        };
+        let Some(names) = names else {
+            if m == "numpy" {
+                return self.errors.push(
+                    Diagnostic::error("'from numpy import *' is not supported")
+                        .at(module.span)
+                        .note("import numpy as np and write np.sqrt(...), or import the few functions needed by name"),
+                );
+            }
+            for n in builtins::star_names(m) {
+                let id = Ident {
+                    name: n.to_string(),
+                    span: module.span,
+                };
+                if let Ok(v) = builtins::module_attr(m, &id) {
+                    self.bind(n, v);
+                }
+            }
+            return;
+        };
+        for (n, alias) in names {
+            match builtins::module_attr(m, n) {
+                Ok(v) => self.bind(&alias.as_ref().unwrap_or(n).name, v),
+                Err(d) => self.errors.push(d),
+            }
+        }
+    }
+
+    /// An assignment or an expression statement: a command call, or plain
+    /// Python evaluated now.
+    fn statement(&mut self, target: Option<&Ident>, expr: &crate::lang::ast::Expr, span: Span) {
+        let call = match &expr.kind {
+            ExprKind::Call { func, args } if self.names.contains(&func.name.as_str()) => {
+                Some((func, args))
+            }
+            _ => None,
+        };
+        let Some((func, args)) = call else {
+            // A plain Python statement: evaluate it now. A call of an
+            // unknown name at statement level is most likely a misspelt
+            // command.
+            if let ExprKind::Call { func, .. } = &expr.kind {
+                let known = func.name == "_F"
+                    || crate::catalog::eval::is_builtin(&func.name)
+                    || matches!(self.env.bound_value(&func.name), Some(PyVal::Func(_)));
+                if !known {
+                    self.unknown_call(func, self.names);
+                    if let Some(t) = target {
+                        self.bind(&t.name, PyVal::Poison);
+                    }
+                    return;
+                }
+            }
+            match self.env.eval(expr, &is_cmd(self.names)) {
+                Ok(v) => match target {
+                    Some(t) => self.bind(&t.name, v.v),
+                    None => self
+                        .warnings
+                        .push(Diagnostic::warning("this statement has no effect").at(span)),
+                },
+                Err(d) => {
+                    self.errors.push(d);
+                    if let Some(t) = target {
+                        self.bind(&t.name, PyVal::Poison);
+                    }
+                }
+            }
+            return;
+        };
+        let name = func.name.as_str();
+        if !self.seen_debut && name != "DEBUT" {
+            self.errors.push(
+                Diagnostic::error(format!(
+                    "the study must begin with DEBUT(); {name} comes before it"
+                ))
+                .at(func.span)
+                .in_command(name),
+            );
+            self.seen_debut = true; // report it once
+        } else if name == "DEBUT" {
+            if self.seen_debut {
+                self.errors.push(
+                    Diagnostic::error("DEBUT() may appear only once, at the start")
+                        .at(func.span)
+                        .in_command(name),
+                );
+            }
+            self.seen_debut = true;
+        }
+        if name == "FIN" {
+            self.fin_at = Some(span);
+        }
+        if let Some(c) = self.command(target, func, args, span) {
+            self.out.push(c);
+        }
+    }
+
     fn unknown_call(&mut self, func: &Ident, names: &[&str]) {
         let mut d = Diagnostic::error(format!("unknown command {}", func.name)).at(func.span);
         d.suggestion = closest(&func.name, names);
@@ -206,11 +471,16 @@ impl Checker<'_> {
         let mut reuse: Option<(String, Span)> = None;
         for a in args {
             let Some(k) = &a.name else {
-                self.errors.push(
+                let mut d =
                     Diagnostic::error(format!("{cmd} takes keyword arguments only (KEY=value)"))
                         .at(a.span)
-                        .in_command(cmd),
-                );
+                        .in_command(cmd);
+                if let ExprKind::Compare { first, rest } = &a.value.kind {
+                    if let (ExprKind::Name(k), [(CmpOp::Eq, _)]) = (&first.kind, rest.as_slice()) {
+                        d = d.note(format!("write {k}=... with a single '=' ('==' compares)"));
+                    }
+                }
+                self.errors.push(d);
                 continue;
             };
             if given.iter().any(|(p, _)| p.name == k.name) || (k.name == "reuse" && reuse.is_some())
@@ -239,7 +509,20 @@ impl Checker<'_> {
                 .env
                 .eval(&a.value, &|n| registry.iter().any(|d| d.name == n))
             {
-                Ok(v) => given.push((k.clone(), v)),
+                Ok(v) => {
+                    if let Some((name, at)) = find_stale(&v) {
+                        self.errors.push(
+                            Diagnostic::error(format!(
+                                "this value holds the concept {name} as it was before {name} was defined again"
+                            ))
+                            .at(at)
+                            .in_command(cmd)
+                            .keyword(k.name.clone())
+                            .note("aster knows concepts by their names: give each concept its own name"),
+                        );
+                    }
+                    given.push((k.clone(), for_keyword(v)))
+                }
                 Err(d) => {
                     self.errors.push(with_ctx(d, cmd, &k.name));
                     given.push((
@@ -291,6 +574,17 @@ impl Checker<'_> {
         );
 
         if let (Some(t), Some(ty)) = (target, produces) {
+            // The runner finds concepts by name: values still holding the
+            // previous concept of this name would see the new one, where
+            // Python keeps the old object; they become stale (an error
+            // where they are used).
+            if reuse_name.is_none() {
+                for (n, b) in self.env.names.iter_mut() {
+                    if let (true, Binding::Var(v)) = (*n != t.name, b) {
+                        make_stale(v, &t.name);
+                    }
+                }
+            }
             self.env.names.insert(
                 t.name.clone(),
                 Binding::Concept {

@@ -69,7 +69,7 @@ pub fn parse(text: &str, params: &[String], consts: &[(String, f64)]) -> Result<
     let expr = match program.stmts.as_slice() {
         [s] => match &s.kind {
             StmtKind::Assign { value, .. } => value,
-            StmtKind::Expr(_) => return Err(format!("VALE '{text}' is not an expression")),
+            _ => return Err(format!("VALE '{text}' is not an expression")),
         },
         _ => return Err(format!("VALE '{text}' is not one expression")),
     };
@@ -104,6 +104,11 @@ fn tree(e: &Expr, text: &str, params: &[String], consts: &[(String, f64)]) -> Re
             match op {
                 UnOp::Neg => Node::Neg(Box::new(a)),
                 UnOp::Pos => a,
+                UnOp::Not => {
+                    return Err(format!(
+                        "'not' in VALE '{text}': a FORMULE computes a real from reals"
+                    ))
+                }
             }
         }
         ExprKind::Binary { op, lhs, rhs } => {
@@ -113,6 +118,12 @@ fn tree(e: &Expr, text: &str, params: &[String], consts: &[(String, f64)]) -> Re
                 BinOp::Mul => Op::Mul,
                 BinOp::Div => Op::Div,
                 BinOp::Pow => Op::Pow,
+                BinOp::FloorDiv | BinOp::Mod => {
+                    return Err(format!(
+                        "operator '{}' in VALE '{text}' is not available in a FORMULE (+ - * / **)",
+                        op.symbol()
+                    ))
+                }
             };
             Node::Bin(
                 op,
@@ -141,9 +152,7 @@ fn tree(e: &Expr, text: &str, params: &[String], consts: &[(String, f64)]) -> Re
                 .collect::<Result<_, _>>()?;
             Node::Call(f, xs)
         }
-        ExprKind::Str(_) | ExprKind::NoneLit | ExprKind::Tuple(_) => {
-            return Err(format!("VALE '{text}' must compute a real from reals"))
-        }
+        _ => return Err(format!("VALE '{text}' must compute a real from reals")),
     })
 }
 

@@ -155,6 +155,12 @@ impl Diagnostic {
         self.span = Some(span);
         self
     }
+    /// Locates a diagnostic built where no position was known, keeping a
+    /// more precise one.
+    pub fn at_if_none(mut self, span: Span) -> Self {
+        self.span.get_or_insert(span);
+        self
+    }
     pub fn in_command(mut self, command: impl Into<String>) -> Self {
         self.command = Some(command.into());
         self

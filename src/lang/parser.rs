@@ -16,7 +16,10 @@
 //! while lowering.
 
 use crate::diag::{Diagnostic, Source, Span};
-use crate::lang::ast::{Arg, BinOp, Expr, ExprKind, Ident, Program, Stmt, StmtKind, UnOp};
+use crate::lang::ast::{
+    Arg, BinOp, CmpOp, Comprehension, Expr, ExprKind, Ident, ImportItem, LogicOp, Program, Stmt,
+    StmtKind, Target, UnOp,
+};
 use pest::error::{ErrorVariant, InputLocation};
 use pest::iterators::Pair;
 use pest::Parser as _;
@@ -71,7 +74,7 @@ pub fn parse(src: &Source) -> Result<Program, Diagnostic> {
     let program = pairs
         .next()
         .expect("a successful parse yields the program rule");
-    lower_program(program)
+    lower_program(program, text)
 }
 
 fn syntax_error(message: impl AsRef<str>, span: Span) -> Diagnostic {
@@ -94,14 +97,354 @@ struct Node {
     depth: usize,
 }
 
-fn lower_program(pair: Pair<'_, Rule>) -> Result<Program, Diagnostic> {
-    let mut stmts = Vec::new();
-    for p in pair.into_inner() {
-        if p.as_rule() == Rule::stmt {
-            stmts.push(lower_stmt(p)?);
+/// Deepest nesting of `if`/`for` blocks, Python's own limit (CO_MAXBLOCKS).
+/// It bounds the recursion of the block builder and of the checker.
+pub const MAX_BLOCK_DEPTH: usize = 20;
+
+/// One logical line, before blocks are built from indentation.
+struct Line<'a> {
+    /// The whitespace before the line's first token.
+    indent: &'a str,
+    /// Offset of the line's first token.
+    start: usize,
+    kind: LineKind,
+}
+
+enum LineKind {
+    Simple(Vec<Stmt>),
+    Header {
+        head: Head,
+        /// Span of the header up to its ':'.
+        span: Span,
+        /// Statements after the ':' on the same line.
+        inline: Vec<Stmt>,
+    },
+}
+
+enum Head {
+    If(Expr),
+    Elif(Expr),
+    Else,
+    For(Target, Expr),
+}
+
+impl Head {
+    fn word(&self) -> &'static str {
+        match self {
+            Head::If(_) => "if",
+            Head::Elif(_) => "elif",
+            Head::Else => "else",
+            Head::For(..) => "for",
         }
     }
+}
+
+fn lower_program(pair: Pair<'_, Rule>, text: &str) -> Result<Program, Diagnostic> {
+    let mut lines: Vec<Line<'_>> = Vec::new();
+    let mut new_line = true;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::eol => new_line = true,
+            Rule::stmt => {
+                let start = p.as_span().start();
+                let stmt = lower_stmt(p)?;
+                match lines.last_mut() {
+                    Some(Line {
+                        kind: LineKind::Simple(v),
+                        ..
+                    }) if !new_line => v.push(stmt),
+                    _ => lines.push(Line {
+                        indent: indentation(text, start),
+                        start,
+                        kind: LineKind::Simple(vec![stmt]),
+                    }),
+                }
+                new_line = false;
+            }
+            Rule::compound => {
+                let start = p.as_span().start();
+                lines.push(Line {
+                    indent: indentation(text, start),
+                    start,
+                    kind: lower_compound(p)?,
+                });
+                new_line = true;
+            }
+            _ => {}
+        }
+    }
+    let mut at = 0;
+    let stmts = block(text, &lines, &mut at, None, 0)?;
+    debug_assert_eq!(at, lines.len());
     Ok(Program { stmts })
+}
+
+/// The whitespace between the start of the physical line and `start` (a
+/// form feed resets it, as in Python; the byte order mark is not part of
+/// it).
+fn indentation(text: &str, start: usize) -> &str {
+    let line_start = text[..start].rfind(['\n', '\r']).map_or(0, |p| p + 1);
+    let ws = &text[line_start..start];
+    let ws = ws.strip_prefix('\u{FEFF}').unwrap_or(ws);
+    match ws.rfind('\x0C') {
+        Some(p) => &ws[p + 1..],
+        None => ws,
+    }
+}
+
+/// How two indentations compare, as Python does when it refuses to guess
+/// a tab's width: one must be a prefix of the other.
+fn compare_indent(a: &str, b: &str) -> Option<std::cmp::Ordering> {
+    use std::cmp::Ordering::*;
+    if a == b {
+        Some(Equal)
+    } else if a.starts_with(b) {
+        Some(Greater)
+    } else if b.starts_with(a) {
+        Some(Less)
+    } else {
+        None
+    }
+}
+
+fn first_token(text: &str, start: usize) -> Span {
+    let len = text[start..].chars().next().map_or(0, char::len_utf8);
+    Span::new(start, start + len)
+}
+
+fn tabs_error(text: &str, line: &Line<'_>) -> Diagnostic {
+    syntax_error(
+        "inconsistent use of tabs and spaces in indentation",
+        first_token(text, line.start),
+    )
+    .note("indent the lines of a block with the same characters (spaces are best)")
+}
+
+/// Builds the statements of one block from `lines[*at..]`. `level` is the
+/// block's indentation, `None` at the top level, where indentation is
+/// ignored as it always was in command files (Python refuses it): only
+/// the lines after a block header are read by their indentation.
+fn block(
+    text: &str,
+    lines: &[Line<'_>],
+    at: &mut usize,
+    level: Option<&str>,
+    depth: usize,
+) -> Result<Vec<Stmt>, Diagnostic> {
+    use std::cmp::Ordering::*;
+    let mut out = Vec::new();
+    let mut after_block = false;
+    while let Some(line) = lines.get(*at) {
+        if let Some(lv) = level {
+            match compare_indent(line.indent, lv) {
+                Some(Equal) => {}
+                Some(Less) => return Ok(out),
+                Some(Greater) if after_block => {
+                    return Err(syntax_error(
+                        "unindent does not match any outer indentation level",
+                        first_token(text, line.start),
+                    ))
+                }
+                Some(Greater) => {
+                    return Err(syntax_error(
+                        "unexpected indent",
+                        first_token(text, line.start),
+                    )
+                    .note("a line is indented more than the lines before it only at the start of a block (after a line ending with ':')"))
+                }
+                None => return Err(tabs_error(text, line)),
+            }
+        }
+        *at += 1;
+        after_block = false;
+        let (head, hspan, inline) = match &line.kind {
+            LineKind::Simple(stmts) => {
+                out.extend(stmts.iter().cloned());
+                continue;
+            }
+            LineKind::Header { head, span, inline } => (head, *span, inline),
+        };
+        let body =
+            |at: &mut usize, head_line: &Line<'_>, hspan: Span, inline: &[Stmt], word: &str| {
+                header_body(text, lines, at, head_line, hspan, inline, word, depth)
+            };
+        let stmt = match head {
+            Head::Elif(_) | Head::Else => {
+                return Err(syntax_error(
+                    format!(
+                        "'{}' does not follow an 'if' block at the same indentation",
+                        head.word()
+                    ),
+                    first_token(text, line.start),
+                ))
+            }
+            Head::For(target, iter) => {
+                let b = body(at, line, hspan, inline, "for")?;
+                let end = b.last().map_or(hspan.end, |s| s.span.end);
+                Stmt {
+                    kind: StmtKind::For {
+                        target: target.clone(),
+                        iter: iter.clone(),
+                        body: b,
+                    },
+                    span: Span::new(hspan.start, end),
+                }
+            }
+            Head::If(cond) => {
+                let b = body(at, line, hspan, inline, "if")?;
+                let mut end = b.last().map_or(hspan.end, |s| s.span.end);
+                let mut branches = vec![(cond.clone(), b)];
+                let mut orelse = Vec::new();
+                while let Some(next) = lines.get(*at) {
+                    let LineKind::Header {
+                        head: h @ (Head::Elif(_) | Head::Else),
+                        span,
+                        inline,
+                    } = &next.kind
+                    else {
+                        break;
+                    };
+                    match compare_indent(next.indent, line.indent) {
+                        Some(Equal) => {}
+                        None => return Err(tabs_error(text, next)),
+                        // Deeper or shallower: not this `if`'s; the loop
+                        // of the right block reports it.
+                        Some(_) => break,
+                    }
+                    *at += 1;
+                    let b = body(at, next, *span, inline, h.word())?;
+                    end = b.last().map_or(span.end, |s| s.span.end);
+                    match h {
+                        Head::Elif(c) => branches.push((c.clone(), b)),
+                        _ => {
+                            orelse = b;
+                            break;
+                        }
+                    }
+                }
+                Stmt {
+                    kind: StmtKind::If { branches, orelse },
+                    span: Span::new(hspan.start, end),
+                }
+            }
+        };
+        out.push(stmt);
+        after_block = true;
+        // After a block, a top-level line may not stop between the
+        // header's indentation and the body's.
+        if level.is_none() {
+            if let Some(next) = lines.get(*at) {
+                match compare_indent(next.indent, line.indent) {
+                    Some(Equal | Less) => {}
+                    Some(Greater) => {
+                        return Err(syntax_error(
+                            "unindent does not match any outer indentation level",
+                            first_token(text, next.start),
+                        ))
+                    }
+                    None => return Err(tabs_error(text, next)),
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The body of a header: its statements on the same line, or the indented
+/// lines that follow it.
+#[allow(clippy::too_many_arguments)]
+fn header_body(
+    text: &str,
+    lines: &[Line<'_>],
+    at: &mut usize,
+    head_line: &Line<'_>,
+    hspan: Span,
+    inline: &[Stmt],
+    word: &str,
+    depth: usize,
+) -> Result<Vec<Stmt>, Diagnostic> {
+    if depth + 1 > MAX_BLOCK_DEPTH {
+        return Err(syntax_error(
+            format!("blocks nested more than {MAX_BLOCK_DEPTH} levels deep"),
+            hspan,
+        ));
+    }
+    if !inline.is_empty() {
+        return Ok(inline.to_vec());
+    }
+    let (line, _) = line_col(text, hspan.start);
+    let missing = |span: Span| {
+        syntax_error(
+            format!("expected an indented block after '{word}' statement on line {line}"),
+            span,
+        )
+        .note("indent the lines of the block more than the line that ends with ':' (write 'pass' for an empty block)")
+    };
+    let Some(next) = lines.get(*at) else {
+        return Err(missing(Span::new(text.len(), text.len())));
+    };
+    match compare_indent(next.indent, head_line.indent) {
+        Some(std::cmp::Ordering::Greater) => {}
+        Some(_) => return Err(missing(first_token(text, next.start))),
+        None => return Err(tabs_error(text, next)),
+    }
+    let stmts = block(text, lines, at, Some(next.indent), depth + 1)?;
+    // The line that ended the block must line up with an enclosing one:
+    // checked by the enclosing block (or, at the top level, by `block`).
+    let _ = head_line;
+    Ok(stmts)
+}
+
+fn lower_compound(pair: Pair<'_, Rule>) -> Result<LineKind, Diagnostic> {
+    let mut it = pair.into_inner();
+    let head_pair = it.next().expect("compound has a header");
+    let colon = it.next().expect("compound has a colon");
+    let span = Span::new(head_pair.as_span().start(), colon.as_span().end());
+    let head = match head_pair.as_rule() {
+        Rule::if_head | Rule::elif_head => {
+            let mut h = head_pair.into_inner();
+            let kw = h.next().expect("keyword");
+            let cond = lower_expr(h.next().expect("condition"))?.expr;
+            if kw.as_rule() == Rule::kw_if {
+                Head::If(cond)
+            } else {
+                Head::Elif(cond)
+            }
+        }
+        Rule::else_head => Head::Else,
+        Rule::for_head => {
+            let mut h = head_pair.into_inner();
+            let _kw = h.next();
+            let target = lower_targets(h.next().expect("targets"))?;
+            let _in = h.next();
+            let iter = lower_expr_list(h.next().expect("iterable"))?.expr;
+            Head::For(target, iter)
+        }
+        r => unreachable!("unexpected header {r:?}"),
+    };
+    let mut inline = Vec::new();
+    for p in it {
+        if p.as_rule() == Rule::stmt {
+            inline.push(lower_stmt(p)?);
+        }
+    }
+    Ok(LineKind::Header { head, span, inline })
+}
+
+fn lower_targets(pair: Pair<'_, Rule>) -> Result<Target, Diagnostic> {
+    let mut names = Vec::new();
+    let mut comma = false;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::ident => names.push(lower_ident(p)?),
+            _ => comma = true,
+        }
+    }
+    Ok(if names.len() == 1 && !comma {
+        Target::Name(names.pop().expect("one name"))
+    } else {
+        Target::Tuple(names)
+    })
 }
 
 fn lower_stmt(pair: Pair<'_, Rule>) -> Result<Stmt, Diagnostic> {
@@ -110,14 +453,79 @@ fn lower_stmt(pair: Pair<'_, Rule>) -> Result<Stmt, Diagnostic> {
     let kind = match inner.as_rule() {
         Rule::assign => {
             let mut it = inner.into_inner();
-            let target = lower_ident(it.next().expect("assign target"))?;
+            let target = lower_targets(it.next().expect("assign targets"))?;
             let _eq = it.next();
-            let value = lower_expr(it.next().expect("assign value"))?.expr;
-            StmtKind::Assign { target, value }
+            let value = lower_expr_list(it.next().expect("assign value"))?.expr;
+            match target {
+                Target::Name(target) => StmtKind::Assign { target, value },
+                Target::Tuple(targets) => StmtKind::Unpack { targets, value },
+            }
+        }
+        Rule::pass_stmt => StmtKind::Pass,
+        Rule::import_stmt => {
+            let mut items = Vec::new();
+            for p in inner.into_inner() {
+                if p.as_rule() == Rule::import_item {
+                    let mut it = p.into_inner();
+                    let module = lower_module(it.next().expect("module"))?;
+                    let alias = match it.nth(1) {
+                        Some(a) => Some(lower_ident(a)?),
+                        None => None,
+                    };
+                    items.push(ImportItem { module, alias });
+                }
+            }
+            StmtKind::Import(items)
+        }
+        Rule::from_stmt => {
+            let mut module = None;
+            let mut names: Option<Vec<(Ident, Option<Ident>)>> = Some(Vec::new());
+            for p in inner.into_inner() {
+                match p.as_rule() {
+                    Rule::module => module = Some(lower_module(p)?),
+                    Rule::star => names = None,
+                    Rule::import_list => {
+                        for n in p.into_inner() {
+                            if n.as_rule() != Rule::name_as {
+                                continue;
+                            }
+                            let mut it = n.into_inner();
+                            let name = lower_ident(it.next().expect("name"))?;
+                            let alias = match it.nth(1) {
+                                Some(a) => Some(lower_ident(a)?),
+                                None => None,
+                            };
+                            if let Some(v) = names.as_mut() {
+                                v.push((name, alias));
+                            }
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            StmtKind::FromImport {
+                module: module.expect("from has a module"),
+                names,
+            }
         }
         _ => StmtKind::Expr(lower_expr(inner)?.expr),
     };
     Ok(Stmt { kind, span })
+}
+
+/// `a.b.c` as one identifier named `a.b.c`.
+fn lower_module(pair: Pair<'_, Rule>) -> Result<Ident, Diagnostic> {
+    let span = span_of(&pair);
+    let mut parts = Vec::new();
+    for p in pair.into_inner() {
+        if p.as_rule() == Rule::ident {
+            parts.push(lower_ident(p)?.name);
+        }
+    }
+    Ok(Ident {
+        name: parts.join("."),
+        span,
+    })
 }
 
 fn lower_ident(pair: Pair<'_, Rule>) -> Result<Ident, Diagnostic> {
@@ -132,31 +540,160 @@ fn lower_ident(pair: Pair<'_, Rule>) -> Result<Ident, Diagnostic> {
     })
 }
 
-/// `expr` and `term` share their shape: operands separated by
-/// left-associative operators.
+/// `a, b, c` (a tuple without brackets, as in `A = 1, 2`) or one
+/// expression.
+fn lower_expr_list(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let span = span_of(&pair);
+    let mut items = Vec::new();
+    let mut comma = false;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::comma => comma = true,
+            _ => items.push(lower_expr(p)?),
+        }
+    }
+    if items.len() == 1 && !comma {
+        return Ok(items.pop().expect("one item"));
+    }
+    let depth = items.iter().map(|n| n.depth).max().unwrap_or(0);
+    let items = items.into_iter().map(|n| n.expr).collect();
+    deeper(ExprKind::Tuple(items), span, depth)
+}
+
+/// Every expression rule, by the rule of the pair.
 fn lower_expr(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    match pair.as_rule() {
+        Rule::expr => lower_conditional(pair),
+        Rule::disjunction | Rule::conjunction => lower_logic(pair),
+        Rule::inversion => lower_inversion(pair),
+        Rule::comparison => lower_comparison(pair),
+        Rule::sum | Rule::term => lower_arith(pair),
+        Rule::factor => lower_factor(pair),
+        r => unreachable!("unexpected expression rule {r:?}"),
+    }
+}
+
+/// `t0 if c0 else t1 if c1 else e`, folded from the right.
+fn lower_conditional(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let mut parts = Vec::new();
+    for p in pair.into_inner() {
+        if p.as_rule() == Rule::disjunction {
+            parts.push(lower_expr(p)?);
+        }
+    }
+    let mut acc = parts.pop().expect("expr has an operand");
+    while parts.len() >= 2 {
+        let cond = parts.pop().expect("condition");
+        let then = parts.pop().expect("value");
+        let span = then.expr.span.to(acc.expr.span);
+        let depth = then.depth.max(cond.depth).max(acc.depth);
+        acc = deeper(
+            ExprKind::IfElse {
+                cond: Box::new(cond.expr),
+                then: Box::new(then.expr),
+                orelse: Box::new(acc.expr),
+            },
+            span,
+            depth,
+        )?;
+    }
+    Ok(acc)
+}
+
+fn lower_logic(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let mut it = pair.into_inner();
+    let mut acc = lower_expr(it.next().expect("logic has an operand"))?;
+    while let Some(op) = it.next() {
+        let op = if op.as_rule() == Rule::kw_and {
+            LogicOp::And
+        } else {
+            LogicOp::Or
+        };
+        let rhs = lower_expr(it.next().expect("operator has a right operand"))?;
+        let span = acc.expr.span.to(rhs.expr.span);
+        let depth = acc.depth.max(rhs.depth);
+        acc = deeper(
+            ExprKind::Logic {
+                op,
+                lhs: Box::new(acc.expr),
+                rhs: Box::new(rhs.expr),
+            },
+            span,
+            depth,
+        )?;
+    }
+    Ok(acc)
+}
+
+fn lower_inversion(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let mut nots = Vec::new();
+    let mut node = None;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::kw_not => nots.push((UnOp::Not, p.as_span().start())),
+            _ => node = Some(lower_expr(p)?),
+        }
+    }
+    apply_unary(nots, node.expect("inversion has an operand"))
+}
+
+fn lower_comparison(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let mut it = pair.into_inner();
+    let first = lower_expr(it.next().expect("comparison has an operand"))?;
+    let mut rest = Vec::new();
+    let mut depth = first.depth;
+    let mut span = first.expr.span;
+    while let Some(op) = it.next() {
+        let words: Vec<&str> = op.as_str().split_whitespace().collect();
+        let op = match op.as_str() {
+            "==" => CmpOp::Eq,
+            "!=" => CmpOp::Ne,
+            "<" => CmpOp::Lt,
+            "<=" => CmpOp::Le,
+            ">" => CmpOp::Gt,
+            ">=" => CmpOp::Ge,
+            "in" => CmpOp::In,
+            _ if words.first() == Some(&"not") => CmpOp::NotIn,
+            // `not` and `in` separated by a comment or a continuation.
+            _ => CmpOp::NotIn,
+        };
+        let rhs = lower_expr(it.next().expect("operator has a right operand"))?;
+        depth = depth.max(rhs.depth);
+        span = span.to(rhs.expr.span);
+        rest.push((op, rhs.expr));
+    }
+    if rest.is_empty() {
+        return Ok(first);
+    }
+    deeper(
+        ExprKind::Compare {
+            first: Box::new(first.expr),
+            rest,
+        },
+        span,
+        depth,
+    )
+}
+
+/// `sum` and `term` share their shape: operands separated by
+/// left-associative operators.
+fn lower_arith(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
     let mut it = pair.into_inner();
     let first = it.next().expect("expr has a first operand");
-    let mut acc = lower_operand(first)?;
+    let mut acc = lower_expr(first)?;
     while let Some(op) = it.next() {
         let op = match op.as_str() {
             "+" => BinOp::Add,
             "-" => BinOp::Sub,
             "*" => BinOp::Mul,
+            "//" => BinOp::FloorDiv,
+            "%" => BinOp::Mod,
             _ => BinOp::Div,
         };
-        let rhs = lower_operand(it.next().expect("operator has a right operand"))?;
+        let rhs = lower_expr(it.next().expect("operator has a right operand"))?;
         acc = binary(op, acc, rhs)?;
     }
     Ok(acc)
-}
-
-fn lower_operand(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
-    match pair.as_rule() {
-        Rule::term | Rule::expr => lower_expr(pair),
-        Rule::factor => lower_factor(pair),
-        r => unreachable!("unexpected operand rule {r:?}"),
-    }
 }
 
 fn unary_op(pair: &Pair<'_, Rule>) -> UnOp {
@@ -180,7 +717,7 @@ fn lower_factor(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
     apply_unary(ops, node)
 }
 
-/// Applies prefix signs, innermost (rightmost) first.
+/// Applies prefix operators, innermost (rightmost) first.
 fn apply_unary(ops: Vec<(UnOp, usize)>, mut node: Node) -> Result<Node, Diagnostic> {
     for (op, start) in ops.into_iter().rev() {
         let span = Span::new(start, node.expr.span.end);
@@ -205,7 +742,7 @@ fn lower_power(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
         match p.as_rule() {
             Rule::pow_op => {}
             Rule::unary_op => signs.push((unary_op(&p), p.as_span().start())),
-            _ => segments.push((std::mem::take(&mut signs), lower_primary(p)?)),
+            _ => segments.push((std::mem::take(&mut signs), lower_postfix(p)?)),
         }
     }
     let (last_signs, last) = segments.pop().expect("power has an operand");
@@ -213,6 +750,102 @@ fn lower_power(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
     while let Some((signs, base)) = segments.pop() {
         acc = binary(BinOp::Pow, base, acc)?;
         acc = apply_unary(signs, acc)?;
+    }
+    Ok(acc)
+}
+
+/// A primary followed by `[index]`, `[a:b]`, `.attr` and `.method(...)`.
+fn lower_postfix(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let start = pair.as_span().start();
+    let mut it = pair.into_inner();
+    let mut acc = lower_primary(it.next().expect("postfix has a primary"))?;
+    for t in it {
+        let span = Span::new(start, t.as_span().end());
+        let rule = t.as_rule();
+        let mut parts = t.into_inner();
+        acc = match rule {
+            Rule::subscript => {
+                let _lb = parts.next();
+                let slice = parts.next().expect("subscript has a slice");
+                let slice_span = span_of(&slice);
+                let mut bounds: Vec<Option<Node>> = vec![None];
+                let mut colons = 0;
+                for p in slice.into_inner() {
+                    if p.as_rule() == Rule::colon {
+                        colons += 1;
+                        bounds.push(None);
+                    } else {
+                        *bounds.last_mut().expect("a bound") = Some(lower_expr(p)?);
+                    }
+                }
+                let depth = bounds
+                    .iter()
+                    .flatten()
+                    .map(|n| n.depth)
+                    .max()
+                    .unwrap_or(0)
+                    .max(acc.depth);
+                if colons == 0 {
+                    let Some(index) = bounds.pop().flatten() else {
+                        return Err(syntax_error(
+                            "expected an index or a slice between '[' and ']'",
+                            Span::new(slice_span.start.saturating_sub(1), slice_span.end + 1),
+                        ));
+                    };
+                    deeper(
+                        ExprKind::Index {
+                            value: Box::new(acc.expr),
+                            index: Box::new(index.expr),
+                        },
+                        span,
+                        depth,
+                    )?
+                } else {
+                    let mut b = bounds.into_iter().map(|n| n.map(|n| Box::new(n.expr)));
+                    let lower = b.next().flatten();
+                    let upper = b.next().flatten();
+                    let step = b.next().flatten();
+                    deeper(
+                        ExprKind::Slice {
+                            value: Box::new(acc.expr),
+                            lower,
+                            upper,
+                            step,
+                        },
+                        span,
+                        depth,
+                    )?
+                }
+            }
+            Rule::attribute => {
+                let _dot = parts.next();
+                let attr = lower_ident(parts.next().expect("attribute name"))?;
+                let depth = acc.depth;
+                deeper(
+                    ExprKind::Attribute {
+                        value: Box::new(acc.expr),
+                        attr,
+                    },
+                    span,
+                    depth,
+                )?
+            }
+            _ => {
+                let _dot = parts.next();
+                let method = lower_ident(parts.next().expect("method name"))?;
+                let (args, depth) = lower_args(parts)?;
+                let depth = depth.max(acc.depth);
+                deeper(
+                    ExprKind::MethodCall {
+                        value: Box::new(acc.expr),
+                        method,
+                        args,
+                    },
+                    span,
+                    depth,
+                )?
+            }
+        };
     }
     Ok(acc)
 }
@@ -259,6 +892,7 @@ fn lower_primary(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
         Rule::number => lower_number(pair.as_str(), span),
         Rule::strings => lower_strings(pair),
         Rule::none => Ok(leaf(ExprKind::NoneLit, span)),
+        Rule::boolean => Ok(leaf(ExprKind::Bool(pair.as_str() == "True"), span)),
         Rule::name => {
             let id = lower_ident(pair.into_inner().next().expect("name has an ident"))?;
             Ok(leaf(ExprKind::Name(id.name), span))
@@ -343,9 +977,18 @@ fn lower_call(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
     let span = span_of(&pair);
     let mut it = pair.into_inner();
     let func = lower_ident(it.next().expect("call has a name"))?;
+    let (args, depth) = lower_args(it)?;
+    deeper(ExprKind::Call { func, args }, span, depth)
+}
+
+/// The arguments among `pairs` (brackets and commas are skipped), with the
+/// depth of the deepest.
+fn lower_args<'a>(
+    pairs: impl Iterator<Item = Pair<'a, Rule>>,
+) -> Result<(Vec<Arg>, usize), Diagnostic> {
     let mut args: Vec<Arg> = Vec::new();
     let mut depth = 0;
-    for p in it {
+    for p in pairs {
         if p.as_rule() != Rule::arg {
             continue;
         }
@@ -379,7 +1022,7 @@ fn lower_call(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
         };
         args.push(arg);
     }
-    deeper(ExprKind::Call { func, args }, span, depth)
+    Ok((args, depth))
 }
 
 /// `( ... )` and `[ ... ]`. A parenthesised single expression without a
@@ -389,11 +1032,32 @@ fn lower_call(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
 fn lower_sequence(pair: Pair<'_, Rule>, is_paren: bool) -> Result<Node, Diagnostic> {
     let span = span_of(&pair);
     let mut items = Vec::new();
+    let mut generators = Vec::new();
+    let mut depth = 0;
     let mut comma = false;
     for p in pair.into_inner() {
         match p.as_rule() {
             Rule::comma => comma = true,
             Rule::expr => items.push(lower_expr(p)?),
+            Rule::comp_for => {
+                let mut it = p.into_inner();
+                let _for = it.next();
+                let target = lower_targets(it.next().expect("targets"))?;
+                let _in = it.next();
+                let iter = lower_expr(it.next().expect("iterable"))?;
+                depth = depth.max(iter.depth);
+                let mut ifs = Vec::new();
+                for c in it {
+                    let cond = lower_expr(c.into_inner().nth(1).expect("condition"))?;
+                    depth = depth.max(cond.depth);
+                    ifs.push(cond.expr);
+                }
+                generators.push(Comprehension {
+                    target,
+                    iter: iter.expr,
+                    ifs,
+                });
+            }
             _ => {}
         }
     }
@@ -402,25 +1066,39 @@ fn lower_sequence(pair: Pair<'_, Rule>, is_paren: bool) -> Result<Node, Diagnost
         node.expr.span = span;
         return Ok(node);
     }
-    let depth = items.iter().map(|n| n.depth).max().unwrap_or(0);
-    let items = items.into_iter().map(|n| n.expr).collect();
-    deeper(ExprKind::Tuple(items), span, depth)
+    let depth = items.iter().map(|n| n.depth).max().unwrap_or(0).max(depth);
+    let mut items: Vec<Expr> = items.into_iter().map(|n| n.expr).collect();
+    let kind = if !generators.is_empty() {
+        ExprKind::ListComp {
+            elt: Box::new(items.pop().expect("a comprehension has an element")),
+            generators,
+        }
+    } else if is_paren {
+        ExprKind::Tuple(items)
+    } else {
+        ExprKind::List(items)
+    };
+    deeper(kind, span, depth)
 }
+
+/// Python's reserved words that command files use (in their Python
+/// meaning); the others belong to syntax that command files lack.
+const SUPPORTED_KEYWORDS: &[&str] = &[
+    "False", "None", "True", "and", "as", "elif", "else", "for", "from", "if", "import", "in",
+    "not", "or", "pass",
+];
 
 fn unsupported_keyword(word: &str, span: Span) -> Diagnostic {
     match word {
-        "True" | "False" => syntax_error(
-            format!("'{word}' is not supported: command files have no booleans"),
-            span,
-        )
-        .note("code_aster keywords take 'OUI' or 'NON'"),
         "None" => syntax_error("'None' cannot be used as a name", span),
-        "and" | "or" | "not" | "in" | "is" => syntax_error(
-            format!("'{word}' is not supported: command files have no logical operators"),
+        _ if SUPPORTED_KEYWORDS.contains(&word) => syntax_error(
+            format!("'{word}' is a reserved word of Python and cannot be used as a name"),
             span,
         ),
+        "is" => syntax_error("'is' is not supported", span)
+            .note("compare values with == and !="),
         _ => syntax_error(format!("'{word}' is Python syntax that command files do not support"), span)
-            .note("a command file is a sequence of NAME = value assignments and command calls (no import, def, if, for, while, ...)"),
+            .note("a command file is a sequence of assignments, command calls, imports of math, and if/for blocks (no def, class, while, try, with, ...)"),
     }
 }
 
@@ -586,6 +1264,9 @@ fn explain(text: &str, scan: &Scan, err: &pest::error::Error<Rule>) -> Diagnosti
         }
     }
 
+    if std::env::var_os("ASTER_DEBUG_PEST").is_some() {
+        eprintln!("positives at {pos}: {positives:?}");
+    }
     let expected = expectations(&positives);
     let mut d = if expected.is_empty() {
         syntax_error(format!("unexpected {}", found.description), span)
@@ -631,37 +1312,31 @@ fn hint(
     // Directly after a name or a closing bracket, without space.
     let attached = is_ident_char(prev) || prev == ')' || prev == ']';
     let word_start = rest.starts_with(|c: char| is_ident_char(c) || c == '\'' || c == '"');
-    Some(if rest.starts_with("==") {
-        "a keyword argument takes a single '='; comparisons are not supported"
-    } else if rest.starts_with("//") {
-        "'//' is not supported; write int(a / b)"
-    } else if rest.starts_with('=') && before.ends_with(['+', '-', '*', '/']) {
-        "augmented assignment (+=, -=, ...) is not supported; write A = A + ..."
-    } else if wants_end && rest.starts_with('=') {
-        "assign one name per statement (A = B = value is not supported)"
-    } else if rest.starts_with('.') && !found.starts_value {
-        "attribute access and methods (A.B, A.f()) are not supported"
-    } else if rest.starts_with('[') && attached {
-        "indexing (A[0]) is not supported"
-    } else if rest.starts_with('(') && attached {
-        "only a name can be called: NAME(...)"
-    } else if rest.starts_with(['\'', '"'])
-        && before.ends_with(['r', 'R', 'u', 'U', 'f', 'F', 'b', 'B'])
-    {
-        "string prefixes (r'', u'', f'', b'') are not supported"
-    } else if wants_end && word_start {
-        "put each statement on its own line, or separate them with ';'"
-    } else if found.starts_value && before.ends_with(['\'', '"']) {
-        "is a quote misplaced? the string before it ends just here"
-    } else if wants_eq && found.starts_value {
-        "write KEYWORD=value, and separate arguments with ','"
-    } else if wants_comma && found.starts_value {
-        "is a ',' missing before it?"
-    } else if found.description == "end of line" && open.is_empty() {
-        "a statement continues on the next line only inside brackets or after a '\\'"
-    } else {
-        return None;
-    })
+    Some(
+        if rest.starts_with('=') && before.ends_with(['+', '-', '*', '/', '%']) {
+            "augmented assignment (+=, -=, ...) is not supported; write A = A + ..."
+        } else if wants_end && rest.starts_with('=') {
+            "assign one name per statement (A = B = value is not supported)"
+        } else if rest.starts_with('(') && attached {
+            "only a name can be called: NAME(...)"
+        } else if rest.starts_with(['\'', '"'])
+            && before.ends_with(['r', 'R', 'u', 'U', 'f', 'F', 'b', 'B'])
+        {
+            "string prefixes (r'', u'', f'', b'') are not supported"
+        } else if wants_end && word_start {
+            "put each statement on its own line, or separate them with ';'"
+        } else if found.starts_value && before.ends_with(['\'', '"']) {
+            "is a quote misplaced? the string before it ends just here"
+        } else if wants_eq && found.starts_value {
+            "write KEYWORD=value, and separate arguments with ','"
+        } else if wants_comma && found.starts_value {
+            "is a ',' missing before it?"
+        } else if found.description == "end of line" && open.is_empty() {
+            "a statement continues on the next line only inside brackets or after a '\\'"
+        } else {
+            return None;
+        },
+    )
 }
 
 /// 1-based line and column (in characters) of a byte offset.
@@ -686,22 +1361,62 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
     const STATEMENT: &str = "a statement (NAME = value or a command call)";
     let mut out: Vec<&'static str> = Vec::new();
     let mut operator = false;
+    // After a value, '[' starts an index, as an operator would.
+    let after_value = positives.contains(&Rule::add_op);
     for r in positives {
         let word = match r {
+            Rule::lbrack if after_value => continue,
             Rule::comma => "','",
             Rule::rparen => "')'",
             Rule::rbrack => "']'",
             Rule::eq => "'='",
+            Rule::colon => "':'",
+            Rule::kw_in => "'in'",
+            Rule::kw_else => "'else'",
+            Rule::kw_import => "'import'",
             Rule::semi | Rule::eol | Rule::EOI => "end of statement (new line or ';')",
             // Tried after every name (it could be a call) and after every
             // string (adjacent strings concatenate): never the useful word.
             Rule::lparen | Rule::string => continue,
-            Rule::add_op | Rule::mul_op | Rule::pow_op => {
+            // What may follow any value: listing them hides the useful part.
+            Rule::add_op
+            | Rule::mul_op
+            | Rule::pow_op
+            | Rule::cmp_op
+            | Rule::cmp_sym
+            | Rule::kw_if
+            | Rule::kw_and
+            | Rule::kw_or
+            | Rule::kw_not
+            | Rule::kw_for
+            | Rule::kw_as
+            | Rule::comp_for
+            | Rule::comp_if
+            | Rule::dot
+            | Rule::subscript
+            | Rule::method
+            | Rule::attribute => {
                 operator = true;
                 continue;
             }
             Rule::arg | Rule::kwarg => "an argument (KEYWORD=value or a value)",
-            Rule::program | Rule::stmt | Rule::assign | Rule::ident => STATEMENT,
+            Rule::targets | Rule::name_as | Rule::import_list => "a name",
+            Rule::module | Rule::import_item => "a module name",
+            Rule::ident => "a name",
+            Rule::program
+            | Rule::stmt
+            | Rule::assign
+            | Rule::compound
+            | Rule::if_head
+            | Rule::elif_head
+            | Rule::else_head
+            | Rule::for_head
+            | Rule::kw_elif
+            | Rule::kw_pass
+            | Rule::kw_from
+            | Rule::pass_stmt
+            | Rule::import_stmt
+            | Rule::from_stmt => STATEMENT,
             _ => VALUE,
         };
         if !out.contains(&word) {
@@ -718,6 +1433,12 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
     }
     if out.contains(&STATEMENT) {
         out.retain(|w| *w == STATEMENT);
+    }
+    // A ',' could make a tuple of a statement's value (`A = 1, 2`), which
+    // is never what a missing line break or ';' means.
+    const END: &str = "end of statement (new line or ';')";
+    if out.contains(&END) && !out.contains(&"')'") && !out.contains(&"']'") {
+        out.retain(|w| *w != "','");
     }
     let rank = |w: &&str| match *w {
         "'='" => 0,
@@ -831,8 +1552,8 @@ fn malformed_number(text: &str, pos: usize) -> Option<Span> {
     Some(Span::new(start, end))
 }
 
-/// A Python keyword at the failure position or just before it on the same
-/// line (`import math` fails at `math`, `[x for x in l]` at `for`).
+/// A Python keyword that command files do not support, at the failure
+/// position or just before it on the same line (`while x:` fails at `x`).
 fn keyword_near(text: &str, pos: usize) -> Option<(&'static str, Span)> {
     let word_at = |start: usize| {
         let len = text[start..]
@@ -843,7 +1564,7 @@ fn keyword_near(text: &str, pos: usize) -> Option<(&'static str, Span)> {
     let kw = |w: &str| {
         PYTHON_KEYWORDS
             .iter()
-            .find(|k| **k == w && w != "None")
+            .find(|k| **k == w && !SUPPORTED_KEYWORDS.contains(k))
             .copied()
     };
     if pos < text.len() && text[pos..].starts_with(|c: char| is_ident_char(c)) {
@@ -882,7 +1603,8 @@ fn stray_character(text: &str, pos: usize) -> Option<Diagnostic> {
                 .note("a backslash continues a statement only as the last character of a line"),
         );
     }
-    let known = is_ident_char(c) || " \t\x0C\r\n'\"()[],=+-*/.;#".contains(c) || c == '\u{FEFF}';
+    let known =
+        is_ident_char(c) || " \t\x0C\r\n'\"()[],=+-*/.;#%<>!:".contains(c) || c == '\u{FEFF}';
     if known {
         return None;
     }
@@ -893,10 +1615,12 @@ fn stray_character(text: &str, pos: usize) -> Option<Diagnostic> {
     };
     let d = syntax_error(format!("unexpected character {shown}"), span);
     Some(match c {
-        '{' | '}' | ':' => {
+        '{' | '}' => {
             d.note("dictionaries are not supported; factor keywords are written _F(KEY=value, ...)")
         }
-        '%' | '<' | '>' | '&' | '|' | '^' | '~' | '!' => d.note("the operators are + - * / and **"),
+        '&' | '|' | '^' | '~' => {
+            d.note("bitwise operators are not supported; the logical operators are and, or, not")
+        }
         _ if c.is_alphabetic() => d.note("names use only ASCII letters, digits and '_'"),
         _ => d,
     })
@@ -956,13 +1680,129 @@ mod tests {
                 format!("({} {})", func.name, v.join(" "))
             }
             ExprKind::Unary { op, operand } => {
-                let o = if *op == UnOp::Neg { "neg" } else { "pos" };
+                let o = match op {
+                    UnOp::Neg => "neg",
+                    UnOp::Pos => "pos",
+                    UnOp::Not => "not",
+                };
                 format!("({o} {})", sx(operand))
             }
             ExprKind::Binary { op, lhs, rhs } => {
                 format!("({} {} {})", op.symbol(), sx(lhs), sx(rhs))
             }
+            ExprKind::Bool(b) => format!("{}", if *b { "True" } else { "False" }),
+            ExprKind::List(items) => {
+                let v: Vec<String> = items.iter().map(sx).collect();
+                format!("(list {})", v.join(" "))
+            }
+            ExprKind::ListComp { elt, generators } => {
+                let mut out = format!("(listcomp {}", sx(elt));
+                for g in generators {
+                    out.push_str(&format!(" (for {} {}", tx(&g.target), sx(&g.iter)));
+                    for c in &g.ifs {
+                        out.push_str(&format!(" (if {})", sx(c)));
+                    }
+                    out.push(')');
+                }
+                out + ")"
+            }
+            ExprKind::MethodCall {
+                value,
+                method,
+                args,
+            } => {
+                let v: Vec<String> = args.iter().map(|a| sx(&a.value)).collect();
+                format!("(.{} {} {})", method.name, sx(value), v.join(" "))
+            }
+            ExprKind::Attribute { value, attr } => format!("(. {} {})", sx(value), attr.name),
+            ExprKind::Index { value, index } => format!("(index {} {})", sx(value), sx(index)),
+            ExprKind::Slice {
+                value,
+                lower,
+                upper,
+                step,
+            } => {
+                let b = |x: &Option<Box<Expr>>| x.as_ref().map_or("_".to_string(), |e| sx(e));
+                format!(
+                    "(slice {} {} {} {})",
+                    sx(value),
+                    b(lower),
+                    b(upper),
+                    b(step)
+                )
+            }
+            ExprKind::Compare { first, rest } => {
+                let mut out = format!("(cmp {}", sx(first));
+                for (op, e) in rest {
+                    out.push_str(&format!(" {} {}", op.symbol(), sx(e)));
+                }
+                out + ")"
+            }
+            ExprKind::Logic { op, lhs, rhs } => {
+                let o = if *op == LogicOp::And { "and" } else { "or" };
+                format!("({o} {} {})", sx(lhs), sx(rhs))
+            }
+            ExprKind::IfElse { cond, then, orelse } => {
+                format!("(ifelse {} {} {})", sx(cond), sx(then), sx(orelse))
+            }
         }
+    }
+
+    fn tx(t: &Target) -> String {
+        match t {
+            Target::Name(n) => n.name.clone(),
+            Target::Tuple(v) => {
+                let n: Vec<&str> = v.iter().map(|i| i.name.as_str()).collect();
+                format!("({})", n.join(","))
+            }
+        }
+    }
+
+    /// A statement list as s-expressions, blocks included.
+    fn st(stmts: &[Stmt]) -> String {
+        let v: Vec<String> = stmts
+            .iter()
+            .map(|s| match &s.kind {
+                StmtKind::Assign { target, value } => format!("{}={}", target.name, sx(value)),
+                StmtKind::Unpack { targets, value } => {
+                    let n: Vec<&str> = targets.iter().map(|i| i.name.as_str()).collect();
+                    format!("{}={}", n.join(","), sx(value))
+                }
+                StmtKind::Expr(e) => sx(e),
+                StmtKind::Pass => "pass".into(),
+                StmtKind::Import(items) => {
+                    let v: Vec<String> = items
+                        .iter()
+                        .map(|i| match &i.alias {
+                            Some(a) => format!("{} as {}", i.module.name, a.name),
+                            None => i.module.name.clone(),
+                        })
+                        .collect();
+                    format!("import {}", v.join(","))
+                }
+                StmtKind::FromImport { module, names } => match names {
+                    None => format!("from {} *", module.name),
+                    Some(n) => {
+                        let v: Vec<&str> = n.iter().map(|(i, _)| i.name.as_str()).collect();
+                        format!("from {} {}", module.name, v.join(","))
+                    }
+                },
+                StmtKind::If { branches, orelse } => {
+                    let mut out = String::from("(if");
+                    for (c, b) in branches {
+                        out.push_str(&format!(" {} [{}]", sx(c), st(b)));
+                    }
+                    if !orelse.is_empty() {
+                        out.push_str(&format!(" else [{}]", st(orelse)));
+                    }
+                    out + ")"
+                }
+                StmtKind::For { target, iter, body } => {
+                    format!("(for {} {} [{}])", tx(target), sx(iter), st(body))
+                }
+            })
+            .collect();
+        v.join("; ")
     }
 
     fn sv(text: &str) -> String {
@@ -1053,9 +1893,10 @@ mod tests {
         assert_eq!(sv("(1, 2,)"), "(tuple 1 2)");
         assert_eq!(sv("(1, 2)"), "(tuple 1 2)");
         assert_eq!(sv("()"), "(tuple )");
-        assert_eq!(sv("[1]"), "(tuple 1)");
-        assert_eq!(sv("[]"), "(tuple )");
-        assert_eq!(sv("[1, (2,), [3, 4,],]"), "(tuple 1 (tuple 2) (tuple 3 4))");
+        assert_eq!(sv("[1]"), "(list 1)");
+        assert_eq!(sv("[]"), "(list )");
+        assert_eq!(sv("[1, (2,), [3, 4,],]"), "(list 1 (tuple 2) (list 3 4))");
+        assert_eq!(sv("1, 2"), "(tuple 1 2)");
         assert_eq!(sv("((1))"), "1");
     }
 
@@ -1189,16 +2030,20 @@ mod tests {
             ),
             ("A = 1 @ 2\n", "syntax error: unexpected character '@'"),
             (
-                "import math\n",
-                "syntax error: 'import' is Python syntax that command files do not support",
+                "def f(x):\n    pass\n",
+                "syntax error: 'def' is Python syntax that command files do not support",
             ),
             (
-                "A = [x for x in L]\n",
-                "syntax error: 'for' is Python syntax that command files do not support",
+                "while N < 3:\n    N = N + 1\n",
+                "syntax error: 'while' is Python syntax that command files do not support",
             ),
             (
-                "A = True\n",
-                "syntax error: 'True' is not supported: command files have no booleans",
+                "A = if\n",
+                "syntax error: expected a value (number, string, name, tuple or call), found 'if'",
+            ),
+            (
+                "for = 3\n",
+                "syntax error: 'for' is a reserved word of Python and cannot be used as a name",
             ),
             ("A = 1 \\ 2\n", "syntax error: unexpected '\\'"),
         ];
@@ -1210,14 +2055,11 @@ mod tests {
     #[test]
     fn hints_for_python_that_is_not_supported() {
         let cases = [
-            ("A = B.C\n", "attribute access"),
-            ("A = B[0]\n", "indexing"),
             ("A += 1\n", "augmented assignment"),
-            ("A = 7 // 2\n", "int(a / b)"),
+            ("A %= 1\n", "augmented assignment"),
             ("A = r'x'\n", "string prefixes"),
             ("A = f(x)(y)\n", "only a name can be called"),
-            ("A = 1 % 2\n", "the operators are"),
-            ("F(A==1)\n", "single '='"),
+            ("A = 1 & 2\n", "bitwise"),
             ("F(MAILLAGE MA)\n", "KEYWORD=value"),
         ];
         for (text, note) in cases {
@@ -1274,5 +2116,152 @@ mod tests {
         assert!(err(&signs).message.contains("too deeply nested"));
         let pow = format!("A = 2{}\n", "**2".repeat(10_000));
         assert!(err(&pow).message.contains("too deeply nested"));
+    }
+    #[test]
+    fn python_expressions_and_precedence() {
+        assert_eq!(sv("L[0]"), "(index L 0)");
+        assert_eq!(sv("L[-1]"), "(index L (neg 1))");
+        assert_eq!(sv("L[1:3]"), "(slice L 1 3 _)");
+        assert_eq!(sv("L[::-1]"), "(slice L _ _ (neg 1))");
+        assert_eq!(sv("L[1:]"), "(slice L 1 _ _)");
+        assert_eq!(sv("L[0][1]"), "(index (index L 0) 1)");
+        assert_eq!(sv("-L[0]**2"), "(neg (** (index L 0) 2))");
+        assert_eq!(sv("'G_%d' % i"), "(% \"G_%d\" i)");
+        assert_eq!(sv("a % b * c"), "(* (% a b) c)");
+        assert_eq!(sv("a + b // c"), "(+ a (// b c))");
+        assert_eq!(sv("a + 1 < b * 2"), "(cmp (+ a 1) < (* b 2))");
+        assert_eq!(sv("0 < x <= 1"), "(cmp 0 < x <= 1)");
+        assert_eq!(sv("x not in L"), "(cmp x not in L)");
+        assert_eq!(sv("not a == b"), "(not (cmp a == b))");
+        assert_eq!(sv("a or b and not c"), "(or a (and b (not c)))");
+        assert_eq!(sv("a and b or c"), "(or (and a b) c)");
+        assert_eq!(sv("1 if c else 2"), "(ifelse c 1 2)");
+        assert_eq!(
+            sv("1 if a else 2 if b else 3"),
+            "(ifelse a 1 (ifelse b 2 3))"
+        );
+        assert_eq!(sv("x or y if c else z"), "(ifelse c (or x y) z)");
+        assert_eq!(sv("True"), "True");
+        assert_eq!(
+            sv("[x*2 for x in L if x > 0]"),
+            "(listcomp (* x 2) (for x L (if (cmp x > 0))))"
+        );
+        assert_eq!(
+            sv("[(i, j) for i in range(2) for j in L]"),
+            "(listcomp (tuple i j) (for i (range 2)) (for j L))"
+        );
+        assert_eq!(sv("[a for a, b in P]"), "(listcomp a (for (a,b) P))");
+        assert_eq!(sv("math.sqrt(2.)"), "(.sqrt math 2.0)");
+        assert_eq!(sv("math.pi*2"), "(* (. math pi) 2)");
+        assert_eq!(sv("np.pi"), "(. np pi)");
+        let d = err("A = L[]\n");
+        assert_eq!(
+            d.message,
+            "syntax error: expected an index or a slice between '[' and ']'"
+        );
+        let d = err("A = 1 if c\n");
+        assert!(d.message.contains("'else'"), "{}", d.message);
+    }
+
+    #[test]
+    fn imports_and_simple_statements() {
+        let p = ok("import math\nimport numpy as np, math as m\nfrom math import *\nfrom math import sqrt, pi as PI\nfrom code_aster.Commands import *\npass\na, b = 1, 2\n");
+        assert_eq!(
+            st(&p.stmts),
+            "import math; import numpy as np,math as m; from math *; from math sqrt,pi; from code_aster.Commands *; pass; a,b=(tuple 1 2)"
+        );
+        let p = ok("L = []\nL.append(_F(A=1))\n");
+        assert_eq!(st(&p.stmts), "L=(list ); (.append L (_F A=1))");
+    }
+
+    #[test]
+    fn blocks_follow_indentation() {
+        let p = ok("for i in range(3):\n    A = i\n    if i == 1:\n        B = i\n    elif i > 1: C = i\n    else:\n        pass\nD = 1\n");
+        assert_eq!(
+            st(&p.stmts),
+            "(for i (range 3) [A=i; (if (cmp i == 1) [B=i] (cmp i > 1) [C=i] else [pass])]); D=1"
+        );
+        // Comments and blank lines do not count; brackets join lines.
+        let p = ok("if X:\n\n  # c\n  A = F(B=1,\nC=2)\n  D = 2\nE = 3\n");
+        assert_eq!(st(&p.stmts), "(if X [A=(F B=1 C=2); D=2]); E=3");
+        // A flat file ignores indentation, as before.
+        let p = ok("DEBUT()\n   A = 1\n B = 2\nFIN()\n");
+        assert_eq!(p.stmts.len(), 4);
+        // Tabs, and a header indented at the top level.
+        let p = ok("  for a, b in P:\n  \tX = a\n  \tY = b\n  Z = 1\n");
+        assert_eq!(st(&p.stmts), "(for (a,b) P [X=a; Y=b]); Z=1");
+        // The span of an expanded statement is its own text.
+        let text = "for i in L:\n    F(X=i)\n";
+        let p = ok(text);
+        let StmtKind::For { body, .. } = &p.stmts[0].kind else {
+            panic!()
+        };
+        assert_eq!(&text[body[0].span.start..body[0].span.end], "F(X=i)");
+        assert_eq!(
+            &text[p.stmts[0].span.start..p.stmts[0].span.end],
+            "for i in L:\n    F(X=i)"
+        );
+    }
+
+    #[test]
+    fn block_errors_are_located() {
+        let cases: &[(&str, &str, &str)] = &[
+            (
+                "for i in L:\nA = 1\n",
+                "expected an indented block after 'for' statement on line 1",
+                "A",
+            ),
+            (
+                "if X:\n",
+                "expected an indented block after 'if' statement on line 1",
+                "",
+            ),
+            ("if X:\n    A = 1\n      B = 2\n", "unexpected indent", "B"),
+            (
+                "if X:\n    A = 1\n  B = 2\n",
+                "unindent does not match any outer indentation level",
+                "B",
+            ),
+            (
+                "for i in L:\n    if i:\n        A = 1\n      B = 2\n",
+                "unindent does not match any outer indentation level",
+                "B",
+            ),
+            (
+                "if X:\n    A = 1\n\tB = 2\n",
+                "inconsistent use of tabs and spaces in indentation",
+                "B",
+            ),
+            (
+                "else:\n    A = 1\n",
+                "'else' does not follow an 'if' block at the same indentation",
+                "e",
+            ),
+            (
+                "for i in L:\n    A = 1\n    else:\n        B = 2\n",
+                "'else' does not follow an 'if' block at the same indentation",
+                "e",
+            ),
+            ("if X\n    A = 1\n", "expected ':'", ""),
+            ("for i L:\n    A = 1\n", "'in'", "L"),
+        ];
+        for (text, msg, at) in cases {
+            let d = err(text);
+            assert!(d.message.contains(msg), "{text:?}: {}", d.message);
+            let s = d.span.unwrap();
+            assert!(text[s.start..].starts_with(at), "{text:?}: at {s:?}");
+        }
+        let deep: String = (0..21)
+            .map(|k| format!("{}if X:\n", " ".repeat(k)))
+            .collect::<String>()
+            + &" ".repeat(21)
+            + "pass\n";
+        assert!(err(&deep).message.contains("blocks nested more than 20"));
+        let ok_deep: String = (0..20)
+            .map(|k| format!("{}if X:\n", " ".repeat(k)))
+            .collect::<String>()
+            + &" ".repeat(20)
+            + "pass\n";
+        ok(&ok_deep);
     }
 }

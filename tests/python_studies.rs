@@ -1,0 +1,296 @@
+//! The Python that study files use around their commands (docs/language.md):
+//! a study written with imports, loops, conditions, '%' formatting and
+//! comprehensions runs exactly as the same study written flat, and the
+//! blocks unroll into the commands Python would run, in order, each
+//! located at its own text.
+
+use aster::catalog::args::Args;
+use aster::catalog::checker::{check_program, CheckedProgram};
+use aster::commands;
+use aster::diag::{Diagnostic, Source};
+use aster::lang::parser::parse;
+
+mod common;
+
+fn check(text: &str) -> Result<CheckedProgram, Vec<Diagnostic>> {
+    let src = Source::new("t.comm", text);
+    let p = parse(&src).map_err(|d| vec![d])?;
+    check_program(&p, &commands::all())
+}
+
+/// The VALE of every DEFI_LIST_REEL of a file, in the order they run.
+fn lists(text: &str) -> Vec<Vec<f64>> {
+    let c = check(&format!("DEBUT()\n{text}\nFIN()\n")).unwrap_or_else(|ds| {
+        let src = Source::new("t.comm", text);
+        panic!(
+            "{}",
+            ds.iter().map(|d| d.render(Some(&src))).collect::<String>()
+        )
+    });
+    c.commands
+        .iter()
+        .filter(|c| c.name == "DEFI_LIST_REEL")
+        .map(|c| c.args.reals("VALE"))
+        .collect()
+}
+
+/// The first error of a file and its line and column.
+fn error(text: &str) -> (String, usize, usize) {
+    let full = format!("DEBUT()\n{text}\nFIN()\n");
+    let ds = check(&full).expect_err(text);
+    let d = &ds[0];
+    let src = Source::new("t.comm", full.as_str());
+    let (l, c) = src.line_col(d.span.expect("located").start);
+    (d.message.clone(), l - 1, c)
+}
+
+#[test]
+fn python_study_runs_as_its_flat_version() {
+    let py = common::run_study("tests/verification/python_free_flight.comm", "py_ff");
+    let flat = common::run_study(
+        "tests/verification/python_free_flight_flat.comm",
+        "py_ff_flat",
+    );
+    assert_eq!(py.code, 0, "{}", py.term);
+    assert_eq!(flat.code, 0, "{}", flat.term);
+    let (a, b) = (
+        py.file("python_free_flight.resu"),
+        flat.file("python_free_flight_flat.resu"),
+    );
+    // 4 DY checks and the end velocity for both schemes, DX for Newmark:
+    // 11 analytic references (rigid-body motion, to 1e-10 relative).
+    let ok = a.lines().filter(|l| l.starts_with(" OK ")).count();
+    assert_eq!(ok, 11, "{a}");
+    assert!(!a.lines().any(|l| l.starts_with("NOOK")), "{a}");
+    assert_eq!(a, b, "the two .resu differ");
+    // The same commands, in the same order.
+    let names = |f: &str| -> Vec<String> {
+        let src = Source::read(std::path::Path::new(&format!(
+            "{}/tests/verification/{f}.comm",
+            env!("CARGO_MANIFEST_DIR")
+        )))
+        .unwrap();
+        let p = parse(&src).unwrap();
+        let c = check_program(&p, &commands::all()).unwrap();
+        c.commands.iter().map(|c| c.name.clone()).collect()
+    };
+    assert_eq!(
+        names("python_free_flight"),
+        names("python_free_flight_flat")
+    );
+}
+
+#[test]
+fn loops_and_conditions_unroll_in_order() {
+    assert_eq!(
+        lists("for i in range(1, 4):\n    L = DEFI_LIST_REEL(VALE=(i, 10. * i))\n"),
+        vec![vec![1.0, 10.0], vec![2.0, 20.0], vec![3.0, 30.0]]
+    );
+    // if/elif/else on values known before the run; nested blocks; a
+    // variable set in a loop keeps its last value after it, as in Python.
+    let text = "\
+N = 0
+for i in range(5):
+    if i % 2 == 0:
+        N = N + i
+    elif i == 3:
+        pass
+    else:
+        L = DEFI_LIST_REEL(VALE=(i, i + 0.5))
+L = DEFI_LIST_REEL(VALE=(N, i))
+";
+    // N = 0 + 2 + 4 and i = 4 (the checker does not order VALE; the run does).
+    assert_eq!(lists(text), vec![vec![1.0, 1.5], vec![6.0, 4.0]]);
+    // A body on the header's line, tuple unpacking, append, comprehension.
+    let text = "\
+a, b = 1, 2
+P = []
+for x, y in ((a, b), (3, 4)): P.append(x + y / 10.)
+L = DEFI_LIST_REEL(VALE=P)
+L = DEFI_LIST_REEL(VALE=[float(p) for p in range(3) if p != 1])
+L = DEFI_LIST_REEL(VALE=sorted_list) if 0 else DEFI_LIST_REEL(VALE=(1., 2.))
+";
+    let e = check(&format!("DEBUT()\n{text}\nFIN()\n")).unwrap_err();
+    assert!(
+        e[0].message.contains("cannot be used inside an expression"),
+        "{}",
+        e[0].message
+    );
+    let text = &text[..text.rfind("L = DEFI_LIST_REEL(VALE=sorted").unwrap()];
+    assert_eq!(lists(text), vec![vec![1.2, 3.4], vec![0.0, 2.0]]);
+    // imports.
+    let text = "\
+import math
+from math import sqrt as racine, pi
+import numpy as np
+L = DEFI_LIST_REEL(VALE=(math.cos(pi), racine(4.), np.sqrt(9.), math.floor(5.5)))
+";
+    assert_eq!(lists(text), vec![vec![-1.0, 2.0, 3.0, 5.0]]);
+    // from code_aster.Commands import * is accepted before DEBUT.
+    let c = check("from code_aster.Commands import *\nDEBUT()\nFIN()\n").unwrap();
+    assert_eq!(c.commands.len(), 2);
+}
+
+#[test]
+fn commands_in_loops_keep_their_own_lines() {
+    let text = "DEBUT()\nfor k in (1, 2):\n    L = DEFI_LIST_REEL(VALE=(0., k))\nFIN()\n";
+    let src = Source::new("t.comm", text);
+    let c = check(text).unwrap();
+    let lines: Vec<usize> = c
+        .commands
+        .iter()
+        .map(|c| src.line_col(c.span.start).0)
+        .collect();
+    assert_eq!(lines, vec![1, 3, 3, 4]);
+    let values: Vec<Vec<f64>> = c
+        .commands
+        .iter()
+        .filter(|c| c.name == "DEFI_LIST_REEL")
+        .map(|c| Args::reals(&c.args, "VALE"))
+        .collect();
+    assert_eq!(values, vec![vec![0.0, 1.0], vec![0.0, 2.0]]);
+    // An error in a loop is reported once, at its line.
+    let (m, l, c) = error("for k in (1, 2):\n    L = DEFI_LIST_REEL(VALE=(1., 'a'))");
+    assert_eq!((l, c), (2, 34), "{m}");
+    let ds = check("DEBUT()\nfor k in (1, 2, 3):\n    L = DEFI_LIST_REEL(VALEUR=k)\nFIN()\n")
+        .unwrap_err();
+    assert_eq!(
+        ds.iter().filter(|d| d.message.contains("VALEUR")).count(),
+        1
+    );
+}
+
+#[test]
+fn what_needs_a_concept_content_is_refused_where_written() {
+    let concept = "L = DEFI_LIST_REEL(VALE=(0., 1.))\n";
+    for (text, msg, line, col) in [
+        (
+            format!("{concept}if L:\n    pass"),
+            "a condition cannot test the concept L, whose content is not known before the study runs",
+            2,
+            4,
+        ),
+        (
+            format!("{concept}for x in L:\n    pass"),
+            "a loop cannot go through the concept L",
+            2,
+            10,
+        ),
+        (
+            format!("{concept}N = len(L)"),
+            "len() reads the concept L",
+            2,
+            9,
+        ),
+        (
+            format!("{concept}T = 'R_%s' % L"),
+            "the text of the concept L is not known before the study runs",
+            2,
+            5,
+        ),
+        (
+            format!("{concept}B = L == L"),
+            "comparing the concept L",
+            2,
+            5,
+        ),
+        (
+            format!("{concept}M = [L]\nL = DEFI_LIST_REEL(VALE=(0., 2.))\nL2 = DEFI_LIST_REEL(VALE=(0., 1.))\nIMPR_TABLE(TABLE=M[0])"),
+            "this value holds the concept L as it was before L was defined again",
+            5,
+            18,
+        ),
+    ] {
+        let (m, l, c) = error(&text);
+        assert!(m.contains(msg), "{text}: {m}");
+        assert_eq!((l, c), (line, col), "{text}: {m}");
+    }
+}
+
+#[test]
+fn python_mistakes_are_located_errors() {
+    for (text, msg, line, col) in [
+        (
+            "import os",
+            "module 'os' is not available in command files",
+            1,
+            8,
+        ),
+        (
+            "from numpy import *",
+            "'from numpy import *' is not supported",
+            1,
+            6,
+        ),
+        (
+            "from math import sqrtt",
+            "math.sqrtt is not available",
+            1,
+            18,
+        ),
+        (
+            "from code_aster.Commands import DEBUTT",
+            "code_aster.Commands has no command DEBUTT",
+            1,
+            33,
+        ),
+        (
+            "a, b = 1, 2, 3",
+            "cannot unpack a tuple into 2 names: it has 3 items",
+            1,
+            8,
+        ),
+        (
+            "L = (1, 2)\nL.append(3)",
+            "append needs a list, and L is a tuple",
+            2,
+            1,
+        ),
+        (
+            "L = []\nM = L\nL.append(3)",
+            "L is the same list as M",
+            3,
+            1,
+        ),
+        (
+            "L = [1]\nfor x in L:\n    L.append(x)",
+            "while it is being looped over",
+            3,
+            5,
+        ),
+        (
+            "for i in range(2000000):\n    pass",
+            "a range of more than 1000000 values",
+            1,
+            10,
+        ),
+        (
+            "for i in range(1000):\n    for j in range(1001):\n        pass",
+            "the loops and comprehensions of the file run more than 1000000 iterations",
+            2,
+            14,
+        ),
+        (
+            "N = 3\nfor i in N:\n    pass",
+            "cannot loop over the integer 3",
+            2,
+            10,
+        ),
+        (
+            "if 1 < 'a':\n    pass",
+            "'<' is not supported between the integer 1 and the text 'a'",
+            1,
+            4,
+        ),
+        (
+            "T = 'G_%d' % 'x'",
+            "%d format: a real number is required, not str",
+            1,
+            5,
+        ),
+    ] {
+        let (m, l, c) = error(text);
+        assert!(m.contains(msg), "{text}: {m}");
+        assert_eq!((l, c), (line, col), "{text}: {m}");
+    }
+}
