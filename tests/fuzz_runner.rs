@@ -44,7 +44,7 @@ use aster::catalog::checker::check_program;
 use aster::commands;
 use aster::concepts::ConceptData;
 use aster::diag::{Diagnostic, Severity, Source, Span};
-use aster::lang::ast::{Arg, Expr, ExprKind, Program, StmtKind, UnOp};
+use aster::lang::ast::{Arg, Expr, ExprKind, Program, Stmt, StmtKind, UnOp};
 use aster::lang::parser::parse;
 use aster::post::table::Cell;
 use aster::run::driver::{export_files, parse_and_check, RunOptions};
@@ -155,12 +155,12 @@ impl Corpus {
             targets: Vec::new(),
             target_names: Vec::new(),
         };
-        c.collect(&program);
+        c.collect(&program.stmts);
         c
     }
 
-    fn collect(&mut self, program: &Program) {
-        for stmt in &program.stmts {
+    fn collect(&mut self, stmts: &[Stmt]) {
+        for stmt in stmts {
             self.stmts.push(stmt.span);
             let value = match &stmt.kind {
                 StmtKind::Assign { target, value } => {
@@ -170,7 +170,21 @@ impl Corpus {
                     }
                     value
                 }
-                StmtKind::Expr(e) => e,
+                StmtKind::Expr(e) | StmtKind::Unpack { value: e, .. } => e,
+                StmtKind::Pass | StmtKind::Import(_) | StmtKind::FromImport { .. } => continue,
+                StmtKind::If { branches, orelse } => {
+                    for (c, b) in branches {
+                        self.value(c, false);
+                        self.collect(b);
+                    }
+                    self.collect(orelse);
+                    continue;
+                }
+                StmtKind::For { iter, body, .. } => {
+                    self.value(iter, false);
+                    self.collect(body);
+                    continue;
+                }
             };
             match &value.kind {
                 ExprKind::Call { args, .. } => args.iter().for_each(|a| self.arg(a)),
@@ -204,12 +218,12 @@ impl Corpus {
                     self.value(operand, false);
                 }
             }
-            ExprKind::Str(_) | ExprKind::NoneLit => self.values.push(e.span),
+            ExprKind::Str(_) | ExprKind::NoneLit | ExprKind::Bool(_) => self.values.push(e.span),
             ExprKind::Name(_) => {
                 self.names.push(e.span);
                 self.values.push(e.span);
             }
-            ExprKind::Tuple(items) => {
+            ExprKind::Tuple(items) | ExprKind::List(items) => {
                 self.values.push(e.span);
                 items.iter().for_each(|i| self.value(i, true));
             }
@@ -228,6 +242,17 @@ impl Corpus {
                 self.values.push(e.span);
                 self.value(lhs, false);
                 self.value(rhs, false);
+            }
+            ExprKind::MethodCall { args, .. } => {
+                self.values.push(e.span);
+                args.iter().for_each(|a| self.arg(a));
+            }
+            // The Python around commands: its parts are values too.
+            _ => {
+                self.values.push(e.span);
+                e.children()
+                    .into_iter()
+                    .for_each(|c| self.value(c, matches!(e.kind, ExprKind::ListComp { .. })));
             }
         }
     }
@@ -283,6 +308,15 @@ const OUT_OF_RANGE: &[&str] = &[
     "-float('inf')",
     "float('1e999')",
     "int(1.E18)*100",
+    "10**6 // 1",
+    "-7 % 0",
+    "1. // 0.",
+    "round(1.E308*10.)",
+    "math.exp(1000.)",
+    "math.sqrt(-1.)",
+    "math.log(0.)",
+    "len(range(10**18))",
+    "sum(range(10**6))",
 ];
 
 const OTHER_VALUES: &[&str] = &[
@@ -315,6 +349,26 @@ const OTHER_VALUES: &[&str] = &[
     "_F(TOUT='OUI')",
     "UNDEFINED_NAME",
     "float('x')",
+    "True",
+    "[1., 2.]",
+    "[]",
+    "[_F(TOUT='OUI') for i in range(2)]",
+    "[x for x in 'DX']",
+    "('DX', 'DY')[1]",
+    "(1, 2)[5]",
+    "'ABC'[1:]",
+    "'%s%d' % ('A', 2)",
+    "'%d' % 'x'",
+    "1 if 2 > 1 else 'a'",
+    "not 0",
+    "3 // 2 % 2",
+    "1 < 2 < 'a'",
+    "min([])",
+    "str(0.1)",
+    "math.pi",
+    "np.sqrt(2.)",
+    "list(range(3))",
+    "[1] * 3",
 ];
 
 /// What an edit does to the node at its span.
@@ -482,7 +536,7 @@ impl Pool {
                 let p = parse(&src).ok()?;
                 match p.stmts.into_iter().next()?.kind {
                     StmtKind::Assign { value, .. } => Some(value),
-                    StmtKind::Expr(_) => None,
+                    _ => None,
                 }
             })();
             self.parsed.insert(text.to_string(), e);
@@ -496,7 +550,9 @@ impl Pool {
 fn respan(e: &mut Expr, at: Span) {
     e.span = at;
     match &mut e.kind {
-        ExprKind::Tuple(items) => items.iter_mut().for_each(|i| respan(i, at)),
+        ExprKind::Tuple(items) | ExprKind::List(items) => {
+            items.iter_mut().for_each(|i| respan(i, at))
+        }
         ExprKind::Call { func, args } => {
             func.span = at;
             for a in args {
@@ -521,13 +577,26 @@ fn respan(e: &mut Expr, at: Span) {
 /// located there). Parsing is most of the cost of a case; this lets the
 /// checker see ten times more damaged files in the same time.
 fn damaged_tree(program: &Program, edits: &[Edit], pool: &mut Pool) -> Program {
-    let find = |s: Span, f: &dyn Fn(&Op) -> bool| edits.iter().find(|e| e.span == s && f(&e.op));
     let cut = edits
         .iter()
         .find(|e| matches!(e.op, Op::Truncate))
         .map(|e| e.span.start);
+    Program {
+        stmts: damaged_stmts(&program.stmts, edits, pool, cut),
+    }
+}
+
+/// The statements of one block, damaged; a block cut in the middle keeps
+/// the statements before the cut.
+fn damaged_stmts(
+    stmts_in: &[Stmt],
+    edits: &[Edit],
+    pool: &mut Pool,
+    cut: Option<usize>,
+) -> Vec<Stmt> {
+    let find = |s: Span, f: &dyn Fn(&Op) -> bool| edits.iter().find(|e| e.span == s && f(&e.op));
     let mut stmts = Vec::new();
-    for stmt in &program.stmts {
+    for stmt in stmts_in {
         if cut.is_some_and(|at| stmt.span.start >= at) {
             break;
         }
@@ -544,8 +613,20 @@ fn damaged_tree(program: &Program, edits: &[Edit], pool: &mut Pool) -> Program {
             }
         }
         match &mut st.kind {
-            StmtKind::Assign { value, .. } | StmtKind::Expr(value) => {
-                damage_expr(value, edits, pool, cut)
+            StmtKind::Assign { value, .. }
+            | StmtKind::Expr(value)
+            | StmtKind::Unpack { value, .. } => damage_expr(value, edits, pool, cut),
+            StmtKind::Pass | StmtKind::Import(_) | StmtKind::FromImport { .. } => {}
+            StmtKind::If { branches, orelse } => {
+                for (c, b) in branches.iter_mut() {
+                    damage_expr(c, edits, pool, cut);
+                    *b = damaged_stmts(b, edits, pool, cut);
+                }
+                *orelse = damaged_stmts(orelse, edits, pool, cut);
+            }
+            StmtKind::For { iter, body, .. } => {
+                damage_expr(iter, edits, pool, cut);
+                *body = damaged_stmts(body, edits, pool, cut);
             }
         }
         let twice = find(stmt.span, &|o| matches!(o, Op::DupStmt)).is_some();
@@ -554,7 +635,7 @@ fn damaged_tree(program: &Program, edits: &[Edit], pool: &mut Pool) -> Program {
         }
         stmts.push(st);
     }
-    Program { stmts }
+    stmts
 }
 
 fn damage_expr(e: &mut Expr, edits: &[Edit], pool: &mut Pool, cut: Option<usize>) {
@@ -595,7 +676,7 @@ fn damage_expr(e: &mut Expr, edits: &[Edit], pool: &mut Pool, cut: Option<usize>
             }
             *args = out;
         }
-        ExprKind::Tuple(items) => {
+        ExprKind::Tuple(items) | ExprKind::List(items) => {
             let mut out = Vec::with_capacity(items.len() + 1);
             for mut it in std::mem::take(items) {
                 if cut.is_some_and(|at| it.span.end > at) {
@@ -611,9 +692,51 @@ fn damage_expr(e: &mut Expr, edits: &[Edit], pool: &mut Pool, cut: Option<usize>
             *items = out;
         }
         ExprKind::Unary { operand, .. } => damage_expr(operand, edits, pool, cut),
-        ExprKind::Binary { lhs, rhs, .. } => {
+        ExprKind::Binary { lhs, rhs, .. } | ExprKind::Logic { lhs, rhs, .. } => {
             damage_expr(lhs, edits, pool, cut);
             damage_expr(rhs, edits, pool, cut);
+        }
+        ExprKind::MethodCall { value, args, .. } => {
+            damage_expr(value, edits, pool, cut);
+            for a in args {
+                damage_expr(&mut a.value, edits, pool, cut);
+            }
+        }
+        ExprKind::Attribute { value, .. } => damage_expr(value, edits, pool, cut),
+        ExprKind::Index { value, index } => {
+            damage_expr(value, edits, pool, cut);
+            damage_expr(index, edits, pool, cut);
+        }
+        ExprKind::Slice {
+            value,
+            lower,
+            upper,
+            step,
+        } => {
+            damage_expr(value, edits, pool, cut);
+            for b in [lower, upper, step].into_iter().flatten() {
+                damage_expr(b, edits, pool, cut);
+            }
+        }
+        ExprKind::Compare { first, rest } => {
+            damage_expr(first, edits, pool, cut);
+            for (_, x) in rest {
+                damage_expr(x, edits, pool, cut);
+            }
+        }
+        ExprKind::IfElse { cond, then, orelse } => {
+            damage_expr(cond, edits, pool, cut);
+            damage_expr(then, edits, pool, cut);
+            damage_expr(orelse, edits, pool, cut);
+        }
+        ExprKind::ListComp { elt, generators } => {
+            damage_expr(elt, edits, pool, cut);
+            for g in generators {
+                damage_expr(&mut g.iter, edits, pool, cut);
+                for c in &mut g.ifs {
+                    damage_expr(c, edits, pool, cut);
+                }
+            }
         }
         _ => {}
     }

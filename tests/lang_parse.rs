@@ -229,7 +229,7 @@ fn long(e: &Expr) -> String {
         ExprKind::Int(i) => i.to_string(),
         ExprKind::Real(r) => format!("{r:?}"),
         ExprKind::Str(s) => format!("{s:?}"),
-        ExprKind::Bool(b) => format!("{}", if *b { "True" } else { "False" }),
+        ExprKind::Bool(b) => (if *b { "True" } else { "False" }).to_string(),
         ExprKind::NoneLit => "None".into(),
         ExprKind::Name(n) => n.clone(),
         ExprKind::Tuple(items) => {

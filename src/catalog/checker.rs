@@ -207,7 +207,7 @@ impl Checker<'_> {
                     }
                 }
             }
-            StmtKind::FromImport { module, names } => self.from_import(module, names.as_deref()),
+            StmtKind::FromImport { module, names } => self.import_names(module, names.as_deref()),
             StmtKind::If { branches, orelse } => {
                 for (cond, body) in branches {
                     let c = match self.env.eval(cond, &is_cmd(self.names)) {
@@ -335,7 +335,7 @@ impl Checker<'_> {
         Ok(())
     }
 
-    fn from_import(&mut self, module: &Ident, names: Option<&[(Ident, Option<Ident>)]>) {
+    fn import_names(&mut self, module: &Ident, names: Option<&[(Ident, Option<Ident>)]>) {
         if module.name == "code_aster.Commands" {
             // The commands are always there.
             for (n, _) in names.unwrap_or_default() {

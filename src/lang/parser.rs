@@ -1690,7 +1690,7 @@ mod tests {
             ExprKind::Binary { op, lhs, rhs } => {
                 format!("({} {} {})", op.symbol(), sx(lhs), sx(rhs))
             }
-            ExprKind::Bool(b) => format!("{}", if *b { "True" } else { "False" }),
+            ExprKind::Bool(b) => (if *b { "True" } else { "False" }).to_string(),
             ExprKind::List(items) => {
                 let v: Vec<String> = items.iter().map(sx).collect();
                 format!("(list {})", v.join(" "))

@@ -232,7 +232,7 @@ impl Env {
             "atan" | "arctan" => x.atan(),
             "atan2" | "arctan2" => x.atan2(y2),
             "pow" => {
-                domain(!(x < 0.0 && y2.fract() != 0.0) && !(x == 0.0 && y2 < 0.0))?;
+                domain(!(x < 0.0 && y2.fract() != 0.0 || x == 0.0 && y2 < 0.0))?;
                 x.powf(y2)
             }
             "hypot" => x.hypot(y2),

@@ -628,8 +628,8 @@ mod tests {
         assert_eq!(ev("7.5 // 2"), Real(3.0));
         assert_eq!(text("'G_%d_%s' % (3, 'A')"), "G_3_A");
         assert_eq!(
-            text("'%5.2f|%g|%e' % (3.14159, 1e-5, 2.)"),
-            " 3.14|1e-05|2.000000e+00"
+            text("'%5.2f|%g|%e' % (2.71828, 1e-5, 2.)"),
+            " 2.72|1e-05|2.000000e+00"
         );
         assert_eq!(ev("1 < 2 <= 2"), Bool(true));
         assert_eq!(ev("1 < 2 > 3"), Bool(false));

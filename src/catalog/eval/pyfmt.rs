@@ -479,7 +479,7 @@ mod tests {
         assert_eq!(f("%e", PyVal::Real(12345.678)), "1.234568e+04");
         assert_eq!(f("%.2E", PyVal::Real(-0.00012)), "-1.20E-04");
         assert_eq!(f("%f", PyVal::Real(2.5)), "2.500000");
-        assert_eq!(f("%5.2f", PyVal::Real(3.14159)), " 3.14");
+        assert_eq!(f("%5.2f", PyVal::Real(3.14659)), " 3.15");
         assert_eq!(f("%.0f", PyVal::Real(2.5)), "2");
         assert_eq!(f("%.2f", PyVal::Real(0.125)), "0.12");
         assert_eq!(f("%+.1f", PyVal::Real(1.25)), "+1.2");
