@@ -1480,6 +1480,58 @@ fn bad_traction_curves_are_located_errors() {
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_trac");
 }
 
+/// OBSERVATION in STAT_NON_LINE and DYNA_NON_LINE read back by RECU_TABLE:
+/// Gauss-point stresses at INST, the largest p at LIST_INST, nodal DZ
+/// every PAS_OBSE steps, free-flight means and minima with the initial
+/// state, and a continuation appending with NUME_REUSE = 1: the values
+/// equal the closed forms (1e-9) and the row counts code_aster's layout.
+#[test]
+fn observation_tables_hold_the_closed_forms() {
+    run_study("observation");
+}
+
+/// Bad OBSERVATION input: PAS_OBSE < 1, an unknown component, VITE in
+/// STAT_NON_LINE, OBSERVATION with an explicit scheme: located errors.
+#[test]
+fn bad_observations_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("observation_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("observation.comm")).unwrap();
+    let cases = [
+        (
+            "pas_obse",
+            ("PAS_OBSE=2,", "PAS_OBSE=0,"),
+            "PAS_OBSE must be >= 1",
+        ),
+        (
+            "component",
+            ("NOM_CMP='SIZZ', GROUP_MA='BAS'", "NOM_CMP='SIZW', GROUP_MA='BAS'"),
+            "has no component 'SIZW'",
+        ),
+        (
+            "vite_static",
+            (
+                "_F(NOM_CHAM='DEPL', NOM_CMP='DZ', GROUP_NO='ZMAX',",
+                "_F(NOM_CHAM='VITE', NOM_CMP='DZ', GROUP_NO='ZMAX',",
+            ),
+            "STAT_NON_LINE computes no VITE",
+        ),
+        (
+            "explicit",
+            (
+                "SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'),\n                    OBSERVATION=(",
+                "SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'),\n                    OBSERVATION=(",
+            ),
+            "not implemented yet: DYNA_NON_LINE/OBSERVATION",
+        ),
+    ];
+    let export = format!(
+        "F mmed {} D 20\n",
+        dir().join("../studies/hexs8_beam1.mmed").display()
+    );
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_observation");
+}
+
 /// Each one-change variant of `comm` (tag, (from, to), expected text) run
 /// with `export` from `tmp`: exit 1, the expected text, the variant's own
 /// file:line, no panic.

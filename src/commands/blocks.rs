@@ -684,78 +684,112 @@ pub fn c_archivage() -> Keyword {
 /// UN_PARMI(TOUT, GROUP_MA, ...); here `TOUT` is optional under EXCLUS and
 /// giving no location means the whole model, which is the same thing.
 pub fn c_suivi_ddl() -> Keyword {
+    let mut kws = monitored_keywords();
+    kws.push(text("TITRE").count(1, 3).kw());
+    fact("SUIVI_DDL", kws)
+        .max(4)
+        .doc("up to 4 monitored quantities printed in the Newton table; no effect on results")
+        .kw()
+}
+
+/// `OBSERVATION` (`C_OBSERVATION`): SUIVI_DDL's selection written to the
+/// result's table 'OBSERVATION' at chosen instants.
+pub fn c_observation() -> Keyword {
+    let mut kws = monitored_keywords();
+    kws.extend([
+        text("TITRE")
+            .doc("NOM_OBSERVATION of the rows; absent: OBSERVATION_<occurrence>")
+            .kw(),
+        oui_non("OBSE_ETAT_INIT", "OUI")
+            .doc("observe the initial state too")
+            .kw(),
+        concept("LIST_INST", &[C::Listr8])
+            .doc("observe the steps at these instants")
+            .kw(),
+        real("INST")
+            .many()
+            .doc("observe the steps at these instants")
+            .kw(),
+        int("PAS_OBSE")
+            .doc("observe every PAS_OBSE computed steps")
+            .kw(),
+    ]);
+    kws.extend(critere_precision(1e-6));
+    fact("OBSERVATION", kws)
+        .many()
+        .max(99)
+        .rules(vec![exclus(&["PAS_OBSE", "LIST_INST", "INST"])])
+        .doc("values written to the result's table 'OBSERVATION' (RECU_TABLE) at the chosen instants; absent LIST_INST, INST and PAS_OBSE: every computed step")
+        .kw()
+}
+
+/// The selection shared by SUIVI_DDL and OBSERVATION.
+fn monitored_keywords() -> Vec<Keyword> {
     let nodal = ["DEPL", "VITE", "ACCE", "FORC_NODA"];
     let elga = ["SIEF_ELGA", "VARI_ELGA", "EPSI_ELGA"];
-    fact(
-        "SUIVI_DDL",
-        vec![
-            text("NOM_CHAM")
-                .required()
-                .into(&[
-                    "DEPL",
-                    "VITE",
-                    "ACCE",
-                    "FORC_NODA",
-                    "SIEF_ELGA",
-                    "VARI_ELGA",
-                    "EPSI_ELGA",
-                ])
-                .kw(),
-            text("EVAL_CHAM")
-                .into(&["MIN", "MAX", "MOY", "MAXI_ABS", "MINI_ABS", "VALE"])
-                .default(t("VALE"))
-                .doc("reduction over the selected nodes or cells")
-                .kw(),
-            text("NOM_CMP")
-                .required()
-                .count(1, 20)
-                .doc("components, e.g. 'V1' for the first internal variable")
-                .kw(),
-            text("EVAL_CMP")
-                .into(&["VALE"])
-                .default(t("VALE"))
-                .doc("'FORMULE' of code_aster is not supported")
-                .kw(),
-            block(
-                "b_cham_no",
-                is_in("NOM_CHAM", &nodal),
-                vec![tout(), noeud(), group_no(), maille(), group_ma()],
-            )
-            .rules(vec![exclus(&[
-                "NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "TOUT",
-            ])])
+    vec![
+        text("NOM_CHAM")
+            .required()
+            .into(&[
+                "DEPL",
+                "VITE",
+                "ACCE",
+                "FORC_NODA",
+                "SIEF_ELGA",
+                "VARI_ELGA",
+                "EPSI_ELGA",
+            ])
             .kw(),
-            block(
-                "b_cham_elga",
-                is_in("NOM_CHAM", &elga),
-                vec![
-                    tout(),
-                    maille(),
-                    group_ma(),
-                    text("EVAL_ELGA")
-                        .into(&["MIN", "MAX", "VALE"])
-                        .default(t("VALE"))
-                        .doc("reduction over the Gauss points of a cell")
-                        .kw(),
-                    block(
-                        "b_elga_vale",
-                        eq("EVAL_ELGA", "VALE"),
-                        vec![
-                            int("POINT").required().many().kw(),
-                            int("SOUS_POINT").many().kw(),
-                        ],
-                    )
+        text("EVAL_CHAM")
+            .into(&["MIN", "MAX", "MOY", "MAXI_ABS", "MINI_ABS", "VALE"])
+            .default(t("VALE"))
+            .doc("reduction over the selected nodes or cells")
+            .kw(),
+        text("NOM_CMP")
+            .required()
+            .count(1, 20)
+            .doc("components, e.g. 'V1' for the first internal variable")
+            .kw(),
+        text("EVAL_CMP")
+            .into(&["VALE"])
+            .default(t("VALE"))
+            .doc("'FORMULE' of code_aster is not supported")
+            .kw(),
+        block(
+            "b_cham_no",
+            is_in("NOM_CHAM", &nodal),
+            vec![tout(), noeud(), group_no(), maille(), group_ma()],
+        )
+        .rules(vec![exclus(&[
+            "NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "TOUT",
+        ])])
+        .kw(),
+        block(
+            "b_cham_elga",
+            is_in("NOM_CHAM", &elga),
+            vec![
+                tout(),
+                maille(),
+                group_ma(),
+                text("EVAL_ELGA")
+                    .into(&["MIN", "MAX", "VALE"])
+                    .default(t("VALE"))
+                    .doc("reduction over the Gauss points of a cell")
                     .kw(),
-                ],
-            )
-            .rules(vec![exclus(&["GROUP_MA", "MAILLE", "TOUT"])])
-            .kw(),
-            text("TITRE").count(1, 3).kw(),
-        ],
-    )
-    .max(4)
-    .doc("up to 4 monitored quantities printed in the Newton table; no effect on results")
-    .kw()
+                block(
+                    "b_elga_vale",
+                    eq("EVAL_ELGA", "VALE"),
+                    vec![
+                        int("POINT").required().many().kw(),
+                        int("SOUS_POINT").many().kw(),
+                    ],
+                )
+                .kw(),
+            ],
+        )
+        .rules(vec![exclus(&["GROUP_MA", "MAILLE", "TOUT"])])
+        .kw(),
+    ]
 }
 
 /// `AFFICHAGE` (`C_AFFICHAGE`): layout of the convergence table.

@@ -76,6 +76,12 @@ pub(crate) fn exec(
     if args.has("SUIVI_DDL") {
         return Err(args.not_implemented("SUIVI_DDL", "SUIVI_DDL with an explicit scheme"));
     }
+    if args.has("OBSERVATION") {
+        return Err(args.not_implemented(
+            "OBSERVATION",
+            "OBSERVATION with an explicit scheme (ARCHIVAGE and RECU_FONCTION give the same values)",
+        ));
+    }
     if args.has("CONVERGENCE") || args.has("NEWTON") {
         notes.push("CONVERGENCE and NEWTON have no effect with an explicit scheme: every step is converged by definition (as code_aster)".into());
     }
@@ -146,6 +152,7 @@ pub(crate) fn exec(
         archive,
         newton_table: false,
         suivi: Vec::new(),
+        observations: Vec::new(),
         progress: false,
         dof_names,
         ncells: md.mesh.ncells(),

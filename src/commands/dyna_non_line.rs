@@ -4,6 +4,7 @@ use indexmap::IndexMap;
 
 use super::blocks::*;
 use super::mesh_args::{check_groups, GroupKind};
+use super::post_args::{cell_name, node_name};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
@@ -12,6 +13,7 @@ use crate::diag::Diagnostic;
 use crate::law::TangentKind;
 use crate::mesh::Mesh;
 use crate::model::{Material, MaterialField, MechLoad, Model};
+use crate::nonlinear::observation::Observation;
 use crate::nonlinear::{
     self, dyna, fields, ArchivePolicy, Assembler, Controls, ConvergenceSettings, Engine,
     NewtonSettings, Occurrence, PrepareError, Reduce, Suivi, SuiviField, TimeLoop,
@@ -71,6 +73,7 @@ pub fn def() -> CommandDef {
             c_convergence(),
             c_solveur(),
             c_suivi_ddl(),
+            c_observation(),
             c_energie(),
             c_affichage(),
             c_archivage(),
@@ -730,11 +733,18 @@ pub(crate) fn archive_of(study: &Study, args: &Args) -> Result<ArchivePolicy, Di
     if o.given("CHAM_EXCLU") {
         return Err(o.not_implemented("CHAM_EXCLU", ""));
     }
+    instants_of(study, o, "PAS_ARCH")
+}
+
+/// Which computed steps an occurrence selects (ARCHIVAGE, OBSERVATION):
+/// every `step_key` steps, the instants of LIST_INST or INST within
+/// CRITERE/PRECISION, or every step.
+fn instants_of(study: &Study, o: &Args, step_key: &str) -> Result<ArchivePolicy, Diagnostic> {
     let relative = o.text("CRITERE").unwrap_or("RELATIF") == "RELATIF";
     let precision = o.real("PRECISION").unwrap_or(1e-6);
-    if let Some(p) = o.int("PAS_ARCH") {
+    if let Some(p) = o.int(step_key) {
         if p < 1 {
-            return Err(o.error("PAS_ARCH", "PAS_ARCH must be >= 1"));
+            return Err(o.error(step_key, format!("{step_key} must be >= 1")));
         }
         return Ok(ArchivePolicy::Every(p as usize));
     }
@@ -764,77 +774,141 @@ pub(crate) fn suivi_of(
 ) -> Result<Vec<Suivi>, Diagnostic> {
     let mut out = Vec::new();
     for o in args.facts("SUIVI_DDL") {
-        let name = o.text("NOM_CHAM").unwrap_or("");
-        if !inertia && matches!(name, "VITE" | "ACCE") {
-            return Err(o.error(
-                "NOM_CHAM",
-                format!("NOM_CHAM='{name}': STAT_NON_LINE computes no {name} (no inertia); follow DEPL, FORC_NODA, SIEF_ELGA or VARI_ELGA"),
-            ));
-        }
-        let field = match name {
-            "DEPL" => SuiviField::Depl,
-            "VITE" => SuiviField::Vite,
-            "ACCE" => SuiviField::Acce,
-            "FORC_NODA" => SuiviField::ForcNoda,
-            "SIEF_ELGA" => SuiviField::SiefElga,
-            "VARI_ELGA" => SuiviField::VariElga,
-            other => return Err(o.not_implemented("NOM_CHAM", &format!("NOM_CHAM='{other}'"))),
-        };
-        if o.given("NOEUD") || o.given("MAILLE") {
-            return Err(o.not_implemented("NOEUD", "use GROUP_NO / GROUP_MA"));
-        }
-        let nodal = matches!(
-            field,
-            SuiviField::Depl | SuiviField::Vite | SuiviField::Acce | SuiviField::ForcNoda
+        out.extend(
+            monitored(mesh, model, o, inertia)?
+                .into_iter()
+                .map(|(_, s)| s),
         );
-        let entities: Vec<usize> = if nodal {
-            if o.has("GROUP_NO") {
-                check_groups(mesh, o, "GROUP_NO", GroupKind::Nodes)?;
-                o.texts("GROUP_NO")
+    }
+    Ok(out)
+}
+
+/// The OBSERVATION occurrences: SUIVI_DDL's selection, with the
+/// instants, the initial state and a title.
+pub(crate) fn observations_of(
+    study: &Study,
+    mesh: &Mesh,
+    model: &Model,
+    args: &Args,
+    inertia: bool,
+) -> Result<Vec<Observation>, Diagnostic> {
+    let mut out = Vec::new();
+    for (k, o) in args.facts("OBSERVATION").iter().enumerate() {
+        let columns = monitored(mesh, model, o, inertia)?;
+        let nodal = columns.first().is_some_and(|(_, s)| {
+            matches!(
+                s.field,
+                SuiviField::Depl | SuiviField::Vite | SuiviField::Acce | SuiviField::ForcNoda
+            )
+        });
+        let entity_names = columns
+            .first()
+            .map(|(_, s)| {
+                s.entities
                     .iter()
-                    .flat_map(|g| mesh.node_groups[*g].iter().copied())
+                    .map(|&e| if nodal { node_name(e) } else { cell_name(e) })
                     .collect()
-            } else if o.has("GROUP_MA") {
-                check_groups(mesh, o, "GROUP_MA", GroupKind::Cells)?;
-                let cells: Vec<usize> = o
-                    .texts("GROUP_MA")
-                    .iter()
-                    .flat_map(|g| mesh.cell_groups[*g].iter().copied())
-                    .collect();
-                mesh.nodes_of_cells(&cells)
-            } else {
-                let cells: Vec<usize> = model.element_cells().map(|(c, _)| c).collect();
-                mesh.nodes_of_cells(&cells)
-            }
+            })
+            .unwrap_or_default();
+        out.push(Observation {
+            title: o
+                .texts("TITRE")
+                .first()
+                .map_or(format!("OBSERVATION_{}", k + 1), |t| t.to_string()),
+            field_name: o.text("NOM_CHAM").unwrap_or("").to_string(),
+            eval_name: o.text("EVAL_CHAM").unwrap_or("VALE").to_string(),
+            eval_elga_name: o.text("EVAL_ELGA").unwrap_or("VALE").to_string(),
+            columns,
+            entity_names,
+            when: instants_of(study, o, "PAS_OBSE")?,
+            initial: o.text("OBSE_ETAT_INIT").unwrap_or("OUI") == "OUI",
+        });
+    }
+    Ok(out)
+}
+
+/// One SUIVI_DDL or OBSERVATION occurrence: a column per NOM_CMP, with
+/// its component name.
+fn monitored(
+    mesh: &Mesh,
+    model: &Model,
+    o: &Args,
+    inertia: bool,
+) -> Result<Vec<(String, Suivi)>, Diagnostic> {
+    let mut out = Vec::new();
+    let name = o.text("NOM_CHAM").unwrap_or("");
+    if !inertia && matches!(name, "VITE" | "ACCE") {
+        return Err(o.error(
+            "NOM_CHAM",
+            format!("NOM_CHAM='{name}': STAT_NON_LINE computes no {name} (no inertia); follow DEPL, FORC_NODA, SIEF_ELGA or VARI_ELGA"),
+        ));
+    }
+    let field = match name {
+        "DEPL" => SuiviField::Depl,
+        "VITE" => SuiviField::Vite,
+        "ACCE" => SuiviField::Acce,
+        "FORC_NODA" => SuiviField::ForcNoda,
+        "SIEF_ELGA" => SuiviField::SiefElga,
+        "VARI_ELGA" => SuiviField::VariElga,
+        other => return Err(o.not_implemented("NOM_CHAM", &format!("NOM_CHAM='{other}'"))),
+    };
+    if o.given("NOEUD") || o.given("MAILLE") {
+        return Err(o.not_implemented("NOEUD", "use GROUP_NO / GROUP_MA"));
+    }
+    let nodal = matches!(
+        field,
+        SuiviField::Depl | SuiviField::Vite | SuiviField::Acce | SuiviField::ForcNoda
+    );
+    let entities: Vec<usize> = if nodal {
+        if o.has("GROUP_NO") {
+            check_groups(mesh, o, "GROUP_NO", GroupKind::Nodes)?;
+            o.texts("GROUP_NO")
+                .iter()
+                .flat_map(|g| mesh.node_groups[*g].iter().copied())
+                .collect()
+        } else if o.has("GROUP_MA") {
+            check_groups(mesh, o, "GROUP_MA", GroupKind::Cells)?;
+            let cells: Vec<usize> = o
+                .texts("GROUP_MA")
+                .iter()
+                .flat_map(|g| mesh.cell_groups[*g].iter().copied())
+                .collect();
+            mesh.nodes_of_cells(&cells)
         } else {
-            match location_cells(mesh, o)? {
-                Some(c) => c,
-                None => model.element_cells().map(|(c, _)| c).collect(),
-            }
-        };
-        let eval = Reduce::from_name(o.text("EVAL_CHAM").unwrap_or("VALE")).unwrap_or(Reduce::Vale);
-        let eval_elga =
-            Reduce::from_name(o.text("EVAL_ELGA").unwrap_or("VALE")).unwrap_or(Reduce::Vale);
-        let points: Vec<usize> = o.ints("POINT").iter().map(|&p| p.max(0) as usize).collect();
-        for cmp in o.texts("NOM_CMP") {
-            let component = match field {
-                SuiviField::SiefElga => ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"]
-                    .iter()
-                    .position(|c| *c == cmp),
-                SuiviField::VariElga => cmp
-                    .strip_prefix('V')
-                    .and_then(|k| k.parse::<usize>().ok())
-                    .filter(|k| *k >= 1)
-                    .map(|k| k - 1),
-                _ => model.dofs.iter().position(|d| d.name() == cmp),
-            }
-            .ok_or_else(|| {
-                o.error(
-                    "NOM_CMP",
-                    format!("the field {name} has no component '{cmp}' here"),
-                )
-            })?;
-            out.push(Suivi {
+            let cells: Vec<usize> = model.element_cells().map(|(c, _)| c).collect();
+            mesh.nodes_of_cells(&cells)
+        }
+    } else {
+        match location_cells(mesh, o)? {
+            Some(c) => c,
+            None => model.element_cells().map(|(c, _)| c).collect(),
+        }
+    };
+    let eval = Reduce::from_name(o.text("EVAL_CHAM").unwrap_or("VALE")).unwrap_or(Reduce::Vale);
+    let eval_elga =
+        Reduce::from_name(o.text("EVAL_ELGA").unwrap_or("VALE")).unwrap_or(Reduce::Vale);
+    let points: Vec<usize> = o.ints("POINT").iter().map(|&p| p.max(0) as usize).collect();
+    for cmp in o.texts("NOM_CMP") {
+        let component = match field {
+            SuiviField::SiefElga => ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"]
+                .iter()
+                .position(|c| *c == cmp),
+            SuiviField::VariElga => cmp
+                .strip_prefix('V')
+                .and_then(|k| k.parse::<usize>().ok())
+                .filter(|k| *k >= 1)
+                .map(|k| k - 1),
+            _ => model.dofs.iter().position(|d| d.name() == cmp),
+        }
+        .ok_or_else(|| {
+            o.error(
+                "NOM_CMP",
+                format!("the field {name} has no component '{cmp}' here"),
+            )
+        })?;
+        out.push((
+            cmp.to_string(),
+            Suivi {
                 label: format!("{name} {cmp}"),
                 field,
                 component,
@@ -842,8 +916,8 @@ pub(crate) fn suivi_of(
                 eval,
                 eval_elga,
                 points: points.clone(),
-            });
-        }
+            },
+        ));
     }
     Ok(out)
 }
@@ -1118,12 +1192,6 @@ pub(crate) fn run(
     if args.given("PILOTAGE") {
         return Err(args.not_implemented("PILOTAGE", ""));
     }
-    if args.given("OBSERVATION") {
-        return Err(args.not_implemented(
-            "OBSERVATION",
-            "SUIVI_DDL gives the same values in the step table",
-        ));
-    }
     let inertia = analysis == Analysis::Dynamic;
     let choice = match analysis {
         Analysis::Dynamic => scheme_of(args)?,
@@ -1328,6 +1396,7 @@ pub(crate) fn run(
     let mut conv = convergence_of(args, &mut notes, inertia)?;
     let archive = archive_of(study, args)?;
     let suivi = suivi_of(&md.mesh, &md.model, args, inertia)?;
+    let observations = observations_of(study, &md.mesh, &md.model, args, inertia)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
     let mut init = etat_init(study, args, &asm, &dof_names)?;
     if !inertia {
@@ -1419,6 +1488,7 @@ pub(crate) fn run(
         archive,
         newton_table: info >= 2 || !suivi.is_empty(),
         suivi,
+        observations,
         progress,
         dof_names,
         ncells: md.mesh.ncells(),

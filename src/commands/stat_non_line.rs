@@ -81,6 +81,7 @@ pub fn def() -> CommandDef {
             c_convergence(),
             c_solveur(),
             c_suivi_ddl(),
+            c_observation(),
             c_energie(),
             c_affichage(),
             c_archivage(),

@@ -10,6 +10,7 @@ use super::contact::DiscreteContact;
 use super::energy::EnergyBalance;
 use super::fields;
 use super::newton::{ContactTerm, Engine, IterationRecord, State, StepFailure, StepReport};
+use super::observation::Observer;
 use super::unilateral::UnilateralContact;
 use crate::result::{EvolNoli, Step};
 use crate::time::list::{Action, Subdivision};
@@ -256,6 +257,8 @@ pub struct TimeLoop {
     pub on_error: Action,
     pub archive: ArchivePolicy,
     pub suivi: Vec<Suivi>,
+    /// OBSERVATION occurrences (the result's table 'OBSERVATION').
+    pub observations: Vec<super::observation::Observation>,
     /// Print the Newton table (INFO=2 or SUIVI_DDL present).
     pub newton_table: bool,
     /// Show an indicatif progress bar (the per-step lines then go to the
@@ -418,6 +421,11 @@ pub fn run(
     let ndpn = engine.asm.numbering.ndpn;
     let offsets = engine.asm.cell_state_offsets.clone();
     let mut energy = EnergyBalance::new(engine);
+    let mut observer = (!tl.observations.is_empty()).then(|| {
+        let mut o = Observer::new(result.tables.get(super::observation::TABLE_NAME));
+        o.observe(&tl.observations, &engine.committed, None, ndpn, &offsets);
+        o
+    });
     let has_term = contact.is_some() || unil.is_some();
     if archive(
         engine,
@@ -462,6 +470,7 @@ pub fn run(
                 last_archived_t,
                 started,
                 bar: bar.as_ref(),
+                observer: observer.take(),
             };
             return Err(stop_on_signal(
                 signal,
@@ -544,6 +553,7 @@ pub fn run(
                     last_archived_t,
                     started,
                     bar: bar.as_ref(),
+                    observer: observer.take(),
                 };
                 return Err(stop_on_signal(
                     signal,
@@ -652,6 +662,15 @@ pub fn run(
                     pending.clear();
                 }
                 let last = pending.is_empty();
+                if let Some(o) = observer.as_mut() {
+                    o.observe(
+                        &tl.observations,
+                        &engine.committed,
+                        Some(summary.steps),
+                        ndpn,
+                        &offsets,
+                    );
+                }
                 if (tl.archive.wants(summary.steps, t_end) || last)
                     && archive(
                         engine,
@@ -708,6 +727,7 @@ pub fn run(
                             log_energy(&mut energy, result, log);
                         }
                         store_energy(engine, &energy, result);
+                        store_observations(observer.take(), result);
                         if let Some(pb) = &bar {
                             pb.abandon();
                         }
@@ -734,6 +754,7 @@ pub fn run(
         pb.finish_and_clear();
     }
     store_energy(engine, &energy, result);
+    store_observations(observer, result);
     summary.seconds = started.elapsed().as_secs_f64();
     log(&format!(
         "  {} steps ({} cuts), {} Newton iterations, {} archived, {:.3} s ({:.3e} s per step)",
@@ -764,6 +785,7 @@ struct StopState<'a> {
     last_archived_t: Option<f64>,
     started: Instant,
     bar: Option<&'a indicatif::ProgressBar>,
+    observer: Option<Observer>,
 }
 
 /// A stop requested by `signal` ([`crate::interrupt`]) before the step to
@@ -792,6 +814,7 @@ fn stop_on_signal(
         log_energy(stop.energy, result, log);
     }
     store_energy(engine, stop.energy, result);
+    store_observations(stop.observer.take(), result);
     stop.summary.seconds = stop.started.elapsed().as_secs_f64();
     let end = tl.instants.last().copied().unwrap_or(t);
     let first = result.steps.first().map_or(t, |s| s.inst);
@@ -812,6 +835,16 @@ fn stop_on_signal(
         message,
         summary: stop.summary.clone(),
         signal: Some(signal),
+    }
+}
+
+/// The OBSERVATION rows as the result's table (kept with the steps
+/// computed when the run stops early).
+fn store_observations(observer: Option<Observer>, result: &mut EvolNoli) {
+    if let Some(o) = observer {
+        result
+            .tables
+            .insert(super::observation::TABLE_NAME.to_string(), o.into_table());
     }
 }
 

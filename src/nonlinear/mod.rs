@@ -22,6 +22,7 @@ pub mod explicit_contact;
 pub mod fields;
 pub mod loads;
 pub mod newton;
+pub mod observation;
 pub mod rigid;
 pub mod team;
 pub mod unilateral;
