@@ -405,6 +405,22 @@ impl Checker<'_> {
                 }
             }
             match self.env.eval(expr, &is_cmd(self.names)) {
+                Ok(SpVal {
+                    v: PyVal::Iter(kind, _),
+                    span: at,
+                }) if target.is_some() => {
+                    self.errors.push(
+                        Diagnostic::error(format!(
+                            "{} {kind} object cannot be kept in a name: write list({kind}(...)), or use it directly in the for",
+                            crate::catalog::eval::article(kind)
+                        ))
+                        .at(at)
+                        .note("Python's would be empty the second time it is gone through"),
+                    );
+                    if let Some(t) = target {
+                        self.bind(&t.name, PyVal::Poison);
+                    }
+                }
                 Ok(v) => match target {
                     Some(t) => self.bind(&t.name, v.v),
                     None => self

@@ -7,9 +7,23 @@ use super::{Env, PyVal, SpVal};
 use crate::diag::{closest, Diagnostic, Span};
 use crate::lang::ast::{Arg, Ident};
 
-pub const BUILTINS: [&str; 14] = [
-    "int", "float", "abs", "min", "max", "len", "range", "str", "sum", "round", "list", "tuple",
-    "bool", "repr",
+pub const BUILTINS: [&str; 16] = [
+    "int",
+    "float",
+    "abs",
+    "min",
+    "max",
+    "len",
+    "range",
+    "str",
+    "sum",
+    "round",
+    "list",
+    "tuple",
+    "bool",
+    "repr",
+    "enumerate",
+    "zip",
 ];
 
 pub fn is_builtin(name: &str) -> bool {
@@ -387,6 +401,52 @@ impl Env {
                     super::pyfmt::py_repr(&vals[0].v)
                 };
                 s.map(PyVal::Str).map_err(|m| err(m, vals[0].span))
+            }
+            "enumerate" => {
+                arity(1, 2)?;
+                let start = match vals.get(1).map(|v| &v.v) {
+                    None => 0,
+                    Some(PyVal::Int(i)) => *i,
+                    Some(o) => {
+                        return Err(err(
+                            format!("enumerate() starts at an integer, not {}", o.describe()),
+                            vals[1].span,
+                        ))
+                    }
+                };
+                let items = self.iterate(&vals[0])?;
+                let mut out = Vec::with_capacity(items.len());
+                for (k, x) in items.into_iter().enumerate() {
+                    let i = start
+                        .checked_add(k as i64)
+                        .ok_or_else(|| err("integer overflow", span))?;
+                    let span = x.span;
+                    out.push(SpVal {
+                        v: PyVal::Tuple(vec![
+                            SpVal {
+                                v: PyVal::Int(i),
+                                span,
+                            },
+                            x,
+                        ]),
+                        span,
+                    });
+                }
+                Ok(PyVal::Iter("enumerate", out))
+            }
+            "zip" => {
+                let mut columns = Vec::with_capacity(vals.len());
+                for v in &vals {
+                    columns.push(self.iterate(v)?);
+                }
+                let n = columns.iter().map(Vec::len).min().unwrap_or(0);
+                let out = (0..n)
+                    .map(|k| SpVal {
+                        v: PyVal::Tuple(columns.iter().map(|c| c[k].clone()).collect()),
+                        span,
+                    })
+                    .collect();
+                Ok(PyVal::Iter("zip", out))
             }
             "bool" => {
                 arity(1, 1)?;

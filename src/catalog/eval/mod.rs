@@ -62,6 +62,10 @@ pub enum PyVal {
     Module(&'static str),
     /// A function of a module, by its full name ("math.sqrt").
     Func(&'static str),
+    /// What `zip(...)` and `enumerate(...)` give: items to go through once,
+    /// in the `for` or the comprehension that asked for them (a name
+    /// cannot keep one: Python's would be empty the second time).
+    Iter(&'static str, Vec<SpVal>),
     /// A concept that has been defined again since this value took it
     /// (`L = [R]`, then `R = CMD(...)`): Python keeps the old object,
     /// aster knows concepts by their names, so using it is an error.
@@ -87,11 +91,21 @@ impl PyVal {
             PyVal::Concept { name, ty } => format!("the concept {name} of type {ty}"),
             PyVal::Module(m) => format!("the module {m}"),
             PyVal::Func(f) => format!("the function {f}"),
+            PyVal::Iter(kind, _) => format!("{} {kind} object", article(kind)),
             PyVal::Stale(name) => {
                 format!("the concept {name} as it was before {name} was defined again")
             }
             PyVal::Poison => "an invalid value".into(),
         }
+    }
+}
+
+/// "a zip", "an enumerate".
+pub fn article(word: &str) -> &'static str {
+    if word.starts_with(['a', 'e', 'i', 'o', 'u']) {
+        "an"
+    } else {
+        "a"
     }
 }
 
@@ -672,6 +686,16 @@ mod tests {
         assert_eq!(text("'ab' * 3 + 'c'"), "abababc");
         assert_eq!(text("str([1] + [2] * 2)"), "[1, 2, 2]");
         assert_eq!(text("str((1,) + (2,))"), "(1, 2)");
+        assert_eq!(
+            text("str(list(enumerate('ab', 1)))"),
+            "[(1, 'a'), (2, 'b')]"
+        );
+        assert_eq!(
+            text("str(list(zip((1, 2, 3), 'ab')))"),
+            "[(1, 'a'), (2, 'b')]"
+        );
+        assert_eq!(text("str([i * x for i, x in enumerate([3, 4])])"), "[0, 4]");
+        assert_eq!(text("str(range(10)[2:8:3])"), "range(2, 8, 3)");
         assert_eq!(ev("math.sqrt(16.)"), Real(4.0));
         assert_eq!(ev("math.floor(-2.5)"), Int(-3));
         assert_eq!(ev("math.ceil(2.1)"), Int(3));
@@ -721,6 +745,9 @@ mod tests {
             ("'ab' * 100000000", "a text longer than"),
             ("list(range(10**7))", "a range of more than 1000000 values"),
             ("[1].append(2)", "write it as a statement of its own"),
+            ("str(zip())", "the text of a zip object is its address"),
+            ("zip(1)", "cannot loop over the integer 1"),
+            ("enumerate([1])[0]", "an enumerate object cannot be indexed"),
             ("y", "name 'y' is not defined"),
         ] {
             let e = eval_in("", expr).expect_err(expr);

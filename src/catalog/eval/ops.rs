@@ -227,7 +227,7 @@ pub fn truth(v: &PyVal) -> Result<bool, Diagnostic> {
         PyVal::Tuple(t) | PyVal::List(_, t) => !t.is_empty(),
         PyVal::Range(..) => range_len(v) > 0,
         PyVal::Fact(kv) => !kv.is_empty(),
-        PyVal::Module(_) | PyVal::Func(_) => true,
+        PyVal::Module(_) | PyVal::Func(_) | PyVal::Iter(..) => true,
         PyVal::Concept { name, .. } | PyVal::Stale(name) => {
             return Err(
                 concept_unknown(name, "a condition cannot test", Span::new(0, 0)).drop_span(),
@@ -425,7 +425,7 @@ pub fn compare(op: CmpOp, a: &PyVal, b: &PyVal) -> Result<bool, String> {
 pub fn iterate(v: &PyVal, span: Span) -> Result<Vec<SpVal>, Diagnostic> {
     let sp = |v| SpVal { v, span };
     Ok(match v {
-        PyVal::Tuple(t) | PyVal::List(_, t) => t.clone(),
+        PyVal::Tuple(t) | PyVal::List(_, t) | PyVal::Iter(_, t) => t.clone(),
         PyVal::Str(s) => s.chars().map(|c| sp(PyVal::Str(c.to_string()))).collect(),
         PyVal::Range(..) => range_items(v)
             .map_err(|m| no_span(m).at(span))?
@@ -517,7 +517,9 @@ pub fn index(a: &PyVal, i: &SpVal) -> Result<PyVal, Diagnostic> {
 }
 
 /// Python's slice bounds (PySlice_AdjustIndices): the indices taken.
-fn slice_indices(len: usize, bounds: [Option<&SpVal>; 3]) -> Result<Vec<usize>, Diagnostic> {
+/// Python's adjusted slice (PySlice_AdjustIndices): the first index, the
+/// index not reached, and the step.
+fn slice_bounds(len: i128, bounds: [Option<&SpVal>; 3]) -> Result<(i128, i128, i128), Diagnostic> {
     let int = |b: Option<&SpVal>| -> Result<Option<i128>, Diagnostic> {
         match b.map(|x| (int_of_bool(x.v.clone()), x.span)) {
             None | Some((PyVal::None, _)) => Ok(None),
@@ -534,7 +536,7 @@ fn slice_indices(len: usize, bounds: [Option<&SpVal>; 3]) -> Result<Vec<usize>, 
     if step == 0 {
         return Err(no_span("slice step cannot be zero").at(s.map_or(Span::new(0, 0), |x| x.span)));
     }
-    let n = len as i128;
+    let n = len;
     let adjust = |k: Option<i128>, default: i128| -> i128 {
         match k {
             None => default,
@@ -553,6 +555,12 @@ fn slice_indices(len: usize, bounds: [Option<&SpVal>; 3]) -> Result<Vec<usize>, 
     } else {
         (adjust(int(l)?, n - 1), adjust(int(u)?, -1))
     };
+    Ok((lo, hi, step))
+}
+
+/// The indices a slice takes, in order.
+fn slice_indices(len: usize, bounds: [Option<&SpVal>; 3]) -> Result<Vec<usize>, Diagnostic> {
+    let (lo, hi, step) = slice_bounds(len as i128, bounds)?;
     let mut out = Vec::new();
     let mut k = lo;
     while (step > 0 && k < hi) || (step < 0 && k > hi) {
@@ -587,24 +595,19 @@ pub fn slice(a: &PyVal, bounds: [Option<&SpVal>; 3]) -> Result<PyVal, Diagnostic
                     .collect(),
             ))
         }
-        PyVal::Range(..) => {
-            let items = range_items(a).map_err(no_span)?;
-            let picked: Vec<i64> = slice_indices(items.len(), bounds)?
-                .into_iter()
-                .map(|k| items[k])
-                .collect();
-            // A slice of a range is a range; rebuilt from its values.
-            let PyVal::Range(_, _, s) = *a else {
-                unreachable!("a range")
+        PyVal::Range(start, _, step) => {
+            // range(a, b, s)[i:j:k] is range(a + i s, a + j s, s k), as
+            // Python computes it, without listing the values.
+            let (lo, hi, k) = slice_bounds(range_len(a) as i128, bounds)?;
+            let (start, step) = (*start as i128, *step as i128);
+            let fit = |x: i128| {
+                i64::try_from(x).map_err(|_| no_span("integer overflow in a range slice"))
             };
-            let step = match bounds[2].map(|x| int_of_bool(x.v.clone())) {
-                Some(PyVal::Int(k)) => s.saturating_mul(k),
-                _ => s,
-            };
-            Ok(match (picked.first(), picked.last()) {
-                (Some(&f), Some(&l)) => PyVal::Range(f, l.saturating_add(step.signum()), step),
-                _ => PyVal::Range(0, 0, 1),
-            })
+            Ok(PyVal::Range(
+                fit(start + lo * step)?,
+                fit(start + hi * step)?,
+                fit(step * k)?,
+            ))
         }
         PyVal::Concept { name, .. } => {
             Err(concept_unknown(name, "slicing reads", Span::new(0, 0)).drop_span())
@@ -696,7 +699,14 @@ mod tests {
             [Some(&b(2)), Some(&b(8)), Some(&b(3))],
         )
         .unwrap();
-        assert_eq!(r, PyVal::Range(2, 6, 3));
+        // CPython: range(10)[2:8:3] == range(2, 8, 3), range(0, 20, 2)[::-1]
+        // == range(18, -2, -2), range(10**18)[-2:] == range(10**18 - 2, 10**18).
+        assert_eq!(r, PyVal::Range(2, 8, 3));
         assert_eq!(range_items(&r).unwrap(), vec![2, 5]);
+        let r = slice(&PyVal::Range(0, 20, 2), [None, None, Some(&b(-1))]).unwrap();
+        assert_eq!(r, PyVal::Range(18, -2, -2));
+        let big = 1_000_000_000_000_000_000;
+        let r = slice(&PyVal::Range(0, big, 1), [Some(&b(-2)), None, None]).unwrap();
+        assert_eq!(r, PyVal::Range(big - 2, big, 1));
     }
 }

@@ -136,6 +136,12 @@ pub fn py_repr(v: &PyVal) -> Result<String, String> {
                 "the text of the concept {name} is not known before the study runs"
             ))
         }
+        PyVal::Iter(kind, _) => {
+            return Err(format!(
+                "the text of {} {kind} object is its address; write list({kind}(...))",
+                super::article(kind)
+            ))
+        }
         PyVal::Stale(name) => {
             return Err(format!(
                 "the concept {name} has been defined again since this value took it"
@@ -168,6 +174,7 @@ pub fn type_name(v: &PyVal) -> &'static str {
         PyVal::Fact(_) => "_F",
         PyVal::Module(_) => "module",
         PyVal::Func(_) => "builtin_function",
+        PyVal::Iter(kind, _) => kind,
         PyVal::Concept { .. } | PyVal::Stale(_) => "concept",
         PyVal::Poison => "invalid value",
     }
