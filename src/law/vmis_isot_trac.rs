@@ -12,24 +12,18 @@
 //! plasticity), 'LINEAIRE' (the last slope), or 'EXCLU' (code_aster's
 //! default for DEFI_FONCTION), which stops the integration with a message.
 
-use super::vmis_isot_line::{radial_return, IsotropicHardening};
+use super::vmis_isot_line::{self, radial_return, IsotropicHardening};
 use super::{
     ElasParams, IntegrationFailure, LawMetadata, MaterialError, SmallStrainBehaviour,
-    SmallStrainInput, SmallStrainOutput, StrainMeasure,
+    SmallStrainInput, SmallStrainOutput,
 };
 
 /// V1 = EPSPEQ (cumulative plastic strain p), V2 = INDIPLAS (0/1), as
 /// VMIS_ISOT_LINE.
 pub static METADATA: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_TRAC",
-    internal_variables: &["EPSPEQ", "INDIPLAS"],
-    strain_measures: &[
-        StrainMeasure::Petit,
-        StrainMeasure::PetitReac,
-        StrainMeasure::GrotGdep,
-        StrainMeasure::SimoMiehe,
-        StrainMeasure::GdefLog,
-    ],
+    internal_variables: vmis_isot_line::METADATA.internal_variables,
+    strain_measures: vmis_isot_line::METADATA.strain_measures,
 };
 
 /// What R(p) does past the last point of the curve: the function's
@@ -316,11 +310,9 @@ mod tests {
         assert!(e.message.contains("PROL_DROITE"), "{e}");
     }
 
-    /// A two-point curve continued linearly is VMIS_ISOT_LINE with
-    /// SY = σ₁ and D_SIGM_EPSI the segment's slope: same stress, p and
-    /// tangent on a multiaxial path, to round-off.
-    #[test]
-    fn two_point_linear_curve_is_vmis_isot_line() {
+    /// The curve (SY/E, SY), slope 3000 continued linearly, and the line
+    /// that is the same hardening: SY = 250, D_SIGM_EPSI = 3000.
+    fn two_point_curve() -> (TractionCurve, ElasParams, EcroLineParams) {
         let (sy, et) = (250.0, 3000.0);
         let eps1 = sy / E;
         let c = TractionCurve::new(
@@ -329,9 +321,18 @@ mod tests {
             RightExtension::Linear,
         )
         .unwrap();
-        let trac = VmisIsotTrac::new(c, 0.3, None).unwrap();
         let elas = ElasParams::new(E, 0.3, None).unwrap();
-        let line = VmisIsotLine::new(elas, EcroLineParams::new(&elas, sy, et).unwrap());
+        (c, elas, EcroLineParams::new(&elas, sy, et).unwrap())
+    }
+
+    /// A two-point curve continued linearly is VMIS_ISOT_LINE with
+    /// SY = σ₁ and D_SIGM_EPSI the segment's slope: same stress, p and
+    /// tangent on a multiaxial path, to round-off.
+    #[test]
+    fn two_point_linear_curve_is_vmis_isot_line() {
+        let (c, elas, ecro) = two_point_curve();
+        let trac = VmisIsotTrac::new(c, 0.3, None).unwrap();
+        let line = VmisIsotLine::new(elas, ecro);
         let path = [
             Vec6::new(1e-3, -2e-4, 3e-3, 1e-3, 0.0, -5e-4),
             Vec6::new(2e-3, 1e-3, -1e-3, 0.0, 2e-3, 1e-3),
@@ -468,17 +469,9 @@ mod tests {
         /// a path that yields, to round-off.
         #[test]
         fn two_point_linear_curve_is_the_line() {
-            let (sy, et) = (250.0, 3000.0);
-            let eps1 = sy / E;
-            let c = TractionCurve::new(
-                &[eps1, eps1 + 0.01],
-                &[sy, sy + et * 0.01],
-                RightExtension::Linear,
-            )
-            .unwrap();
-            let elas = ElasParams::new(E, 0.3, None).unwrap();
+            let (c, elas, ecro) = two_point_curve();
             let trac = SimoMiehe::with_curve(elas, c);
-            let line = SimoMiehe::new(elas, EcroLineParams::new(&elas, sy, et).unwrap());
+            let line = SimoMiehe::new(elas, ecro);
             assert_eq!(trac.metadata().name, "VMIS_ISOT_TRAC");
             let (mut v1, mut v2) = (trac.initial_internal(), line.initial_internal());
             let mut f_n = Matrix3::identity();

@@ -698,12 +698,22 @@ pub fn header_lines(keyword: &str, concept: &str, fields: &[(&str, &str)]) -> [S
 /// `fields` are the header columns, e.g. `[("NUME_ORDRE", "1"),
 /// ("NOM_CHAM", "DEPL"), ("NOM_CMP", "DX"), ("GROUP_NO", "A1")]`.
 pub fn resu_block(resultat: &str, fields: &[(&str, &str)], lines: &[CheckLine]) -> String {
+    check_block("RESULTAT", resultat, fields, lines)
+}
+
+/// A header of `keyword` and `concept` with `fields`, the check lines and
+/// the blank record that closes every block of the .resu.
+fn check_block(
+    keyword: &str,
+    concept: &str,
+    fields: &[(&str, &str)],
+    lines: &[CheckLine],
+) -> String {
     let mut out = String::new();
-    for l in header_lines("RESULTAT", resultat, fields) {
-        out.push_str(&l);
-        out.push('\n');
-    }
-    for l in format_checks(lines) {
+    for l in header_lines(keyword, concept, fields)
+        .into_iter()
+        .chain(format_checks(lines))
+    {
         out.push_str(&l);
         out.push('\n');
     }
@@ -715,22 +725,13 @@ pub fn resu_block(resultat: &str, fields: &[(&str, &str)], lines: &[CheckLine]) 
 /// (`---- FONCTION`, the parameter and its value), the check lines and the
 /// closing blank record, as TEST_RESU's blocks.
 pub fn function_block(function: &str, para: &str, value: f64, lines: &[CheckLine]) -> String {
-    let mut out = String::new();
     let v = py_repr(value);
-    for l in header_lines(
+    check_block(
         "FONCTION",
         function,
         &[("NOM_PARA", para), ("VALE_PARA", &v)],
-    ) {
-        out.push_str(&l);
-        out.push('\n');
-    }
-    for l in format_checks(lines) {
-        out.push_str(&l);
-        out.push('\n');
-    }
-    out.push_str("  \n");
-    out
+        lines,
+    )
 }
 
 /// The .resu block of one TEST_TABLE: an empty line and 80 dashes, the
@@ -749,15 +750,7 @@ pub fn table_block(
     if let Some(t) = type_test {
         fields.push(("TYPE_TEST", t));
     }
-    for l in header_lines("TABLE", table, &fields) {
-        out.push_str(&l);
-        out.push('\n');
-    }
-    for l in format_checks(lines) {
-        out.push_str(&l);
-        out.push('\n');
-    }
-    out.push_str("  \n");
+    out.push_str(&check_block("TABLE", table, &fields, lines));
     out
 }
 
