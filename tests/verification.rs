@@ -1483,15 +1483,16 @@ fn bad_traction_curves_are_located_errors() {
 /// OBSERVATION in STAT_NON_LINE and DYNA_NON_LINE read back by RECU_TABLE:
 /// Gauss-point stresses at INST, the largest p at LIST_INST, nodal DZ
 /// every PAS_OBSE steps, free-flight means and minima with the initial
-/// state, and a continuation appending with NUME_REUSE = 1: the values
-/// equal the closed forms (1e-9) and the row counts code_aster's layout.
+/// state, a continuation appending with NUME_REUSE = 1, and DIFF_CENT at
+/// the instants of its list: the values equal the closed forms (1e-9) and
+/// the row counts code_aster's layout.
 #[test]
 fn observation_tables_hold_the_closed_forms() {
     run_study("observation");
 }
 
 /// Bad OBSERVATION input: PAS_OBSE < 1, an unknown component, VITE in
-/// STAT_NON_LINE, OBSERVATION with an explicit scheme: located errors.
+/// STAT_NON_LINE: located errors.
 #[test]
 fn bad_observations_are_located_errors() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("observation_bad");
@@ -1505,7 +1506,10 @@ fn bad_observations_are_located_errors() {
         ),
         (
             "component",
-            ("NOM_CMP='SIZZ', GROUP_MA='BAS'", "NOM_CMP='SIZW', GROUP_MA='BAS'"),
+            (
+                "NOM_CMP='SIZZ', GROUP_MA='BAS'",
+                "NOM_CMP='SIZW', GROUP_MA='BAS'",
+            ),
             "has no component 'SIZW'",
         ),
         (
@@ -1515,14 +1519,6 @@ fn bad_observations_are_located_errors() {
                 "_F(NOM_CHAM='VITE', NOM_CMP='DZ', GROUP_NO='ZMAX',",
             ),
             "STAT_NON_LINE computes no VITE",
-        ),
-        (
-            "explicit",
-            (
-                "SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'),\n                    OBSERVATION=(",
-                "SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'),\n                    OBSERVATION=(",
-            ),
-            "not implemented yet: DYNA_NON_LINE/OBSERVATION",
         ),
     ];
     let export = format!(

@@ -4,7 +4,8 @@
 //! the CFL check of the time list.
 
 use super::dyna_non_line::{
-    archive_of, etat_init, prepare_error, result_of_run, result_to_fill, time_range, ModelData,
+    archive_of, etat_init, observations_of, prepare_error, result_of_run, result_to_fill,
+    time_range, ModelData,
 };
 use super::ExecResult;
 use crate::catalog::args::Args;
@@ -76,12 +77,6 @@ pub(crate) fn exec(
     if args.has("SUIVI_DDL") {
         return Err(args.not_implemented("SUIVI_DDL", "SUIVI_DDL with an explicit scheme"));
     }
-    if args.has("OBSERVATION") {
-        return Err(args.not_implemented(
-            "OBSERVATION",
-            "OBSERVATION with an explicit scheme (ARCHIVAGE and RECU_FONCTION give the same values)",
-        ));
-    }
     if args.has("CONVERGENCE") || args.has("NEWTON") {
         notes.push("CONVERGENCE and NEWTON have no effect with an explicit scheme: every step is converged by definition (as code_aster)".into());
     }
@@ -138,6 +133,7 @@ pub(crate) fn exec(
     };
     let archive = archive_of(study, args)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
+    let observations = observations_of(study, &md.mesh, &md.model, args, true)?;
     let init = etat_init(study, args, &asm, &dof_names)?;
     let (list, instants) = time_range(study, args, init.t0)?;
     let auto = super::dyna_non_line::growth_of(&list);
@@ -152,7 +148,7 @@ pub(crate) fn exec(
         archive,
         newton_table: false,
         suivi: Vec::new(),
-        observations: Vec::new(),
+        observations,
         progress: false,
         dof_names,
         ncells: md.mesh.ncells(),

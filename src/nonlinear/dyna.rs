@@ -840,7 +840,7 @@ fn stop_on_signal(
 
 /// The OBSERVATION rows as the result's table (kept with the steps
 /// computed when the run stops early).
-fn store_observations(observer: Option<Observer>, result: &mut EvolNoli) {
+pub(crate) fn store_observations(observer: Option<Observer>, result: &mut EvolNoli) {
     if let Some(o) = observer {
         result
             .tables

@@ -41,10 +41,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::assembly::{Assembler, CellFailure, PARALLEL_MIN_ELEMENTS};
 use super::dofs::NONE;
-use super::dyna::{archive, Growth, RunSummary, Stopped, TimeLoop};
+use super::dyna::{archive, store_observations, Growth, RunSummary, Stopped, TimeLoop};
 use super::energy::EnergyBalance;
 use super::explicit_contact::ExplicitContact;
 use super::newton::Engine;
+use super::observation::{Observer, TABLE_NAME as OBSERVATION_TABLE};
 use super::team::{with_team, Parts, Team};
 use crate::element::{internal_forces, mass, PointState, MAX_DOFS};
 use crate::law::TangentKind;
@@ -745,6 +746,16 @@ fn run_on(
         summary.archived += 1;
         archive_line(&mut energy, result, &summary, first_dt, log);
     }
+    // OBSERVATION: the initial state, then the steps that end on an
+    // instant of the list (the sub-steps of the critical step are not
+    // instants of the computation, as for ARCHIVAGE).
+    let ndpn = engine.asm.numbering.ndpn;
+    let offsets = engine.asm.cell_state_offsets.clone();
+    let mut observer = (!tl.observations.is_empty()).then(|| {
+        let mut o = Observer::new(result.tables.get(OBSERVATION_TABLE));
+        o.observe(&tl.observations, &engine.committed, None, ndpn, &offsets);
+        o
+    });
     let mut dt = first_dt;
     // The length of the last step done (for CONT_NOEU's percussion).
     let mut last_dt = 0.0;
@@ -765,6 +776,7 @@ fn run_on(
                 archive_line(&mut energy, result, &summary, dt, log);
             }
             store_energy(&energy, result);
+            store_observations(observer.take(), result);
             summary.seconds = started.elapsed().as_secs_f64();
             let message = format!(
                 "DYNA_NON_LINE stopped by {} at t = {t0:e}, after {} explicit steps: the {} archived instants are kept in the result; the computation up to t = {:e} was not done.",
@@ -811,6 +823,7 @@ fn run_on(
                 summary.archived += 1;
             }
             store_energy(&energy, result);
+            store_observations(observer.take(), result);
             let message = format!(
                 "DYNA_NON_LINE stopped at the step from t = {t0:e} to t = {:e}: {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
                 t0 + dt,
@@ -886,6 +899,15 @@ fn run_on(
         if let Some(ct) = contact.as_deref() {
             energy.friction = ct.friction_dissipation;
         }
+        if let (true, Some(o)) = (at_list, observer.as_mut()) {
+            o.observe(
+                &tl.observations,
+                &engine.committed,
+                Some(list_steps),
+                ndpn,
+                &offsets,
+            );
+        }
         let last = next >= tl.instants.len();
         let capped = !last && settings.auto.is_some_and(|g| summary.steps >= g.max_steps);
         if capped {
@@ -914,6 +936,7 @@ fn run_on(
         dt = dt_next;
     }
     store_energy(&energy, result);
+    store_observations(observer, result);
     summary.seconds = started.elapsed().as_secs_f64();
     log(&format!(
         "  {} explicit steps ({} of the list), {} archived, {:.3} s ({:.3e} s per step); {} estimates of the critical step ({:.3} s)",
