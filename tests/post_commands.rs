@@ -321,14 +321,19 @@ fn test_resu_prints_ok_nook_and_skip_lines_and_counts_them() {
             _F(RESULTAT=RESU, INST=1.E-6, NOM_CHAM='SIEF_ELGA', NOM_CMP='SIXX',
                TYPE_TEST='MAX', VALE_CALC=14.),
             _F(RESULTAT=RESU, NUME_ORDRE=1, NOM_CHAM='DEPL', TYPE_TEST='SOMM_ABS',
-               VALE_CALC=2.1),),
+               VALE_CALC=2.1),
+            _F(RESULTAT=RESU, NUME_ORDRE=1, NOM_CHAM='DEPL', TYPE_TEST='SOMM_ABS',
+               GROUP_NO='A', VALE_CALC=2.1),),
           CHAM_NO=_F(CHAM_GD=CH, GROUP_NO='A', NOM_CMP='DY', VALE_CALC=-4.))
          FIN()\n",
     );
     // OK: 0.3865 twice, ABSOLU zero, SIYY(c=1, p=2, 1e-6) = -(10+2+1) = -13,
     // MAX SIXX = 10+3+1 = 14, SOMM_ABS at t=0 = sum 0.1(n+1) = 2.1, CHAM_NO
     // DY(N5) = -4. NOOK: 0.3866. SKIP: VALE_CALC=0 and VALE_CALC absent.
-    assert_eq!(s.tests.ok, 7, "{}", s.resu);
+    // With TYPE_TEST, GROUP_NO is ignored with code_aster's alarm: the sum
+    // stays the whole field's 2.1.
+    assert_eq!(s.tests.ok, 8, "{}", s.resu);
+    assert!(s.mess.contains("<A> <TEST_RESU> <CALCULEL6_96> RESU with TYPE_TEST ignores GROUP_NO"));
     assert_eq!(s.tests.nook, 1);
     assert_eq!(s.tests.skip, 2);
     assert!(s.mess.contains("<A> <TEST_RESU> <TEST0_12>"));

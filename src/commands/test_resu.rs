@@ -2,7 +2,7 @@
 
 use super::blocks::*;
 use super::post_args::{
-    cham_no_of, component_index, is_gauss_name, mesh_for_field, mesh_of_result, node_name,
+    alarm, cham_no_of, component_index, is_gauss_name, mesh_for_field, mesh_of_result, node_name,
     report_checks, result_of, run_checks, single_cell, single_node, step_gauss, step_nodal,
     test_spec,
 };
@@ -99,6 +99,24 @@ pub fn def() -> CommandDef {
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     for occ in args.facts("RESU") {
         let spec = test_spec(occ)?;
+        if occ.has("TYPE_TEST") {
+            if let Some(k) = ["NOEUD", "GROUP_NO", "POINT"]
+                .into_iter()
+                .find(|k| occ.has(k))
+            {
+                // code_aster's trresu: an alarm (CALCULEL6_96), and the
+                // aggregate still runs over the whole field.
+                alarm(
+                    study,
+                    "TEST_RESU",
+                    "CALCULEL6_96",
+                    &format!(
+                        "RESU with TYPE_TEST ignores {k}: the {} is taken over the whole field, not over {k}",
+                        occ.text("TYPE_TEST").unwrap_or_default()
+                    ),
+                );
+            }
+        }
         let (name, fields, computed) = resu_value(study, occ)?;
         let lines = run_checks(occ, &spec, &Value::Real(computed))?;
         let fields: Vec<(&str, &str)> = fields.iter().map(|(k, v)| (*k, v.as_str())).collect();
