@@ -562,6 +562,14 @@ impl Checker<'_> {
         let produces = match &spec.produces {
             Produces::Nothing => None,
             Produces::Concept(t) => Some(*t),
+            Produces::SameAs(key, default) => Some(
+                top.concept(key)
+                    .and_then(|n| match self.env.names.get(n) {
+                        Some(Binding::Concept { ty, .. }) => Some(*ty),
+                        _ => None,
+                    })
+                    .unwrap_or(*default),
+            ),
         };
         match (target, produces) {
             (Some(t), None) => self.errors.push(

@@ -18,6 +18,12 @@ pub enum ConceptType {
     Formule,
     ChamNo,
     EvolNoli,
+    /// A linear static result (MECA_STATIQUE): the same data as
+    /// evol_noli, read by the same post-processing commands.
+    EvolElas,
+    /// AFFE_CARA_ELEM's element characteristics: no command produces it
+    /// yet; MECA_STATIQUE declares the keyword to refuse it clearly.
+    CaraElem,
     Table,
 }
 
@@ -36,6 +42,8 @@ impl ConceptType {
             ConceptType::Formule => "formule",
             ConceptType::ChamNo => "cham_no_sdaster",
             ConceptType::EvolNoli => "evol_noli",
+            ConceptType::EvolElas => "evol_elas",
+            ConceptType::CaraElem => "cara_elem",
             ConceptType::Table => "table_sdaster",
         }
     }

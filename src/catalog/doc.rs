@@ -42,6 +42,7 @@ fn command_section(out: &mut String, c: &CommandSpec) {
     let produces = match &c.produces {
         Produces::Nothing => "nothing (procedure)".to_string(),
         Produces::Concept(t) => format!("`{}`", t.aster_name()),
+        Produces::SameAs(k, _) => format!("the type of the concept given in `{k}`"),
     };
     let _ = writeln!(out, "- Produces: {produces}");
     let reuse = match &c.reentrant {

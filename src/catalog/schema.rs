@@ -162,6 +162,10 @@ pub enum Produces {
     /// A procedure: no result (DEBUT, FIN, TEST_RESU, IMPR_*...).
     Nothing,
     Concept(ConceptType),
+    /// The type of the concept given in a keyword of the command's top
+    /// level (code_aster's sd_prod returning the type of RESULTAT), or the
+    /// first type when that keyword holds no concept of a listed type.
+    SameAs(&'static str, ConceptType),
 }
 
 /// The declaration of one command.

@@ -14,6 +14,11 @@ use crate::concepts::ConceptType as C;
 // ---------------------------------------------------------------------------
 // Literals and conditions, short.
 
+/// The result types the post-processing commands read (RESULTAT=): the
+/// nonlinear evolutions and MECA_STATIQUE's linear ones hold the same
+/// fields.
+pub const RESULTS: &[C] = &[C::EvolNoli, C::EvolElas];
+
 pub fn r(v: f64) -> Lit {
     Lit::Real(v)
 }

@@ -16,7 +16,7 @@ use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut kws = vec![
-        concept("RESULTAT", &[C::EvolNoli])
+        concept("RESULTAT", RESULTS)
             .required()
             .doc("result to enrich (also the reused concept)")
             .kw(),
@@ -87,7 +87,7 @@ pub fn def() -> CommandDef {
         info(),
         titre(),
     ]);
-    let spec = command("CALC_CHAMP", Produces::Concept(C::EvolNoli), kws)
+    let spec = command("CALC_CHAMP", Produces::SameAs("RESULTAT", C::EvolNoli), kws)
         .reentrant(Reentrant::Optional("RESULTAT"))
         .rules(vec![
             exclus(&["TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"]),
@@ -253,6 +253,26 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let mut fint = vec![0.0; nfull];
     let mut ma = vec![0.0; nfull];
     let mut scratch = asm.initial_states();
+    // A linear result (MECA_STATIQUE): its internal forces are K u with
+    // the element matrices it was solved with (for MECA_HEXS8 te0392's,
+    // whose hourglass forces SIEF_ELGA does not hold), so that REAC_NODA
+    // is zero at free nodes and the supports' reaction elsewhere.
+    let linear = match study.concepts.get(&name).map(|c| c.ty) {
+        Some(C::EvolElas) => Some(
+            nonlinear::linear::element_stiffnesses(&asm, crate::element::hexs8::Variant::current())
+                .map_err(|f| {
+                    args.error(
+                        "RESULTAT",
+                        format!(
+                            "cell {}: {}",
+                            super::post_args::cell_name(f.cell),
+                            f.failure
+                        ),
+                    )
+                })?,
+        ),
+        _ => None,
+    };
     for step in evol.steps.iter_mut() {
         if !selected.contains(&step.nume_ordre) {
             continue;
@@ -268,38 +288,42 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             &dofs,
             step.nodal.get("DEPL").ok_or_else(|| missing("DEPL"))?,
         );
-        let points = fields::states_from_gauss(
-            &asm,
-            step.gauss
-                .get("SIEF_ELGA")
-                .ok_or_else(|| missing("SIEF_ELGA"))?,
-            step.gauss
-                .get("VARI_ELGA")
-                .ok_or_else(|| missing("VARI_ELGA"))?,
-        )
-        .map_err(|m| args.error("RESULTAT", m))?;
-        asm.compute(
-            &u,
-            &u,
-            &points,
-            &mut scratch,
-            // Zero time: the stored state is evaluated, not advanced.
-            0.0,
-            TangentKind::None,
-            &mut fint,
-            None,
-        )
-        .map_err(|f| {
-            args.error(
-                "RESULTAT",
-                format!(
-                    "NUME_ORDRE {}: cell {}: {}",
-                    step.nume_ordre,
-                    f.cell + 1,
-                    f.failure
-                ),
+        if let Some(ks) = &linear {
+            nonlinear::linear::linear_forces(&asm, ks, &u, &mut fint);
+        } else {
+            let points = fields::states_from_gauss(
+                &asm,
+                step.gauss
+                    .get("SIEF_ELGA")
+                    .ok_or_else(|| missing("SIEF_ELGA"))?,
+                step.gauss
+                    .get("VARI_ELGA")
+                    .ok_or_else(|| missing("VARI_ELGA"))?,
             )
-        })?;
+            .map_err(|m| args.error("RESULTAT", m))?;
+            asm.compute(
+                &u,
+                &u,
+                &points,
+                &mut scratch,
+                // Zero time: the stored state is evaluated, not advanced.
+                0.0,
+                TangentKind::None,
+                &mut fint,
+                None,
+            )
+            .map_err(|f| {
+                args.error(
+                    "RESULTAT",
+                    format!(
+                        "NUME_ORDRE {}: cell {}: {}",
+                        step.nume_ordre,
+                        f.cell + 1,
+                        f.failure
+                    ),
+                )
+            })?;
+        }
         if options.contains(&"FORC_NODA") {
             step.nodal
                 .insert("FORC_NODA".into(), fields::nodal(&asm, &dofs, &fint));

@@ -15,7 +15,7 @@ use crate::study::Study;
 
 pub fn def() -> CommandDef {
     let mut extr = vec![
-        concept("RESULTAT", &[C::EvolNoli])
+        concept("RESULTAT", RESULTS)
             .required()
             .doc("result to extract from")
             .kw(),

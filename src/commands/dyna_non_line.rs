@@ -284,6 +284,40 @@ pub(crate) fn set_loads(
     instants: &[f64],
     engine: &mut crate::nonlinear::Engine,
 ) -> Result<(), Diagnostic> {
+    let history = load_history(
+        args,
+        md,
+        loads,
+        mults,
+        study,
+        instants,
+        &engine.asm.numbering,
+    )?;
+    let t0 = instants.first().copied().unwrap_or(0.0);
+    history
+        .at(t0, &mut engine.fext)
+        .map_err(|m| args.error("EXCIT", m))?;
+    history
+        .set_imposed(t0, &mut engine.asm.numbering.imposed)
+        .map_err(|m| args.error("EXCIT", m))?;
+    if history.varies() {
+        engine.loads = Some(history);
+    }
+    Ok(())
+}
+
+/// The loads of EXCIT on the numbering `nb` as a history the engine
+/// evaluates at each instant: each load's forces with its FONC_MULT, the
+/// AFFE_CHAR_MECA_F values and the DDL_IMPO values under a FONC_MULT.
+pub(crate) fn load_history(
+    args: &Args,
+    md: &ModelData,
+    loads: &[MechLoad],
+    mults: &[Option<String>],
+    study: &Study,
+    instants: &[f64],
+    nb: &crate::nonlinear::dofs::DofNumbering,
+) -> Result<crate::nonlinear::loads::LoadHistory, Diagnostic> {
     let excits = args.facts("EXCIT");
     let mut parts = Vec::new();
     let mut mult_fns = Vec::new();
@@ -296,28 +330,17 @@ pub(crate) fn set_loads(
         mult_fns.push(mult.clone());
         parts.push((forces, mult));
     }
-    let functions = function_parts(md, loads, &mult_fns, &engine.asm.numbering).map_err(
-        |(k, m)| match excits.get(k) {
+    let functions =
+        function_parts(md, loads, &mult_fns, nb).map_err(|(k, m)| match excits.get(k) {
             Some(ex) => ex.error("CHARGE", m),
             None => args.error("EXCIT", m),
-        },
-    )?;
+        })?;
     let mut history = crate::nonlinear::loads::LoadHistory::new(parts).with_functions(functions);
-    let varying = imposed_under_mult(args, md, loads, mults, study, instants, engine)?;
+    let varying = imposed_under_mult(args, md, loads, mults, study, instants, nb)?;
     for (entries, mult) in varying {
         history = history.with_imposed(entries, mult);
     }
-    let t0 = instants.first().copied().unwrap_or(0.0);
-    history
-        .at(t0, &mut engine.fext)
-        .map_err(|m| args.error("EXCIT", m))?;
-    history
-        .set_imposed(t0, &mut engine.asm.numbering.imposed)
-        .map_err(|m| args.error("EXCIT", m))?;
-    if history.varies() {
-        engine.loads = Some(history);
-    }
-    Ok(())
+    Ok(history)
 }
 
 /// The AFFE_CHAR_MECA_F values of the loads on the numbering `nb`, each
@@ -413,9 +436,8 @@ fn imposed_under_mult(
     mults: &[Option<String>],
     study: &Study,
     instants: &[f64],
-    engine: &crate::nonlinear::Engine,
+    nb: &crate::nonlinear::dofs::DofNumbering,
 ) -> Result<Vec<ImposedUnderMult>, Diagnostic> {
-    let nb = &engine.asm.numbering;
     let index = nb.imposed_index();
     let full = |imp: &crate::model::ImposedDof| {
         md.model

@@ -75,7 +75,7 @@ pub fn def() -> CommandDef {
                 vec![
                     concept("MAILLAGE", &[C::Maillage]).doc("mesh written too").kw(),
                     concept("CHAM_GD", &[C::ChamNo]).kw(),
-                    concept("RESULTAT", &[C::EvolNoli]).kw(),
+                    concept("RESULTAT", RESULTS).kw(),
                     oui_non("INFO_MAILLAGE", "NON").kw(),
                     block("b_extrac", present("RESULTAT"), acces)
                         .rules(vec![

@@ -42,6 +42,7 @@ pub mod impr_resu;
 pub mod impr_table;
 pub mod liaison_unil;
 pub mod lire_maillage;
+pub mod meca_statique;
 pub mod mesh_args;
 pub mod model_args;
 pub mod modi_maillage;
@@ -105,6 +106,7 @@ pub fn all() -> Vec<CommandDef> {
         impr_resu::def(),
         impr_table::def(),
         lire_maillage::def(),
+        meca_statique::def(),
         modi_maillage::def(),
         post_releve_t::def(),
         recu_fonction::def(),

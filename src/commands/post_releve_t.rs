@@ -43,7 +43,7 @@ pub fn def() -> CommandDef {
                         .doc("label of the rows, first column of the table")
                         .kw(),
                     concept("CHAM_GD", &[C::ChamNo]).kw(),
-                    concept("RESULTAT", &[C::EvolNoli])
+                    concept("RESULTAT", RESULTS)
                         .doc("all stored indices unless restricted")
                         .kw(),
                     block("b_extrac", present("RESULTAT"), extrac)

@@ -22,7 +22,7 @@ pub fn def() -> CommandDef {
         "RECU_FONCTION",
         Produces::Concept(C::Fonction),
         vec![
-            concept("RESULTAT", &[C::EvolNoli]).kw(),
+            concept("RESULTAT", RESULTS).kw(),
             concept("TABLE", &[C::Table]).kw(),
             block(
                 "b_acces",

@@ -18,7 +18,7 @@ use crate::study::Study;
 pub fn def() -> CommandDef {
     let (refe_kws, refe_rules) = c_test_reference(true, false);
     let mut resu = vec![
-        concept("RESULTAT", &[C::EvolNoli]).required().kw(),
+        concept("RESULTAT", RESULTS).required().kw(),
         int("NUME_ORDRE").doc("stored index tested").kw(),
         real("INST")
             .doc("instant tested, found with TOLE_MACHINE(2) and CRITERE(2)")

@@ -776,3 +776,149 @@ fn strain_operator(grad: &[[f64; 3]; 8]) -> B {
     }
     b
 }
+
+/// code_aster's RIGI_MECA of MECA_HEXS8 (te0392, note §10.2): the linear
+/// elastic stiffness of MECA_STATIQUE (and of modal analyses). It is not
+/// the tangent of [`internal_forces`] with an elastic law: Hooke's matrix
+/// C in Voigt form (shear μ) on both sides, the ASQBI projection with
+/// ν = NU whatever the law, γ built with the point gradient at the
+/// centre, the true hourglass gradients at each of the 2×2×2 points with
+/// their own Jacobian and weight J_g, and the cross terms kept:
+///
+/// K = 8J₀ B0ᵀ C B0 + Σ_g J_g [B_Nᵀ C B_N + B_Nᵀ C B0 + B0ᵀ C B_N].
+///
+/// Under the published variant (the default) the element is computed in
+/// its own frame, as [`internal_forces`] is (module doc, "Frame"), so that
+/// the answer does not depend on how a cell is numbered; an element whose
+/// ξ, η, ζ run along x, y, z is computed in global axes, which is exactly
+/// te0392. `Variant::CodeAster` keeps code_aster's global axes for every
+/// cell. The matrix is symmetric, with 6 zero eigenvalues (rigid modes).
+pub fn rigi_meca(
+    coords: &[[f64; 3]],
+    young: f64,
+    nu: f64,
+    variant: Variant,
+) -> Result<DMatrix<f64>, ElementFailure> {
+    let mut x = hexa8_coords(coords)?;
+    if !(young.is_finite() && young > 0.0 && nu.is_finite() && nu > -1.0 && nu < 0.5) {
+        return Err(ElementFailure::BadInput {
+            message: format!(
+                "{NAME}: RIGI_MECA needs E > 0 and -1 < NU < 0.5, got E = {young}, NU = {nu}"
+            ),
+        });
+    }
+    let frame = match variant {
+        Variant::Published => element_frame(&x),
+        Variant::CodeAster => None,
+    };
+    if let Some(r) = &frame {
+        for p in x.iter_mut() {
+            let l = r.transpose() * nalgebra::Vector3::from(*p);
+            *p = [l[0], l[1], l[2]];
+        }
+    }
+    let geom = rigi_geometry(&x)?;
+    let c = hooke(young, nu);
+    let e = e_vectors(Projection::Asqbi { nu });
+    let mut k = geom.b0.transpose() * c * geom.b0 * geom.w0;
+    for g in 0..8 {
+        let bn = geom.bn(g, &e);
+        let cb0 = c * geom.b0;
+        k += (bn.transpose() * c * bn + bn.transpose() * cb0 + cb0.transpose() * bn) * geom.wg[g];
+    }
+    if let Some(r) = &frame {
+        let mut rb = K24::zeros();
+        for a in 0..8 {
+            rb.fixed_view_mut::<3, 3>(3 * a, 3 * a).copy_from(r);
+        }
+        k = rb * k * rb.transpose();
+    }
+    Ok(DMatrix::from_column_slice(24, 24, k.as_slice()))
+}
+
+/// code_aster's SIEF_ELGA of MECA_HEXS8 in a linear computation (te0022,
+/// note §10.3): σ = C B0 u with B0 the point gradient at the centre, the
+/// element's one point; no hourglass stress (FSTAB) is computed. The
+/// centre strain is a tensor, so no frame is involved.
+pub fn rigi_meca_stress(
+    coords: &[[f64; 3]],
+    young: f64,
+    nu: f64,
+    u: &[f64],
+) -> Result<Vec6, ElementFailure> {
+    let x = hexa8_coords(coords)?;
+    if u.len() != 24 || u.iter().any(|v| !v.is_finite()) {
+        return Err(ElementFailure::BadInput {
+            message: format!("{NAME}: 24 finite displacements expected, got {}", u.len()),
+        });
+    }
+    let geom = rigi_geometry(&x)?;
+    let eps = geom.b0 * nalgebra::SVector::<f64, 24>::from_column_slice(u);
+    Ok(hooke(young, nu) * eps)
+}
+
+/// The 8 nodes of a HEXA8, checked finite.
+fn hexa8_coords(coords: &[[f64; 3]]) -> Result<[[f64; 3]; 8], ElementFailure> {
+    if coords.len() != 8 || coords.iter().flatten().any(|v| !v.is_finite()) {
+        return Err(ElementFailure::BadInput {
+            message: format!(
+                "{NAME}: 8 finite node coordinates expected, got {}",
+                coords.len()
+            ),
+        });
+    }
+    let mut x = [[0.0; 3]; 8];
+    x.copy_from_slice(coords);
+    Ok(x)
+}
+
+/// Hooke's matrix in Voigt form (engineering shears, C_44 = μ).
+fn hooke(young: f64, nu: f64) -> Mat6 {
+    let lambda = young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let mu = young / (2.0 * (1.0 + nu));
+    crate::law::voigt::isotropic_elastic(lambda + 2.0 * mu / 3.0, mu)
+}
+
+/// te0392's operators: the centre point gradient (in B0 and in γ), weight
+/// 8J₀, and the true hourglass gradients at each point with weight J_g.
+fn rigi_geometry(x: &[[f64; 3]; 8]) -> Result<Geometry, ElementFailure> {
+    let bad = |(point, message): (usize, String)| ElementFailure::BadGeometry { point, message };
+    let r = reference();
+    let (j0, inv0) = jacobian(&r.centre, x).map_err(|m| bad((0, format!("at the centre: {m}"))))?;
+    let grad0 = gradient(&r.centre, &inv0);
+    let mut gamma = [[0.0; 8]; 4];
+    for al in 0..4 {
+        let mut hx = [0.0; 3];
+        for a in 0..8 {
+            for j in 0..3 {
+                hx[j] += r.h[al][a] * x[a][j];
+            }
+        }
+        for a in 0..8 {
+            gamma[al][a] = (r.h[al][a] - (0..3).map(|j| hx[j] * grad0[a][j]).sum::<f64>()) / 8.0;
+        }
+    }
+    let mut c = [[[0.0; 3]; 4]; 8];
+    let mut wg = [0.0; 8];
+    let mut vol = 0.0;
+    for g in 0..8 {
+        let (det, inv) = jacobian(&r.shapes[g], x).map_err(|m| bad((g, m)))?;
+        let dh = dh_dxi(&r.points[g]);
+        for al in 0..4 {
+            for j in 0..3 {
+                c[g][al][j] = (0..3).map(|k| dh[al][k] * inv[(k, j)]).sum();
+            }
+        }
+        wg[g] = r.weights[g] * det;
+        vol += wg[g];
+    }
+    Ok(Geometry {
+        centre: grad0,
+        b0: strain_operator(&grad0),
+        w0: 8.0 * j0,
+        vol,
+        gamma,
+        c,
+        wg,
+    })
+}

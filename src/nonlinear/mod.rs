@@ -20,6 +20,7 @@ pub mod energy;
 pub mod explicit;
 pub mod explicit_contact;
 pub mod fields;
+pub mod linear;
 pub mod loads;
 pub mod newton;
 pub mod observation;
