@@ -320,7 +320,7 @@ fn render(pre: &Prelude, spec: &CommandSpec, frames: &[Frame]) -> String {
             None => {
                 let mut text = pre.text.clone();
                 let target = match spec.produces {
-                    Produces::Concept(_) => "RES = ",
+                    Produces::Concept(_) | Produces::SameAs(..) => "RES = ",
                     Produces::Nothing => "",
                 };
                 // Marks the level line for errors located at the command.

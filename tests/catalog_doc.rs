@@ -409,9 +409,12 @@ fn check_command(c: &CommandSpec, errs: &mut Vec<String>) {
         Reentrant::Optional(k) | Reentrant::Required(k) => Some(*k),
     };
     if let Some(k) = key {
-        let Produces::Concept(ty) = &c.produces else {
-            errs.push(format!("{}: reuse on a procedure", c.name));
-            return;
+        let ty = match &c.produces {
+            Produces::Concept(ty) | Produces::SameAs(_, ty) => ty,
+            Produces::Nothing => {
+                errs.push(format!("{}: reuse on a procedure", c.name));
+                return;
+            }
         };
         let found = find_simple(&c.keywords, k);
         let ok = found

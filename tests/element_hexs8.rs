@@ -967,3 +967,153 @@ fn published_variant_is_frame_invariant() {
         );
     }
 }
+
+/// code_aster's linear matrix RIGI_MECA (te0392, `hexs8::rigi_meca`, note
+/// §10.2) against closed forms on a box of half-sizes (1, 0.5, 0.25):
+/// the ASQBI bending energy ½ E/(1−ν²) κ² V b²/3 (the plane-strain
+/// bending of the prism), the shear-type pattern's continuum energy
+/// ½ μ q² V (1/(3b²) + 1/(3c²)) (half te0407's: Voigt, not Mandel), the
+/// uniform-strain energy ½ ε·Cε V; symmetric, exactly 6 zero eigenvalues
+/// on the box and on a distorted element, none negative.
+#[test]
+fn rigi_meca_closed_forms_and_spectrum() {
+    let (a, b, c) = (1.0, 0.5, 0.25);
+    let x = cell_nodes(0, 0, 0, &|g| {
+        [
+            2.0 * a * g[0] as f64 - a,
+            2.0 * b * g[1] as f64 - b,
+            2.0 * c * g[2] as f64 - c,
+        ]
+    });
+    let v = 8.0 * a * b * c;
+    let mu = E / (2.0 * (1.0 + NU));
+    let lambda = E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU));
+    for variant in [Variant::Published, Variant::CodeAster] {
+        let k = hexs8::rigi_meca(&x, E, NU, variant).unwrap();
+        let energy = |u: &[f64]| {
+            let uv = DVector::from_column_slice(u);
+            0.5 * (uv.transpose() * &k * &uv)[(0, 0)]
+        };
+        let kappa = 1e-3;
+        let bend: Vec<f64> = x
+            .iter()
+            .flat_map(|p| [kappa * p[0] * p[1], 0.0, 0.0])
+            .collect();
+        let exact = 0.5 * E / (1.0 - NU * NU) * kappa * kappa * v * b * b / 3.0;
+        assert!(
+            (energy(&bend) / exact - 1.0).abs() < 1e-12,
+            "{variant:?} bending"
+        );
+        let q = 1e-3;
+        let shear: Vec<f64> = x
+            .iter()
+            .flat_map(|p| [q * (p[1] / b) * (p[2] / c), 0.0, 0.0])
+            .collect();
+        let exact = 0.5 * mu * q * q * v * (1.0 / (3.0 * b * b) + 1.0 / (3.0 * c * c));
+        assert!(
+            (energy(&shear) / exact - 1.0).abs() < 1e-12,
+            "{variant:?} shear"
+        );
+        // u = ε x with ε = diag(e1, e2, e3) + γ_xy: energy ½ σ:ε V.
+        let (e1, e2, e3, gxy) = (1e-3, -2e-4, 5e-4, 3e-4);
+        let lin: Vec<f64> = x
+            .iter()
+            .flat_map(|p| [e1 * p[0] + gxy * p[1], e2 * p[1], e3 * p[2]])
+            .collect();
+        let tr = e1 + e2 + e3;
+        let exact = 0.5
+            * v
+            * (lambda * tr * tr + 2.0 * mu * (e1 * e1 + e2 * e2 + e3 * e3) + mu * gxy * gxy);
+        assert!(
+            (energy(&lin) / exact - 1.0).abs() < 1e-12,
+            "{variant:?} uniform"
+        );
+        let sigma = hexs8::rigi_meca_stress(&x, E, NU, &lin).unwrap();
+        assert!((sigma[0] - (lambda * tr + 2.0 * mu * e1)).abs() < 1e-9 * sigma[0].abs());
+        assert!((sigma[3] - mu * gxy).abs() < 1e-9 * mu * gxy);
+    }
+    let distorted = cell_nodes(0, 0, 0, &|g| {
+        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
+    });
+    for el in [&x, &distorted] {
+        for variant in [Variant::Published, Variant::CodeAster] {
+            let k = hexs8::rigi_meca(el, E, NU, variant).unwrap();
+            let max = k.amax();
+            assert!((&k - k.transpose()).amax() < 1e-13 * max, "not symmetric");
+            let ev = eigenvalues(&k);
+            assert_eq!(zero_count(&ev), 6, "{variant:?}: {ev:?}");
+            assert!(ev[0] > -1e-9 * ev[23]);
+        }
+    }
+}
+
+/// RIGI_MECA is not te0407's tangent with an elastic law (which is what
+/// STAT_NON_LINE assembles): on the box the shear-type pattern has half
+/// the energy (above), and on a distorted element the two matrices differ
+/// beyond round-off even with the same ASQBI projection.
+#[test]
+fn rigi_meca_is_not_the_nonlinear_tangent() {
+    let spec = hexs8();
+    let x = cell_nodes(0, 0, 0, &|g| {
+        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
+    });
+    let el = Elas::new(elas());
+    let law = LawRef::Small(&el);
+    let z = vec![0.0; 24];
+    let tangent = internal_forces_with(
+        Options {
+            variant: Variant::CodeAster,
+            stabilise: true,
+            projection: Some(Projection::Asqbi { nu: NU }),
+        },
+        &spec,
+        Kinematics::Petit,
+        &x,
+        &z,
+        &z,
+        &initial_states(&spec, law),
+        law,
+        1e-6,
+        TangentKind::Consistent,
+    )
+    .unwrap()
+    .stiffness
+    .unwrap();
+    let k = hexs8::rigi_meca(&x, E, NU, Variant::CodeAster).unwrap();
+    let rel = (&k - &tangent).amax() / k.amax();
+    assert!(rel > 1e-3, "{rel:e}");
+}
+
+/// The published variant computes RIGI_MECA in the element's frame: a
+/// distorted element turned by 0.7 rad about (1, 2, 3) gives Q K Qᵀ to
+/// 1e-12; code_aster's global axes do not (the hourglass shear rules are
+/// written in x, y, z, note §14.1).
+#[test]
+fn rigi_meca_frame() {
+    let x = cell_nodes(0, 0, 0, &|g| {
+        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
+    });
+    let q = nalgebra::Rotation3::from_axis_angle(
+        &nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, 2.0, 3.0)),
+        0.7,
+    )
+    .into_inner();
+    let xq: Vec<[f64; 3]> = x
+        .iter()
+        .map(|p| {
+            let r = q * nalgebra::Vector3::from(*p);
+            [r[0], r[1], r[2]]
+        })
+        .collect();
+    let mut qb = DMatrix::zeros(24, 24);
+    for a in 0..8 {
+        qb.view_mut((3 * a, 3 * a), (3, 3)).copy_from(&q);
+    }
+    let gap = |variant| {
+        let k = hexs8::rigi_meca(&x, E, NU, variant).unwrap();
+        let kq = hexs8::rigi_meca(&xq, E, NU, variant).unwrap();
+        (&kq - &qb * &k * qb.transpose()).amax() / k.amax()
+    };
+    assert!(gap(Variant::Published) < 1e-12);
+    assert!(gap(Variant::CodeAster) > 1e-3);
+}

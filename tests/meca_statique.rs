@@ -225,27 +225,9 @@ fn cantilever_and_column() {
     assert!(scale > 1e-3 && err < 1e-10 * scale, "{err:e} of {scale:e}");
 }
 
-/// Runs tests/studies/<study>.comm with `from` replaced by `to` (which must
-/// occur); returns exit code and terminal.
+/// [`common::run_variant`] on tests/studies: exit code and terminal.
 fn run_variant(study: &str, tag: &str, from: &str, to: &str) -> (i32, String) {
-    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("meca_statique_bad");
-    std::fs::create_dir_all(&tmp).unwrap();
-    let comm = std::fs::read_to_string(dir().join(format!("{study}.comm"))).unwrap();
-    assert!(comm.contains(from), "{tag}: {from}");
-    std::fs::write(tmp.join(format!("{tag}.comm")), comm.replacen(from, to, 1)).unwrap();
-    let export = std::fs::read_to_string(dir().join(format!("{study}.export"))).unwrap();
-    let export: String = export
-        .lines()
-        .map(|l| {
-            let mut w: Vec<String> = l.split_whitespace().map(String::from).collect();
-            if w.len() >= 3 {
-                w[2] = dir().join(&w[2]).display().to_string();
-            }
-            w.join(" ") + "\n"
-        })
-        .collect();
-    std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
-    let run = common::run_study(tmp.join(format!("{tag}.comm")).to_str().unwrap(), tag);
+    let run = common::run_variant(&dir(), "meca_statique_bad", study, tag, from, to);
     (run.code, run.term)
 }
 

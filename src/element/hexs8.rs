@@ -688,19 +688,7 @@ impl Geometry {
         for b in bbar.iter_mut().flatten() {
             *b /= vol;
         }
-        // γ_αI = (h_αI − Σ_j (Σ_J h_αJ x_Jj) b̄_jI) / 8
-        let mut gamma = [[0.0; 8]; 4];
-        for al in 0..4 {
-            let mut hx = [0.0; 3];
-            for a in 0..8 {
-                for j in 0..3 {
-                    hx[j] += r.h[al][a] * x[a][j];
-                }
-            }
-            for a in 0..8 {
-                gamma[al][a] = (r.h[al][a] - (0..3).map(|j| hx[j] * bbar[a][j]).sum::<f64>()) / 8.0;
-            }
-        }
+        let gamma = gamma_vectors(x, &bbar);
         let mut c = [[[0.0; 3]; 4]; 8];
         let mut wg = [0.0; 8];
         for g in 0..8 {
@@ -757,6 +745,26 @@ impl Geometry {
         }
         b
     }
+}
+
+/// γ_αI = (h_αI − Σ_j (Σ_J h_αJ x_Jj) g_jI) / 8 with the gradient table
+/// `g` (b̄ in te0407, the centre point gradient in te0392): each vanishes
+/// on every linear field as long as `g` reproduces linear fields.
+fn gamma_vectors(x: &[[f64; 3]; 8], g: &[[f64; 3]; 8]) -> [[f64; 8]; 4] {
+    let h = &reference().h;
+    let mut gamma = [[0.0; 8]; 4];
+    for al in 0..4 {
+        let mut hx = [0.0; 3];
+        for a in 0..8 {
+            for j in 0..3 {
+                hx[j] += h[al][a] * x[a][j];
+            }
+        }
+        for a in 0..8 {
+            gamma[al][a] = (h[al][a] - (0..3).map(|j| hx[j] * g[a][j]).sum::<f64>()) / 8.0;
+        }
+    }
+    gamma
 }
 
 /// Engineering strain operator of a gradient table (xx, yy, zz, γxy, γxz, γyz).
@@ -886,18 +894,7 @@ fn rigi_geometry(x: &[[f64; 3]; 8]) -> Result<Geometry, ElementFailure> {
     let r = reference();
     let (j0, inv0) = jacobian(&r.centre, x).map_err(|m| bad((0, format!("at the centre: {m}"))))?;
     let grad0 = gradient(&r.centre, &inv0);
-    let mut gamma = [[0.0; 8]; 4];
-    for al in 0..4 {
-        let mut hx = [0.0; 3];
-        for a in 0..8 {
-            for j in 0..3 {
-                hx[j] += r.h[al][a] * x[a][j];
-            }
-        }
-        for a in 0..8 {
-            gamma[al][a] = (r.h[al][a] - (0..3).map(|j| hx[j] * grad0[a][j]).sum::<f64>()) / 8.0;
-        }
-    }
+    let gamma = gamma_vectors(x, &grad0);
     let mut c = [[[0.0; 3]; 4]; 8];
     let mut wg = [0.0; 8];
     let mut vol = 0.0;

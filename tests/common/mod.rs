@@ -91,3 +91,28 @@ pub fn printed_table(resu: &str, name: &str) -> Vec<std::collections::HashMap<St
         })
         .collect()
 }
+
+/// Runs `<dir>/<study>.comm` with the first `from` replaced by `to` (which
+/// must occur), under the study's .export with its paths made absolute,
+/// the variant written to the scratch directory `scratch`: the bad-input
+/// tests change one line of a working study.
+pub fn run_variant(dir: &Path, scratch: &str, study: &str, tag: &str, from: &str, to: &str) -> Run {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(scratch);
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir.join(format!("{study}.comm"))).unwrap();
+    assert!(comm.contains(from), "{tag}: {from}");
+    std::fs::write(tmp.join(format!("{tag}.comm")), comm.replacen(from, to, 1)).unwrap();
+    let export = std::fs::read_to_string(dir.join(format!("{study}.export"))).unwrap();
+    let export: String = export
+        .lines()
+        .map(|l| {
+            let mut w: Vec<String> = l.split_whitespace().map(String::from).collect();
+            if w.len() >= 3 {
+                w[2] = dir.join(&w[2]).display().to_string();
+            }
+            w.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
+    run_study(tmp.join(format!("{tag}.comm")).to_str().unwrap(), tag)
+}
