@@ -167,7 +167,8 @@ fn patch_test_hexs8_linear_matrix() {
 /// The axisymmetric patch (meca_patch_axis.comm), AXIS and AXIS_SI on
 /// distorted QUAD8: the free centre node at u_r = AR r, u_z = BZ z to
 /// 1e-10 (the stresses, SIGM_NOEU, EPSI_ELGA and a zero REAC_NODA at the
-/// free node are checked in the file).
+/// free node are checked in the file); the instants of LIST_INST,
+/// INST_FIN and reuse=.
 #[test]
 fn patch_test_axis_quad8() {
     let (resu, _) = run_study("meca_patch_axis");
@@ -178,6 +179,17 @@ fn patch_test_axis_quad8() {
         let (ur, uz) = (2e-4 * x, 1e-3 * y);
         assert!((num(r, "DX") - ur).abs() < 1e-10 * ur, "{t}: {r:?}");
         assert!((num(r, "DY") - uz).abs() < 1e-10 * uz, "{t}: {r:?}");
+    }
+    // LIST_INST with INST_FIN, then reuse= for the last instant, under a
+    // FONC_MULT t: NUME_ORDRE 1, 2, 3 at INST 0, 1, 2, the field times t.
+    let rows = common::printed_table(&resu, "TL");
+    assert_eq!(rows.len(), 3);
+    for (k, r) in rows.iter().enumerate() {
+        assert_eq!(num(r, "NUME_ORDRE"), (k + 1) as f64);
+        let t = num(r, "INST");
+        assert_eq!(t, k as f64);
+        let uz = t * 1e-3 * num(r, "COOR_Y");
+        assert!((num(r, "DY") - uz).abs() <= 1e-10 * uz, "{r:?}");
     }
 }
 

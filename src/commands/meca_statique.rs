@@ -184,11 +184,18 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let dofs: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
     let ncells = md.mesh.ncells();
     let with_stress = args.text("OPTION").unwrap_or("SIEF_ELGA") == "SIEF_ELGA";
+    // With reuse=, the NUME_ORDRE already stored are kept (mestat).
+    let todo: Vec<(usize, f64)> = instants
+        .iter()
+        .copied()
+        .filter(|&(nume, _)| !evol.steps.iter().any(|s| s.nume_ordre == nume))
+        .collect();
     study.log(format!(
-        "  MECA_STATIQUE: {} equations ({} imposed dofs), {} elements, {} instant(s) from {:e} to {:e}",
+        "  MECA_STATIQUE: {} equations ({} imposed dofs), {} elements, {} instant(s) to compute of {} from {:e} to {:e}",
         linear.asm.numbering.neq(),
         linear.asm.numbering.imposed.len(),
         linear.asm.elements.len(),
+        todo.len(),
         instants.len(),
         all_instants[0],
         all_instants[all_instants.len() - 1]
@@ -197,10 +204,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         study.log("  SOLVEUR: every METHODE maps to one sparse direct solver (faer: Cholesky for a symmetric matrix, LU otherwise); the settings are accepted and ignored");
     }
     let mut fext = vec![0.0; linear.asm.numbering.nfull()];
-    for &(nume, t) in &instants {
-        if evol.steps.iter().any(|s| s.nume_ordre == nume) {
-            continue;
-        }
+    for &(nume, t) in &todo {
         let at = |m: String| args.error("EXCIT", format!("INST = {t:e}: {m}"));
         history.at(t, &mut fext).map_err(at)?;
         history
