@@ -234,6 +234,7 @@ fn run_with(
             pressures: Vec::new(),
             distributed: Vec::new(),
             functions: Vec::new(),
+            fields: Vec::new(),
         }],
     )
     .unwrap();

@@ -257,6 +257,7 @@ fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<S
             pressures: Vec::new(),
             distributed: Vec::new(),
             functions: Vec::new(),
+            fields: Vec::new(),
         }],
     )
     .unwrap();
@@ -808,6 +809,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             pressures: Vec::new(),
             distributed: Vec::new(),
             functions: Vec::new(),
+            fields: Vec::new(),
         }],
     )
     .unwrap();

@@ -129,6 +129,7 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             pressures: Vec::new(),
             distributed: Vec::new(),
             functions: Vec::new(),
+            fields: Vec::new(),
         }],
     )
     .unwrap();

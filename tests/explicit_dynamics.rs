@@ -90,6 +90,7 @@ fn lumped_system(mesh: &Mesh, mo: &Model, imp: &[aster::model::ImposedDof]) -> L
         pressures: Vec::new(),
         distributed: Vec::new(),
         functions: Vec::new(),
+        fields: Vec::new(),
     };
     let (mut asm, _) =
         aster::nonlinear::discretize(mesh, mo, &matfield, &materials, &occs, &[&load]).unwrap();

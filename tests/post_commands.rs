@@ -333,7 +333,9 @@ fn test_resu_prints_ok_nook_and_skip_lines_and_counts_them() {
     // With TYPE_TEST, GROUP_NO is ignored with code_aster's alarm: the sum
     // stays the whole field's 2.1.
     assert_eq!(s.tests.ok, 8, "{}", s.resu);
-    assert!(s.mess.contains("<A> <TEST_RESU> <CALCULEL6_96> RESU with TYPE_TEST ignores GROUP_NO"));
+    assert!(s
+        .mess
+        .contains("<A> <TEST_RESU> <CALCULEL6_96> RESU with TYPE_TEST ignores GROUP_NO"));
     assert_eq!(s.tests.nook, 1);
     assert_eq!(s.tests.skip, 2);
     assert!(s.mess.contains("<A> <TEST_RESU> <TEST0_12>"));

@@ -261,6 +261,65 @@ fn static_bar_under_face_and_body_forces() {
     run_study("stat_distributed");
 }
 
+/// AFFE_CHAR_MECA_F PRES_REP, FORCE_FACE, FORCE_INTERNE (3D) and
+/// FORCE_CONTOUR (AXIS) whose values vary with INST and the position:
+/// tip displacements, the displacement at mid-length under a linear body
+/// force, reactions equal to the integrals of the densities, and a free
+/// bar's motion under a force growing in time (Newmark 1/6, 1/2, exact),
+/// all to 1e-9 (char_f_distributed.comm).
+#[test]
+fn affe_char_meca_f_distributed_loads() {
+    run_study("char_f_distributed");
+}
+
+/// Located errors of AFFE_CHAR_MECA_F's distributed loads.
+#[test]
+fn affe_char_meca_f_distributed_load_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("char_f_distributed_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("char_f_distributed.comm")).unwrap();
+    let cases = [
+        (
+            "parameter",
+            (
+                "FB = FORMULE(NOM_PARA=('X', 'Y', 'Z'), VALE='K * Z')",
+                "FB = FORMULE(NOM_PARA=('X', 'EPSI'), VALE='K * X')",
+            ),
+            "AFFE_CHAR_MECA_F/FORCE_INTERNE/FZ: FB is a function of EPSI",
+        ),
+        (
+            "no_skin",
+            (
+                "PRES_REP=_F(GROUP_MA='ZMAX', PRES=FP)",
+                "PRES_REP=_F(GROUP_MA='VOL', PRES=FP)",
+            ),
+            "has no skin cell of the model",
+        ),
+        (
+            "face_on_axis",
+            (
+                "FORCE_CONTOUR=_F(GROUP_MA='SZZ', FY=FQ)",
+                "FORCE_FACE=_F(GROUP_MA='SZZ', FY=FQ)",
+            ),
+            "FORCE_FACE does not apply to the AXIS model",
+        ),
+        (
+            "fz_on_axis",
+            (
+                "FORCE_CONTOUR=_F(GROUP_MA='SZZ', FY=FQ)",
+                "FORCE_CONTOUR=_F(GROUP_MA='SZZ', FZ=FQ)",
+            ),
+            "FZ acts along DZ, which is not a degree of freedom",
+        ),
+    ];
+    let export = format!(
+        "F mmed {} D 20\nF mmed {} D 21\n",
+        dir().join("../studies/hexs8_bar40.mmed").display(),
+        dir().join("bar_2x8.mmed").display()
+    );
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_char_f_distributed");
+}
+
 /// ENERGIE ETOT_* (not built), an ELNO field tested without CALC_CHAMP,
 /// an ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
 /// located errors.
@@ -1641,9 +1700,9 @@ fn bad_function_valued_loads_are_located_errors() {
             "pres_rep",
             (
                 "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE)",
-                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE), PRES_REP=_F(GROUP_MA='SZZ', PRES=RAMPE)",
+                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE), FACE_IMPO=_F(GROUP_MA='SZZ', DZ=RAMPE)",
             ),
-            "not implemented yet: AFFE_CHAR_MECA_F/PRES_REP",
+            "not implemented yet: AFFE_CHAR_MECA_F/FACE_IMPO",
         ),
         (
             "twice_imposed",

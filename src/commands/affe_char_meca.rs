@@ -260,6 +260,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         pressures,
         distributed,
         functions: Vec::new(),
+        fields: Vec::new(),
     }))))
 }
 
@@ -350,7 +351,6 @@ fn pressures_of(
     model_name: &str,
     lines: &mut Vec<String>,
 ) -> Result<Vec<Pressure>, Diagnostic> {
-    let skin_dim = if model.ndof_per_node() == 2 { 1 } else { 2 };
     let mut out = Vec::new();
     for (k, occ) in args.facts("PRES_REP").iter().enumerate() {
         if occ.has("CISA_2D") {
@@ -360,77 +360,7 @@ fn pressures_of(
         if !p.is_finite() {
             return Err(occ.error("PRES", "PRES must be finite"));
         }
-        let selected = select_cells(mesh, occ)?;
-        let mut cells = Vec::new();
-        for &c in &selected {
-            match model.cells.get(c) {
-                Some(CellRole::Skin { .. }) => {
-                    let kind = mesh.cells[c].kind;
-                    if kind.dim() != skin_dim {
-                        return Err(occ.error(
-                            "",
-                            format!(
-                                "cell {} of {} is a {}: a pressure on the model {model_name} acts on {} cells",
-                                c + 1,
-                                selection_label(occ),
-                                kind.aster_name(),
-                                if skin_dim == 1 { "SEG2/SEG3" } else { "TRIA3/TRIA6/QUAD4/QUAD8" }
-                            ),
-                        ));
-                    }
-                    cells.push(c);
-                }
-                Some(CellRole::Element(_)) => {}
-                _ if occ.has("TOUT") => {}
-                _ => {
-                    return Err(occ.error(
-                        "",
-                        format!(
-                            "cell {} of {} belongs to no element of the model {model_name}: assign the skin to the model (AFFE_MODELE) to load it",
-                            c + 1,
-                            selection_label(occ)
-                        ),
-                    ));
-                }
-            }
-        }
-        if cells.is_empty() {
-            return Err(occ.error(
-                "",
-                format!(
-                    "{} has no skin cell of the model {model_name} ({} in AXIS, {} in 3D): a pressure acts on nothing",
-                    selection_label(occ),
-                    "SEG2/SEG3",
-                    "TRIA3/TRIA6/QUAD4/QUAD8"
-                ),
-            ));
-        }
-        if args.text("VERI_NORM") != Some("NON") {
-            let inward = crate::mesh::ops::inward_skin_cells(mesh, &cells);
-            if let Some(first) = inward.first() {
-                let orie = if skin_dim == 1 {
-                    "ORIE_PEAU_2D"
-                } else {
-                    "ORIE_PEAU_3D"
-                };
-                return Err(occ.error(
-                    "",
-                    format!(
-                        "PRES_REP {}: the normals of {} of the {} cells of {} point into the body \
-                         (first: cell M{}, on cell M{}); a positive PRES pushes against the normal, \
-                         so it would pull: orient the skin with MODI_MAILLAGE(reuse=MAIL, \
-                         MAILLAGE=MAIL, {orie}=_F(GROUP_MA=...)) before AFFE_CHAR_MECA \
-                         (VERI_NORM='NON' skips this check)",
-                        k + 1,
-                        inward.len(),
-                        cells.len(),
-                        selection_label(occ),
-                        first.cell + 1,
-                        first.support + 1
-                    ),
-                ));
-            }
-        }
+        let cells = pressure_cells(args, occ, k, mesh, model, model_name)?;
         lines.push(format!(
             "      PRES_REP {}: PRES = {p:e} on {} skin cells of {}",
             k + 1,
@@ -440,6 +370,92 @@ fn pressures_of(
         out.push(Pressure { p, cells });
     }
     Ok(out)
+}
+
+/// The skin cells occurrence `k` of PRES_REP loads (AFFE_CHAR_MECA and
+/// AFFE_CHAR_MECA_F): see [`pressures_of`] for the rules.
+pub(super) fn pressure_cells(
+    args: &Args,
+    occ: &Args,
+    k: usize,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    model_name: &str,
+) -> Result<Vec<usize>, Diagnostic> {
+    let skin_dim = if model.ndof_per_node() == 2 { 1 } else { 2 };
+    let selected = select_cells(mesh, occ)?;
+    let mut cells = Vec::new();
+    for &c in &selected {
+        match model.cells.get(c) {
+            Some(CellRole::Skin { .. }) => {
+                let kind = mesh.cells[c].kind;
+                if kind.dim() != skin_dim {
+                    return Err(occ.error(
+                        "",
+                        format!(
+                            "cell {} of {} is a {}: a pressure on the model {model_name} acts on {} cells",
+                            c + 1,
+                            selection_label(occ),
+                            kind.aster_name(),
+                            if skin_dim == 1 { "SEG2/SEG3" } else { "TRIA3/TRIA6/QUAD4/QUAD8" }
+                        ),
+                    ));
+                }
+                cells.push(c);
+            }
+            Some(CellRole::Element(_)) => {}
+            _ if occ.has("TOUT") => {}
+            _ => {
+                return Err(occ.error(
+                    "",
+                    format!(
+                        "cell {} of {} belongs to no element of the model {model_name}: assign the skin to the model (AFFE_MODELE) to load it",
+                        c + 1,
+                        selection_label(occ)
+                    ),
+                ));
+            }
+        }
+    }
+    if cells.is_empty() {
+        return Err(occ.error(
+            "",
+            format!(
+                "{} has no skin cell of the model {model_name} ({} in AXIS, {} in 3D): a pressure acts on nothing",
+                selection_label(occ),
+                "SEG2/SEG3",
+                "TRIA3/TRIA6/QUAD4/QUAD8"
+            ),
+        ));
+    }
+    if args.text("VERI_NORM") != Some("NON") {
+        let inward = crate::mesh::ops::inward_skin_cells(mesh, &cells);
+        if let Some(first) = inward.first() {
+            let orie = if skin_dim == 1 {
+                "ORIE_PEAU_2D"
+            } else {
+                "ORIE_PEAU_3D"
+            };
+            return Err(occ.error(
+                "",
+                format!(
+                    "PRES_REP {}: the normals of {} of the {} cells of {} point into the body \
+                     (first: cell M{}, on cell M{}); a positive PRES pushes against the normal, \
+                     so it would pull: orient the skin with MODI_MAILLAGE(reuse=MAIL, \
+                     MAILLAGE=MAIL, {orie}=_F(GROUP_MA=...)) before {} \
+                     (VERI_NORM='NON' skips this check)",
+                    k + 1,
+                    inward.len(),
+                    cells.len(),
+                    selection_label(occ),
+                    first.cell + 1,
+                    first.support + 1,
+                    args.command
+                ),
+            ));
+        }
+    }
+    Ok(cells)
 }
 
 /// PESANTEUR: GRAVITE and DIRECTION normalised as code_aster's `capesa`
@@ -519,106 +535,19 @@ fn distributed_of(
     model_name: &str,
     lines: &mut Vec<String>,
 ) -> Result<Vec<DistributedForce>, Diagnostic> {
-    // a 2D model: AXIS or D_PLAN
-    let plane = model.ndof_per_node() == 2;
-    let model_kind = match model.formulation() {
-        Some(Formulation::Axis) => "AXIS",
-        Some(Formulation::PlaneStrain) => "D_PLAN",
-        _ if plane => "2D",
-        _ => "3D",
-    };
     let mut out: Vec<DistributedForce> = Vec::new();
-    for kind in [
-        DistributedKind::Face,
-        DistributedKind::Edge,
-        DistributedKind::Contour,
-        DistributedKind::Internal,
-    ] {
+    for kind in DISTRIBUTED_KINDS {
         let key = kind.keyword();
-        // (cell dimension, role wanted, what the valid cells are)
-        let (dim, skin, cells_text) = match kind {
-            DistributedKind::Face => (2, true, "TRIA3/TRIA6/QUAD4/QUAD8 faces"),
-            DistributedKind::Edge | DistributedKind::Contour => (1, true, "SEG2/SEG3 edges"),
-            DistributedKind::Internal => (if plane { 2 } else { 3 }, false, "volume elements"),
-        };
         for (k, occ) in args.facts(key).iter().enumerate() {
-            let wrong_model = match kind {
-                DistributedKind::Face | DistributedKind::Edge => plane,
-                DistributedKind::Contour => !plane,
-                DistributedKind::Internal => false,
-            };
-            if wrong_model {
-                return Err(occ.error(
-                    "",
-                    format!(
-                        "{key} does not apply to the {model_kind} model {model_name}: {}",
-                        if plane {
-                            "on a 2D model, FORCE_CONTOUR loads the SEG2/SEG3 edges, FORCE_INTERNE the surface elements, PRES_REP presses on edges"
-                        } else {
-                            "on a 3D model, FORCE_FACE loads the TRIA/QUAD faces, FORCE_ARETE the SEG2/SEG3 edges, FORCE_INTERNE the volume elements, PRES_REP presses on faces"
-                        }
-                    ),
-                ));
-            }
-            for m in ["MX", "MY", "MZ"] {
-                if occ.has(m) {
-                    return Err(occ.not_implemented(
-                        m,
-                        "distributed moments (no element of aster has rotational dofs)",
-                    ));
-                }
-            }
             let mut force = [0.0; 3];
-            for (i, (c, dof)) in [("FX", Dof::Dx), ("FY", Dof::Dy), ("FZ", Dof::Dz)]
-                .into_iter()
-                .enumerate()
-            {
+            for (i, c) in force_components(occ, kind, model, model_name)? {
                 let Some(v) = occ.real(c) else { continue };
-                if !model.has_dof(dof) {
-                    return Err(occ.error(
-                        c,
-                        format!(
-                            "{c} acts along {}, which is not a degree of freedom of the model {model_name} (valid: {})",
-                            dof.name(),
-                            if plane { "FX, FY" } else { "FX, FY, FZ" }
-                        ),
-                    ));
-                }
                 if !v.is_finite() {
                     return Err(occ.error(c, format!("{c} must be finite")));
                 }
                 force[i] = v;
             }
-            let selected = select_cells(mesh, occ)?;
-            let mut cells = Vec::new();
-            for &c in &selected {
-                let fits = mesh.cells[c].kind.dim() == dim;
-                match model.cells.get(c) {
-                    Some(CellRole::Skin { .. }) if skin && fits => cells.push(c),
-                    Some(CellRole::Element(_)) if !skin => cells.push(c),
-                    Some(CellRole::Skin { .. }) | Some(CellRole::Element(_)) => {}
-                    _ if occ.has("TOUT") => {}
-                    _ => {
-                        return Err(occ.error(
-                            "",
-                            format!(
-                                "cell {} of {} belongs to no element of the model {model_name}: assign it to the model (AFFE_MODELE) to load it",
-                                c + 1,
-                                selection_label(occ)
-                            ),
-                        ));
-                    }
-                }
-            }
-            if cells.is_empty() {
-                return Err(occ.error(
-                    "",
-                    format!(
-                        "{} has no cell that {key} loads: on the {model_kind} model {model_name} it acts on {cells_text} of the model",
-                        selection_label(occ),
-                    ),
-                ));
-            }
+            let cells = distributed_cells(occ, kind, mesh, model, model_name)?;
             for earlier in out.iter_mut().filter(|d| d.kind == kind) {
                 earlier.cells.retain(|c| !cells.contains(c));
             }
@@ -636,4 +565,135 @@ fn distributed_of(
     }
     out.retain(|d| !d.cells.is_empty());
     Ok(out)
+}
+
+/// The distributed-load keywords, in the order they are read.
+pub(super) const DISTRIBUTED_KINDS: [DistributedKind; 4] = [
+    DistributedKind::Face,
+    DistributedKind::Edge,
+    DistributedKind::Contour,
+    DistributedKind::Internal,
+];
+
+/// "AXIS", "D_PLAN", "2D" or "3D": the model as the messages name it.
+fn model_kind(model: &crate::model::Model) -> &'static str {
+    match model.formulation() {
+        Some(Formulation::Axis) => "AXIS",
+        Some(Formulation::PlaneStrain) => "D_PLAN",
+        _ if model.ndof_per_node() == 2 => "2D",
+        _ => "3D",
+    }
+}
+
+/// The components FX, FY, FZ an occurrence of `kind` may give, as (index,
+/// name), after the checks every distributed load shares: the keyword
+/// fits the model's dimension, no moment, no component the model does
+/// not carry (FZ in 2D) among those given.
+pub(super) fn force_components(
+    occ: &Args,
+    kind: DistributedKind,
+    model: &crate::model::Model,
+    model_name: &str,
+) -> Result<Vec<(usize, &'static str)>, Diagnostic> {
+    let plane = model.ndof_per_node() == 2;
+    let key = kind.keyword();
+    let wrong_model = match kind {
+        DistributedKind::Face | DistributedKind::Edge => plane,
+        DistributedKind::Contour => !plane,
+        DistributedKind::Internal => false,
+    };
+    if wrong_model {
+        return Err(occ.error(
+            "",
+            format!(
+                "{key} does not apply to the {} model {model_name}: {}",
+                model_kind(model),
+                if plane {
+                    "on a 2D model, FORCE_CONTOUR loads the SEG2/SEG3 edges, FORCE_INTERNE the surface elements, PRES_REP presses on edges"
+                } else {
+                    "on a 3D model, FORCE_FACE loads the TRIA/QUAD faces, FORCE_ARETE the SEG2/SEG3 edges, FORCE_INTERNE the volume elements, PRES_REP presses on faces"
+                }
+            ),
+        ));
+    }
+    for m in ["MX", "MY", "MZ"] {
+        if occ.has(m) {
+            return Err(occ.not_implemented(
+                m,
+                "distributed moments (no element of aster has rotational dofs)",
+            ));
+        }
+    }
+    let mut out = Vec::new();
+    for (i, (c, dof)) in [("FX", Dof::Dx), ("FY", Dof::Dy), ("FZ", Dof::Dz)]
+        .into_iter()
+        .enumerate()
+    {
+        if !occ.has(c) {
+            continue;
+        }
+        if !model.has_dof(dof) {
+            return Err(occ.error(
+                c,
+                format!(
+                    "{c} acts along {}, which is not a degree of freedom of the model {model_name} (valid: {})",
+                    dof.name(),
+                    if plane { "FX, FY" } else { "FX, FY, FZ" }
+                ),
+            ));
+        }
+        out.push((i, c));
+    }
+    Ok(out)
+}
+
+/// The cells an occurrence of `kind` loads (AFFE_CHAR_MECA and
+/// AFFE_CHAR_MECA_F): see [`distributed_of`] for the rules.
+pub(super) fn distributed_cells(
+    occ: &Args,
+    kind: DistributedKind,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    model_name: &str,
+) -> Result<Vec<usize>, Diagnostic> {
+    let plane = model.ndof_per_node() == 2;
+    let key = kind.keyword();
+    // (cell dimension, role wanted, what the valid cells are)
+    let (dim, skin, cells_text) = match kind {
+        DistributedKind::Face => (2, true, "TRIA3/TRIA6/QUAD4/QUAD8 faces"),
+        DistributedKind::Edge | DistributedKind::Contour => (1, true, "SEG2/SEG3 edges"),
+        DistributedKind::Internal => (if plane { 2 } else { 3 }, false, "volume elements"),
+    };
+    let selected = select_cells(mesh, occ)?;
+    let mut cells = Vec::new();
+    for &c in &selected {
+        let fits = mesh.cells[c].kind.dim() == dim;
+        match model.cells.get(c) {
+            Some(CellRole::Skin { .. }) if skin && fits => cells.push(c),
+            Some(CellRole::Element(_)) if !skin => cells.push(c),
+            Some(CellRole::Skin { .. }) | Some(CellRole::Element(_)) => {}
+            _ if occ.has("TOUT") => {}
+            _ => {
+                return Err(occ.error(
+                    "",
+                    format!(
+                        "cell {} of {} belongs to no element of the model {model_name}: assign it to the model (AFFE_MODELE) to load it",
+                        c + 1,
+                        selection_label(occ)
+                    ),
+                ));
+            }
+        }
+    }
+    if cells.is_empty() {
+        return Err(occ.error(
+            "",
+            format!(
+                "{} has no cell that {key} loads: on the {} model {model_name} it acts on {cells_text} of the model",
+                selection_label(occ),
+                model_kind(model),
+            ),
+        ));
+    }
+    Ok(cells)
 }

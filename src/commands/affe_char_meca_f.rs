@@ -5,6 +5,9 @@
 //! multiplying the values) and CALC_CHAMP take it; the engine evaluates
 //! the functions at each step's end instant (`nonlinear::loads`).
 
+use super::affe_char_meca::{
+    distributed_cells, force_components, pressure_cells, DISTRIBUTED_KINDS,
+};
 use super::blocks::*;
 use super::model_args::{load_model, select_nodes, selection_label, LoadModel};
 use super::{CommandDef, ExecResult};
@@ -13,7 +16,9 @@ use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
-use crate::model::{Dof, FunctionTarget, ImposedDof, MechLoad, NodalFunction};
+use crate::model::{
+    Dof, FieldDensity, FieldFunction, FunctionTarget, ImposedDof, MechLoad, NodalFunction,
+};
 use crate::post::formula::{Coef, NODE_PARAMS};
 use crate::study::Study;
 
@@ -24,16 +29,43 @@ fn function(name: &'static str, doc: &'static str) -> Keyword {
 
 /// Keywords of code_aster's catalogue that are declared (so that a
 /// command file using them reads) and refused when given.
-const NOT_BUILT: &[&str] = &[
+const NOT_BUILT: &[&str] = &["FACE_IMPO", "LIAISON_DDL", "LIAISON_OBLIQUE"];
+
+/// The keywords of distributed loads, whose values are functions of INST
+/// and of the position of the Gauss point.
+const DISTRIBUTED: &[&str] = &[
     "PRES_REP",
     "FORCE_FACE",
     "FORCE_ARETE",
     "FORCE_CONTOUR",
     "FORCE_INTERNE",
-    "FACE_IMPO",
-    "LIAISON_DDL",
-    "LIAISON_OBLIQUE",
 ];
+
+/// A distributed-load keyword: a cell selection and function components.
+fn field_fact(name: &'static str, cmps: &[&'static str], doc: &'static str) -> Keyword {
+    let mut kws = vec![tout(), group_ma(), maille()];
+    for &c in cmps {
+        kws.push(match c {
+            "MX" | "MY" | "MZ" | "CISA_2D" => concept(c, &[C::Fonction, C::Formule]).kw(),
+            "PRES" => function(
+                c,
+                "pressure (MPa) against the normal of the skin cell: a function of INST and the Gauss point's initial X, Y, Z",
+            ),
+            _ => function(
+                c,
+                "component of the force density: a function of INST and the Gauss point's initial X, Y, Z",
+            ),
+        });
+    }
+    fact(name, kws)
+        .many()
+        .rules(vec![
+            au_moins_un(&["TOUT", "GROUP_MA", "MAILLE"]),
+            au_moins_un(cmps),
+        ])
+        .doc(doc)
+        .kw()
+}
 
 pub fn def() -> CommandDef {
     let mut ddl = ddl_selection();
@@ -85,11 +117,31 @@ pub fn def() -> CommandDef {
                 ])
                 .doc("force on each node of the selection, global frame, a function of INST and the node's initial X, Y, Z evaluated at each step's end instant; a node given again keeps the later function of that component")
                 .kw(),
-            not_built("PRES_REP", &["PRES", "CISA_2D"]),
-            not_built("FORCE_FACE", &["FX", "FY", "FZ"]),
-            not_built("FORCE_ARETE", &["FX", "FY", "FZ", "MX", "MY", "MZ"]),
-            not_built("FORCE_CONTOUR", &["FX", "FY", "FZ", "MX", "MY", "MZ"]),
-            not_built("FORCE_INTERNE", &["FX", "FY", "FZ"]),
+            field_fact(
+                "PRES_REP",
+                &["PRES", "CISA_2D"],
+                "pressure on the skin cells of the selection (SEG in AXIS, per radian; TRIA/QUAD in 3D), as AFFE_CHAR_MECA's PRES_REP but a function of INST and of the Gauss point's initial X, Y, Z, evaluated at each instant the engine needs",
+            ),
+            field_fact(
+                "FORCE_FACE",
+                &["FX", "FY", "FZ"],
+                "force per unit area on the TRIA/QUAD skin cells of a 3D model, as AFFE_CHAR_MECA's FORCE_FACE but each component a function of INST and of the Gauss point's initial X, Y, Z",
+            ),
+            field_fact(
+                "FORCE_ARETE",
+                &["FX", "FY", "FZ", "MX", "MY", "MZ"],
+                "force per unit length on the SEG cells of a 3D model, each component a function of INST, X, Y, Z",
+            ),
+            field_fact(
+                "FORCE_CONTOUR",
+                &["FX", "FY", "FZ", "MX", "MY", "MZ"],
+                "force per unit length on the SEG edges of a 2D model (per radian in AXIS), each component a function of INST, X, Y, Z",
+            ),
+            field_fact(
+                "FORCE_INTERNE",
+                &["FX", "FY", "FZ"],
+                "force per unit volume on the volume elements of the selection (per radian in AXIS), each component a function of INST, X, Y, Z",
+            ),
             not_built("FACE_IMPO", &["DX", "DY", "DZ", "DNOR", "DTAN"]),
             fact(
                 "LIAISON_DDL",
@@ -128,7 +180,7 @@ pub fn def() -> CommandDef {
         ],
     )
     .rules(vec![au_moins_un(
-        &[["DDL_IMPO", "FORCE_NODALE"].as_slice(), NOT_BUILT].concat(),
+        &[["DDL_IMPO", "FORCE_NODALE"].as_slice(), DISTRIBUTED, NOT_BUILT].concat(),
     )])
     .doc("Defines mechanical boundary conditions and loads whose values are functions of time (INST) and of the nodes' initial coordinates (X, Y, Z).");
     CommandDef { spec, exec }
@@ -175,7 +227,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     for &key in NOT_BUILT {
         if let Some(occ) = args.facts(key).first() {
             return Err(
-                occ.not_implemented("", "AFFE_CHAR_MECA_F builds DDL_IMPO and FORCE_NODALE")
+                occ.not_implemented("", "AFFE_CHAR_MECA_F builds DDL_IMPO, FORCE_NODALE, PRES_REP, FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR and FORCE_INTERNE")
             );
         }
     }
@@ -289,6 +341,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             })
         })
         .collect();
+    let fields = fields_of(study, args, mesh, &model, &model_name, &mut lines)?;
     study.log(format!(
         "    load {} on model {model_name}: {} imposed dofs, functions of INST, X, Y, Z",
         result.unwrap_or("(unnamed)"),
@@ -305,5 +358,72 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         pressures: Vec::new(),
         distributed: Vec::new(),
         functions,
+        fields,
     }))))
+}
+
+/// PRES_REP, FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR, FORCE_INTERNE: the
+/// cells of each occurrence as AFFE_CHAR_MECA selects them (the same
+/// rules and messages), the values functions of INST, X, Y, Z. A cell
+/// given again by a later occurrence of the same keyword keeps the later
+/// functions.
+fn fields_of(
+    study: &Study,
+    args: &Args,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    model_name: &str,
+    lines: &mut Vec<String>,
+) -> Result<Vec<FieldFunction>, Diagnostic> {
+    let mut out: Vec<FieldFunction> = Vec::new();
+    let mut push = |out: &mut Vec<FieldFunction>, f: FieldFunction, k: usize, occ: &Args| {
+        let key = f.keyword();
+        for earlier in out.iter_mut().filter(|e| e.keyword() == key) {
+            earlier.cells.retain(|c| !f.cells.contains(c));
+        }
+        lines.push(format!(
+            "      {key} {}: {} on {} cells of {}",
+            k + 1,
+            f.names,
+            f.cells.len(),
+            selection_label(occ)
+        ));
+        out.push(f);
+    };
+    for (k, occ) in args.facts("PRES_REP").iter().enumerate() {
+        if occ.has("CISA_2D") {
+            return Err(occ.not_implemented("CISA_2D", "only a normal pressure PRES"));
+        }
+        let Some(name) = occ.concept("PRES") else {
+            return Err(occ.error("PRES", "PRES is needed (CISA_2D is not implemented)"));
+        };
+        let coef = coef_of(study, occ, "PRES", name)?;
+        let cells = pressure_cells(args, occ, k, mesh, model, model_name)?;
+        let f = FieldFunction {
+            density: FieldDensity::Pressure(coef),
+            names: format!("PRES = {name}"),
+            cells,
+        };
+        push(&mut out, f, k, occ);
+    }
+    for kind in DISTRIBUTED_KINDS {
+        for (k, occ) in args.facts(kind.keyword()).iter().enumerate() {
+            let mut coefs: [Option<Coef>; 3] = [None, None, None];
+            let mut names = Vec::new();
+            for (i, c) in force_components(occ, kind, model, model_name)? {
+                let Some(name) = occ.concept(c) else { continue };
+                coefs[i] = Some(coef_of(study, occ, c, name)?);
+                names.push(format!("{c} = {name}"));
+            }
+            let cells = distributed_cells(occ, kind, mesh, model, model_name)?;
+            let f = FieldFunction {
+                density: FieldDensity::Force(kind, Box::new(coefs)),
+                names: names.join(" "),
+                cells,
+            };
+            push(&mut out, f, k, occ);
+        }
+    }
+    out.retain(|f| !f.cells.is_empty());
+    Ok(out)
 }

@@ -248,7 +248,9 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let mults: Vec<_> = parts.iter().map(|p| p.1.clone()).collect();
     let functions = super::dyna_non_line::function_parts(&md, &loads, &mults, &asm.numbering)
         .map_err(|(_, m)| args.error("EXCIT", m))?;
-    let history = crate::nonlinear::loads::LoadHistory::new(parts).with_functions(functions);
+    let history = crate::nonlinear::loads::LoadHistory::new(parts)
+        .with_functions(functions)
+        .with_fields(super::dyna_non_line::field_parts(&md, &loads, &mults));
     let mut fext = vec![0.0; asm.numbering.nfull()];
     let mut fint = vec![0.0; nfull];
     let mut ma = vec![0.0; nfull];

@@ -335,12 +335,37 @@ pub(crate) fn load_history(
             Some(ex) => ex.error("CHARGE", m),
             None => args.error("EXCIT", m),
         })?;
-    let mut history = crate::nonlinear::loads::LoadHistory::new(parts).with_functions(functions);
+    let mut history = crate::nonlinear::loads::LoadHistory::new(parts)
+        .with_functions(functions)
+        .with_fields(field_parts(md, loads, &mult_fns));
     let varying = imposed_under_mult(args, md, loads, mults, study, instants, nb)?;
     for (entries, mult) in varying {
         history = history.with_imposed(entries, mult);
     }
     Ok(history)
+}
+
+/// The AFFE_CHAR_MECA_F distributed loads of `loads`, each with its
+/// load's FONC_MULT (`mults`, one per load).
+pub(crate) fn field_parts(
+    md: &ModelData,
+    loads: &[MechLoad],
+    mults: &[Option<crate::post::function::Function>],
+) -> Vec<crate::nonlinear::loads::FieldPart> {
+    loads
+        .iter()
+        .enumerate()
+        .flat_map(|(k, load)| {
+            load.fields.iter().map(move |f| {
+                crate::nonlinear::loads::FieldPart::new(
+                    &md.mesh,
+                    &md.model,
+                    f,
+                    mults.get(k).cloned().flatten(),
+                )
+            })
+        })
+        .collect()
 }
 
 /// The AFFE_CHAR_MECA_F values of the loads on the numbering `nb`, each

@@ -28,6 +28,28 @@ pub fn element_body_force(
     rho: f64,
     b: [f64; 3],
 ) -> Result<Vec<f64>, ElementFailure> {
+    if !(rho.is_finite() && rho >= 0.0) || b.iter().any(|v| !v.is_finite()) {
+        return Err(ElementFailure::BadInput {
+            message: format!(
+                "{}: density RHO = {rho} and acceleration {b:?} must be finite, RHO >= 0",
+                spec.name
+            ),
+        });
+    }
+    let f = b.map(|c| rho * c);
+    element_body_force_with(spec, coords, |_| Ok(f))
+}
+
+/// The nodal forces ∫ f(x) N_a dV of a force per unit volume that varies
+/// over the element (AFFE_CHAR_MECA_F/FORCE_INTERNE), `density` giving f
+/// at each Gauss point's position on the configuration `coords`; the
+/// family and weights of [`element_body_force`] (which is this with a
+/// constant ρ b).
+pub fn element_body_force_with(
+    spec: &ElementSpec,
+    coords: &[[f64; 3]],
+    density: impl Fn([f64; 3]) -> Result<[f64; 3], String>,
+) -> Result<Vec<f64>, ElementFailure> {
     let nn = spec.nnodes();
     let d = spec.formulation.dofs_per_node();
     if coords.len() != nn {
@@ -36,14 +58,6 @@ pub fn element_body_force(
                 "{}: {} node coordinates given for {nn} nodes",
                 spec.name,
                 coords.len()
-            ),
-        });
-    }
-    if !(rho.is_finite() && rho >= 0.0) || b.iter().any(|v| !v.is_finite()) {
-        return Err(ElementFailure::BadInput {
-            message: format!(
-                "{}: density RHO = {rho} and acceleration {b:?} must be finite, RHO >= 0",
-                spec.name
             ),
         });
     }
@@ -60,13 +74,28 @@ pub fn element_body_force(
         let s = eval(spec.cell, *xi);
         let dv = w * measure(spec.formulation, s.n(), s.dn(), coords)
             .map_err(|message| ElementFailure::BadGeometry { point: p, message })?;
+        let f =
+            density(point_position(s.n(), coords)).map_err(|message| ElementFailure::BadInput {
+                message: format!("{}: Gauss point {}: {message}", spec.name, p + 1),
+            })?;
         for (a, &na) in s.n().iter().enumerate() {
             for i in 0..d {
-                out[a * d + i] += rho * b[i] * na * dv;
+                out[a * d + i] += f[i] * na * dv;
             }
         }
     }
     Ok(out)
+}
+
+/// Σ N_a x_a: where a Gauss point is.
+pub(crate) fn point_position(n: &[f64], coords: &[[f64; 3]]) -> [f64; 3] {
+    let mut x = [0.0; 3];
+    for (na, c) in n.iter().zip(coords) {
+        for k in 0..3 {
+            x[k] += na * c[k];
+        }
+    }
+    x
 }
 
 /// det J at a point (× r in AXIS): the volume (per radian in AXIS, per
@@ -172,23 +201,17 @@ pub fn load_forces(
             .ok_or_else(|| format!("FORCE_NODALE: the model has no {}", dof.name()))?;
         out[node * d + k] += f;
     }
-    let formulation = model.formulation().unwrap_or(if d == 2 {
-        Formulation::Axis
-    } else {
-        Formulation::Solid3d
-    });
     for pr in &load.pressures {
-        for &c in &pr.cells {
-            let cell = &mesh.cells[c];
-            let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
-            let f = super::pressure::pressure_forces(cell.kind, formulation, &coords, pr.p)
-                .map_err(|e| format!("PRES_REP: cell {}: {e}", c + 1))?;
-            for (a, &n) in cell.nodes.iter().enumerate() {
-                for i in 0..d {
-                    out[n * d + i] += f[a * d + i];
-                }
-            }
+        if !pr.p.is_finite() {
+            return Err(format!("PRES_REP: PRES = {} must be finite", pr.p));
         }
+        super::distributed::add_pressure_forces_with(
+            mesh,
+            model,
+            &pr.cells,
+            |_| Ok(pr.p),
+            &mut out,
+        )?;
     }
     super::distributed::add_distributed_forces(mesh, model, &load.distributed, &mut out)?;
     Ok(out)

@@ -17,7 +17,7 @@
 //! AXIS every integral carries r without 2π (per radian), like every
 //! nodal force there; in D_PLAN it is per unit thickness.
 
-use super::body_force::element_body_force;
+use super::body_force::element_body_force_with;
 use crate::mesh::quadrature::rule;
 use crate::mesh::shape::eval;
 use crate::mesh::{CellType, Mesh};
@@ -36,6 +36,22 @@ pub fn skin_force(
     formulation: Formulation,
     coords: &[[f64; 3]],
     f: [f64; 3],
+) -> Result<Vec<f64>, String> {
+    if f.iter().any(|v| !v.is_finite()) {
+        return Err(format!("force density {f:?} must be finite"));
+    }
+    skin_force_with(cell, formulation, coords, |_| Ok(f))
+}
+
+/// The nodal forces ∫ f(x) N_a dΓ of a density that varies over the skin
+/// cell (AFFE_CHAR_MECA_F/FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR),
+/// `density` giving f at each Gauss point's position; the family, measure
+/// and checks of [`skin_force`] (which is this with a constant f).
+pub fn skin_force_with(
+    cell: CellType,
+    formulation: Formulation,
+    coords: &[[f64; 3]],
+    density: impl Fn([f64; 3]) -> Result<[f64; 3], String>,
 ) -> Result<Vec<f64>, String> {
     let axis = formulation == Formulation::Axis;
     let plane = formulation != Formulation::Solid3d;
@@ -66,9 +82,6 @@ pub fn skin_force(
                 cell.aster_name()
             )
         })?;
-    if f.iter().any(|v| !v.is_finite()) {
-        return Err(format!("force density {f:?} must be finite"));
-    }
     let q =
         rule(cell, fpg).ok_or_else(|| format!("{} has no family {fpg:?}", cell.aster_name()))?;
     let d = if plane { 2 } else { 3 };
@@ -98,6 +111,10 @@ pub fn skin_force(
         } else {
             dm
         };
+        let f = density(super::body_force::point_position(s.n(), coords))?;
+        if f.iter().any(|v| !v.is_finite()) {
+            return Err(format!("force density {f:?} must be finite"));
+        }
         for (a, &na) in s.n().iter().enumerate() {
             for i in 0..d {
                 out[a * d + i] += f[i] * na * dm * w;
@@ -117,35 +134,102 @@ pub fn add_distributed_forces(
     forces: &[DistributedForce],
     out: &mut [f64],
 ) -> Result<(), String> {
-    let d = model.ndof_per_node();
-    let formulation = model.formulation().unwrap_or(if d == 2 {
-        Formulation::Axis
-    } else {
-        Formulation::Solid3d
-    });
     for df in forces {
-        for &c in &df.cells {
-            let cell = &mesh.cells[c];
-            let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
-            let fe = match (df.kind, model.cells.get(c)) {
-                (DistributedKind::Internal, Some(CellRole::Element(spec))) => {
-                    element_body_force(spec, &coords, 1.0, df.force).map_err(|e| e.to_string())
-                }
-                (DistributedKind::Internal, _) => continue,
-                (_, Some(CellRole::Skin { .. })) => {
-                    skin_force(cell.kind, formulation, &coords, df.force)
-                }
-                _ => continue,
-            }
-            .map_err(|e| format!("{}: cell {}: {e}", df.kind.keyword(), c + 1))?;
-            for (a, &n) in cell.nodes.iter().enumerate() {
-                for i in 0..d {
-                    out[n * d + i] += fe[a * d + i];
-                }
-            }
-        }
+        add_distributed_forces_with(mesh, model, df.kind, &df.cells, |_| Ok(df.force), out)?;
     }
     Ok(())
+}
+
+/// The formulation the loads of `model` are integrated in.
+pub fn load_formulation(model: &Model) -> Formulation {
+    model
+        .formulation()
+        .unwrap_or(if model.ndof_per_node() == 2 {
+            Formulation::Axis
+        } else {
+            Formulation::Solid3d
+        })
+}
+
+/// Adds to `out` the nodal forces of the density `density(x)` of kind
+/// `kind` on `cells` (AFFE_CHAR_MECA_F, whose values are functions of the
+/// position; [`add_distributed_forces`] is this with a constant).
+pub fn add_distributed_forces_with(
+    mesh: &Mesh,
+    model: &Model,
+    kind: DistributedKind,
+    cells: &[usize],
+    density: impl Fn([f64; 3]) -> Result<[f64; 3], String>,
+    out: &mut [f64],
+) -> Result<(), String> {
+    let d = model.ndof_per_node();
+    let formulation = load_formulation(model);
+    for &c in cells {
+        let cell = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let Some(role) = model.cells.get(c) else {
+            continue;
+        };
+        let Some(fe) = cell_force(kind, role, cell.kind, formulation, &coords, &density) else {
+            continue;
+        };
+        let fe = fe.map_err(|e| format!("{}: cell {}: {e}", kind.keyword(), c + 1))?;
+        scatter(&cell.nodes, d, &fe, out);
+    }
+    Ok(())
+}
+
+/// The nodal forces of the density `density(x)` of kind `kind` on one
+/// cell of role `role` (node-major), or `None` when that cell carries no
+/// such load: FORCE_INTERNE loads volume elements, the other keywords skin
+/// cells.
+pub fn cell_force(
+    kind: DistributedKind,
+    role: &CellRole,
+    cell: CellType,
+    formulation: Formulation,
+    coords: &[[f64; 3]],
+    density: impl Fn([f64; 3]) -> Result<[f64; 3], String>,
+) -> Option<Result<Vec<f64>, String>> {
+    match (kind, role) {
+        (DistributedKind::Internal, CellRole::Element(spec)) => {
+            Some(element_body_force_with(spec, coords, density).map_err(|e| e.to_string()))
+        }
+        (DistributedKind::Internal, _) => None,
+        (_, CellRole::Skin { .. }) => Some(skin_force_with(cell, formulation, coords, density)),
+        _ => None,
+    }
+}
+
+/// Adds to `out` the nodal forces of the pressure `pressure(x)` on the
+/// skin cells `cells` (PRES_REP of AFFE_CHAR_MECA, constant, and of
+/// AFFE_CHAR_MECA_F, a function of the position).
+pub fn add_pressure_forces_with(
+    mesh: &Mesh,
+    model: &Model,
+    cells: &[usize],
+    pressure: impl Fn([f64; 3]) -> Result<f64, String>,
+    out: &mut [f64],
+) -> Result<(), String> {
+    let d = model.ndof_per_node();
+    let formulation = load_formulation(model);
+    for &c in cells {
+        let cell = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let f = super::pressure::pressure_forces_with(cell.kind, formulation, &coords, &pressure)
+            .map_err(|e| format!("PRES_REP: cell {}: {e}", c + 1))?;
+        scatter(&cell.nodes, d, &f, out);
+    }
+    Ok(())
+}
+
+/// out[n·d + i] += f[a·d + i] for the nodes n of a cell.
+pub fn scatter(nodes: &[usize], d: usize, f: &[f64], out: &mut [f64]) {
+    for (a, &n) in nodes.iter().enumerate() {
+        for i in 0..d {
+            out[n * d + i] += f[a * d + i];
+        }
+    }
 }
 
 #[cfg(test)]

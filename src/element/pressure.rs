@@ -58,6 +58,22 @@ pub fn pressure_forces(
     coords: &[[f64; 3]],
     p: f64,
 ) -> Result<Vec<f64>, String> {
+    if !p.is_finite() {
+        return Err(format!("PRES = {p} must be finite"));
+    }
+    pressure_forces_with(cell, formulation, coords, |_| Ok(p))
+}
+
+/// The nodal forces −∫ p(x) n N_a dS of a pressure that varies over the
+/// cell (AFFE_CHAR_MECA_F/PRES_REP), `pressure` giving p at each Gauss
+/// point's position; the family, normal and checks of
+/// [`pressure_forces`] (which is this with a constant p).
+pub fn pressure_forces_with(
+    cell: CellType,
+    formulation: Formulation,
+    coords: &[[f64; 3]],
+    pressure: impl Fn([f64; 3]) -> Result<f64, String>,
+) -> Result<Vec<f64>, String> {
     // A 2D model's edges; in AXIS their measure carries the radius.
     let axis = formulation == Formulation::Axis;
     let plane = formulation != Formulation::Solid3d;
@@ -82,9 +98,6 @@ pub fn pressure_forces(
             cell.aster_name()
         )
     })?;
-    if !p.is_finite() {
-        return Err(format!("PRES = {p} must be finite"));
-    }
     let q =
         rule(cell, fpg).ok_or_else(|| format!("{} has no family {fpg:?}", cell.aster_name()))?;
     let d = if plane { 2 } else { 3 };
@@ -111,6 +124,10 @@ pub fn pressure_forces(
         let norm = nds.iter().map(|v| v * v).sum::<f64>().sqrt();
         if (norm.is_nan() || norm <= 0.0) && !(axis && r == 0.0) {
             return Err(format!("degenerate {} (zero Jacobian)", cell.aster_name()));
+        }
+        let p = pressure(super::body_force::point_position(s.n(), coords))?;
+        if !p.is_finite() {
+            return Err(format!("PRES = {p} must be finite"));
         }
         for (a, &na) in s.n().iter().enumerate() {
             for i in 0..d {

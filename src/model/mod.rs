@@ -171,6 +171,43 @@ pub struct MechLoad {
     /// instant. Their DDL_IMPO dofs are also in `imposed` (value 0) so
     /// that the numbering holds them; the engine overwrites the value.
     pub functions: Vec<NodalFunction>,
+    /// AFFE_CHAR_MECA_F's PRES_REP, FORCE_FACE, FORCE_ARETE,
+    /// FORCE_CONTOUR and FORCE_INTERNE: densities that are functions of
+    /// the instant and of the position, integrated at the Gauss points of
+    /// the initial geometry at each instant the engine needs.
+    pub fields: Vec<FieldFunction>,
+}
+
+/// What an AFFE_CHAR_MECA_F density is.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FieldDensity {
+    /// PRES_REP: the pressure.
+    Pressure(crate::post::formula::Coef),
+    /// FORCE_*: the components FX, FY, FZ (absent ones are zero).
+    Force(
+        DistributedKind,
+        Box<[Option<crate::post::formula::Coef>; 3]>,
+    ),
+}
+
+/// One AFFE_CHAR_MECA_F occurrence of a distributed load: `density` (the
+/// concepts `names`, for messages) on `cells`. A cell is in at most one
+/// entry per keyword of a load: a later occurrence takes it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldFunction {
+    pub density: FieldDensity,
+    pub names: String,
+    pub cells: Vec<usize>,
+}
+
+impl FieldFunction {
+    /// The AFFE_CHAR_MECA_F keyword.
+    pub fn keyword(&self) -> &'static str {
+        match &self.density {
+            FieldDensity::Pressure(_) => "PRES_REP",
+            FieldDensity::Force(kind, _) => kind.keyword(),
+        }
+    }
 }
 
 /// What an AFFE_CHAR_MECA_F value gives at its nodes.

@@ -16,8 +16,119 @@
 //! of the node's initial X, Y, Z: each is evaluated at the same instants,
 //! node by node, times its FONC_MULT.
 
+use crate::element::distributed::{cell_force, load_formulation, scatter};
+use crate::element::pressure::pressure_forces_with;
+use crate::mesh::{CellType, Mesh};
+use crate::model::spec::Formulation;
+use crate::model::{CellRole, FieldDensity, FieldFunction, Model};
 use crate::post::formula::{eval_inst_xyz, Coef};
 use crate::post::function::Function;
+
+/// One AFFE_CHAR_MECA_F distributed load (PRES_REP, FORCE_FACE,
+/// FORCE_ARETE, FORCE_CONTOUR, FORCE_INTERNE) with what its element
+/// integrals need: the density's functions are evaluated at the Gauss
+/// points of the initial geometry, at each instant (code_aster evaluates
+/// them at the points of the load's elements with the instant).
+#[derive(Debug, Clone)]
+pub struct FieldPart {
+    /// For messages: keyword and functions (`PRES_REP PRES = FP`).
+    pub label: String,
+    pub density: FieldDensity,
+    /// The EXCIT FONC_MULT of the load (`None`: 1).
+    pub mult: Option<Function>,
+    formulation: Formulation,
+    ndpn: usize,
+    cells: Vec<FieldCell>,
+}
+
+/// A loaded cell: mesh index, nodes, type, role in the model and initial
+/// node positions.
+#[derive(Debug, Clone)]
+struct FieldCell {
+    index: usize,
+    nodes: Vec<usize>,
+    kind: CellType,
+    role: CellRole,
+    coords: Vec<[f64; 3]>,
+}
+
+impl FieldPart {
+    pub fn new(mesh: &Mesh, model: &Model, f: &FieldFunction, mult: Option<Function>) -> FieldPart {
+        let cells = f
+            .cells
+            .iter()
+            .filter_map(|&c| {
+                let role = model.cells.get(c)?.clone();
+                let cell = &mesh.cells[c];
+                Some(FieldCell {
+                    index: c,
+                    nodes: cell.nodes.clone(),
+                    kind: cell.kind,
+                    role,
+                    coords: cell.nodes.iter().map(|&n| mesh.coords[n]).collect(),
+                })
+            })
+            .collect();
+        FieldPart {
+            label: format!("{} {}", f.keyword(), f.names),
+            density: f.density.clone(),
+            mult,
+            formulation: load_formulation(model),
+            ndpn: model.ndof_per_node(),
+            cells,
+        }
+    }
+
+    /// Adds the nodal forces at `t` (FONC_MULT included) to `out`.
+    fn add(&self, t: f64, out: &mut [f64]) -> Result<(), String> {
+        let m = match &self.mult {
+            None => 1.0,
+            Some(f) => f
+                .eval(t)
+                .map_err(|e| format!("FONC_MULT at INST = {t:e}: {e}"))?,
+        };
+        if m == 0.0 {
+            return Ok(());
+        }
+        let label = &self.label;
+        let value = |c: &Coef, x: [f64; 3]| {
+            eval_inst_xyz(c, t, x, label)
+                .map_err(|e| format!("at the point ({:e}, {:e}, {:e}): {e}", x[0], x[1], x[2]))
+        };
+        for cell in &self.cells {
+            let f = match &self.density {
+                FieldDensity::Pressure(c) => Some(pressure_forces_with(
+                    cell.kind,
+                    self.formulation,
+                    &cell.coords,
+                    |x| value(c, x),
+                )),
+                FieldDensity::Force(kind, cs) => cell_force(
+                    *kind,
+                    &cell.role,
+                    cell.kind,
+                    self.formulation,
+                    &cell.coords,
+                    |x| {
+                        let mut v = [0.0; 3];
+                        for (vi, c) in v.iter_mut().zip(cs.iter()) {
+                            if let Some(c) = c {
+                                *vi = value(c, x)?;
+                            }
+                        }
+                        Ok(v)
+                    },
+                ),
+            };
+            let Some(f) = f else { continue };
+            let f =
+                f.map_err(|e| format!("{label} at INST = {t:e}, cell M{}: {e}", cell.index + 1))?;
+            let scaled: Vec<f64> = f.iter().map(|v| m * v).collect();
+            scatter(&cell.nodes, self.ndpn, &scaled, out);
+        }
+        Ok(())
+    }
+}
 
 /// One AFFE_CHAR_MECA_F value resolved on the numbering.
 #[derive(Debug, Clone)]
@@ -70,6 +181,7 @@ pub struct LoadHistory {
     /// `imposed` list, value at multiplier 1) and the multiplier.
     imposed: Vec<(Vec<(usize, f64)>, Function)>,
     functions: Vec<FunctionPart>,
+    fields: Vec<FieldPart>,
 }
 
 impl LoadHistory {
@@ -78,6 +190,7 @@ impl LoadHistory {
             parts,
             imposed: Vec::new(),
             functions: Vec::new(),
+            fields: Vec::new(),
         }
     }
 
@@ -85,6 +198,13 @@ impl LoadHistory {
     pub fn with_functions(mut self, parts: Vec<FunctionPart>) -> LoadHistory {
         self.functions
             .extend(parts.into_iter().filter(|p| !p.entries.is_empty()));
+        self
+    }
+
+    /// Adds AFFE_CHAR_MECA_F distributed loads.
+    pub fn with_fields(mut self, parts: Vec<FieldPart>) -> LoadHistory {
+        self.fields
+            .extend(parts.into_iter().filter(|p| !p.cells.is_empty()));
         self
     }
 
@@ -102,6 +222,7 @@ impl LoadHistory {
         self.parts.iter().any(|(_, f)| f.is_some())
             || !self.imposed.is_empty()
             || !self.functions.is_empty()
+            || !self.fields.is_empty()
     }
 
     /// Writes the imposed values of instant `t` into the numbering's list
@@ -147,6 +268,9 @@ impl LoadHistory {
             for (f, v) in part.values(t)? {
                 out[f] += v;
             }
+        }
+        for part in &self.fields {
+            part.add(t, out)?;
         }
         Ok(())
     }

@@ -186,6 +186,7 @@ pub fn study(
             pressures: Vec::new(),
             distributed: Vec::new(),
             functions: Vec::new(),
+            fields: Vec::new(),
         })),
     );
     if let Some(v) = vite {
