@@ -272,6 +272,47 @@ fn affe_char_meca_f_distributed_loads() {
     run_study("char_f_distributed");
 }
 
+/// FACE_IMPO: DNOR on the symmetry planes and an outward normal
+/// displacement of the bottom face, against the uniform stretch
+/// (displacement, stress, reaction to 1e-9), and DX/DY/DZ on the cells'
+/// nodes giving the same (face_impo.comm).
+#[test]
+fn face_impo_normal_and_components() {
+    run_study("face_impo");
+}
+
+/// FACE_IMPO input aster refuses: DTAN, DNOR where the mean normal is
+/// along no axis (the edge shared by two symmetry planes), DNOR on
+/// volume cells.
+#[test]
+fn face_impo_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("face_impo_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("face_impo.comm")).unwrap();
+    let cases = [
+        (
+            "dtan",
+            ("_F(GROUP_MA='SXX', DNOR=0.)", "_F(GROUP_MA='SXX', DTAN=0.)"),
+            "not implemented yet: AFFE_CHAR_MECA/FACE_IMPO/DTAN",
+        ),
+        (
+            "edge",
+            (
+                "_F(GROUP_MA='SXX', DNOR=0.), _F(GROUP_MA='SYY', DNOR=0.)",
+                "_F(GROUP_MA=('SXX', 'SYY'), DNOR=0.)",
+            ),
+            "along no axis",
+        ),
+        (
+            "volume",
+            ("_F(GROUP_MA='SZZ', DNOR=D)", "_F(GROUP_MA='VOL', DNOR=D)"),
+            "DNOR needs the TRIA/QUAD faces",
+        ),
+    ];
+    let export = format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_face_impo");
+}
+
 /// Located errors of AFFE_CHAR_MECA_F's distributed loads.
 #[test]
 fn affe_char_meca_f_distributed_load_errors() {

@@ -41,6 +41,37 @@ pub fn def() -> CommandDef {
                 .doc("imposed dofs (dualised by Lagrange multipliers); GROUP_MA means all nodes of those cells")
                 .kw(),
             fact(
+                "FACE_IMPO",
+                vec![
+                    group_ma(),
+                    maille(),
+                    text("SANS_GROUP_MA").many().kw(),
+                    text("SANS_MAILLE").many().hidden().kw(),
+                    text("SANS_GROUP_NO").many().doc("nodes excluded from the selection").kw(),
+                    text("SANS_NOEUD").many().hidden().kw(),
+                    real("DX").doc("imposed value of this component").kw(),
+                    real("DY").doc("imposed value of this component").kw(),
+                    real("DZ").doc("imposed value of this component").kw(),
+                    real("DNOR")
+                        .doc("imposed normal displacement u.n (n the mean unit normal of the selected cells at the node); where n is along x, y or z only")
+                        .kw(),
+                    real("DTAN").kw(),
+                ],
+            )
+            .many()
+            .rules(vec![
+                un_parmi(&["GROUP_MA", "MAILLE"]),
+                au_moins_un(&["DX", "DY", "DZ", "DNOR", "DTAN"]),
+                exclus(&["DNOR", "DX"]),
+                exclus(&["DNOR", "DY"]),
+                exclus(&["DNOR", "DZ"]),
+                exclus(&["DTAN", "DX"]),
+                exclus(&["DTAN", "DY"]),
+                exclus(&["DTAN", "DZ"]),
+            ])
+            .doc("imposed dofs on every node of the cells of the selection: DX, DY, DZ as DDL_IMPO; DNOR the normal displacement where the normal is along an axis (DTAN: not implemented yet)")
+            .kw(),
+            fact(
                 "PESANTEUR",
                 vec![
                     group_ma(),
@@ -129,6 +160,7 @@ pub fn def() -> CommandDef {
     )
     .rules(vec![au_moins_un(&[
         "DDL_IMPO",
+        "FACE_IMPO",
         "PESANTEUR",
         "FORCE_NODALE",
         "PRES_REP",
@@ -181,42 +213,20 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         if occ.has("LIAISON") {
             dofs.extend(model.dofs.iter().map(|&d| (d, 0.0)));
         }
-        for &c in CMP_DEPL {
-            let Some(v) = occ.real(c) else { continue };
-            match Dof::from_name(c).filter(|d| model.has_dof(*d)) {
-                Some(d) => {
-                    dofs.retain(|(e, _)| *e != d);
-                    dofs.push((d, v));
-                }
-                None => {
-                    return Err(occ.error(
-                        c,
-                        format!(
-                            "{c} is not a degree of freedom of the model {model_name}, whose nodes carry {dof_names}"
-                        ),
-                    ));
-                }
-            }
+        for (d, v) in given_components(occ, &model, &model_name, &dof_names)? {
+            dofs.retain(|(e, _)| *e != d);
+            dofs.push((d, v));
         }
         let nodes = select_nodes(mesh, occ, &model_nodes)?;
-        let outside: Vec<usize> = nodes.iter().copied().filter(|&n| !in_model[n]).collect();
-        if let Some(&n0) = outside.first() {
-            return Err(occ.error(
-                "",
-                format!(
-                    "{} of the nodes of {} (node {} first) belong to no cell of the model {model_name}: they carry no degree of freedom",
-                    outside.len(),
-                    selection_label(occ),
-                    n0 + 1
-                ),
-            ));
-        }
-        if nodes.is_empty() {
-            lines.push(format!(
-                "<A> <AFFE_CHAR_MECA> occurrence {} of DDL_IMPO selects no node",
-                k + 1
-            ));
-        }
+        impose(
+            occ,
+            "DDL_IMPO",
+            k,
+            &nodes,
+            &in_model,
+            &model_name,
+            &mut lines,
+        )?;
         for &n in &nodes {
             for &(dof, value) in &dofs {
                 imposed.push(ImposedDof {
@@ -236,6 +246,19 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 .collect::<Vec<_>>()
                 .join(" ")
         ));
+    }
+    for (k, occ) in args.facts("FACE_IMPO").iter().enumerate() {
+        face_impo(
+            occ,
+            k,
+            mesh,
+            &model,
+            &model_name,
+            &dof_names,
+            &in_model,
+            &mut imposed,
+            &mut lines,
+        )?;
     }
     let nodal_forces = nodal_forces_of(args, mesh, &model, &model_name, &in_model, &mut lines)?;
     let pressures = pressures_of(args, mesh, &model, &model_name, &mut lines)?;
@@ -262,6 +285,208 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         functions: Vec::new(),
         fields: Vec::new(),
     }))))
+}
+
+/// DX, DY, DZ given in an occurrence, each a dof of the model.
+fn given_components(
+    occ: &Args,
+    model: &crate::model::Model,
+    model_name: &str,
+    dof_names: &str,
+) -> Result<Vec<(Dof, f64)>, Diagnostic> {
+    let mut out = Vec::new();
+    for &c in CMP_DEPL {
+        let Some(v) = occ.real(c) else { continue };
+        match Dof::from_name(c).filter(|d| model.has_dof(*d)) {
+            Some(d) => out.push((d, v)),
+            None => {
+                return Err(occ.error(
+                    c,
+                    format!(
+                        "{c} is not a degree of freedom of the model {model_name}, whose nodes carry {dof_names}"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The checks of an imposed-dof selection: every node carries dofs of
+/// the model; an empty selection is an alarm.
+fn impose(
+    occ: &Args,
+    key: &str,
+    k: usize,
+    nodes: &[usize],
+    in_model: &[bool],
+    model_name: &str,
+    lines: &mut Vec<String>,
+) -> Result<(), Diagnostic> {
+    let outside: Vec<usize> = nodes.iter().copied().filter(|&n| !in_model[n]).collect();
+    if let Some(&n0) = outside.first() {
+        return Err(occ.error(
+            "",
+            format!(
+                "{} of the nodes of {} (node {} first) belong to no cell of the model {model_name}: they carry no degree of freedom",
+                outside.len(),
+                selection_label(occ),
+                n0 + 1
+            ),
+        ));
+    }
+    if nodes.is_empty() {
+        lines.push(format!(
+            "<A> <AFFE_CHAR_MECA> occurrence {} of {key} selects no node",
+            k + 1
+        ));
+    }
+    Ok(())
+}
+
+/// FACE_IMPO: the nodes of the cells of GROUP_MA/MAILLE (less SANS_*)
+/// get DX, DY, DZ as with DDL_IMPO. DNOR imposes u·n, n the unit normal
+/// at the node (the mean of the normals of its selected cells, oriented
+/// as their nodes turn, code_aster's `canort`); aster imposes it where n
+/// is along an axis (|n_k| = 1 to 1e-9: the plane faces of a box, a
+/// symmetry plane), as u_k = DNOR·n_k. Elsewhere u·n = DNOR is a linear
+/// relation between dofs, which aster's elimination of imposed dofs does
+/// not hold: a located `not implemented yet`, as for DTAN.
+#[allow(clippy::too_many_arguments)]
+fn face_impo(
+    occ: &Args,
+    k: usize,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    model_name: &str,
+    dof_names: &str,
+    in_model: &[bool],
+    imposed: &mut Vec<ImposedDof>,
+    lines: &mut Vec<String>,
+) -> Result<(), Diagnostic> {
+    if occ.has("DTAN") {
+        return Err(occ.not_implemented(
+            "DTAN",
+            "a tangential displacement is a linear relation between dofs (FACE_IMPO takes DX, DY, DZ, and DNOR on faces along an axis)",
+        ));
+    }
+    let nodes = select_nodes(mesh, occ, &[])?;
+    impose(occ, "FACE_IMPO", k, &nodes, in_model, model_name, lines)?;
+    let dofs = given_components(occ, model, model_name, dof_names)?;
+    for &n in &nodes {
+        for &(dof, value) in &dofs {
+            imposed.push(ImposedDof {
+                node: n,
+                dof,
+                value,
+            });
+        }
+    }
+    let mut what: Vec<String> = dofs
+        .iter()
+        .map(|(d, v)| format!("{}={v}", d.name()))
+        .collect();
+    if let Some(dnor) = occ.real("DNOR") {
+        let normals = node_normals(mesh, occ, &select_cells(mesh, occ)?, model)?;
+        let axes = [Dof::Dx, Dof::Dy, Dof::Dz];
+        for &n in &nodes {
+            let Some(nv) = normals.get(&n) else { continue };
+            let Some(i) = (0..3).find(|&i| (nv[i].abs() - 1.0).abs() <= 1e-9) else {
+                return Err(occ.not_implemented(
+                    "DNOR",
+                    &format!(
+                        "the normal at node N{} is ({:.6}, {:.6}, {:.6}), along no axis: u.n = DNOR there is a linear relation between dofs, which aster does not hold (it imposes DNOR where the normal is along x, y or z)",
+                        n + 1,
+                        nv[0],
+                        nv[1],
+                        nv[2]
+                    ),
+                ));
+            };
+            imposed.push(ImposedDof {
+                node: n,
+                dof: axes[i],
+                value: dnor * nv[i].signum(),
+            });
+        }
+        what.push(format!("DNOR={dnor}"));
+    }
+    lines.push(format!(
+        "      FACE_IMPO {}: {} nodes of {}, {}",
+        k + 1,
+        nodes.len(),
+        selection_label(occ),
+        what.join(" ")
+    ));
+    Ok(())
+}
+
+/// The unit normal at each node of `cells` (faces in 3D, edges in 2D):
+/// the normalised sum of the unit normals of the cells around it, each
+/// cell's from its first corners as its nodes turn.
+fn node_normals(
+    mesh: &crate::mesh::Mesh,
+    occ: &Args,
+    cells: &[usize],
+    model: &crate::model::Model,
+) -> Result<std::collections::HashMap<usize, [f64; 3]>, Diagnostic> {
+    let plane = model.ndof_per_node() == 2;
+    let mut sum: std::collections::HashMap<usize, [f64; 3]> = std::collections::HashMap::new();
+    for &c in cells {
+        let cell = &mesh.cells[c];
+        let p = |a: usize| mesh.coords[cell.nodes[a]];
+        let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let nv = match (cell.kind.dim(), plane) {
+            (1, true) => {
+                let t = sub(p(1), p(0));
+                [t[1], -t[0], 0.0]
+            }
+            (2, false) => {
+                let (u, v) = (sub(p(1), p(0)), sub(p(2), p(0)));
+                [
+                    u[1] * v[2] - u[2] * v[1],
+                    u[2] * v[0] - u[0] * v[2],
+                    u[0] * v[1] - u[1] * v[0],
+                ]
+            }
+            _ => {
+                return Err(occ.error(
+                    "DNOR",
+                    format!(
+                        "cell {} of {} is a {}: DNOR needs the {} of the model's boundary",
+                        c + 1,
+                        selection_label(occ),
+                        cell.kind.aster_name(),
+                        if plane {
+                            "SEG2/SEG3 edges"
+                        } else {
+                            "TRIA/QUAD faces"
+                        }
+                    ),
+                ))
+            }
+        };
+        let len = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
+        if !(len > 0.0) {
+            return Err(occ.error(
+                "DNOR",
+                format!("cell {} is degenerate: it has no normal", c + 1),
+            ));
+        }
+        for &n in &cell.nodes {
+            let e = sum.entry(n).or_insert([0.0; 3]);
+            for i in 0..3 {
+                e[i] += nv[i] / len;
+            }
+        }
+    }
+    for v in sum.values_mut() {
+        let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if len > 0.0 {
+            v.iter_mut().for_each(|x| *x /= len);
+        }
+    }
+    Ok(sum)
 }
 
 /// FORCE_NODALE: every node of an occurrence gets each given component
