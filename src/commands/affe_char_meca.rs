@@ -467,7 +467,7 @@ fn node_normals(
             }
         };
         let len = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             return Err(occ.error(
                 "DNOR",
                 format!("cell {} is degenerate: it has no normal", c + 1),
