@@ -630,16 +630,7 @@ pub(super) fn pressure_cells(
             }
             Some(CellRole::Element(_)) => {}
             _ if occ.has("TOUT") => {}
-            _ => {
-                return Err(occ.error(
-                    "",
-                    format!(
-                        "cell {} of {} belongs to no element of the model {model_name}: assign the skin to the model (AFFE_MODELE) to load it",
-                        c + 1,
-                        selection_label(occ)
-                    ),
-                ));
-            }
+            _ => return Err(outside_model(occ, c, model_name, "the skin")),
         }
     }
     if cells.is_empty() {
@@ -898,16 +889,7 @@ pub(super) fn distributed_cells(
             Some(CellRole::Element(_)) if !skin => cells.push(c),
             Some(CellRole::Skin { .. }) | Some(CellRole::Element(_)) => {}
             _ if occ.has("TOUT") => {}
-            _ => {
-                return Err(occ.error(
-                    "",
-                    format!(
-                        "cell {} of {} belongs to no element of the model {model_name}: assign it to the model (AFFE_MODELE) to load it",
-                        c + 1,
-                        selection_label(occ)
-                    ),
-                ));
-            }
+            _ => return Err(outside_model(occ, c, model_name, "it")),
         }
     }
     if cells.is_empty() {
@@ -921,4 +903,16 @@ pub(super) fn distributed_cells(
         ));
     }
     Ok(cells)
+}
+
+/// A selected cell outside the model: its nodes may carry no dof.
+fn outside_model(occ: &Args, c: usize, model_name: &str, what: &str) -> Diagnostic {
+    occ.error(
+        "",
+        format!(
+            "cell {} of {} belongs to no element of the model {model_name}: assign {what} to the model (AFFE_MODELE) to load it",
+            c + 1,
+            selection_label(occ)
+        ),
+    )
 }

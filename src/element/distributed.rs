@@ -162,21 +162,14 @@ pub fn add_distributed_forces_with(
     density: impl Fn([f64; 3]) -> Result<[f64; 3], String>,
     out: &mut [f64],
 ) -> Result<(), String> {
-    let d = model.ndof_per_node();
-    let formulation = load_formulation(model);
-    for &c in cells {
-        let cell = &mesh.cells[c];
-        let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
-        let Some(role) = model.cells.get(c) else {
-            continue;
-        };
-        let Some(fe) = cell_force(kind, role, cell.kind, formulation, &coords, &density) else {
-            continue;
-        };
-        let fe = fe.map_err(|e| format!("{}: cell {}: {e}", kind.keyword(), c + 1))?;
-        scatter(&cell.nodes, d, &fe, out);
-    }
-    Ok(())
+    add_cell_forces(
+        mesh,
+        model,
+        cells,
+        kind.keyword(),
+        out,
+        |role, cell, f, coords| cell_force(kind, role, cell, f, coords, &density),
+    )
 }
 
 /// The nodal forces of the density `density(x)` of kind `kind` on one
@@ -211,13 +204,37 @@ pub fn add_pressure_forces_with(
     pressure: impl Fn([f64; 3]) -> Result<f64, String>,
     out: &mut [f64],
 ) -> Result<(), String> {
+    add_cell_forces(mesh, model, cells, "PRES_REP", out, |_, cell, f, coords| {
+        Some(super::pressure::pressure_forces_with(
+            cell, f, coords, &pressure,
+        ))
+    })
+}
+
+/// Adds to `out` the nodal forces `forces` gives each cell of `cells`
+/// (from its role, type, the model's formulation and its initial node
+/// positions; `None`: the cell carries none), errors prefixed with
+/// `keyword` and the cell.
+fn add_cell_forces(
+    mesh: &Mesh,
+    model: &Model,
+    cells: &[usize],
+    keyword: &str,
+    out: &mut [f64],
+    forces: impl Fn(&CellRole, CellType, Formulation, &[[f64; 3]]) -> Option<Result<Vec<f64>, String>>,
+) -> Result<(), String> {
     let d = model.ndof_per_node();
     let formulation = load_formulation(model);
     for &c in cells {
         let cell = &mesh.cells[c];
+        let Some(role) = model.cells.get(c) else {
+            continue;
+        };
         let coords: Vec<[f64; 3]> = cell.nodes.iter().map(|&n| mesh.coords[n]).collect();
-        let f = super::pressure::pressure_forces_with(cell.kind, formulation, &coords, &pressure)
-            .map_err(|e| format!("PRES_REP: cell {}: {e}", c + 1))?;
+        let Some(f) = forces(role, cell.kind, formulation, &coords) else {
+            continue;
+        };
+        let f = f.map_err(|e| format!("{keyword}: cell {}: {e}", c + 1))?;
         scatter(&cell.nodes, d, &f, out);
     }
     Ok(())
