@@ -28,6 +28,7 @@ pub mod crea_maillage;
 pub mod debut;
 pub mod defi_constante;
 pub mod defi_contact;
+pub mod defi_fichier;
 pub mod defi_fonction;
 pub mod defi_group;
 pub mod defi_list_inst;
@@ -94,6 +95,7 @@ pub fn all() -> Vec<CommandDef> {
         debut::def(),
         defi_constante::def(),
         defi_contact::def(),
+        defi_fichier::def(),
         defi_fonction::def(),
         defi_group::def(),
         defi_list_inst::def(),
