@@ -197,6 +197,15 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
         return Ok((rname.to_string(), header, v));
     }
     if let Some(tt) = occ.text("TYPE_TEST") {
+        // The rank of a named variable depends on each cell's law: a
+        // TYPE_TEST over the field would have to pick it cell by cell;
+        // it used to aggregate every component instead.
+        if occ.has("NOM_VARI") {
+            return Err(occ.not_implemented(
+                "NOM_VARI",
+                "NOM_VARI with TYPE_TEST (give NOM_CMP='V1', 'V2'...)",
+            ));
+        }
         let v = if gauss {
             let f = step_gauss(step, nom_cham, occ, "NOM_CHAM", rname)?;
             aggregate(occ, &f.components, &f.values, nom_cham, tt)?
