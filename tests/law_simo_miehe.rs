@@ -342,6 +342,75 @@ fn traction_curve_uniaxial_matches_the_continuum_solution() {
     assert!((tau - curve.r(p400)).abs() < 1e-9 * tau);
 }
 
+/// VMIS_ISOT_PUIS under SIMO_MIEHE (R(p) = SY (1 + (E p/(A SY))^(1/N)),
+/// N = 3: R'(0) is infinite) against the continuum solution of
+/// [`uniaxial_reference_p_of`] rewritten with τ as the variable of the
+/// quadrature (p = (A SY/E)(τ/SY − 1)^N, R'(p) dp = dτ: the integrand is
+/// smooth where the one in p is not): first order in the step, the
+/// Richardson extrapolation within 1e-5, and τ = R(p) at the end.
+#[test]
+fn power_law_uniaxial_matches_the_continuum_solution() {
+    use aster::law::john_cook::LocalControls;
+    use aster::law::simo_miehe::Hardening;
+    use aster::law::vmis_isot_puis::PowerHardening;
+    let (e, sy, a, n) = (117e3, 400.0, 0.5, 3.0);
+    let elas = ElasParams::new(e, 0.35, None).unwrap();
+    let power = PowerHardening::new(e, sy, a, n, LocalControls::default()).unwrap();
+    let law = SimoMiehe::with_hardening(elas, Hardening::Power(power));
+    assert_eq!(law.metadata().name, "VMIS_ISOT_PUIS");
+    let lambda: f64 = 1.5;
+    let (mu, k) = (elas.mu(), elas.bulk());
+    let g = |x: f64| x - x.powf(-0.5);
+    let a_of_tau = |t: f64| {
+        let mut x = 1.0;
+        for _ in 0..60 {
+            x -= (g(x) - t / mu) / (1.0 + 0.5 * x.powf(-1.5));
+        }
+        x
+    };
+    let j_of_a = |x: f64| (1.0 + 2.0 * mu * g(x) / (3.0 * k)).sqrt();
+    let p_of_tau = |t: f64| a * sy / e * (t / sy - 1.0).powf(n);
+    let dp_dtau = |t: f64| n * a / e * (t / sy - 1.0).powf(n - 1.0);
+    let integrand = |t: f64| {
+        let x = a_of_tau(t);
+        let i = (x + 2.0 * x.powf(-0.5)) / 3.0;
+        (i * dp_dtau(t) + 1.0 / (3.0 * mu)) / (2.0 / 3.0 * (x + 0.5 * x.powf(-0.5)))
+    };
+    let a_y = a_of_tau(sy);
+    let ln_lambda = |t: f64| {
+        let m = 2000;
+        let dx = (t - sy) / m as f64;
+        let mut s = integrand(sy) + integrand(t);
+        for i in 1..m {
+            s += if i % 2 == 1 { 4.0 } else { 2.0 } * integrand(sy + i as f64 * dx);
+        }
+        0.5 * a_y.ln() + s * dx / 3.0 + j_of_a(a_of_tau(t)).ln() / 3.0
+    };
+    let (mut lo, mut hi) = (sy, power.r(2.0 * lambda.ln()));
+    for _ in 0..60 {
+        let m = 0.5 * (lo + hi);
+        if ln_lambda(m) < lambda.ln() {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    let p_ref = p_of_tau(0.5 * (lo + hi));
+    let (o200, _) = uniaxial(&law, lambda, 200);
+    let (o400, _) = uniaxial(&law, lambda, 400);
+    let p200 = o200.internal.as_slice()[0];
+    let p400 = o400.internal.as_slice()[0];
+    assert!(p400 > 0.3, "p = {p400}");
+    let p_extra = 2.0 * p400 - p200;
+    assert!(
+        (p_extra - p_ref).abs() < 1e-5 * p_ref,
+        "extrapolated p {p_extra} vs {p_ref}"
+    );
+    assert!((p400 - p_ref).abs() < 2e-3 * p_ref, "p {p400} vs {p_ref}");
+    let tau = o400.kirchhoff[(0, 0)];
+    assert!((tau - power.r(p400)).abs() < 1e-9 * tau);
+}
+
 #[test]
 fn uniaxial_large_strain_tension_matches_the_continuum_solution() {
     let law = copper();

@@ -1580,6 +1580,103 @@ fn bad_traction_curves_are_located_errors() {
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_trac");
 }
 
+/// VMIS_CINE_LINE on a column under uniaxial stress, tension, unloading
+/// and compression past the reverse yield σ_max − 2 SY (HEXA8 and HEXS8 in
+/// PETIT, HEXA8 in GDEF_LOG on the logarithmic strain): every stress on the
+/// bilinear kinematic curve and the back stress X_zz = (2/3) H εᵖ
+/// (1e-9); VMIS_ISOT_PUIS at the strains ε(σ) of chosen stresses gives σ
+/// back and p = ε − σ/E (PETIT and GDEF_LOG, 1e-9), and SIMO_MIEHE within
+/// O(τ/μ) = 1 % of the log-strain p (measured 0.33 %).
+#[test]
+fn kinematic_and_power_hardening_follow_their_closed_forms() {
+    run_study("cine_puis_bar");
+}
+
+/// Bad VMIS_CINE_LINE and VMIS_ISOT_PUIS input: a material without the
+/// law's ECRO_LINE or ECRO_PUIS, D_SIGM_EPSI ≥ E, A_PUIS = 0, N_PUIS = 0,
+/// SY = 0, VMIS_CINE_LINE in SIMO_MIEHE (code_aster's list does not have
+/// it), an ALGO_INTE of another law, ENEL of a GDEF_LOG result, NOM_VARI
+/// with TYPE_TEST: located errors, no panic.
+#[test]
+fn bad_kinematic_and_power_hardening_input_is_a_located_error() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cine_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("cine_puis_bar.comm")).unwrap();
+    let cine = "ECRO_LINE=_F(SY=SY, D_SIGM_EPSI=ET))";
+    let puis = "ECRO_PUIS=_F(SY=SY, A_PUIS=AP, N_PUIS=NP))";
+    let cine_petit = "RELATION='VMIS_CINE_LINE', DEFORMATION='PETIT'";
+    let puis_petit = "RELATION='VMIS_ISOT_PUIS', DEFORMATION='PETIT'";
+    let cases = [
+        (
+            "no_ecro_line",
+            (cine, "ECRO_PUIS=_F(SY=SY, A_PUIS=1., N_PUIS=2.))"),
+            "ECRO_LINE/SY is needed by RELATION='VMIS_CINE_LINE'",
+        ),
+        (
+            "no_ecro_puis",
+            (puis, "ECRO_LINE=_F(SY=SY, D_SIGM_EPSI=ET))"),
+            "ECRO_PUIS/SY is needed by RELATION='VMIS_ISOT_PUIS'",
+        ),
+        (
+            "et_ge_e",
+            (cine, "ECRO_LINE=_F(SY=SY, D_SIGM_EPSI=E))"),
+            "must be smaller than Young's modulus",
+        ),
+        (
+            "a_zero",
+            (puis, "ECRO_PUIS=_F(SY=SY, A_PUIS=0., N_PUIS=NP))"),
+            "A_PUIS must be finite and > 0",
+        ),
+        (
+            "n_zero",
+            (puis, "ECRO_PUIS=_F(SY=SY, A_PUIS=AP, N_PUIS=0.))"),
+            "N_PUIS = 0 is below its minimum",
+        ),
+        (
+            "sy_zero",
+            (puis, "ECRO_PUIS=_F(SY=0., A_PUIS=AP, N_PUIS=NP))"),
+            "the yield stress SY must be finite and > 0",
+        ),
+        (
+            "cine_simo",
+            (
+                cine_petit,
+                "RELATION='VMIS_CINE_LINE', DEFORMATION='SIMO_MIEHE'",
+            ),
+            "RELATION='VMIS_CINE_LINE' does not accept DEFORMATION='SIMO_MIEHE'",
+        ),
+        (
+            "puis_algo",
+            (
+                puis_petit,
+                "RELATION='VMIS_ISOT_PUIS', ALGO_INTE='ANALYTIQUE', DEFORMATION='PETIT'",
+            ),
+            "does not accept ALGO_INTE='ANALYTIQUE' (valid: DEKKER)",
+        ),
+        (
+            "enel_log",
+            (
+                "RESP = CALC_CHAMP(reuse=RESP, RESULTAT=RESP,",
+                "RESG = CALC_CHAMP(reuse=RESG, RESULTAT=RESG,",
+            ),
+            "not implemented yet: CALC_CHAMP/ENERGIE (ENEL of cell",
+        ),
+        (
+            "vari_type_test",
+            (
+                "NOM_CMP='V3', TYPE_TEST='MAX'",
+                "NOM_VARI='XCINZZ', TYPE_TEST='MAX'",
+            ),
+            "not implemented yet: TEST_RESU/RESU/NOM_VARI (NOM_VARI with TYPE_TEST",
+        ),
+    ];
+    let export = format!(
+        "F mmed {} D 20\n",
+        dir().join("../studies/hexs8_beam1.mmed").display()
+    );
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_cine");
+}
+
 /// OBSERVATION in STAT_NON_LINE and DYNA_NON_LINE read back by RECU_TABLE:
 /// Gauss-point stresses at INST, the largest p at LIST_INST, nodal DZ
 /// every PAS_OBSE steps, free-flight means and minima with the initial

@@ -174,7 +174,14 @@ pub const NOM_CHAM_RESU: &[&str] = &[
 /// The constitutive laws aster knows by name (code_aster's `C_RELATION`
 /// restricted to the laws of the impact studies); the law registry
 /// decides which ones actually run.
-pub const RELATIONS: &[&str] = &["ELAS", "VMIS_ISOT_LINE", "VMIS_ISOT_TRAC", "VMIS_JOHN_COOK"];
+pub const RELATIONS: &[&str] = &[
+    "ELAS",
+    "VMIS_ISOT_LINE",
+    "VMIS_ISOT_TRAC",
+    "VMIS_ISOT_PUIS",
+    "VMIS_CINE_LINE",
+    "VMIS_JOHN_COOK",
+];
 
 /// Solid modelisations of `AFFE_MODELE` (code_aster's list restricted to
 /// continuum mechanics; shells, beams and THM are outside aster's scope).
@@ -247,7 +254,7 @@ pub fn c_comportement() -> Keyword {
                     "BASCULE_EXPLICITE",
                     "SANS_OBJET",
                 ])
-                .doc("local integration algorithm; absent: the law's first one (ANALYTIQUE, BRENT for VMIS_JOHN_COOK)")
+                .doc("local integration algorithm; absent: the law's first one (ANALYTIQUE, BRENT for VMIS_JOHN_COOK, DEKKER for VMIS_ISOT_PUIS)")
                 .kw(),
             text("TYPE_MATR_TANG")
                 .into(&["PERTURBATION", "VERIFICATION"])

@@ -77,7 +77,7 @@ pub fn def() -> CommandDef {
         text("ENERGIE")
             .many()
             .into(&["ENEL_ELGA", "ENEL_ELNO", "ENEL_NOEU", "ETOT_ELGA", "ETOT_ELNO", "ETOT_NOEU"])
-            .doc("ENEL_ELGA: the elastic energy density TOTALE, ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance) under PETIT and PETIT_REAC, the stored energy K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3) for VMIS_ISOT_LINE and VMIS_ISOT_TRAC in SIMO_MIEHE; ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* and GDEF_LOG not implemented)")
+            .doc("ENEL_ELGA: the elastic energy density TOTALE, ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance) under PETIT and PETIT_REAC, the stored energy K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3) for VMIS_ISOT_LINE, VMIS_ISOT_TRAC and VMIS_ISOT_PUIS in SIMO_MIEHE; ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* and GDEF_LOG not implemented)")
             .kw(),
         text("FORCE")
             .many()
@@ -715,7 +715,7 @@ fn elastic_constants(
                 return Err(args.not_implemented(
                     "ENERGIE",
                     &format!(
-                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC, and VMIS_ISOT_LINE/VMIS_ISOT_TRAC in SIMO_MIEHE)",
+                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC, and VMIS_ISOT_LINE/VMIS_ISOT_TRAC/VMIS_ISOT_PUIS in SIMO_MIEHE)",
                         cell()
                     ),
                 ));
@@ -760,7 +760,7 @@ fn elastic_constants(
 }
 
 /// The VARI_ELGA columns of b̄ᵉ_xx − 1, b̄ᵉ_yy − 1, b̄ᵉ_zz − 1 of
-/// VMIS_ISOT_LINE and VMIS_ISOT_TRAC in SIMO_MIEHE, from the law's
+/// VMIS_ISOT_LINE, VMIS_ISOT_TRAC and VMIS_ISOT_PUIS in SIMO_MIEHE, from the law's
 /// variable names.
 fn simo_miehe_be() -> [usize; 3] {
     let names = crate::law::simo_miehe::METADATA.internal_variables;

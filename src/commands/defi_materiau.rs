@@ -56,7 +56,25 @@ pub fn def() -> CommandDef {
                     real("EPSI_LIM").kw(),
                 ],
             )
-            .doc("linear isotropic hardening (VMIS_ISOT_LINE)")
+            .doc("linear hardening: isotropic (VMIS_ISOT_LINE) or kinematic (VMIS_CINE_LINE, Prager's C = 2/3.E.E_T/(E-E_T))")
+            .kw(),
+            fact(
+                "ECRO_PUIS",
+                vec![
+                    real("SY").required().doc("yield stress").kw(),
+                    real("A_PUIS")
+                        .required()
+                        .min_val(0.0)
+                        .doc("A of R(p) = SY (1 + (E p/(A SY))^(1/N)), E of ELAS; must be > 0")
+                        .kw(),
+                    real("N_PUIS")
+                        .required()
+                        .min_val(1e-6)
+                        .doc("hardening exponent N of R(p) = SY (1 + (E p/(A SY))^(1/N))")
+                        .kw(),
+                ],
+            )
+            .doc("isotropic hardening by a power law (VMIS_ISOT_PUIS)")
             .kw(),
             fact(
                 "TRACTION",
@@ -94,7 +112,7 @@ pub fn def() -> CommandDef {
         ],
     )
     .rules(vec![
-        au_moins_un(&["ELAS", "ECRO_LINE", "ECRO_COOK", "TRACTION"]),
+        au_moins_un(&["ELAS", "ECRO_LINE", "ECRO_COOK", "TRACTION", "ECRO_PUIS"]),
         exclus(&["ECRO_LINE", "ECRO_COOK"]),
     ])
     .doc("Defines a material: one factor keyword per behaviour ingredient.");
@@ -102,7 +120,7 @@ pub fn def() -> CommandDef {
 }
 
 /// The blocks aster keeps, in the order they are stored.
-const BLOCKS: [&str; 3] = ["ELAS", "ECRO_LINE", "ECRO_COOK"];
+const BLOCKS: [&str; 4] = ["ELAS", "ECRO_LINE", "ECRO_COOK", "ECRO_PUIS"];
 
 /// The values VMIS_JOHN_COOK uses for the optional ECRO_COOK parameters
 /// when they are absent (code_aster's `nmtevp`): no rate term (C = 0,
@@ -149,7 +167,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         mat.curves.insert("TRACTION/SIGM".to_string(), curve);
         mat.blocks.insert("TRACTION".to_string(), IndexMap::new());
     }
-    for block in ["ECRO_LINE", "ECRO_COOK", "TRACTION"] {
+    for block in ["ECRO_LINE", "ECRO_COOK", "TRACTION", "ECRO_PUIS"] {
         if mat.blocks.contains_key(block) && !mat.blocks.contains_key("ELAS") {
             return Err(args.error(
                 block,
@@ -197,6 +215,20 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             "      ECRO_LINE: hardening modulus H = E.D_SIGM_EPSI/(E - D_SIGM_EPSI) = {}",
             e * et / (e - et)
         ));
+    }
+    if let (Some(e), Some(occ)) = (mat.get("ELAS", "E"), args.fact("ECRO_PUIS")) {
+        let get = |p| mat.get("ECRO_PUIS", p).unwrap_or(f64::NAN);
+        let law = crate::law::vmis_isot_puis::PowerHardening::new(
+            e,
+            get("SY"),
+            get("A_PUIS"),
+            get("N_PUIS"),
+            Default::default(),
+        );
+        if let Err(why) = law {
+            let key = why.keyword.rsplit('/').next().unwrap_or("SY");
+            return Err(occ.error(key, why.message));
+        }
     }
     study.log(format!(
         "    material {}: {}",

@@ -35,7 +35,9 @@ use nalgebra::{Matrix3, SymmetricEigen};
 
 use super::john_cook;
 use super::simo_miehe::{FiniteStrainInput, FiniteStrainOutput, Mat9};
+use super::vmis_cine_line;
 use super::vmis_isot_line;
+use super::vmis_isot_puis;
 use super::vmis_isot_trac;
 use super::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
 use super::{
@@ -60,6 +62,24 @@ pub static ISOT_TRAC_LOG: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_TRAC",
     internal_variables: &[
         "EPSPEQ", "INDIPLAS", "TXX", "TYY", "TZZ", "TXY", "TXZ", "TYZ",
+    ],
+    strain_measures: &[StrainMeasure::GdefLog],
+};
+
+/// VMIS_ISOT_PUIS + GDEF_LOG: as VMIS_ISOT_LINE.
+pub static ISOT_PUIS_LOG: LawMetadata = LawMetadata {
+    name: "VMIS_ISOT_PUIS",
+    internal_variables: ISOT_LINE_LOG.internal_variables,
+    strain_measures: &[StrainMeasure::GdefLog],
+};
+
+/// VMIS_CINE_LINE + GDEF_LOG: the back stress X (of the log-strain
+/// formulation) and INDIPLAS, then the six extra variables.
+pub static CINE_LINE_LOG: LawMetadata = LawMetadata {
+    name: "VMIS_CINE_LINE",
+    internal_variables: &[
+        "XCINXX", "XCINYY", "XCINZZ", "XCINXY", "XCINXZ", "XCINYZ", "INDIPLAS", "TXX", "TYY",
+        "TZZ", "TXY", "TXZ", "TYZ",
     ],
     strain_measures: &[StrainMeasure::GdefLog],
 };
@@ -233,6 +253,8 @@ impl<L: SmallStrainBehaviour> FiniteStrainBehaviour for GdefLog<L> {
         match self.law.metadata().name {
             "VMIS_JOHN_COOK" => &JOHN_COOK_LOG,
             "VMIS_ISOT_TRAC" => &ISOT_TRAC_LOG,
+            "VMIS_ISOT_PUIS" => &ISOT_PUIS_LOG,
+            "VMIS_CINE_LINE" => &CINE_LINE_LOG,
             _ => &ISOT_LINE_LOG,
         }
     }
@@ -327,6 +349,8 @@ impl<L: SmallStrainBehaviour> FiniteStrainBehaviour for GdefLog<L> {
 /// The laws that accept GDEF_LOG in aster.
 pub type IsotLineLog = GdefLog<vmis_isot_line::VmisIsotLine>;
 pub type IsotTracLog = GdefLog<vmis_isot_trac::VmisIsotTrac>;
+pub type IsotPuisLog = GdefLog<vmis_isot_puis::VmisIsotPuis>;
+pub type CineLineLog = GdefLog<vmis_cine_line::VmisCineLine>;
 pub type JohnCookLog = GdefLog<john_cook::VmisJohnCook>;
 
 /// The Cauchy stress of a T state at F (post-processing alone).

@@ -19,7 +19,9 @@ pub mod gdef_log;
 pub mod john_cook;
 pub mod root1d;
 pub mod simo_miehe;
+pub mod vmis_cine_line;
 pub mod vmis_isot_line;
+pub mod vmis_isot_puis;
 pub mod vmis_isot_trac;
 pub mod voigt;
 
@@ -383,6 +385,11 @@ pub fn internal_variable_names(
         ("VMIS_ISOT_TRAC", "PETIT" | "PETIT_REAC") => vmis_isot_trac::METADATA.internal_variables,
         ("VMIS_ISOT_TRAC", "SIMO_MIEHE") => simo_miehe::METADATA.internal_variables,
         ("VMIS_ISOT_TRAC", "GDEF_LOG") => gdef_log::ISOT_TRAC_LOG.internal_variables,
+        ("VMIS_ISOT_PUIS", "PETIT" | "PETIT_REAC") => vmis_isot_puis::METADATA.internal_variables,
+        ("VMIS_ISOT_PUIS", "SIMO_MIEHE") => simo_miehe::METADATA.internal_variables,
+        ("VMIS_ISOT_PUIS", "GDEF_LOG") => gdef_log::ISOT_PUIS_LOG.internal_variables,
+        ("VMIS_CINE_LINE", "PETIT" | "PETIT_REAC") => vmis_cine_line::METADATA.internal_variables,
+        ("VMIS_CINE_LINE", "GDEF_LOG") => gdef_log::CINE_LINE_LOG.internal_variables,
         ("VMIS_JOHN_COOK", "GDEF_LOG") => gdef_log::JOHN_COOK_LOG.internal_variables,
         ("VMIS_JOHN_COOK", _) => john_cook::METADATA.internal_variables,
         _ => return None,

@@ -31,6 +31,7 @@
 use nalgebra::{Matrix3, SMatrix};
 
 use super::vmis_isot_line::IsotropicHardening;
+use super::vmis_isot_puis::PowerHardening;
 use super::vmis_isot_trac::TractionCurve;
 use super::voigt::{stress_to_tensor, tensor_to_stress};
 use super::{
@@ -120,16 +121,70 @@ pub static TRAC_METADATA: LawMetadata = LawMetadata {
     strain_measures: &[StrainMeasure::SimoMiehe],
 };
 
+/// VMIS_ISOT_PUIS under SIMO_MIEHE (code_aster's catalogue lists
+/// SIMO_MIEHE for it): the same variables as VMIS_ISOT_LINE's.
+pub static PUIS_METADATA: LawMetadata = LawMetadata {
+    name: "VMIS_ISOT_PUIS",
+    internal_variables: METADATA.internal_variables,
+    strain_measures: &[StrainMeasure::SimoMiehe],
+};
+
+/// The isotropic hardenings other than the line, whose return goes
+/// through [`IsotropicHardening::return_map`] (the line keeps its closed
+/// form, written as it always was).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hardening {
+    /// VMIS_ISOT_TRAC.
+    Traction(TractionCurve),
+    /// VMIS_ISOT_PUIS.
+    Power(PowerHardening),
+}
+
+impl Hardening {
+    fn metadata(&self) -> &'static LawMetadata {
+        match self {
+            Hardening::Traction(_) => &TRAC_METADATA,
+            Hardening::Power(_) => &PUIS_METADATA,
+        }
+    }
+}
+
+impl IsotropicHardening for Hardening {
+    fn yield_stress(&self, p: f64) -> f64 {
+        match self {
+            Hardening::Traction(c) => c.yield_stress(p),
+            Hardening::Power(c) => c.yield_stress(p),
+        }
+    }
+    fn return_map(
+        &self,
+        q_tr: f64,
+        p_n: f64,
+        three_mu: f64,
+    ) -> Result<(f64, f64), IntegrationFailure> {
+        match self {
+            Hardening::Traction(c) => c.return_map(q_tr, p_n, three_mu),
+            Hardening::Power(c) => c.return_map(q_tr, p_n, three_mu),
+        }
+    }
+    fn slope(&self, p: f64) -> f64 {
+        match self {
+            Hardening::Traction(c) => c.slope(p),
+            Hardening::Power(c) => c.slope(p),
+        }
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimoMiehe {
     pub elas: ElasParams,
-    /// SY and E_T of a line; for a traction curve SY = R(0), E_T unused.
+    /// SY and E_T of a line; for another hardening SY = R(0), E_T unused.
     pub ecro: EcroLineParams,
     mu: f64,
     bulk: f64,
     h: f64,
-    /// R(p) of VMIS_ISOT_TRAC; None: the line SY + H p.
-    curve: Option<TractionCurve>,
+    /// R(p) of VMIS_ISOT_TRAC or VMIS_ISOT_PUIS; None: the line SY + H p.
+    curve: Option<Hardening>,
 }
 
 impl SimoMiehe {
@@ -147,35 +202,41 @@ impl SimoMiehe {
     /// VMIS_ISOT_TRAC: `elas` holds the curve's Young's modulus
     /// ([`VmisIsotTrac::new`](super::vmis_isot_trac::VmisIsotTrac::new)).
     pub fn with_curve(elas: ElasParams, curve: TractionCurve) -> SimoMiehe {
+        SimoMiehe::with_hardening(elas, Hardening::Traction(curve))
+    }
+
+    /// Any hardening of [`Hardening`] (VMIS_ISOT_PUIS: `elas` is ELAS's).
+    pub fn with_hardening(elas: ElasParams, hardening: Hardening) -> SimoMiehe {
         SimoMiehe {
             elas,
             ecro: EcroLineParams {
-                sy: curve.r(0.0),
+                sy: hardening.yield_stress(0.0),
                 d_sigm_epsi: 0.0,
             },
             mu: elas.mu(),
             bulk: elas.bulk(),
             h: 0.0,
-            curve: Some(curve),
+            curve: Some(hardening),
         }
     }
 
     pub fn metadata(&self) -> &'static LawMetadata {
-        if self.curve.is_some() {
-            &TRAC_METADATA
-        } else {
-            &METADATA
+        match &self.curve {
+            Some(h) => h.metadata(),
+            None => &METADATA,
         }
     }
 
     /// The plastic multiplier Δγ of the return (‖s‖ = ‖s_tr‖ − 2μ̄Δγ =
     /// √(2/3) R(p_n + √(2/3) Δγ), q = ‖s_tr‖, c0 = √(2/3) R(p_n)), R' at
-    /// its end, and the c0 of the line through the end point's segment
+    /// its end, and the c0 of R's tangent line at the end point
     /// (Δγ = (q − c0)/(2μ̄ + 2R'/3) with it, the form the tangent
-    /// differentiates; c0 itself unless the step crossed a kink). For a
-    /// line it is the closed form written as it always was (B's answer to
-    /// the bit); a traction curve solves the same equation in terms of the
-    /// equivalent stress √(3/2) q, whose multiplier is 3μ̄.
+    /// differentiates: its derivatives in q and μ̄ are those of the exact
+    /// equation for any R smooth at the end point; c0 itself for a
+    /// segment the step did not leave). For a line it is the closed form
+    /// written as it always was (B's answer to the bit); a traction curve
+    /// or a power law solves the same equation in terms of the equivalent
+    /// stress √(3/2) q, whose multiplier is 3μ̄.
     fn plastic_multiplier(
         &self,
         q: f64,
@@ -202,12 +263,12 @@ impl SimoMiehe {
         self.h
     }
 
-    /// Yield stress R(p) = SY + H p, or the traction curve's (a
-    /// Kirchhoff equivalent stress).
+    /// Yield stress R(p) = SY + H p, or the traction curve's or the
+    /// power law's (a Kirchhoff equivalent stress).
     pub fn yield_stress(&self, p: f64) -> f64 {
         match &self.curve {
             None => self.ecro.sy + self.h * p,
-            Some(c) => c.r(p),
+            Some(c) => c.yield_stress(p),
         }
     }
 

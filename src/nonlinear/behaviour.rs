@@ -13,11 +13,15 @@ use indexmap::IndexMap;
 
 use crate::element::{Kinematics, LawRef};
 use crate::law::elas::Elas;
-use crate::law::gdef_log::{GdefLog, IsotLineLog, IsotTracLog, JohnCookLog};
+use crate::law::gdef_log::{
+    CineLineLog, GdefLog, IsotLineLog, IsotPuisLog, IsotTracLog, JohnCookLog,
+};
 use crate::law::john_cook::{EcroCookParams, LocalControls, VmisJohnCook};
 use crate::law::root1d::RootMethod;
-use crate::law::simo_miehe::SimoMiehe;
+use crate::law::simo_miehe::{Hardening, SimoMiehe};
+use crate::law::vmis_cine_line::VmisCineLine;
 use crate::law::vmis_isot_line::VmisIsotLine;
+use crate::law::vmis_isot_puis::{PowerHardening, VmisIsotPuis};
 use crate::law::vmis_isot_trac::{TractionCurve, VmisIsotTrac};
 use crate::law::{EcroLineParams, ElasParams, StrainMeasure};
 use crate::model::{CellRole, Material, MaterialField, Model};
@@ -30,10 +34,14 @@ pub enum CellLaw {
     Elas(Elas),
     VmisIsotLine(VmisIsotLine),
     VmisIsotTrac(VmisIsotTrac),
+    VmisIsotPuis(VmisIsotPuis),
+    VmisCineLine(VmisCineLine),
     SimoMiehe(SimoMiehe),
     JohnCook(VmisJohnCook),
     IsotLineLog(IsotLineLog),
     IsotTracLog(IsotTracLog),
+    IsotPuisLog(IsotPuisLog),
+    CineLineLog(CineLineLog),
     JohnCookLog(JohnCookLog),
 }
 
@@ -43,10 +51,14 @@ impl CellLaw {
             CellLaw::Elas(l) => LawRef::Small(l),
             CellLaw::VmisIsotLine(l) => LawRef::Small(l),
             CellLaw::VmisIsotTrac(l) => LawRef::Small(l),
+            CellLaw::VmisIsotPuis(l) => LawRef::Small(l),
+            CellLaw::VmisCineLine(l) => LawRef::Small(l),
             CellLaw::SimoMiehe(l) => LawRef::SimoMiehe(l),
             CellLaw::JohnCook(l) => LawRef::Small(l),
             CellLaw::IsotLineLog(l) => LawRef::GdefLog(l),
             CellLaw::IsotTracLog(l) => LawRef::GdefLog(l),
+            CellLaw::IsotPuisLog(l) => LawRef::GdefLog(l),
+            CellLaw::CineLineLog(l) => LawRef::GdefLog(l),
             CellLaw::JohnCookLog(l) => LawRef::GdefLog(l),
         }
     }
@@ -248,7 +260,8 @@ fn kinematics_of(
         )
     })?;
     match relation {
-        "ELAS" | "VMIS_ISOT_LINE" | "VMIS_ISOT_TRAC" | "VMIS_JOHN_COOK" => {}
+        "ELAS" | "VMIS_ISOT_LINE" | "VMIS_ISOT_TRAC" | "VMIS_ISOT_PUIS" | "VMIS_CINE_LINE"
+        | "VMIS_JOHN_COOK" => {}
         other => return Err(err(occ, "RELATION", format!("unknown RELATION '{other}'"))),
     }
     if relation == "ELAS" && matches!(measure, StrainMeasure::SimoMiehe | StrainMeasure::GdefLog) {
@@ -265,6 +278,13 @@ fn kinematics_of(
             occ,
             "DEFORMATION",
             "RELATION='VMIS_JOHN_COOK' does not accept DEFORMATION='SIMO_MIEHE' (allowed: PETIT, PETIT_REAC, GROT_GDEP, GDEF_LOG), as in code_aster: use GDEF_LOG for finite strains".into(),
+        ));
+    }
+    if relation == "VMIS_CINE_LINE" && measure == StrainMeasure::SimoMiehe {
+        return Err(err(
+            occ,
+            "DEFORMATION",
+            "RELATION='VMIS_CINE_LINE' does not accept DEFORMATION='SIMO_MIEHE' (allowed: PETIT, PETIT_REAC, GROT_GDEP, GDEF_LOG), as in code_aster: use GDEF_LOG for finite strains".into(),
         ));
     }
     Kinematics::from_strain_measure(measure).ok_or_else(|| BehaviourError {
@@ -287,10 +307,10 @@ fn local_controls(
 ) -> Result<LocalControls, BehaviourError> {
     let mut out = LocalControls::default();
     if let Some(a) = &c.algo_inte {
-        let allowed: &[&str] = if relation == "VMIS_JOHN_COOK" {
-            &["BRENT", "DEKKER", "SECANTE"]
-        } else {
-            &["ANALYTIQUE"]
+        let allowed: &[&str] = match relation {
+            "VMIS_JOHN_COOK" => &["BRENT", "DEKKER", "SECANTE"],
+            "VMIS_ISOT_PUIS" => &["DEKKER"],
+            _ => &["ANALYTIQUE"],
         };
         if !allowed.contains(&a.as_str()) {
             return Err(err(
@@ -397,12 +417,38 @@ fn make_law(
             _ => CellLaw::VmisIsotTrac(law),
         });
     }
+    if relation == "VMIS_ISOT_PUIS" {
+        let hardening = PowerHardening::new(
+            elas.e,
+            need("ECRO_PUIS", "SY")?,
+            need("ECRO_PUIS", "A_PUIS")?,
+            need("ECRO_PUIS", "N_PUIS")?,
+            controls,
+        )
+        .map_err(bad)?;
+        return Ok(match kin {
+            Kinematics::SimoMiehe => {
+                CellLaw::SimoMiehe(SimoMiehe::with_hardening(elas, Hardening::Power(hardening)))
+            }
+            Kinematics::GdefLog => {
+                CellLaw::IsotPuisLog(GdefLog::new(VmisIsotPuis::new(elas, hardening)))
+            }
+            _ => CellLaw::VmisIsotPuis(VmisIsotPuis::new(elas, hardening)),
+        });
+    }
     let ecro = EcroLineParams::new(
         &elas,
         need("ECRO_LINE", "SY")?,
         need("ECRO_LINE", "D_SIGM_EPSI")?,
     )
     .map_err(bad)?;
+    if relation == "VMIS_CINE_LINE" {
+        let law = VmisCineLine::new(elas, ecro);
+        return Ok(match kin {
+            Kinematics::GdefLog => CellLaw::CineLineLog(GdefLog::new(law)),
+            _ => CellLaw::VmisCineLine(law),
+        });
+    }
     Ok(match kin {
         Kinematics::SimoMiehe => CellLaw::SimoMiehe(SimoMiehe::new(elas, ecro)),
         Kinematics::GdefLog => CellLaw::IsotLineLog(GdefLog::new(VmisIsotLine::new(elas, ecro))),

@@ -10,7 +10,7 @@
 //! W = [(1 + ν) σ:σ − ν (tr σ)²] / (2E). Plane models read σ_xz = σ_yz =
 //! 0 and keep the out-of-plane σ_zz.
 //!
-//! Under SIMO_MIEHE (VMIS_ISOT_LINE, VMIS_ISOT_TRAC) `enelpg` takes the stored energy of
+//! Under SIMO_MIEHE (VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_ISOT_PUIS) `enelpg` takes the stored energy of
 //! the model instead, W = K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3), per
 //! unit initial volume, K = E/(3(1 − 2ν)), μ = E/(2(1 + ν)), J = det F
 //! and b̄ᵉ the isochoric elastic left Cauchy-Green tensor the law keeps in
