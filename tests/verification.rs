@@ -1584,7 +1584,8 @@ fn bad_traction_curves_are_located_errors() {
 /// and compression past the reverse yield σ_max − 2 SY (HEXA8 and HEXS8 in
 /// PETIT, HEXA8 in GDEF_LOG on the logarithmic strain): every stress on the
 /// bilinear kinematic curve and the back stress X_zz = (2/3) H εᵖ
-/// (1e-9); VMIS_ISOT_PUIS at the strains ε(σ) of chosen stresses gives σ
+/// (1e-9), and on a D_PLAN and an AXIS patch under a fixed strain
+/// direction (1e-9); VMIS_ISOT_PUIS at the strains ε(σ) of chosen stresses gives σ
 /// back and p = ε − σ/E (PETIT and GDEF_LOG, 1e-9), and SIMO_MIEHE within
 /// O(τ/μ) = 1 % of the log-strain p (measured 0.33 %).
 #[test]
@@ -1671,8 +1672,9 @@ fn bad_kinematic_and_power_hardening_input_is_a_located_error() {
         ),
     ];
     let export = format!(
-        "F mmed {} D 20\n",
-        dir().join("../studies/hexs8_beam1.mmed").display()
+        "F mmed {} D 20\nF mmed {} D 21\n",
+        dir().join("../studies/hexs8_beam1.mmed").display(),
+        dir().join("patch.mmed").display()
     );
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_cine");
 }

@@ -6,7 +6,8 @@
 //! occurrence covers get ELAS/PETIT with an alarm (semantics.md §4.2).
 //! Law/strain compatibility follows the law declarations: SIMO_MIEHE is
 //! refused for ELAS (no finite-strain elastic law of that kind exists in
-//! code_aster), and VMIS_ISOT_LINE with SIMO_MIEHE switches to the
+//! code_aster), VMIS_JOHN_COOK and VMIS_CINE_LINE (not in their lists),
+//! and VMIS_ISOT_LINE, _TRAC and _PUIS with SIMO_MIEHE switch to the
 //! multiplicative law (VMIS2ISOT_LINE in code_aster).
 
 use indexmap::IndexMap;
