@@ -402,3 +402,53 @@ pub fn newton_bracketed(
     let (fx, _) = f(x);
     Err(RootFailure::NotConverged { x, fx })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A smooth root to the last bits, in a few steps.
+    #[test]
+    fn newton_reaches_round_off() {
+        let mut f = |x: f64| (x * x * x - 2.0, 3.0 * x * x);
+        let root = newton_bracketed(&mut f, (0.0, 2.0), 1.9, 0.0, 50).unwrap();
+        let want = 2f64.cbrt();
+        assert!((root.x - want).abs() <= 4.0 * f64::EPSILON, "{}", root.x);
+        assert!(root.iterations < 12, "{}", root.iterations);
+    }
+
+    /// atan from far away: plain Newton diverges (|x₀ − r| > 1.39);
+    /// the bracket turns the first steps into bisections.
+    #[test]
+    fn steps_that_leave_the_bracket_are_bisections() {
+        let mut f = |x: f64| ((x - 0.3).atan(), 1.0 / (1.0 + (x - 0.3) * (x - 0.3)));
+        let root = newton_bracketed(&mut f, (-5.0, 10.0), 5.0, 1e-15, 60).unwrap();
+        assert!((root.x - 0.3).abs() < 1e-14, "{}", root.x);
+        // plain Newton from 5 leaves for ever larger |x|.
+        let (mut x, mut grew) = (5.0f64, 0);
+        for _ in 0..5 {
+            let (v, d) = f(x);
+            let next = x - v / d;
+            if (next - 0.3).abs() > (x - 0.3).abs() {
+                grew += 1;
+            }
+            x = next;
+        }
+        assert!(grew >= 4, "plain Newton was expected to diverge");
+    }
+
+    #[test]
+    fn failures_are_values() {
+        let mut nan = |_: f64| (f64::NAN, 1.0);
+        assert!(matches!(
+            newton_bracketed(&mut nan, (0.0, 1.0), 0.5, 0.0, 10),
+            Err(RootFailure::NonFinite { .. })
+        ));
+        // a tolerance of 0 with one iteration cannot be met.
+        let mut f = |x: f64| (x - 0.123, 1.0 + x);
+        assert!(matches!(
+            newton_bracketed(&mut f, (0.0, 1.0), 0.9, 0.0, 1),
+            Err(RootFailure::NotConverged { .. })
+        ));
+    }
+}
