@@ -597,7 +597,21 @@ impl Checker<'_> {
             func.span,
         );
 
+        if spec.destroys && self.errors.len() == nerr {
+            let mut gone = Vec::new();
+            concept_names(&top, &mut gone);
+            for name in gone {
+                for (n, b) in self.env.names.iter_mut() {
+                    if let (true, Binding::Var(v)) = (*n != name, b) {
+                        make_stale(v, &name);
+                    }
+                }
+                self.env.names.shift_remove(&name);
+                self.env.destroyed.insert(name, span);
+            }
+        }
         if let (Some(t), Some(ty)) = (target, produces) {
+            self.env.destroyed.shift_remove(&t.name);
             // The runner finds concepts by name: values still holding the
             // previous concept of this name would see the new one, where
             // Python keeps the old object; they become stale (an error
@@ -1285,6 +1299,16 @@ fn collect_names(e: &crate::lang::ast::Expr, out: &mut Vec<String>) {
         ExprKind::Call { args, .. } => args.iter().for_each(|a| collect_names(&a.value, out)),
         ExprKind::Tuple(items) => items.iter().for_each(|x| collect_names(x, out)),
         _ => {}
+    }
+}
+
+/// The concepts named anywhere in checked arguments (DETRUIRE's).
+fn concept_names(args: &Args, out: &mut Vec<String>) {
+    for e in args.entries.values() {
+        match &e.data {
+            EntryData::Simple(vs) => out.extend(vs.iter().filter_map(|v| v.as_concept().map(str::to_string))),
+            EntryData::Factor(occs) => occs.iter().for_each(|a| concept_names(a, out)),
+        }
     }
 }
 

@@ -28,6 +28,45 @@ pub enum ConceptType {
 }
 
 impl ConceptType {
+    /// Every type: DETRUIRE takes a concept of any of them (code_aster's
+    /// `assd`).
+    pub const ALL: &'static [ConceptType] = &[
+        ConceptType::Maillage,
+        ConceptType::Modele,
+        ConceptType::Mater,
+        ConceptType::ChamMater,
+        ConceptType::CharMeca,
+        ConceptType::CharContact,
+        ConceptType::Listr8,
+        ConceptType::ListInst,
+        ConceptType::Fonction,
+        ConceptType::Formule,
+        ConceptType::ChamNo,
+        ConceptType::EvolNoli,
+        ConceptType::Table,
+    ];
+
+    /// The place of a type in [`ConceptType::ALL`]. The match has no
+    /// wildcard, so a new type does not compile until it is placed here
+    /// and in `ALL` (a test checks the two agree).
+    pub fn rank(self) -> usize {
+        match self {
+            ConceptType::Maillage => 0,
+            ConceptType::Modele => 1,
+            ConceptType::Mater => 2,
+            ConceptType::ChamMater => 3,
+            ConceptType::CharMeca => 4,
+            ConceptType::CharContact => 5,
+            ConceptType::Listr8 => 6,
+            ConceptType::ListInst => 7,
+            ConceptType::Fonction => 8,
+            ConceptType::Formule => 9,
+            ConceptType::ChamNo => 10,
+            ConceptType::EvolNoli => 11,
+            ConceptType::Table => 12,
+        }
+    }
+
     pub fn aster_name(self) -> &'static str {
         match self {
             ConceptType::Maillage => "maillage_sdaster",
@@ -52,5 +91,17 @@ impl ConceptType {
 impl std::fmt::Display for ConceptType {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.aster_name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ConceptType;
+
+    #[test]
+    fn all_lists_every_type_at_its_rank() {
+        for (k, t) in ConceptType::ALL.iter().enumerate() {
+            assert_eq!(t.rank(), k, "{t}");
+        }
     }
 }

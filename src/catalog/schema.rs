@@ -177,6 +177,10 @@ pub struct CommandSpec {
     pub reentrant: Reentrant,
     pub keywords: Vec<Keyword>,
     pub rules: Vec<Rule>,
+    /// The concepts named in its keywords no longer exist after it
+    /// (DETRUIRE): the checker forgets them, so that a later use of the
+    /// name is an error before anything runs.
+    pub destroys: bool,
 }
 
 // ---------------------------------------------------------------------------
@@ -344,10 +348,16 @@ pub fn command(name: &'static str, produces: Produces, keywords: Vec<Keyword>) -
         reentrant: Reentrant::No,
         keywords,
         rules: Vec::new(),
+        destroys: false,
     }
 }
 
 impl CommandSpec {
+    /// Marks a command whose named concepts are gone after it.
+    pub fn destroys(mut self) -> Self {
+        self.destroys = true;
+        self
+    }
     pub fn doc(mut self, d: &'static str) -> Self {
         self.doc = d;
         self

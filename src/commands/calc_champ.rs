@@ -483,7 +483,7 @@ fn element_fields(
     let elastic = if energy_opts.is_empty() {
         Vec::new()
     } else {
-        elastic_constants(study, args, evol, mesh, model, &cells)?
+        elastic_constants(study, args, "ENERGIE", evol, mesh, model, &cells)?
     };
     let restrict = |f: &GaussField| f.restricted(&cells);
     let noeu = |f: &GaussField| crate::result::elno::noeu(f, mesh);
@@ -615,25 +615,7 @@ fn element_fields(
             }
         }
         if !energy_opts.is_empty() {
-            let sief = gauss_of("ENERGIE", "SIEF_ELGA")?;
-            let finite = elastic
-                .iter()
-                .any(|l| matches!(l, Some(CellEnergy::SimoMiehe { .. })));
-            let (jac, vari) = if finite {
-                let depl = step.nodal.get("DEPL").ok_or_else(|| {
-                    args.error(
-                        "ENERGIE",
-                        format!("NUME_ORDRE {nume} of {name} has no DEPL field for the SIMO_MIEHE energy"),
-                    )
-                })?;
-                let jac = crate::element::strain::jacobian_field(mesh, model, depl, &cells)
-                    .map_err(located("ENERGIE"))?;
-                (Some(jac), Some(gauss_of("ENERGIE", "VARI_ELGA")?))
-            } else {
-                (None, None)
-            };
-            let w = crate::result::energy::enel(&sief, jac.as_ref(), vari.as_ref(), &elastic)
-                .map_err(located("ENERGIE"))?;
+            let w = enel_of_step(args, "ENERGIE", name, step, mesh, model, &cells, &elastic)?;
             if wants(&energy_opts, "ENEL", "ELNO") || wants(&energy_opts, "ENEL", "NOEU") {
                 let elno = elno_of(&w, &[0], "ENERGIE")?;
                 if wants(&energy_opts, "ENEL", "NOEU") {
@@ -678,9 +660,10 @@ fn element_fields(
 /// A cell computed in GDEF_LOG, whose energy code_aster takes from its
 /// own internal variables (the stress T of the log formalism, which this
 /// law does not keep), is refused.
-fn elastic_constants(
+pub fn elastic_constants(
     study: &Study,
     args: &Args,
+    key: &str,
     evol: &crate::result::EvolNoli,
     mesh: &crate::mesh::Mesh,
     model: &crate::model::Model,
@@ -691,7 +674,7 @@ fn elastic_constants(
         Some(ConceptData::MaterialField(m)) => m,
         _ => {
             return Err(args.error(
-                "ENERGIE",
+                key,
                 format!(
                     "no material field for the elastic energy: the result does not name one{}; give CHAM_MATER",
                     if mat_name.is_empty() { String::new() } else { format!(" that holds data ({mat_name})") }
@@ -713,7 +696,7 @@ fn elastic_constants(
                 && !(simo_miehe && rel.starts_with("VMIS_ISOT"))
             {
                 return Err(args.not_implemented(
-                    "ENERGIE",
+                    key,
                     &format!(
                         "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC, and VMIS_ISOT_LINE/VMIS_ISOT_TRAC/VMIS_ISOT_PUIS in SIMO_MIEHE)",
                         cell()
@@ -728,13 +711,13 @@ fn elastic_constants(
             .flatten()
             .ok_or_else(|| {
                 args.error(
-                    "ENERGIE",
+                    key,
                     format!("cell {} has no material in {mat_name}", cell()),
                 )
             })?;
         let mat = match study.concepts.data(&name) {
             Some(ConceptData::Material(m)) => m,
-            _ => return Err(args.error("ENERGIE", format!("the material {name} holds no data"))),
+            _ => return Err(args.error(key, format!("the material {name} holds no data"))),
         };
         match (mat.get("ELAS", "E"), mat.get("ELAS", "NU")) {
             (Some(e), Some(nu)) if simo_miehe => {
@@ -747,7 +730,7 @@ fn elastic_constants(
             (Some(e), Some(nu)) => out[c] = Some(CellEnergy::Small { e, nu }),
             _ => {
                 return Err(args.error(
-                    "ENERGIE",
+                    key,
                     format!(
                         "the material {name} of cell {} has no ELAS E and NU",
                         cell()
@@ -757,6 +740,53 @@ fn elastic_constants(
         }
     }
     Ok(out)
+}
+
+/// The ENEL_ELGA field of one step on the cells `cells` (the density
+/// TOTALE of `result::energy::enel` at the SIEF_ELGA points), from the
+/// per-cell laws of [`elastic_constants`]: CALC_CHAMP's ENERGIE and
+/// POST_ELEM's ENER_ELAS both take it from here. Errors name `key`.
+#[allow(clippy::too_many_arguments)]
+pub fn enel_of_step(
+    args: &Args,
+    key: &'static str,
+    name: &str,
+    step: &crate::result::Step,
+    mesh: &crate::mesh::Mesh,
+    model: &crate::model::Model,
+    cells: &[bool],
+    elastic: &[Option<CellEnergy>],
+) -> Result<GaussField, crate::diag::Diagnostic> {
+    let nume = step.nume_ordre;
+    let located = |m: String| args.error(key, format!("NUME_ORDRE {nume}: {m}"));
+    let gauss_of = |field: &str| {
+        step.gauss
+            .get(field)
+            .map(|f| f.restricted(cells))
+            .ok_or_else(|| {
+                args.error(
+                    key,
+                    format!("NUME_ORDRE {nume} of {name} has no {field} field for the elastic energy"),
+                )
+            })
+    };
+    let sief = gauss_of("SIEF_ELGA")?;
+    let finite = elastic
+        .iter()
+        .any(|l| matches!(l, Some(CellEnergy::SimoMiehe { .. })));
+    let (jac, vari) = if finite {
+        let depl = step.nodal.get("DEPL").ok_or_else(|| {
+            args.error(
+                key,
+                format!("NUME_ORDRE {nume} of {name} has no DEPL field for the SIMO_MIEHE energy"),
+            )
+        })?;
+        let jac = crate::element::strain::jacobian_field(mesh, model, depl, cells).map_err(located)?;
+        (Some(jac), Some(gauss_of("VARI_ELGA")?))
+    } else {
+        (None, None)
+    };
+    crate::result::energy::enel(&sief, jac.as_ref(), vari.as_ref(), elastic).map_err(located)
 }
 
 /// The VARI_ELGA columns of b̄ᵉ_xx − 1, b̄ᵉ_yy − 1, b̄ᵉ_zz − 1 of

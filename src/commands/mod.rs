@@ -25,6 +25,7 @@ pub mod calc_table;
 pub mod contact_def;
 pub mod crea_champ;
 pub mod crea_maillage;
+pub mod crea_table;
 pub mod debut;
 pub mod defi_constante;
 pub mod defi_contact;
@@ -34,6 +35,7 @@ pub mod defi_group;
 pub mod defi_list_inst;
 pub mod defi_list_reel;
 pub mod defi_materiau;
+pub mod detruire;
 pub mod dyna_explicit;
 pub mod dyna_non_line;
 pub mod fin;
@@ -48,6 +50,7 @@ pub mod mesh_args;
 pub mod model_args;
 pub mod modi_maillage;
 pub mod post_args;
+pub mod post_elem;
 pub mod post_releve_t;
 pub mod recu_fonction;
 pub mod recu_table;
@@ -92,6 +95,7 @@ pub fn all() -> Vec<CommandDef> {
         calc_table::def(),
         crea_champ::def(),
         crea_maillage::def(),
+        crea_table::def(),
         debut::def(),
         defi_constante::def(),
         defi_contact::def(),
@@ -101,6 +105,7 @@ pub fn all() -> Vec<CommandDef> {
         defi_list_inst::def(),
         defi_list_reel::def(),
         defi_materiau::def(),
+        detruire::def(),
         dyna_non_line::def(),
         fin::def(),
         formule::def(),
@@ -110,6 +115,7 @@ pub fn all() -> Vec<CommandDef> {
         lire_maillage::def(),
         meca_statique::def(),
         modi_maillage::def(),
+        post_elem::def(),
         post_releve_t::def(),
         recu_fonction::def(),
         recu_table::def(),

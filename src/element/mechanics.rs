@@ -1247,6 +1247,44 @@ pub fn mass(
     Ok(out)
 }
 
+/// The points of the family `fpg` of an element on the geometry `x`, each
+/// as (position, dV) with dV the weight × det J (× r in AXIS: per radian;
+/// per unit thickness in D_PLAN), the very measure [`mass`] and the
+/// internal forces integrate with. POST_ELEM integrates densities and
+/// moments of inertia with them, so that its masses are those of the
+/// mass matrix. A point the geometry makes invalid is an error naming it.
+pub fn point_measures(
+    spec: &ElementSpec,
+    x: &[[f64; 3]],
+    fpg: Fpg,
+) -> Result<Vec<([f64; 3], f64)>, String> {
+    let t = table(spec, fpg).map_err(|e| e.to_string())?;
+    if x.len() != spec.nnodes() {
+        return Err(format!(
+            "{}: {} node coordinates given, {} expected",
+            spec.name,
+            x.len(),
+            spec.nnodes()
+        ));
+    }
+    t.shapes
+        .iter()
+        .zip(&t.weights)
+        .enumerate()
+        .map(|(g, (s, &w))| {
+            let pg = point_geometry(spec.formulation, s, x, w)
+                .map_err(|m| format!("point {}: {m}", g + 1))?;
+            let mut at = [0.0; 3];
+            for (a, xa) in x.iter().enumerate() {
+                for k in 0..3 {
+                    at[k] += pg.n[a] * xa[k];
+                }
+            }
+            Ok((at, pg.dv))
+        })
+        .collect()
+}
+
 // ------------------------------------------------------------ internals
 
 fn missing_tangent(law: LawRef) -> ElementFailure {

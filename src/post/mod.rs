@@ -4,5 +4,6 @@ pub mod calc_fonction;
 pub mod calc_table;
 pub mod formula;
 pub mod function;
+pub mod post_elem;
 pub mod table;
 pub mod test_report;

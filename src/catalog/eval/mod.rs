@@ -149,6 +149,9 @@ pub enum Binding {
 #[derive(Debug, Clone, Default)]
 pub struct Env {
     pub names: IndexMap<String, Binding>,
+    /// Concepts destroyed by DETRUIRE and not defined again, with where:
+    /// the message of a later use says so.
+    pub destroyed: IndexMap<String, Span>,
     /// The variables of the comprehensions being evaluated, innermost
     /// last; they hide the file's names, as in Python 3.
     locals: RefCell<Vec<(String, PyVal)>>,
@@ -185,6 +188,11 @@ impl Env {
             None => {
                 let known: Vec<&str> = self.names.keys().map(String::as_str).collect();
                 let mut d = Diagnostic::error(format!("name '{id}' is not defined")).at(span);
+                if self.destroyed.contains_key(id) {
+                    return Err(d.note(format!(
+                        "{id} was destroyed by DETRUIRE above: define it again before using it"
+                    )));
+                }
                 if let Some(s) = closest(id, &known) {
                     d.suggestion = Some(s);
                 }
