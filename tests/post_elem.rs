@@ -67,7 +67,10 @@ fn destroyed_names_are_refused_before_the_run() {
     assert!(term.contains("reuse.comm:5:"), "{term}");
     assert!(term.contains("destroyed by DETRUIRE"), "{term}");
     assert!(term.contains("reuse.comm:6:"), "{term}");
-    assert!(!term.contains("CREA_TABLE done"), "the checker must stop it before the run:\n{term}");
+    assert!(
+        !term.contains("CREA_TABLE done"),
+        "the checker must stop it before the run:\n{term}"
+    );
 }
 
 #[test]
@@ -113,7 +116,10 @@ fn post_elem_refusals_are_located() {
         &format!("{head}MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\nT = POST_ELEM(MODELE=MO, ENER_POT=_F(TOUT='OUI'))\nFIN()\n"),
     );
     assert_eq!(code, 1, "{term}");
-    assert!(term.contains("not implemented yet: POST_ELEM/ENER_POT"), "{term}");
+    assert!(
+        term.contains("not implemented yet: POST_ELEM/ENER_POT"),
+        "{term}"
+    );
     assert!(term.contains("pot.comm:4:"), "{term}");
     let (code, term) = run_text(
         "cin",

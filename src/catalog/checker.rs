@@ -1306,7 +1306,9 @@ fn collect_names(e: &crate::lang::ast::Expr, out: &mut Vec<String>) {
 fn concept_names(args: &Args, out: &mut Vec<String>) {
     for e in args.entries.values() {
         match &e.data {
-            EntryData::Simple(vs) => out.extend(vs.iter().filter_map(|v| v.as_concept().map(str::to_string))),
+            EntryData::Simple(vs) => {
+                out.extend(vs.iter().filter_map(|v| v.as_concept().map(str::to_string)))
+            }
             EntryData::Factor(occs) => occs.iter().for_each(|a| concept_names(a, out)),
         }
     }

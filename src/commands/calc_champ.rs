@@ -766,7 +766,9 @@ pub fn enel_of_step(
             .ok_or_else(|| {
                 args.error(
                     key,
-                    format!("NUME_ORDRE {nume} of {name} has no {field} field for the elastic energy"),
+                    format!(
+                        "NUME_ORDRE {nume} of {name} has no {field} field for the elastic energy"
+                    ),
                 )
             })
     };
@@ -781,7 +783,8 @@ pub fn enel_of_step(
                 format!("NUME_ORDRE {nume} of {name} has no DEPL field for the SIMO_MIEHE energy"),
             )
         })?;
-        let jac = crate::element::strain::jacobian_field(mesh, model, depl, cells).map_err(located)?;
+        let jac =
+            crate::element::strain::jacobian_field(mesh, model, depl, cells).map_err(located)?;
         (Some(jac), Some(gauss_of("VARI_ELGA")?))
     } else {
         (None, None)

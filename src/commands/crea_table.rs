@@ -90,7 +90,9 @@ pub fn def() -> CommandDef {
         ],
     )
     .rules(vec![exclus(&["FONCTION", "LISTE", "RESU"])])
-    .doc("Creates a table from lists of values (LISTE) or from the points of a function (FONCTION).");
+    .doc(
+        "Creates a table from lists of values (LISTE) or from the points of a function (FONCTION).",
+    );
     CommandDef { spec, exec }
 }
 
@@ -198,7 +200,9 @@ fn from_lists(args: &Args) -> Result<Table, Diagnostic> {
         rows[l][c] = Some(cell);
     }
     for row in rows {
-        table.push_row(row).map_err(|e| table_error(args, "LISTE", e))?;
+        table
+            .push_row(row)
+            .map_err(|e| table_error(args, "LISTE", e))?;
     }
     Ok(table)
 }

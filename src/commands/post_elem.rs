@@ -208,21 +208,13 @@ fn context<'s>(study: &'s Study, args: &Args, option: &str) -> Result<Context<'s
                 .map(|c| c.name.as_str())
                 .unwrap_or_default()),
             (None, Some(n)) => Ok(n),
-            (None, None) => Err(args.error(
-                key,
-                format!("{key} is needed: no result names one"),
-            )),
+            (None, None) => Err(args.error(key, format!("{key} is needed: no result names one"))),
         }
     };
     let model_name = pick("MODELE", evol.map(|(_, r)| r.model.as_str()))?;
     let model = match study.concepts.data(model_name) {
         Some(ConceptData::Model(m)) => m,
-        _ => {
-            return Err(args.error(
-                "MODELE",
-                format!("the model {model_name} holds no data"),
-            ))
-        }
+        _ => return Err(args.error("MODELE", format!("the model {model_name} holds no data"))),
     };
     let mat_name = pick("CHAM_MATER", evol.map(|(_, r)| r.cham_mater.as_str()))?;
     let matfield = match study.concepts.data(mat_name) {
@@ -234,7 +226,11 @@ fn context<'s>(study: &'s Study, args: &Args, option: &str) -> Result<Context<'s
             ))
         }
     };
-    let key = if args.has("MODELE") { "MODELE" } else { "RESULTAT" };
+    let key = if args.has("MODELE") {
+        "MODELE"
+    } else {
+        "RESULTAT"
+    };
     let mesh = super::model_args::mesh_of_model(study, args, key, model)?;
     Ok(Context {
         mesh_name: model.mesh.clone(),
@@ -306,11 +302,21 @@ fn new_table(args: &Args, leading: &[(&str, ColumnType)]) -> Result<Table, Diagn
 }
 
 fn cell_coords(mesh: &Mesh, c: usize) -> Vec<[f64; 3]> {
-    mesh.cells[c].nodes.iter().map(|&n| mesh.coords[n]).collect()
+    mesh.cells[c]
+        .nodes
+        .iter()
+        .map(|&n| mesh.coords[n])
+        .collect()
 }
 
 /// ELAS/RHO of the material of cell `c`.
-fn density(study: &Study, ctx: &Context, occ: &Args, key: &str, c: usize) -> Result<f64, Diagnostic> {
+fn density(
+    study: &Study,
+    ctx: &Context,
+    occ: &Args,
+    key: &str,
+    c: usize,
+) -> Result<f64, Diagnostic> {
     let name = ctx
         .matfield
         .cell_material
@@ -338,7 +344,10 @@ fn density(study: &Study, ctx: &Context, occ: &Args, key: &str, c: usize) -> Res
 fn mass_iner(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnostic> {
     let occs = args.facts("MASS_INER");
     let with_p = occs.iter().any(|o| o.has("ORIG_INER"));
-    let mut leading = vec![("LIEU", ColumnType::Text(24)), ("ENTITE", ColumnType::Text(8))];
+    let mut leading = vec![
+        ("LIEU", ColumnType::Text(24)),
+        ("ENTITE", ColumnType::Text(8)),
+    ];
     let names = [
         "MASSE", "CDG_X", "CDG_Y", "CDG_Z", "IX_G", "IY_G", "IZ_G", "IXY_G", "IXZ_G", "IYZ_G",
     ];
@@ -372,7 +381,8 @@ fn mass_iner(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
             } else {
                 mass_properties(&points)
             };
-            let mut row: Vec<Option<Cell>> = vec![Some(Cell::Text(lieu)), Some(Cell::Text(entite.into()))];
+            let mut row: Vec<Option<Cell>> =
+                vec![Some(Cell::Text(lieu)), Some(Cell::Text(entite.into()))];
             row.extend(p.columns().iter().map(|(_, v)| Some(Cell::Real(*v))));
             if with_p {
                 let o = occ.reals("ORIG_INER");
@@ -397,7 +407,9 @@ fn mass_iner(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
                     row.extend(std::iter::repeat_n(None, p_names.len()));
                 }
             }
-            table.push_row(row).map_err(|e| table_error(args, "MASS_INER", e))?;
+            table
+                .push_row(row)
+                .map_err(|e| table_error(args, "MASS_INER", e))?;
         }
     }
     Ok(table)
@@ -476,7 +488,10 @@ fn ener_cin(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
             lumps[c] = Some(crate::time::explicit::hrz_lumped(&m, d).ok_or_else(|| {
                 first.error(
                     "OPTION",
-                    format!("cell {}: no lumped mass (a degenerate element)", cell_name(c)),
+                    format!(
+                        "cell {}: no lumped mass (a degenerate element)",
+                        cell_name(c)
+                    ),
                 )
             })?);
         } else {
@@ -546,7 +561,16 @@ fn ener_elas(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
         }
     }
     for step in select_steps(study, evol, args)? {
-        let w = enel_of_step(args, "ENER_ELAS", name, step, ctx.mesh, ctx.model, &mask, &elastic)?;
+        let w = enel_of_step(
+            args,
+            "ENER_ELAS",
+            name,
+            step,
+            ctx.mesh,
+            ctx.model,
+            &mask,
+            &elastic,
+        )?;
         let mut per_cell = vec![0.0; ctx.mesh.ncells()];
         for (c, dv) in measures.iter().enumerate() {
             if dv.is_empty() {
