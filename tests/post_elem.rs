@@ -40,7 +40,8 @@ fn mass_iner_matches_closed_forms() {
 }
 
 /// ENER_CIN in free flight (both mass options, AXIS per radian and 3D)
-/// and ENER_ELAS of a uniaxially stressed column (HEXA8 and HEXS8).
+/// and ENER_ELAS, ENER_POT of a uniaxially stressed column (HEXA8 and
+/// HEXS8).
 #[test]
 fn kinetic_and_elastic_energies_match_closed_forms() {
     study("post_elem_energy");
@@ -113,11 +114,11 @@ fn post_elem_refusals_are_located() {
     let head = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n";
     let (code, term) = run_text(
         "pot",
-        &format!("{head}MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\nT = POST_ELEM(MODELE=MO, ENER_POT=_F(TOUT='OUI'))\nFIN()\n"),
+        &format!("{head}MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\nT = POST_ELEM(MODELE=MO, ENER_TOTALE=_F(TOUT='OUI'))\nFIN()\n"),
     );
     assert_eq!(code, 1, "{term}");
     assert!(
-        term.contains("not implemented yet: POST_ELEM/ENER_POT"),
+        term.contains("not implemented yet: POST_ELEM/ENER_TOTALE"),
         "{term}"
     );
     assert!(term.contains("pot.comm:4:"), "{term}");

@@ -30,11 +30,12 @@ use crate::model::spec::Formulation;
 use crate::model::{CellRole, MaterialField, Model};
 use crate::post::post_elem::{mass_properties, mass_properties_axis, percent};
 use crate::post::table::{Cell, ColumnType, Table};
+use crate::result::energy::CellEnergy;
 use crate::result::EvolNoli;
 use crate::study::Study;
 
 /// The options of code_aster's catalogue this command declares; the
-/// first three run.
+/// first four run.
 const OPTIONS: &[&str] = &[
     "MASS_INER",
     "ENER_CIN",
@@ -89,7 +90,10 @@ pub fn def() -> CommandDef {
             "ENER_ELAS",
             "elastic strain energy: the ENEL_ELGA density integrated (TOTALE)",
         ),
-        plain("ENER_POT", "not implemented"),
+        plain(
+            "ENER_POT",
+            "potential energy ½ ε(u):C:ε(u) of DEPL in the elastic stiffness: TOTALE and POUR_CENT",
+        ),
         plain("ENER_TOTALE", "not implemented"),
         plain("ENER_DISS", "not implemented"),
         fact("TRAV_EXT", vec![]).doc("not implemented").kw(),
@@ -146,7 +150,7 @@ pub fn def() -> CommandDef {
             exclus(&["TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"]),
             exclus(&["CHAM_GD", "RESULTAT"]),
         ])
-        .doc("Global quantities as a table: MASS_INER (mass, centre of gravity, inertia), ENER_CIN (kinetic energy), ENER_ELAS (elastic strain energy).");
+        .doc("Global quantities as a table: MASS_INER (mass, centre of gravity, inertia), ENER_CIN (kinetic energy), ENER_POT (potential energy of DEPL), ENER_ELAS (elastic strain energy of the stress).");
     CommandDef { spec, exec }
 }
 
@@ -166,7 +170,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         .copied()
         .find(|o| args.has(o))
         .unwrap_or("MASS_INER");
-    if !matches!(option, "MASS_INER" | "ENER_CIN" | "ENER_ELAS") {
+    if !matches!(option, "MASS_INER" | "ENER_CIN" | "ENER_ELAS" | "ENER_POT") {
         return Err(args.not_implemented(option, ""));
     }
     if args.has("CHAM_GD") {
@@ -179,6 +183,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut table = match option {
         "MASS_INER" => mass_iner(study, args, &ctx)?,
         "ENER_CIN" => ener_cin(study, args, &ctx)?,
+        "ENER_POT" => ener_pot(study, args, &ctx)?,
         _ => ener_elas(study, args, &ctx)?,
     };
     table.title = if args.has("TITRE") {
@@ -241,14 +246,13 @@ fn context<'s>(study: &'s Study, args: &Args, option: &str) -> Result<Context<'s
     })
 }
 
+/// One row's part of the model: (LIEU, ENTITE, cells).
+type Part = (String, &'static str, Vec<usize>);
+
 /// The parts of one occurrence, as code_aster writes them: (LIEU, ENTITE,
 /// cells). TOUT: the mesh; GROUP_MA: one per group (and, for MASS_INER,
 /// their union when there are several); MAILLE: one per cell.
-fn parts(
-    ctx: &Context,
-    occ: &Args,
-    union: bool,
-) -> Result<Vec<(String, &'static str, Vec<usize>)>, Diagnostic> {
+fn parts(ctx: &Context, occ: &Args, union: bool) -> Result<Vec<Part>, Diagnostic> {
     let mut out = Vec::new();
     if occ.has("TOUT") {
         out.push((ctx.mesh_name.clone(), "TOUT", select_cells(ctx.mesh, occ)?));
@@ -275,19 +279,18 @@ fn parts(
             out.push((cell_name(c), "MAILLE", vec![c]));
         }
     }
+    // A part of skin cells only counts 0 (code_aster's boundary elements
+    // have no mass nor energy); a part outside the model is an error.
     for (lieu, _, cells) in &out {
         if !cells
             .iter()
-            .any(|&c| matches!(ctx.model.cells.get(c), Some(CellRole::Element(_))))
+            .any(|&c| !matches!(ctx.model.cells.get(c), None | Some(CellRole::None)))
         {
             let key = ["GROUP_MA", "MAILLE", "TOUT"]
                 .into_iter()
                 .find(|k| occ.has(k))
                 .unwrap_or("TOUT");
-            return Err(occ.error(
-                key,
-                format!("{lieu} holds no cell of an element of the model"),
-            ));
+            return Err(occ.error(key, format!("{lieu} holds no cell of the model")));
         }
     }
     Ok(out)
@@ -546,20 +549,7 @@ fn ener_elas(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
         }
     }
     let elastic = elastic_constants(study, args, "ENER_ELAS", evol, ctx.mesh, ctx.model, &mask)?;
-    let mut measures: Vec<Vec<f64>> = vec![Vec::new(); ctx.mesh.ncells()];
-    for (c, spec) in ctx.model.element_cells() {
-        if mask[c] {
-            measures[c] = crate::element::mechanics::point_measures(
-                spec,
-                &cell_coords(ctx.mesh, c),
-                spec.rigi,
-            )
-            .map_err(|m| args.error("ENER_ELAS", format!("cell {}: {m}", cell_name(c))))?
-            .into_iter()
-            .map(|(_, dv)| dv)
-            .collect();
-        }
-    }
+    let measures = point_weights(args, ctx, "ENER_ELAS", &mask)?;
     for step in select_steps(study, evol, args)? {
         let w = enel_of_step(
             args,
@@ -571,27 +561,124 @@ fn ener_elas(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
             &mask,
             &elastic,
         )?;
-        let mut per_cell = vec![0.0; ctx.mesh.ncells()];
-        for (c, dv) in measures.iter().enumerate() {
-            if dv.is_empty() {
-                continue;
-            }
-            let vals = w.cell(c);
-            if vals.len() != dv.len() {
-                return Err(args.error(
-                    "ENER_ELAS",
-                    format!(
-                        "NUME_ORDRE {}: cell {} has {} energy values for {} points",
-                        step.nume_ordre,
-                        cell_name(c),
-                        vals.len(),
-                        dv.len()
-                    ),
-                ));
-            }
-            per_cell[c] = vals.iter().zip(dv).map(|(w, v)| w * v).sum();
-        }
+        let per_cell = integrate(args, "ENER_ELAS", step, &w, &measures)?;
         energy_rows(&mut table, args, ctx, "ENER_ELAS", step, &per_cell, false)?;
+    }
+    Ok(table)
+}
+
+/// The measures dV of the SIEF_ELGA points of the cells of `mask`
+/// (empty for the others), on the initial geometry.
+fn point_weights(
+    args: &Args,
+    ctx: &Context,
+    key: &str,
+    mask: &[bool],
+) -> Result<Vec<Vec<f64>>, Diagnostic> {
+    let mut measures: Vec<Vec<f64>> = vec![Vec::new(); ctx.mesh.ncells()];
+    for (c, spec) in ctx.model.element_cells() {
+        if mask[c] {
+            measures[c] = crate::element::mechanics::point_measures(
+                spec,
+                &cell_coords(ctx.mesh, c),
+                spec.rigi,
+            )
+            .map_err(|m| args.error(key, format!("cell {}: {m}", cell_name(c))))?
+            .into_iter()
+            .map(|(_, dv)| dv)
+            .collect();
+        }
+    }
+    Ok(measures)
+}
+
+/// Σ W dV of each cell, from a one-component density at the SIEF_ELGA
+/// points and their measures.
+fn integrate(
+    args: &Args,
+    key: &str,
+    step: &crate::result::Step,
+    w: &crate::result::GaussField,
+    measures: &[Vec<f64>],
+) -> Result<Vec<f64>, Diagnostic> {
+    let mut per_cell = vec![0.0; measures.len()];
+    for (c, dv) in measures.iter().enumerate() {
+        if dv.is_empty() {
+            continue;
+        }
+        let vals = w.cell(c);
+        if vals.len() != dv.len() {
+            return Err(args.error(
+                key,
+                format!(
+                    "NUME_ORDRE {}: cell {} has {} energy values for {} points",
+                    step.nume_ordre,
+                    cell_name(c),
+                    vals.len(),
+                    dv.len()
+                ),
+            ));
+        }
+        per_cell[c] = vals.iter().zip(dv).map(|(w, v)| w * v).sum();
+    }
+    Ok(per_cell)
+}
+
+/// ½ ε(u):C:ε(u) of each element (code_aster's EPOT_ELEM: the linearised
+/// strain of DEPL on the initial geometry in the elastic stiffness of
+/// ELAS, whatever the law and the kinematics of the computation), at the
+/// SIEF_ELGA points; POUR_CENT of the whole model's (`peepot`).
+fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnostic> {
+    let (name, evol) = ctx.result.expect("ENER_POT has a result");
+    let mut table = energy_table(args, true)?;
+    let mask: Vec<bool> = ctx
+        .model
+        .cells
+        .iter()
+        .map(|r| matches!(r, CellRole::Element(_)))
+        .collect();
+    let elastic = elastic_constants(study, args, "ENER_POT", evol, ctx.mesh, ctx.model, &mask)?;
+    let measures = point_weights(args, ctx, "ENER_POT", &mask)?;
+    for step in select_steps(study, evol, args)? {
+        let nume = step.nume_ordre;
+        let depl = step.nodal.get("DEPL").ok_or_else(|| {
+            args.error(
+                "ENER_POT",
+                format!("NUME_ORDRE {nume} of {name} has no DEPL field"),
+            )
+        })?;
+        let eps = crate::element::strain::strain_field(
+            crate::element::strain::Measure::Linear,
+            ctx.mesh,
+            ctx.model,
+            depl,
+            &mask,
+        )
+        .map_err(|m| args.error("ENER_POT", format!("NUME_ORDRE {nume}: {m}")))?;
+        let nc = eps.ncmp();
+        let mut w = crate::result::GaussField {
+            components: vec!["TOTALE".into()],
+            offsets: Vec::with_capacity(eps.offsets.len()),
+            values: Vec::new(),
+        };
+        for c in 0..eps.offsets.len().saturating_sub(1) {
+            w.offsets.push(w.values.len());
+            let (e, nu) = match elastic.get(c) {
+                Some(Some(CellEnergy::Small { e, nu } | CellEnergy::SimoMiehe { e, nu, .. })) => {
+                    (*e, *nu)
+                }
+                _ => continue,
+            };
+            for row in eps.cell(c).chunks(nc.max(1)) {
+                let mut t = [0.0; 6];
+                t[..nc].copy_from_slice(row);
+                w.values
+                    .push(crate::result::energy::strain_energy_density(t, e, nu));
+            }
+        }
+        w.offsets.push(w.values.len());
+        let per_cell = integrate(args, "ENER_POT", step, &w, &measures)?;
+        energy_rows(&mut table, args, ctx, "ENER_POT", step, &per_cell, true)?;
     }
     Ok(table)
 }

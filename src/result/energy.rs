@@ -27,6 +27,19 @@ pub fn elastic_energy_density(s: [f64; 6], e: f64, nu: f64) -> f64 {
     ((1.0 + nu) * ss - nu * tr * tr) / (2.0 * e)
 }
 
+/// W = ½ ε:C:ε of the linearised strain `eps` = (XX, YY, ZZ, XY, XZ, YZ),
+/// tensor shears, for the isotropic ELAS (E, ν): λ/2 (tr ε)² + μ ε:ε.
+/// POST_ELEM's ENER_POT (code_aster's EPOT_ELEM, the displacement's
+/// energy in the elastic stiffness).
+pub fn strain_energy_density(eps: [f64; 6], e: f64, nu: f64) -> f64 {
+    let [xx, yy, zz, xy, xz, yz] = eps;
+    let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let mu = e / (2.0 * (1.0 + nu));
+    let tr = xx + yy + zz;
+    let ee = xx * xx + yy * yy + zz * zz + 2.0 * (xy * xy + xz * xz + yz * yz);
+    0.5 * lambda * tr * tr + mu * ee
+}
+
 /// W of SIMO_MIEHE for J = det F and tr b̄ᵉ.
 pub fn simo_miehe_energy_density(j: f64, tr_be_bar: f64, e: f64, nu: f64) -> f64 {
     let k = e / (3.0 * (1.0 - 2.0 * nu));
@@ -133,6 +146,16 @@ mod tests {
         let g = e / (2.0 * (1.0 + nu));
         let w = elastic_energy_density([0.0, 0.0, 0.0, 0.0, 50.0, 0.0], e, nu);
         assert!((w - 50.0 * 50.0 / (2.0 * g)).abs() < 1e-15 * w);
+    }
+
+    /// The strain of a uniaxial stress σ (ε = σ/E, −ν σ/E twice) stores
+    /// σ²/(2E), as ½ σ:S:σ says.
+    #[test]
+    fn strain_energy_of_uniaxial_stress() {
+        let (e, nu, s) = (2.0e5, 0.3, 300.0);
+        let eps = [-nu * s / e, -nu * s / e, s / e, 0.0, 0.0, 0.0];
+        let w = strain_energy_density(eps, e, nu);
+        assert!((w - s * s / (2.0 * e)).abs() < 1e-14 * w);
     }
 
     /// No deformation, no energy; a pure volume change J stores only the
