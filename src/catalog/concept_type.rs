@@ -43,6 +43,8 @@ impl ConceptType {
         ConceptType::Formule,
         ConceptType::ChamNo,
         ConceptType::EvolNoli,
+        ConceptType::EvolElas,
+        ConceptType::CaraElem,
         ConceptType::Table,
     ];
 
@@ -63,7 +65,9 @@ impl ConceptType {
             ConceptType::Formule => 9,
             ConceptType::ChamNo => 10,
             ConceptType::EvolNoli => 11,
-            ConceptType::Table => 12,
+            ConceptType::EvolElas => 12,
+            ConceptType::CaraElem => 13,
+            ConceptType::Table => 14,
         }
     }
 

@@ -126,8 +126,8 @@ pub fn def() -> CommandDef {
             .many()
             .doc("read by code_aster for a few options; unused here")
             .kw(),
-        concept("RESULTAT", &[C::EvolNoli])
-            .doc("the result (ENER_CIN and ENER_ELAS need it)")
+        concept("RESULTAT", RESULTS)
+            .doc("the result, evol_noli or evol_elas (the energies need it)")
             .kw(),
         concept("CHAM_GD", &[C::ChamNo])
             .doc("a field instead of a result: not implemented")
