@@ -1061,6 +1061,14 @@ fn energy_balance_of_the_frictionless_landing() {
     }
 }
 
+/// The balance's internal work split into ENER_ELAS and TRAV_PLAS on a
+/// bar loaded past yield and unloaded: V sigma^2/(2E) and
+/// V (SY p + H p^2/2) to 1e-9 (energy_split.comm).
+#[test]
+fn energy_balance_splits_elastic_and_plastic_work() {
+    run_study("energy_split");
+}
+
 /// Friction work equals the lost energy: the block braking to rest on the
 /// foundation has lost all its kinetic energy, and DISS_FROT plus the
 /// scheme's dissipation DISS_SCH account for it (the rest: the internal

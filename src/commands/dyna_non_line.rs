@@ -1681,6 +1681,8 @@ pub(crate) fn result_of_run<T>(
     evol: EvolNoli,
     outcome: Result<T, crate::nonlinear::dyna::Stopped>,
 ) -> ExecResult {
+    let mut evol = evol;
+    split_internal_energy(study, args, result.unwrap_or_default(), &mut evol);
     match outcome {
         Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
         Err(stopped) => {
@@ -1723,4 +1725,76 @@ pub(crate) fn result_to_fill(
     evol.loads = load_names.to_vec();
     evol.comportement = cell_comportement(model, occs);
     evol
+}
+
+/// Splits the internal energy of the energy balance (PARA_CALC, whose
+/// ENER_TOT is the work of the internal forces, code_aster's column) into
+/// two aster columns at each archived instant: ENER_ELAS, the elastic
+/// strain energy of the stress (POST_ELEM's ENER_ELAS over every element),
+/// and TRAV_PLAS = ENER_TOT − ENER_ELAS, the internal work not stored
+/// elastically: the plastic work (dissipation and the energy stored by
+/// hardening), plus, in 3D_SI elements, the hourglass stabilisation's
+/// energy, and the trapezoidal rule's error in ENER_TOT. Where a cell's
+/// law has no elastic energy built (GDEF_LOG, VMIS_JOHN_COOK...), or a
+/// step holds no stress, the columns are left out and the .mess says why.
+fn split_internal_energy(study: &mut Study, args: &Args, name: &str, evol: &mut EvolNoli) {
+    use crate::post::table::{Cell, ColumnType};
+    let table_name = crate::nonlinear::energy::TABLE_NAME;
+    if !evol.tables.contains_key(table_name) {
+        return;
+    }
+    let Some(ConceptData::Model(model)) = study.concepts.data(&evol.model) else {
+        return;
+    };
+    let Ok(mesh) = super::model_args::mesh_of_model(study, args, "MODELE", model) else {
+        return;
+    };
+    let values =
+        super::post_elem::total_elastic_energy(study, args, "ENERGIE", name, evol, mesh, model);
+    let values = match values {
+        Ok(v) => v
+            .into_iter()
+            .collect::<std::collections::HashMap<usize, f64>>(),
+        Err(d) => {
+            study.log(format!(
+                "  energy balance: ENER_TOT not split into ENER_ELAS and TRAV_PLAS ({})",
+                d.message
+            ));
+            return;
+        }
+    };
+    let Some(table) = evol.tables.get_mut(table_name) else {
+        return;
+    };
+    let (Some(nume), Some(tot)) = (
+        table.column_index("NUME_ORDRE"),
+        table.column_index("ENER_TOT"),
+    ) else {
+        return;
+    };
+    let (Ok(elas), Ok(plas)) = (
+        table.add_column("ENER_ELAS", ColumnType::Real),
+        table.add_column("TRAV_PLAS", ColumnType::Real),
+    ) else {
+        return;
+    };
+    let mut last = None;
+    for row in table.rows.iter_mut() {
+        let n = match &row[nume] {
+            Some(Cell::Int(n)) => *n as usize,
+            _ => continue,
+        };
+        let (Some(&w), Some(total)) = (values.get(&n), row[tot].as_ref().and_then(|c| c.as_f64()))
+        else {
+            continue;
+        };
+        row[elas] = Some(Cell::Real(w));
+        row[plas] = Some(Cell::Real(total - w));
+        last = Some((n, w, total - w));
+    }
+    if let Some((n, w, p)) = last {
+        study.log(format!(
+            "  energy balance split at NUME_ORDRE {n}: ENER_ELAS {w:e}  TRAV_PLAS {p:e} (ENER_TOT - ENER_ELAS)"
+        ));
+    }
 }

@@ -549,7 +549,7 @@ fn ener_elas(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
         }
     }
     let elastic = elastic_constants(study, args, "ENER_ELAS", evol, ctx.mesh, ctx.model, &mask)?;
-    let measures = point_weights(args, ctx, "ENER_ELAS", &mask)?;
+    let measures = point_weights(args, ctx.mesh, ctx.model, "ENER_ELAS", &mask)?;
     for step in select_steps(study, evol, args)? {
         let w = enel_of_step(
             args,
@@ -567,26 +567,52 @@ fn ener_elas(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
     Ok(table)
 }
 
+/// The elastic strain energy of the whole model (ENER_ELAS over every
+/// element) at each step of the result `name`, as (NUME_ORDRE, energy):
+/// the split of DYNA_NON_LINE's energy balance (PARA_CALC) takes it from
+/// here, so that both give the same number. Errors name `key`.
+pub(super) fn total_elastic_energy(
+    study: &Study,
+    args: &Args,
+    key: &'static str,
+    name: &str,
+    evol: &EvolNoli,
+    mesh: &Mesh,
+    model: &Model,
+) -> Result<Vec<(usize, f64)>, Diagnostic> {
+    let mask: Vec<bool> = (0..mesh.ncells())
+        .map(|c| matches!(model.cells.get(c), Some(CellRole::Element(_))))
+        .collect();
+    let elastic = elastic_constants(study, args, key, evol, mesh, model, &mask)?;
+    let measures = point_weights(args, mesh, model, key, &mask)?;
+    evol.steps
+        .iter()
+        .map(|step| {
+            let w = enel_of_step(args, key, name, step, mesh, model, &mask, &elastic)?;
+            let per_cell = integrate(args, key, step, &w, &measures)?;
+            Ok((step.nume_ordre, per_cell.iter().sum()))
+        })
+        .collect()
+}
+
 /// The measures dV of the SIEF_ELGA points of the cells of `mask`
 /// (empty for the others), on the initial geometry.
 fn point_weights(
     args: &Args,
-    ctx: &Context,
+    mesh: &Mesh,
+    model: &Model,
     key: &str,
     mask: &[bool],
 ) -> Result<Vec<Vec<f64>>, Diagnostic> {
-    let mut measures: Vec<Vec<f64>> = vec![Vec::new(); ctx.mesh.ncells()];
-    for (c, spec) in ctx.model.element_cells() {
+    let mut measures: Vec<Vec<f64>> = vec![Vec::new(); mesh.ncells()];
+    for (c, spec) in model.element_cells() {
         if mask[c] {
-            measures[c] = crate::element::mechanics::point_measures(
-                spec,
-                &cell_coords(ctx.mesh, c),
-                spec.rigi,
-            )
-            .map_err(|m| args.error(key, format!("cell {}: {m}", cell_name(c))))?
-            .into_iter()
-            .map(|(_, dv)| dv)
-            .collect();
+            measures[c] =
+                crate::element::mechanics::point_measures(spec, &cell_coords(mesh, c), spec.rigi)
+                    .map_err(|m| args.error(key, format!("cell {}: {m}", cell_name(c))))?
+                    .into_iter()
+                    .map(|(_, dv)| dv)
+                    .collect();
         }
     }
     Ok(measures)
@@ -638,7 +664,7 @@ fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
         .map(|r| matches!(r, CellRole::Element(_)))
         .collect();
     let elastic = elastic_constants(study, args, "ENER_POT", evol, ctx.mesh, ctx.model, &mask)?;
-    let measures = point_weights(args, ctx, "ENER_POT", &mask)?;
+    let measures = point_weights(args, ctx.mesh, ctx.model, "ENER_POT", &mask)?;
     for step in select_steps(study, evol, args)? {
         let nume = step.nume_ordre;
         let depl = step.nodal.get("DEPL").ok_or_else(|| {

@@ -13,8 +13,9 @@
 //! support reactions at imposed dofs):
 //!
 //! - `ENER_TOT` = ∫ F_int·du: the internal energy (elastic energy plus
-//!   plastic dissipation, not split: the split needs the elastic compliance
-//!   at every Gauss point, which the engine does not keep);
+//!   plastic work; DYNA_NON_LINE's command splits it after the run from
+//!   the archived stresses, columns ENER_ELAS and TRAV_PLAS, where the
+//!   laws allow: `commands::dyna_non_line::split_internal_energy`);
 //! - `TRAV_EXT` = ∫ (F_ext + λ)·du: work of the loads and of the supports
 //!   (zero for constant imposed values);
 //! - `TRAV_LIAI` = ∫ C·du: energy absorbed by the contact (penalty energy
