@@ -55,11 +55,10 @@ fn landing_bar_momentum_is_the_impulse_of_the_reactions() {
     // Every row of both balances: |DISS_SCH| < 1 % of EK0.
     let ek0 = 74.068992;
     let mut rows = 0;
-    for l in resu.lines() {
-        let t: Vec<&str> = l.split_whitespace().collect();
-        if t.len() == 9 && t[0].parse::<usize>().is_ok() {
-            let diss: f64 = t[8].parse().unwrap();
-            assert!(diss.abs() < 0.01 * ek0, "{l}");
+    for table in ["EN_K", "EN_P"] {
+        for r in common::printed_table(&resu, table) {
+            let diss: f64 = r["DISS_SCH"].parse().unwrap();
+            assert!(diss.abs() < 0.01 * ek0, "{table}: {r:?}");
             rows += 1;
         }
     }

@@ -632,13 +632,13 @@ fn imposed_displacement_ramp_drives_the_rod() {
     let m_top = 8e-9 * 3.2 * 3.2 / 2.0 * 32.4 / 20.0 / 2.0;
     let jump = 0.5 * m_top * 1000.0f64.powi(2);
     let mut rows = 0;
-    for l in resu.lines() {
-        let t: Vec<&str> = l.split_whitespace().collect();
-        if t.len() == 9 && t[0].parse::<usize>().is_ok_and(|n| n >= 1) {
-            let diss: f64 = t[8].parse().unwrap();
-            assert!((diss - jump).abs() <= 2e-3 * jump, "{l}");
-            rows += 1;
+    for r in common::printed_table(&resu, "EN") {
+        if r["NUME_ORDRE"] == "0" {
+            continue;
         }
+        let diss: f64 = r["DISS_SCH"].parse().unwrap();
+        assert!((diss - jump).abs() <= 2e-3 * jump, "{r:?}");
+        rows += 1;
     }
     assert_eq!(rows, 10, "{resu}");
     let vite: Vec<f64> = resu
