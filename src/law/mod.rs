@@ -25,6 +25,34 @@ pub mod vmis_isot_puis;
 pub mod vmis_isot_trac;
 pub mod voigt;
 
+/// Checks a consistent tangent `d` column by column against central
+/// differences (step 1e-8) of `stress_at`, the stress after the strain
+/// increment it is given, around the increment `de`: every entry to
+/// `tol`. The laws' unit tests share it.
+#[cfg(test)]
+pub(crate) fn assert_tangent_by_differences(
+    d: &Mat6,
+    de: Vec6,
+    tol: f64,
+    label: &str,
+    stress_at: impl Fn(Vec6) -> Vec6,
+) {
+    let h = 1e-8;
+    for j in 0..6 {
+        let mut e = Vec6::zeros();
+        e[j] = h;
+        let col = (stress_at(de + e) - stress_at(de - e)) / (2.0 * h);
+        for i in 0..6 {
+            assert!(
+                (col[i] - d[(i, j)]).abs() < tol,
+                "{label}D[{i},{j}] = {} against {}",
+                d[(i, j)],
+                col[i]
+            );
+        }
+    }
+}
+
 use std::fmt;
 
 pub use voigt::{Mat6, Vec6};
