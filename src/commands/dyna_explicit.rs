@@ -11,10 +11,11 @@ use super::ExecResult;
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
 use crate::model::MechLoad;
-use crate::nonlinear::explicit::{self, Explicit, ExplicitSettings};
+use crate::nonlinear::explicit::{self, Explicit, ExplicitConstraint, ExplicitSettings};
 use crate::nonlinear::explicit_contact::{
     mid_nodes_free_on_a_held_edge, Enforcement, ExplicitContact,
 };
+use crate::nonlinear::explicit_unilateral::ExplicitUnilateral;
 use crate::nonlinear::{
     self, dyna, ConvergenceSettings, Engine, NewtonSettings, Occurrence, PrepareError, TimeLoop,
 };
@@ -105,6 +106,7 @@ pub(crate) fn exec(
     } else {
         notes.push("MASS_DIAG absent: the consistent mass is used, factorised once and solved at every step, as code_aster does; MASS_DIAG='OUI' gives the lumped mass (no solve)".into());
     }
+    let mut unil_def = None;
     let contact_def = match args.concept("CONTACT") {
         None => None,
         Some(name) => {
@@ -120,6 +122,27 @@ pub(crate) fn exec(
                     "contact in explicit dynamics with the consistent mass (give MASS_DIAG='OUI')",
                 ));
             }
+            if cargs.text("FORMULATION") == Some("LIAISON_UNIL") {
+                if let Some(m) = cargs.concept("MODELE").filter(|m| *m != model_name) {
+                    return Err(args.error(
+                        "CONTACT",
+                        format!("the contact {name} is defined on the model {m}, not on {model_name}"),
+                    ));
+                }
+                let def = crate::commands::liaison_unil::unil_def(study, cargs, &md.mesh, &md.model)?;
+                let algo = def.algo;
+                notes.push(format!(
+                    "LIAISON_UNIL in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_23): {} link(s) in {} zone(s), {}",
+                    def.links.len(),
+                    def.zones.len(),
+                    match algo {
+                        crate::contact::unilateral::UnilAlgo::ActiveSet => "ALGO_CONT='CONTRAINTE' enforced kinematically (each node's links by the correction of least kinetic-energy change, momentum-conserving)",
+                        crate::contact::unilateral::UnilAlgo::Penalty => "ALGO_CONT='PENALISATION' (penalty force; its stiffness enters the stable step)",
+                    }
+                ));
+                unil_def = Some(def);
+                None
+            } else {
             let (def, enf) = crate::contact::ContactDef::explicit_from_args(cargs, &md.mesh)?;
             notes.push(format!(
                 "contact in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_22): {} against a fixed master",
@@ -129,6 +152,7 @@ pub(crate) fn exec(
                 }
             ));
             Some((def, enf))
+            }
         }
     };
     let archive = archive_of(study, args)?;
@@ -205,24 +229,44 @@ pub(crate) fn exec(
     engine
         .initialize(false)
         .map_err(|f| args.error("", format!("initial state: {f}")))?;
-    let mut contact = match contact_def {
+    let mut contact: Option<Box<dyn ExplicitConstraint>> = match contact_def {
         None => None,
-        Some((def, enf)) => Some(
-            ExplicitContact::new(
+        Some((def, enf)) => {
+            let c = ExplicitContact::new(
                 def,
                 enf,
                 &md.mesh,
                 &engine.asm.numbering,
                 &engine.committed.motion.u,
             )
-            .map_err(|m| args.error("CONTACT", m))?,
-        ),
-    };
-    if let Some(c) = contact.as_ref().filter(|c| c.kinematic()) {
-        let free = mid_nodes_free_on_a_held_edge(&c.def, &md.mesh, &engine.asm.numbering);
-        if !free.is_empty() {
-            notes.push(untied_alarm(&free));
+            .map_err(|m| args.error("CONTACT", m))?;
+            if c.kinematic() {
+                let free = mid_nodes_free_on_a_held_edge(&c.def, &md.mesh, &engine.asm.numbering);
+                if !free.is_empty() {
+                    notes.push(untied_alarm(&free));
+                }
+            }
+            Some(Box::new(c))
         }
+    };
+    if let Some(def) = unil_def {
+        // Coefficients that cannot be evaluated at the run's instants are
+        // refused before the first step, as in implicit: the conditions are
+        // evaluated at the initial instant (the initial state's check and
+        // penalty) and at every step end, sub-steps included, all within
+        // the list's span, whose ends cover a function's interval domain.
+        let nb = &engine.asm.numbering;
+        let eq = |f: usize| (nb.eq[f] != nonlinear::dofs::NONE).then(|| nb.eq[f]);
+        let imposed = nonlinear::unilateral::imposed_value(nb);
+        let span = [tl.instants[0], tl.instants[tl.instants.len() - 1]];
+        for &t in &span {
+            def.rows(t, nb.ndpn, eq, &imposed).map_err(|m| {
+                args.error("CONTACT", format!("LIAISON_UNIL at INST = {t:e}: {m}"))
+            })?;
+        }
+        let u = ExplicitUnilateral::new(def, nb, &tl.instants)
+            .map_err(|m| args.error("CONTACT", m))?;
+        contact = Some(Box::new(u));
     }
     let w2c = contact.as_ref().map_or(0.0, |c| c.penalty_omega2(&ex.mass));
     let bound = ex
@@ -332,7 +376,7 @@ pub(crate) fn exec(
     let outcome = explicit::run(
         &mut engine,
         &mut ex,
-        contact.as_mut(),
+        contact.as_deref_mut(),
         &tl,
         &settings,
         has_acce,

@@ -1259,16 +1259,8 @@ pub(crate) fn run(
     let unilateral = args.concept("CONTACT").is_some_and(|name| {
         matches!(study.concepts.data(name), Some(ConceptData::Contact(c)) if c.text("FORMULATION") == Some("LIAISON_UNIL"))
     });
-    if unilateral {
-        if let Some(st) = args.fact("SCHEMA_TEMPS") {
-            if let Some(sch @ ("DIFF_CENT" | "TCHAMWA")) = st.text("SCHEMA") {
-                return Err(st.error(
-                    "SCHEMA",
-                    format!("LIAISON_UNIL is incompatible with the explicit scheme SCHEMA='{sch}' (MECANONLINE5_23)"),
-                ));
-            }
-        }
-    }
+    // LIAISON_UNIL with DIFF_CENT/TCHAMWA (code_aster: MECANONLINE5_23)
+    // is an aster extension, checked by the explicit path.
     let mut notes: Vec<String> = Vec::new();
     let model_name = args.concept("MODELE").unwrap_or("").to_string();
     let mat_name = args.concept("CHAM_MATER").unwrap_or("").to_string();

@@ -381,6 +381,139 @@ pub fn penalty(gap: f64, e: f64) -> Option<f64> {
     (gap < EPS).then(|| -e * gap)
 }
 
+/// Why one node's projection has no solution.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NodeProjectionFailure {
+    /// No correction satisfies every link of the node: contradictory
+    /// links (a bound above and below with no room between), or a
+    /// violated link without free component (all imposed by DDL_IMPO).
+    Infeasible,
+}
+
+/// The correction x of least M-norm (½ xᵀ M x, M = diag(1/`minv`)) with
+/// B x ≤ b, B the rows of one node's links on its components (`rows[i]`
+/// has one coefficient per component), and the multipliers μ ≥ 0 with
+/// M x = −Bᵀμ: the kinematic enforcement of LIAISON_UNIL in explicit
+/// dynamics, where the lumped mass makes the nodes independent. Exact by
+/// enumeration of the active subsets, smallest first: a node has a few
+/// links and at most 3 components, and a KKT point of this strictly
+/// convex problem always has a multiplier supported on linearly
+/// independent rows (Carathéodory), so subsets of more rows than
+/// components, or of dependent rows, are skipped. The iterative active
+/// set of [`active_set`] would do, but the enumeration has no cycling
+/// and no tolerance on a step length.
+pub fn node_projection(
+    rows: &[Vec<f64>],
+    b: &[f64],
+    minv: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>), NodeProjectionFailure> {
+    let nl = rows.len();
+    let d = minv.len();
+    let scale_b = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let max_size = nl.min(d);
+    let mut subset: Vec<usize> = Vec::with_capacity(max_size);
+    for size in 0..=max_size {
+        // The subsets of `size` links in lexicographic order.
+        subset.clear();
+        subset.extend(0..size);
+        loop {
+            if let Some(found) = try_subset(rows, b, minv, &subset, scale_b) {
+                return Ok(found);
+            }
+            // Next combination.
+            let mut k = size;
+            let mut advanced = false;
+            while k > 0 {
+                k -= 1;
+                if subset[k] < nl - size + k {
+                    subset[k] += 1;
+                    for j in k + 1..size {
+                        subset[j] = subset[j - 1] + 1;
+                    }
+                    advanced = true;
+                    break;
+                }
+            }
+            if !advanced {
+                break;
+            }
+        }
+    }
+    Err(NodeProjectionFailure::Infeasible)
+}
+
+/// The KKT point with the links of `set` active, if it is one: S μ = −b_J
+/// with S = B_J M⁻¹ B_Jᵀ nonsingular, μ ≥ 0, and every link satisfied.
+fn try_subset(
+    rows: &[Vec<f64>],
+    b: &[f64],
+    minv: &[f64],
+    set: &[usize],
+    scale_b: f64,
+) -> Option<(Vec<f64>, Vec<f64>)> {
+    let m = set.len();
+    let d = minv.len();
+    let mut s = vec![0.0; m * m];
+    for (p, &i) in set.iter().enumerate() {
+        for (q, &j) in set.iter().enumerate() {
+            s[p * m + q] = (0..d).map(|k| rows[i][k] * minv[k] * rows[j][k]).sum();
+        }
+    }
+    let rhs: Vec<f64> = set.iter().map(|&i| -b[i]).collect();
+    let mu = dense_solve(&mut s, m, rhs)?;
+    let mu_scale = mu.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    if mu.iter().any(|&x| x < -1e-12 * mu_scale) {
+        return None;
+    }
+    let mut x = vec![0.0; d];
+    for (p, &i) in set.iter().enumerate() {
+        for k in 0..d {
+            x[k] -= minv[k] * rows[i][k] * mu[p];
+        }
+    }
+    for (i, r) in rows.iter().enumerate() {
+        let bx: f64 = (0..d).map(|k| r[k] * x[k]).sum();
+        let size: f64 = (0..d).map(|k| (r[k] * x[k]).abs()).sum::<f64>() + scale_b;
+        if bx > b[i] + 1e-12 * size {
+            return None;
+        }
+    }
+    Some((x, mu.into_iter().map(|v| v.max(0.0)).collect()))
+}
+
+/// Gaussian elimination with partial pivoting of a small dense system
+/// (row-major, overwritten); None when a pivot falls below 1e-12 of the
+/// largest diagonal entry (dependent links).
+fn dense_solve(s: &mut [f64], m: usize, mut x: Vec<f64>) -> Option<Vec<f64>> {
+    let big = (0..m).fold(0.0f64, |a, i| a.max(s[i * m + i].abs()));
+    for c in 0..m {
+        let p = (c..m).max_by(|&i, &j| s[i * m + c].abs().total_cmp(&s[j * m + c].abs()))?;
+        if !(s[p * m + c].abs() > 1e-12 * big) {
+            return None;
+        }
+        if p != c {
+            for k in 0..m {
+                s.swap(p * m + k, c * m + k);
+            }
+            x.swap(p, c);
+        }
+        for r in c + 1..m {
+            let f = s[r * m + c] / s[c * m + c];
+            for k in c..m {
+                s[r * m + k] -= f * s[c * m + k];
+            }
+            x[r] -= f * x[c];
+        }
+    }
+    for c in (0..m).rev() {
+        for k in c + 1..m {
+            x[c] -= s[c * m + k] * x[k];
+        }
+        x[c] /= s[c * m + c];
+    }
+    Some(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -615,5 +748,62 @@ mod tests {
         assert_eq!(eval_coef_impo(&g, 1.0, [5.0, 2.0, 3.0]).unwrap(), 321.0);
         let e = eval_coef_mult(&g, 1.0).unwrap_err();
         assert!(e.contains("needs Y"), "{e}");
+    }
+
+    /// One link: the correction moves the node onto the link along
+    /// M⁻¹aᵀ, μ = −b / (a M⁻¹ aᵀ).
+    #[test]
+    fn node_projection_single_link() {
+        // -x1 <= -2 (x1 >= 2), masses 1 and 4.
+        let (x, mu) = node_projection(&[vec![-1.0, 0.0]], &[-2.0], &[1.0, 0.25]).unwrap();
+        assert!(close(x[0], 2.0) && close(x[1], 0.0), "{x:?}");
+        assert!(close(mu[0], 2.0));
+        // Satisfied: no correction.
+        let (x, mu) = node_projection(&[vec![-1.0, 0.0]], &[1.0], &[1.0, 1.0]).unwrap();
+        assert_eq!((x, mu), (vec![0.0, 0.0], vec![0.0]));
+    }
+
+    /// A corner against two walls (x ≥ 1, y ≥ 1 from x = y = 0, unequal
+    /// masses): both links active, μ = the masses times the moves. A
+    /// sloped wall x + y ≤ −1 with unit masses: the projection is along
+    /// (1, 1)/2, x = y = −1/2, μ = 1/2. With a second, inactive wall
+    /// y ≤ 5 beside it, the same answer (its multiplier 0); with the
+    /// wall x ≥ 0 added the node slides along it to (0, −1): μ_slope = 1
+    /// (M x = −μ (1, 1) − ν (−1, 0) gives y = −μ = −1), ν = 1.
+    #[test]
+    fn node_projection_two_links_by_hand() {
+        let minv = [1.0 / 2.0, 1.0 / 3.0];
+        let rows = [vec![-1.0, 0.0], vec![0.0, -1.0]];
+        let (x, mu) = node_projection(&rows, &[-1.0, -1.0], &minv).unwrap();
+        assert!(close(x[0], 1.0) && close(x[1], 1.0), "{x:?}");
+        assert!(close(mu[0], 2.0) && close(mu[1], 3.0), "{mu:?}");
+        let (x, mu) = node_projection(&[vec![1.0, 1.0]], &[-1.0], &[1.0, 1.0]).unwrap();
+        assert!(close(x[0], -0.5) && close(x[1], -0.5) && close(mu[0], 0.5));
+        let rows = [vec![1.0, 1.0], vec![0.0, 1.0]];
+        let (x, mu) = node_projection(&rows, &[-1.0, 5.0], &[1.0, 1.0]).unwrap();
+        assert!(close(x[0], -0.5) && close(x[1], -0.5) && mu[1] == 0.0);
+        let rows = [vec![1.0, 1.0], vec![-1.0, 0.0]];
+        let (x, mu) = node_projection(&rows, &[-1.0, 0.0], &[1.0, 1.0]).unwrap();
+        assert!(close(x[0], 0.0) && close(x[1], -1.0), "{x:?}");
+        assert!(close(mu[0], 1.0) && close(mu[1], 1.0), "{mu:?}");
+    }
+
+    /// Contradictory links (x ≤ −1 and x ≥ 0) and a violated link without
+    /// component have no solution: an error, not a wrong correction.
+    #[test]
+    fn node_projection_infeasible() {
+        let rows = [vec![1.0], vec![-1.0]];
+        assert_eq!(
+            node_projection(&rows, &[-1.0, 0.0], &[1.0]),
+            Err(NodeProjectionFailure::Infeasible)
+        );
+        assert_eq!(
+            node_projection(&[vec![0.0]], &[-1.0], &[1.0]),
+            Err(NodeProjectionFailure::Infeasible)
+        );
+        // Duplicate links: the pair is dependent, one of them suffices.
+        let rows = [vec![-1.0], vec![-1.0]];
+        let (x, _) = node_projection(&rows, &[-1.0, -1.0], &[1.0]).unwrap();
+        assert!(close(x[0], 1.0));
     }
 }

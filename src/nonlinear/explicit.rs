@@ -40,10 +40,9 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::assembly::{Assembler, CellFailure, PARALLEL_MIN_ELEMENTS};
-use super::dofs::NONE;
+use super::dofs::{DofNumbering, NONE};
 use super::dyna::{archive, store_observations, Growth, RunSummary, Stopped, TimeLoop};
 use super::energy::EnergyBalance;
-use super::explicit_contact::ExplicitContact;
 use super::newton::Engine;
 use super::observation::{Observer, TABLE_NAME as OBSERVATION_TABLE};
 use super::team::{with_team, Parts, Team};
@@ -55,6 +54,62 @@ use crate::time::explicit::{
     hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_lumped, max_eigenvalue_warm,
     scaled_lumped, ExplicitScheme,
 };
+
+/// What the explicit loop needs of a contact treatment: the discrete
+/// contact against a fixed master (`explicit_contact`) and LIAISON_UNIL
+/// (`explicit_unilateral`), both aster extensions. Either enforcement
+/// plugs into the same two places: the penalty adds its forces at
+/// u_{n+1} to the right-hand side of a_{n+1} (and k/m to ω²); the
+/// kinematic one corrects a_{n+1} (and v_{n+1}) so that the next
+/// predicted positions satisfy the conditions. `t` is the instant the
+/// conditions are evaluated at (LIAISON_UNIL's coefficients are functions
+/// of INST); an Err is the message of a stop.
+pub trait ExplicitConstraint {
+    fn kinematic(&self) -> bool;
+    /// The largest k/m the penalty adds to ω² (0 for the kinematic one).
+    fn penalty_omega2(&self, mass: &[f64]) -> f64;
+    /// Makes the links of the state `u` at `t` (pairing, coefficients).
+    fn prepare(&mut self, numbering: &DofNumbering, u: &[f64], t: f64) -> Result<(), String>;
+    /// How many links the state `u` violates (the last prepared links),
+    /// and the deepest violation.
+    fn penetrations(&self, numbering: &DofNumbering, u: &[f64]) -> (usize, f64);
+    /// The penalty forces at `u` (the step's end at `t`), the step
+    /// starting at `u_n`.
+    fn penalty(
+        &mut self,
+        numbering: &DofNumbering,
+        u_n: &[f64],
+        u: &[f64],
+        t: f64,
+    ) -> Result<(), String>;
+    /// The kinematic correction of the state `m` (its a, and v by
+    /// `kappa`·δa) so that u + dt v + c dt² a satisfies the conditions at
+    /// `t_next`; `mass` the lumped mass of each full dof.
+    #[allow(clippy::too_many_arguments)]
+    fn correct(
+        &mut self,
+        numbering: &DofNumbering,
+        mass: &[f64],
+        m: &mut crate::time::Kinematics,
+        dt: f64,
+        kappa: f64,
+        c: f64,
+        t_next: f64,
+    ) -> Result<(), String>;
+    /// The initial state's forces start the first step's trapezoid.
+    fn start(&mut self);
+    /// After the step of `dt` ending at the committed `u`.
+    fn commit(&mut self, u: &[f64], dt: f64);
+    /// The contact forces of the last state on the F_int side, full.
+    fn force_on_fint_side(&self) -> &[f64];
+    fn friction_dissipation(&self) -> f64;
+    /// CONT_NOEU of the committed state `u` reached from `u_start` in
+    /// `dt`, where the treatment has one.
+    fn cont_noeu(&self, u: &[f64], u_start: &[f64], dt: f64) -> Option<crate::result::NodalField>;
+    fn cont_noeu_initial(&self) -> Option<crate::result::NodalField>;
+    /// The .mess line of the end of the run.
+    fn summary_line(&self) -> String;
+}
 
 /// Dofs per piece of the step's dof-wise phase (forces, acceleration,
 /// velocity) on the team.
@@ -346,7 +401,7 @@ impl Explicit {
         &mut self,
         engine: &mut Engine,
         dt: f64,
-        contact: Option<&mut ExplicitContact>,
+        contact: Option<&mut (dyn ExplicitConstraint + '_)>,
         team: &Team,
     ) -> Result<(), String> {
         let c = self.scheme.displacement_coefficient();
@@ -388,8 +443,8 @@ impl Explicit {
         let nb = &asm.numbering;
         let fc: &[f64] = match contact {
             Some(ct) if !ct.kinematic() => {
-                ct.penalty_forces(nb, &cm.motion.u, &tr.motion.u);
-                &ct.force_on_fint_side
+                ct.penalty(nb, &cm.motion.u, &tr.motion.u, tr.t)?;
+                ct.force_on_fint_side()
             }
             // No contact force: the same sums with a zero term.
             _ => &self.zero,
@@ -502,11 +557,11 @@ impl Explicit {
     pub fn correct(
         &self,
         engine: &mut Engine,
-        contact: &mut ExplicitContact,
+        contact: &mut (dyn ExplicitConstraint + '_),
         dt_prev: f64,
         dt_next: f64,
         state_is_trial: bool,
-    ) {
+    ) -> Result<(), String> {
         let kappa = match self.scheme {
             ExplicitScheme::DiffCent => 0.5 * dt_prev,
             ExplicitScheme::Tchamwa { .. } => 0.0,
@@ -517,14 +572,16 @@ impl Explicit {
         } else {
             &mut engine.committed
         };
-        contact.kinematic_correction(
+        let t_next = st.t + dt_next;
+        contact.correct(
             &engine.asm.numbering,
             &self.mass,
             &mut st.motion,
             dt_next,
             kappa,
             c,
-        );
+            t_next,
+        )
     }
 
     /// Starts the energy balance at the committed state (after the initial
@@ -615,7 +672,7 @@ pub fn first_step_above(instants: &[f64], bound: f64) -> Option<(usize, f64, f64
 pub fn run(
     engine: &mut Engine,
     ex: &mut Explicit,
-    contact: Option<&mut ExplicitContact>,
+    contact: Option<&mut (dyn ExplicitConstraint + '_)>,
     tl: &TimeLoop,
     settings: &ExplicitSettings,
     has_acce: bool,
@@ -642,7 +699,7 @@ fn run_on(
     team: &Team,
     engine: &mut Engine,
     ex: &mut Explicit,
-    mut contact: Option<&mut ExplicitContact>,
+    mut contact: Option<&mut (dyn ExplicitConstraint + '_)>,
     tl: &TimeLoop,
     settings: &ExplicitSettings,
     has_acce: bool,
@@ -696,12 +753,17 @@ fn run_on(
     let mut next = 1usize;
     let first_dt = plan(tl.instants[0], tl.instants[1], &bound, f64::INFINITY);
     if let Some(ct) = contact.as_deref_mut() {
-        ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
+        ct.prepare(
+            &engine.asm.numbering,
+            &engine.committed.motion.u,
+            engine.committed.t,
+        )
+        .map_err(|m| stop(m, &summary))?;
         // An initial state that already penetrates is removed in the
         // first step (kinematic: the nodes are put back on the surface
         // within one step, i.e. at a speed depth/dt; penalty: a force
         // E_N depth), an impulse the user did not model.
-        let (n, depth) = ct.penetrations(&engine.committed.motion.u);
+        let (n, depth) = ct.penetrations(&engine.asm.numbering, &engine.committed.motion.u);
         if n > 0 {
             log(&format!(
                 "  alarm: {n} slave node(s) penetrate the master at the initial state (deepest {depth:.4e}): the contact pushes them out in the first step{}, an impulse of the initial state, not of the motion",
@@ -713,17 +775,19 @@ fn run_on(
             ));
         }
         if !has_acce && !ct.kinematic() {
-            ct.penalty_forces(
+            ct.penalty(
                 &engine.asm.numbering,
                 &engine.committed.motion.u,
                 &engine.committed.motion.u,
-            );
+                engine.committed.t,
+            )
+            .map_err(|m| stop(m, &summary))?;
         }
     }
     if !has_acce {
         let fc = contact
             .as_deref()
-            .map_or(&zero[..], |c| &c.force_on_fint_side[..]);
+            .map_or(&zero[..], |c| c.force_on_fint_side());
         let fc = fc.to_vec();
         ex.initial_acceleration(engine, &fc)
             .map_err(|m| stop(m, &summary))?;
@@ -733,14 +797,15 @@ fn run_on(
     }
     if let Some(ct) = contact.as_deref_mut() {
         if ct.kinematic() {
-            ex.correct(engine, ct, 0.0, first_dt, false);
+            ex.correct(engine, ct, 0.0, first_dt, false)
+                .map_err(|m| stop(m, &summary))?;
         }
         ct.start();
     }
     let p0 = momentum(engine);
     let fc0 = contact
         .as_deref()
-        .map_or(zero.clone(), |c| c.force_on_fint_side.clone());
+        .map_or(zero.clone(), |c| c.force_on_fint_side().to_vec());
     let mut energy = ex.start_energy(engine, &fc0);
     if archive_with_contact(engine, tl, result, contact.as_deref(), None) {
         summary.archived += 1;
@@ -763,6 +828,31 @@ fn run_on(
     let mut next_estimate = interval;
     let mut alarmed_sub = false;
     let mut list_steps = 0usize;
+    // A failed step (or a failed contact correction of its end state):
+    // the last converged state is archived first, so that the message
+    // counts what the result really keeps. The failed step overwrote the
+    // trial state: GLI* of its CONT_NOEU are 0.
+    macro_rules! fail {
+        ($why:expr, $t0:expr, $dt:expr) => {{
+            let (why, t0, dt) = ($why, $t0, $dt);
+            let last = (summary.steps > 0).then_some((&engine.committed.motion.u[..], last_dt));
+            if archive_with_contact(engine, tl, result, contact.as_deref(), last) {
+                summary.archived += 1;
+            }
+            store_energy(&energy, result);
+            store_observations(observer.take(), result);
+            let message = format!(
+                "DYNA_NON_LINE stopped at the step from t = {t0:e} to t = {:e}: {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
+                t0 + dt,
+                result.steps.len(),
+                result.steps.last().map_or(t0, |s| s.inst)
+            );
+            log(&message);
+            summary.seconds = started.elapsed().as_secs_f64();
+            crate::profile::count(crate::profile::Counter::Steps, summary.steps);
+            return Err(stop(message, &summary));
+        }};
+    }
     while next < tl.instants.len() {
         let target = tl.instants[next];
         let t0 = engine.committed.t;
@@ -800,7 +890,12 @@ fn run_on(
         // pairing.
         if let Some(ct) = contact.as_deref_mut() {
             if !ct.kinematic() {
-                ct.pair(&engine.asm.numbering, &engine.committed.motion.u);
+                ct.prepare(
+                    &engine.asm.numbering,
+                    &engine.committed.motion.u,
+                    engine.committed.t,
+                )
+                .map_err(|m| stop(m, &summary))?;
             }
         }
         // A bound that collapsed (a cell crushed to nothing) or a PAS_MAXI
@@ -815,25 +910,7 @@ fn run_on(
             ))
         };
         if let Err(why) = outcome {
-            // The last converged state is archived first, so that the
-            // message counts what the result really keeps. The failed
-            // step overwrote the trial state: GLI* of its CONT_NOEU are 0.
-            let last = (summary.steps > 0).then_some((&engine.committed.motion.u[..], last_dt));
-            if archive_with_contact(engine, tl, result, contact.as_deref(), last) {
-                summary.archived += 1;
-            }
-            store_energy(&energy, result);
-            store_observations(observer.take(), result);
-            let message = format!(
-                "DYNA_NON_LINE stopped at the step from t = {t0:e} to t = {:e}: {why}. The {} steps archived so far (last instant {:e}) are kept in the result.",
-                t0 + dt,
-                result.steps.len(),
-                result.steps.last().map_or(t0, |s| s.inst)
-            );
-            log(&message);
-            summary.seconds = started.elapsed().as_secs_f64();
-            crate::profile::count(crate::profile::Counter::Steps, summary.steps);
-            return Err(stop(message, &summary));
+            fail!(why, t0, dt);
         }
         summary.steps += 1;
         let t1 = engine.trial.t;
@@ -884,8 +961,12 @@ fn run_on(
         }
         if let Some(ct) = contact.as_deref_mut() {
             if ct.kinematic() {
-                ct.pair(&engine.asm.numbering, &engine.trial.motion.u);
-                ex.correct(engine, ct, dt, dt_next, true);
+                let corrected = ct
+                    .prepare(&engine.asm.numbering, &engine.trial.motion.u, engine.trial.t)
+                    .and_then(|()| ex.correct(engine, ct, dt, dt_next, true));
+                if let Err(why) = corrected {
+                    fail!(why, t0, dt);
+                }
             }
         }
         engine.commit();
@@ -894,10 +975,10 @@ fn run_on(
         }
         let fc = contact
             .as_deref()
-            .map_or(&zero[..], |c| &c.force_on_fint_side[..]);
+            .map_or(&zero[..], |c| c.force_on_fint_side());
         ex.energy_step(&mut energy, engine, fc);
         if let Some(ct) = contact.as_deref() {
-            energy.friction = ct.friction_dissipation;
+            energy.friction = ct.friction_dissipation();
         }
         if let (true, Some(o)) = (at_list, observer.as_mut()) {
             o.observe(
@@ -968,12 +1049,12 @@ fn run_on(
 /// Archives the committed state (as [`archive`]) and, with contact, its
 /// `CONT_NOEU`: zeros on the slave nodes at the initial state (`last`
 /// None), else the state reached by a step of `last.1` from the
-/// displacement `last.0` ([`ExplicitContact::cont_noeu`]).
+/// displacement `last.0` ([`ExplicitConstraint::cont_noeu`]).
 fn archive_with_contact(
     engine: &Engine,
     tl: &TimeLoop,
     result: &mut EvolNoli,
-    contact: Option<&ExplicitContact>,
+    contact: Option<&(dyn ExplicitConstraint + '_)>,
     last: Option<(&[f64], f64)>,
 ) -> bool {
     if !archive(engine, tl, result, &engine.committed.clone(), None) {
@@ -984,7 +1065,9 @@ fn archive_with_contact(
             None => ct.cont_noeu_initial(),
             Some((u_start, dt)) => ct.cont_noeu(&engine.committed.motion.u, u_start, dt),
         };
-        step.nodal.insert("CONT_NOEU".into(), field);
+        if let Some(field) = field {
+            step.nodal.insert("CONT_NOEU".into(), field);
+        }
     }
     true
 }

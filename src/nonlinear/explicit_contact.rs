@@ -26,6 +26,7 @@
 use std::collections::HashMap;
 
 use super::dofs::{DofNumbering, NONE};
+use super::explicit::ExplicitConstraint;
 use crate::contact::{pair, ContactDef, Pairing};
 use crate::mesh::CellType;
 use crate::mesh::Mesh;
@@ -601,5 +602,81 @@ impl ExplicitContact {
                 .collect::<Vec<_>>()
                 .join(", ")
         )
+    }
+}
+
+/// The explicit loop's view of the discrete contact: the pairing is the
+/// preparation; the instants are not needed (the master is fixed and
+/// the gaps depend on the geometry only).
+impl ExplicitConstraint for ExplicitContact {
+    fn kinematic(&self) -> bool {
+        ExplicitContact::kinematic(self)
+    }
+
+    fn penalty_omega2(&self, mass: &[f64]) -> f64 {
+        ExplicitContact::penalty_omega2(self, mass)
+    }
+
+    fn prepare(&mut self, numbering: &DofNumbering, u: &[f64], _t: f64) -> Result<(), String> {
+        self.pair(numbering, u);
+        Ok(())
+    }
+
+    fn penetrations(&self, _numbering: &DofNumbering, u: &[f64]) -> (usize, f64) {
+        ExplicitContact::penetrations(self, u)
+    }
+
+    fn penalty(
+        &mut self,
+        numbering: &DofNumbering,
+        u_n: &[f64],
+        u: &[f64],
+        _t: f64,
+    ) -> Result<(), String> {
+        self.penalty_forces(numbering, u_n, u);
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn correct(
+        &mut self,
+        numbering: &DofNumbering,
+        mass: &[f64],
+        m: &mut Motion,
+        dt: f64,
+        kappa: f64,
+        c: f64,
+        _t_next: f64,
+    ) -> Result<(), String> {
+        self.kinematic_correction(numbering, mass, m, dt, kappa, c);
+        Ok(())
+    }
+
+    fn start(&mut self) {
+        ExplicitContact::start(self)
+    }
+
+    fn commit(&mut self, u: &[f64], dt: f64) {
+        ExplicitContact::commit(self, u, dt)
+    }
+
+    fn force_on_fint_side(&self) -> &[f64] {
+        &self.force_on_fint_side
+    }
+
+    fn friction_dissipation(&self) -> f64 {
+        self.friction_dissipation
+    }
+
+    fn cont_noeu(&self, u: &[f64], u_start: &[f64], dt: f64) -> Option<crate::result::NodalField> {
+        Some(ExplicitContact::cont_noeu(self, u, u_start, dt))
+    }
+
+    fn cont_noeu_initial(&self) -> Option<crate::result::NodalField> {
+        Some(ExplicitContact::cont_noeu_initial(self))
+    }
+
+    fn summary_line(&self) -> String {
+        ExplicitContact::summary_line(self)
     }
 }

@@ -19,6 +19,7 @@ pub mod dyna;
 pub mod energy;
 pub mod explicit;
 pub mod explicit_contact;
+pub mod explicit_unilateral;
 pub mod fields;
 pub mod linear;
 pub mod loads;
