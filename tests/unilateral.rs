@@ -651,9 +651,12 @@ fn no_cont_noeu_for_unilateral_conditions() {
     );
 }
 
-/// Incompatibilities stated by code_aster are clear errors.
+/// LIAISON_UNIL in explicit dynamics (an aster extension over code_aster's
+/// MECANONLINE5_23, tests/explicit_unilateral.rs) needs the lumped mass,
+/// which makes the nodes' links independent: without MASS_DIAG='OUI' it is
+/// a clear error.
 #[test]
-fn explicit_schemes_are_refused() {
+fn explicit_schemes_need_the_lumped_mass() {
     let (mut st, _, _) = single_node(1e-9, 8.93e-9, -1000.0, linspace(0.0, 1e-6, 1));
     insert_function(&mut st, "CI", Function::constant(0.0, "TOUTRESU"));
     let err = run(
@@ -662,8 +665,11 @@ fn explicit_schemes_are_refused() {
         "SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'",
         "INCREMENT=_F(LIST_INST=L_INST)",
     )
-    .expect_err("explicit scheme with LIAISON_UNIL");
-    assert!(err.contains("MECANONLINE5_23"), "{err}");
+    .expect_err("explicit scheme with LIAISON_UNIL and the consistent mass");
+    assert!(
+        err.contains("consistent mass") && err.contains("MASS_DIAG='OUI'"),
+        "{err}"
+    );
 }
 
 /// DEFI_FONCTION gives COEF_IMPO as a function of INST: the floor of the

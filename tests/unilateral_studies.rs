@@ -102,9 +102,9 @@ fn bad_unilateral_definitions_are_located_errors() {
             "ETAT_INIT=_F(VITE=VDOWN), INCREMENT=_F(LIST_INST=LI),\n                    SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))\nREC",
             "ETAT_INIT=_F(VITE=VDOWN), INCREMENT=_F(LIST_INST=LI),\n                    SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'))\nREC",
             &[
-                "DYNA_NON_LINE/SCHEMA_TEMPS/SCHEMA",
-                "incompatible with the explicit scheme SCHEMA='DIFF_CENT' (MECANONLINE5_23)",
-                "explicit.comm:65:",
+                "DYNA_NON_LINE/CONTACT",
+                "contact in explicit dynamics with the consistent mass (give MASS_DIAG='OUI')",
+                "explicit.comm:62:",
             ],
         ),
         (

@@ -126,10 +126,13 @@ pub(crate) fn exec(
                 if let Some(m) = cargs.concept("MODELE").filter(|m| *m != model_name) {
                     return Err(args.error(
                         "CONTACT",
-                        format!("the contact {name} is defined on the model {m}, not on {model_name}"),
+                        format!(
+                            "the contact {name} is defined on the model {m}, not on {model_name}"
+                        ),
                     ));
                 }
-                let def = crate::commands::liaison_unil::unil_def(study, cargs, &md.mesh, &md.model)?;
+                let def =
+                    crate::commands::liaison_unil::unil_def(study, cargs, &md.mesh, &md.model)?;
                 let algo = def.algo;
                 notes.push(format!(
                     "LIAISON_UNIL in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_23): {} link(s) in {} zone(s), {}",
@@ -143,15 +146,15 @@ pub(crate) fn exec(
                 unil_def = Some(def);
                 None
             } else {
-            let (def, enf) = crate::contact::ContactDef::explicit_from_args(cargs, &md.mesh)?;
-            notes.push(format!(
+                let (def, enf) = crate::contact::ContactDef::explicit_from_args(cargs, &md.mesh)?;
+                notes.push(format!(
                 "contact in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_22): {} against a fixed master",
                 match enf {
                     Enforcement::Kinematic => "ALGO_CONT='CONTRAINTE' enforced kinematically (predictor-corrector, momentum-conserving)",
                     Enforcement::Penalty => "ALGO_CONT='PENALISATION' (penalty force; its stiffness enters the stable step)",
                 }
             ));
-            Some((def, enf))
+                Some((def, enf))
             }
         }
     };
@@ -250,21 +253,23 @@ pub(crate) fn exec(
         }
     };
     if let Some(def) = unil_def {
-        // Coefficients that cannot be evaluated at the run's instants are
-        // refused before the first step, as in implicit: the conditions are
-        // evaluated at the initial instant (the initial state's check and
-        // penalty) and at every step end, sub-steps included, all within
-        // the list's span, whose ends cover a function's interval domain.
+        // Coefficients that cannot be evaluated at the list's step ends are
+        // refused before the first step, as in implicit (the conditions are
+        // evaluated at the step ends only, the initial state's at the first
+        // step's). A sub-step end before the first instant of the list
+        // outside a function's domain stops the run with the same message.
         let nb = &engine.asm.numbering;
         let eq = |f: usize| (nb.eq[f] != nonlinear::dofs::NONE).then(|| nb.eq[f]);
         let imposed = nonlinear::unilateral::imposed_value(nb);
-        let span = [tl.instants[0], tl.instants[tl.instants.len() - 1]];
+        let span = [
+            tl.instants[1.min(tl.instants.len() - 1)],
+            tl.instants[tl.instants.len() - 1],
+        ];
         for &t in &span {
-            def.rows(t, nb.ndpn, eq, &imposed).map_err(|m| {
-                args.error("CONTACT", format!("LIAISON_UNIL at INST = {t:e}: {m}"))
-            })?;
+            def.rows(t, nb.ndpn, eq, &imposed)
+                .map_err(|m| args.error("CONTACT", format!("LIAISON_UNIL at INST = {t:e}: {m}")))?;
         }
-        let u = ExplicitUnilateral::new(def, nb, &tl.instants)
+        let u = ExplicitUnilateral::new(def, nb, &tl.instants[1.min(tl.instants.len() - 1)..])
             .map_err(|m| args.error("CONTACT", m))?;
         contact = Some(Box::new(u));
     }

@@ -488,7 +488,9 @@ fn dense_solve(s: &mut [f64], m: usize, mut x: Vec<f64>) -> Option<Vec<f64>> {
     let big = (0..m).fold(0.0f64, |a, i| a.max(s[i * m + i].abs()));
     for c in 0..m {
         let p = (c..m).max_by(|&i, &j| s[i * m + c].abs().total_cmp(&s[j * m + c].abs()))?;
-        if !(s[p * m + c].abs() > 1e-12 * big) {
+        let pivot = s[p * m + c].abs();
+        // NaN fails too.
+        if pivot.is_nan() || pivot <= 1e-12 * big {
             return None;
         }
         if p != c {

@@ -73,6 +73,8 @@ pub trait ExplicitConstraint {
     /// How many links the state `u` violates (the last prepared links),
     /// and the deepest violation.
     fn penetrations(&self, numbering: &DofNumbering, u: &[f64]) -> (usize, f64);
+    /// The .mess alarm for `n` links violated at the initial state.
+    fn initial_alarm(&self, n: usize, depth: f64) -> String;
     /// The penalty forces at `u` (the step's end at `t`), the step
     /// starting at `u_n`.
     fn penalty(
@@ -752,34 +754,27 @@ fn run_on(
     };
     let mut next = 1usize;
     let first_dt = plan(tl.instants[0], tl.instants[1], &bound, f64::INFINITY);
+    // The conditions of the initial state are those of the first step's
+    // end, as LIAISON_UNIL's coefficients are evaluated at the step ends
+    // only (t+, never at the initial instant, as code_aster).
+    let t_first = engine.committed.t + first_dt;
     if let Some(ct) = contact.as_deref_mut() {
-        ct.prepare(
-            &engine.asm.numbering,
-            &engine.committed.motion.u,
-            engine.committed.t,
-        )
-        .map_err(|m| stop(m, &summary))?;
+        ct.prepare(&engine.asm.numbering, &engine.committed.motion.u, t_first)
+            .map_err(|m| stop(m, &summary))?;
         // An initial state that already penetrates is removed in the
         // first step (kinematic: the nodes are put back on the surface
         // within one step, i.e. at a speed depth/dt; penalty: a force
         // E_N depth), an impulse the user did not model.
         let (n, depth) = ct.penetrations(&engine.asm.numbering, &engine.committed.motion.u);
         if n > 0 {
-            log(&format!(
-                "  alarm: {n} slave node(s) penetrate the master at the initial state (deepest {depth:.4e}): the contact pushes them out in the first step{}, an impulse of the initial state, not of the motion",
-                if ct.kinematic() {
-                    " (kinematic: onto the surface within one step)"
-                } else {
-                    " (penalty: a force E_N times the depth)"
-                }
-            ));
+            log(&ct.initial_alarm(n, depth));
         }
         if !has_acce && !ct.kinematic() {
             ct.penalty(
                 &engine.asm.numbering,
                 &engine.committed.motion.u,
                 &engine.committed.motion.u,
-                engine.committed.t,
+                t_first,
             )
             .map_err(|m| stop(m, &summary))?;
         }
@@ -890,12 +885,11 @@ fn run_on(
         // pairing.
         if let Some(ct) = contact.as_deref_mut() {
             if !ct.kinematic() {
-                ct.prepare(
-                    &engine.asm.numbering,
-                    &engine.committed.motion.u,
-                    engine.committed.t,
-                )
-                .map_err(|m| stop(m, &summary))?;
+                let prepared =
+                    ct.prepare(&engine.asm.numbering, &engine.committed.motion.u, t0 + dt);
+                if let Err(why) = prepared {
+                    fail!(why, t0, dt);
+                }
             }
         }
         // A bound that collapsed (a cell crushed to nothing) or a PAS_MAXI
@@ -962,7 +956,11 @@ fn run_on(
         if let Some(ct) = contact.as_deref_mut() {
             if ct.kinematic() {
                 let corrected = ct
-                    .prepare(&engine.asm.numbering, &engine.trial.motion.u, engine.trial.t)
+                    .prepare(
+                        &engine.asm.numbering,
+                        &engine.trial.motion.u,
+                        engine.trial.t,
+                    )
                     .and_then(|()| ex.correct(engine, ct, dt, dt_next, true));
                 if let Err(why) = corrected {
                     fail!(why, t0, dt);

@@ -626,6 +626,17 @@ impl ExplicitConstraint for ExplicitContact {
         ExplicitContact::penetrations(self, u)
     }
 
+    fn initial_alarm(&self, n: usize, depth: f64) -> String {
+        format!(
+            "  alarm: {n} slave node(s) penetrate the master at the initial state (deepest {depth:.4e}): the contact pushes them out in the first step{}, an impulse of the initial state, not of the motion",
+            if self.kinematic() {
+                " (kinematic: onto the surface within one step)"
+            } else {
+                " (penalty: a force E_N times the depth)"
+            }
+        )
+    }
+
     fn penalty(
         &mut self,
         numbering: &DofNumbering,

@@ -55,8 +55,10 @@ pub struct ExplicitUnilateral {
 }
 
 impl ExplicitUnilateral {
-    /// `instants`: the run's list, over which the coefficients' largest
-    /// magnitudes are taken for the step bound.
+    /// `instants`: the list's step ends, over which the coefficients'
+    /// largest magnitudes are taken for the step bound (a COEF_MULT of
+    /// INST that peaks between two instants of the list is taken at the
+    /// instants only: the bound is that of the list's sampling).
     pub fn new(
         def: UnilDef,
         numbering: &DofNumbering,
@@ -72,8 +74,12 @@ impl ExplicitUnilateral {
             for (_, f) in &zone.components {
                 let mut m: f64 = 0.0;
                 for &t in instants {
-                    let a = eval_coef_mult(f, t)
-                        .map_err(|e| format!("LIAISON_UNIL at INST = {t:e}: ZONE {}, COEF_MULT: {e}", z + 1))?;
+                    let a = eval_coef_mult(f, t).map_err(|e| {
+                        format!(
+                            "LIAISON_UNIL at INST = {t:e}: ZONE {}, COEF_MULT: {e}",
+                            z + 1
+                        )
+                    })?;
                     m = m.max(a.abs());
                 }
                 per.push(m);
@@ -173,6 +179,17 @@ impl ExplicitConstraint for ExplicitUnilateral {
         (count, deepest)
     }
 
+    fn initial_alarm(&self, n: usize, depth: f64) -> String {
+        format!(
+            "  alarm: {n} LIAISON_UNIL link(s) violated at the initial state (largest c - A u = -{depth:.4e}): {}, an impulse of the initial state, not of the motion",
+            if self.kinematic() {
+                "the kinematic enforcement puts the nodes back on their bounds within the first step"
+            } else {
+                "the penalty pushes them back with COEF_PENA times the violation"
+            }
+        )
+    }
+
     fn penalty(
         &mut self,
         numbering: &DofNumbering,
@@ -254,7 +271,9 @@ impl ExplicitConstraint for ExplicitUnilateral {
                 .map(|&i| {
                     let mut row = vec![0.0; dofs.len()];
                     for &(e, a) in &self.rows[i].entries {
-                        let k = dofs.binary_search(&numbering.free[e]).expect("collected above");
+                        let k = dofs
+                            .binary_search(&numbering.free[e])
+                            .expect("collected above");
                         row[k] += a;
                     }
                     row
@@ -313,7 +332,12 @@ impl ExplicitConstraint for ExplicitUnilateral {
         0.0
     }
 
-    fn cont_noeu(&self, _u: &[f64], _u_start: &[f64], _dt: f64) -> Option<crate::result::NodalField> {
+    fn cont_noeu(
+        &self,
+        _u: &[f64],
+        _u_start: &[f64],
+        _dt: f64,
+    ) -> Option<crate::result::NodalField> {
         None
     }
 
