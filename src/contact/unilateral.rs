@@ -392,8 +392,8 @@ pub enum NodeProjectionFailure {
 
 /// The correction x of least M-norm (½ xᵀ M x, M = diag(1/`minv`)) with
 /// B x ≤ b, B the rows of one node's links on its components (`rows[i]`
-/// has one coefficient per component), and the multipliers μ ≥ 0 with
-/// M x = −Bᵀμ: the kinematic enforcement of LIAISON_UNIL in explicit
+/// has one coefficient per component), and the multipliers μ ≥ 0 of every
+/// link (0 for the inactive ones) with M x = −Bᵀμ: the kinematic enforcement of LIAISON_UNIL in explicit
 /// dynamics, where the lumped mass makes the nodes independent. Exact by
 /// enumeration of the active subsets, smallest first: a node has a few
 /// links and at most 3 components, and a KKT point of this strictly
@@ -478,7 +478,11 @@ fn try_subset(
             return None;
         }
     }
-    Some((x, mu.into_iter().map(|v| v.max(0.0)).collect()))
+    let mut per_link = vec![0.0; rows.len()];
+    for (p, &i) in set.iter().enumerate() {
+        per_link[i] = mu[p].max(0.0);
+    }
+    Some((x, per_link))
 }
 
 /// Gaussian elimination with partial pivoting of a small dense system
