@@ -220,3 +220,21 @@ fn what_cannot_run_is_a_located_error() {
         }
     }
 }
+
+/// SDNV103 E's physics explicitly (tests/verification/sdnv103e_explicit
+/// .comm): its TEST_RESU check the free flight of A2 and B1 and A1 on the
+/// stop against the analytic values; here, the momentum the stop takes
+/// out of the bar is the impulse of its reactions, along Z only.
+#[test]
+fn sdnv103e_explicit_momentum_is_the_impulse() {
+    let run = common::run_study(
+        "tests/verification/sdnv103e_explicit.comm",
+        "sdnv103e_explicit",
+    );
+    common::assert_all_ok(&run, "sdnv103e_explicit.resu");
+    let mess = run.file("sdnv103e_explicit.mess");
+    let i = &tuples(&mess, IMPULSE)[0];
+    let m = &tuples(&mess, MOMENTUM)[0];
+    assert!(i[2] > 0.0 && (i[2] - m[2]).abs() <= 1e-9 * i[2], "{i:?} {m:?}");
+    assert!(i[0] == 0.0 && i[1] == 0.0 && m[0].abs() < 1e-12 * i[2], "{i:?} {m:?}");
+}
