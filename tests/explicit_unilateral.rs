@@ -235,6 +235,12 @@ fn sdnv103e_explicit_momentum_is_the_impulse() {
     let mess = run.file("sdnv103e_explicit.mess");
     let i = &tuples(&mess, IMPULSE)[0];
     let m = &tuples(&mess, MOMENTUM)[0];
-    assert!(i[2] > 0.0 && (i[2] - m[2]).abs() <= 1e-9 * i[2], "{i:?} {m:?}");
-    assert!(i[0] == 0.0 && i[1] == 0.0 && m[0].abs() < 1e-12 * i[2], "{i:?} {m:?}");
+    assert!(
+        i[2] > 0.0 && (i[2] - m[2]).abs() <= 1e-9 * i[2],
+        "{i:?} {m:?}"
+    );
+    assert!(
+        i[0] == 0.0 && i[1] == 0.0 && m[0].abs() < 1e-12 * i[2],
+        "{i:?} {m:?}"
+    );
 }
