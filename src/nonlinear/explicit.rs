@@ -16,7 +16,8 @@
 //!    v_n + Δt a_n (no correction);
 //! 5. kinematic contact corrects a_{n+1} (and, for DIFF_CENT, v_{n+1}) so
 //!    that the next predicted positions do not penetrate
-//!    (`nonlinear::explicit_contact`).
+//!    (`nonlinear::explicit_contact`; LIAISON_UNIL's links likewise,
+//!    `nonlinear::explicit_unilateral`, both behind [`ExplicitConstraint`]).
 //!
 //! Imposed dofs (DDL_IMPO, constant values) are prescribed kinematically,
 //! as explicit codes do (notes/explicit.md §4, Belytschko, Liu & Moran

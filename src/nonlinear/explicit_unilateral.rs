@@ -162,7 +162,14 @@ impl ExplicitConstraint for ExplicitUnilateral {
         w2
     }
 
+    /// The kinematic correction evaluates its rows at the instant it
+    /// predicts (`correct`'s t_next): once the initial state's rows exist
+    /// (for its violation check), the loop's preparation at the step end
+    /// would only evaluate them for nothing.
     fn prepare(&mut self, numbering: &DofNumbering, _u: &[f64], t: f64) -> Result<(), String> {
+        if self.kinematic() && self.rows_t.is_some() {
+            return Ok(());
+        }
         self.rows_at(numbering, t)
     }
 
