@@ -192,11 +192,11 @@ fn what_cannot_run_is_a_located_error() {
         ),
         (
             "domain",
-            "D = DEFI_CONSTANTE(VALE=2.5)",
-            "D = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 2.5, 4., 2.5))",
+            "UN = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 1., 8., 1.))",
+            "UN = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 1., 4., 1.))",
             &[
                 "DYNA_NON_LINE/CONTACT",
-                "LIAISON_UNIL at INST = 8e0: ZONE 2, COEF_IMPO",
+                "LIAISON_UNIL at INST = 8e0: ZONE 1, COEF_MULT",
                 "domain.comm:",
             ],
         ),
