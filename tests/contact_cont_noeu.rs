@@ -30,6 +30,8 @@ fn setup(friction: bool) -> (Mesh, ContactDef) {
         dim: 2,
         friction,
         reac_geom: ReacGeom::Sans,
+        algo: aster::contact::DiscreteAlgo::Penalty,
+        ties: Vec::new(),
         continuous: None,
         zones: vec![ContactZone {
             master_group: "MAIT".into(),

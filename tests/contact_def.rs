@@ -198,10 +198,28 @@ fn unimplemented_formulations_and_options_are_refused() {
     let e = error_of(
         "AXIS",
         'D',
-        "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+        "ZONE=_F(ALGO_CONT='GCP', GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
     );
     assert!(
-        e.message.contains("ALGO_CONT='CONTRAINTE'"),
+        e.message.starts_with("not implemented yet") && e.message.contains("ALGO_CONT='GCP'"),
+        "{}",
+        e.message
+    );
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=(_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ'), \
+               _F(ALGO_CONT='PENALISATION', E_N=1.E5, GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ'))",
+    );
+    assert!(e.message.contains("CONTACT3_4"), "{}", e.message);
+    assert_eq!(e.keyword.as_deref(), Some("ZONE/ALGO_CONT"));
+    let e = error_of(
+        "AXIS",
+        'D',
+        "ZONE=_F(GLISSIERE='OUI', GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+    );
+    assert!(
+        e.message.starts_with("not implemented yet") && e.message.contains("GLISSIERE"),
         "{}",
         e.message
     );
@@ -353,6 +371,62 @@ fn penalised_contact_keeps_quad8_mid_nodes() {
             "mid node {n} unlinked"
         );
     }
+}
+
+/// ALGO_CONT='CONTRAINTE' (the default) on H's QUAD8 face: every mid-side
+/// node of SZZ whose edge has both vertices among the slave nodes is tied
+/// to them and leaves the slave nodes (code_aster's `elimcq`/`cacoeq`);
+/// the vertices stay. On the AXIS mesh of D (SEG3 faces) nothing is tied.
+#[test]
+fn active_set_ties_quad8_mid_nodes() {
+    use aster::contact::DiscreteAlgo;
+    use aster::mesh::CellType;
+    let m = mesh('H');
+    let def = ContactDef::from_args(
+        &defi_contact("3D", "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')"),
+        &m,
+    )
+    .unwrap();
+    assert_eq!(def.algo, DiscreteAlgo::ActiveSet);
+    let szz = &m.cell_groups["SZZ"];
+    let mut expected = Vec::new();
+    for &c in szz {
+        let cell = &m.cells[c];
+        // TRIA6 faces (the prisms at the axis) are not tied.
+        if cell.kind != CellType::Quad8 {
+            continue;
+        }
+        for (k, &mid) in cell.nodes[4..].iter().enumerate() {
+            expected.push((mid, [cell.nodes[k], cell.nodes[(k + 1) % 4]]));
+        }
+    }
+    assert!(!expected.is_empty());
+    expected.sort_unstable();
+    expected.dedup_by_key(|e| e.0);
+    let mut slaves = m.nodes_of_cells(szz);
+    slaves.sort_unstable();
+    slaves.dedup();
+    slaves.retain(|n| expected.binary_search_by_key(n, |e| e.0).is_err());
+    let mut ties: Vec<(usize, [usize; 2])> = def.ties.iter().map(|t| (t.mid, t.ends)).collect();
+    ties.sort_unstable();
+    assert_eq!(ties.len(), expected.len());
+    for ((mid, ends), (emid, eends)) in ties.iter().zip(&expected) {
+        assert_eq!(mid, emid);
+        let (mut a, mut b) = (*ends, *eends);
+        a.sort_unstable();
+        b.sort_unstable();
+        assert_eq!(a, b, "tie of {mid}");
+    }
+    assert_eq!(def.zones[0].slave_nodes, slaves);
+    let d = ContactDef::from_args(
+        &defi_contact(
+            "AXIS",
+            "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')",
+        ),
+        &mesh('D'),
+    )
+    .unwrap();
+    assert!(d.ties.is_empty());
 }
 
 /// SDNV103 F's definition: the continuous keywords with their defaults.

@@ -33,6 +33,8 @@ fn def(mesh: &Mesh, e_n: f64, friction: Option<Coulomb>) -> ContactDef {
         dim: mesh.dim,
         friction: friction.is_some(),
         reac_geom: ReacGeom::Sans,
+        algo: aster::contact::DiscreteAlgo::Penalty,
+        ties: Vec::new(),
         continuous: None,
         zones: vec![ContactZone {
             master_group: "MAIT".into(),

@@ -2051,3 +2051,56 @@ fn bad_calc_table_and_calc_fonction_are_located_errors() {
     ];
     expect_located_errors(&comm, &cases, &tmp, "", "verif_calc_fonction");
 }
+
+/// contact_contrainte.comm (discrete contact, ALGO_CONT='CONTRAINTE':
+/// the active set; the study checks JEU = 0 and Σ RN = m g): node by node
+/// the penalised reactions converge to the active set's as 1/E_N (the
+/// difference shrinks by 8 to 12 times from E_N = 1e6 to 1e7, with the
+/// same sign), and on the HEXA20 block every tied mid-side node of the
+/// QUAD8 slave faces moves as the mean of its edge's vertices (found by
+/// their coordinates), while the face stays on the foundation.
+#[test]
+fn active_set_contact_is_the_limit_of_the_penalty() {
+    let resu = run_study("contact_contrainte");
+    let exact = printed_table(&resu, "TAB0");
+    let pen1 = printed_table(&resu, "TAB1");
+    let pen2 = printed_table(&resu, "TAB2");
+    assert_eq!(exact.len(), 9);
+    for ((a, p1), p2) in exact.iter().zip(&pen1).zip(&pen2) {
+        assert_eq!(a["NOEUD"], p1["NOEUD"]);
+        assert_eq!(a["NOEUD"], p2["NOEUD"]);
+        let (d1, d2) = (num(p1, "RN") - num(a, "RN"), num(p2, "RN") - num(a, "RN"));
+        let ratio = d1 / d2;
+        assert!(
+            (8.0..=12.0).contains(&ratio),
+            "{} d1 {d1:e} d2 {d2:e}",
+            a["NOEUD"]
+        );
+    }
+    let depl = printed_table(&resu, "DEPQ");
+    assert_eq!(depl.len(), 21, "9 vertices and 12 mid-side nodes");
+    let at = |x: f64, y: f64| {
+        depl.iter()
+            .find(|r| (num(r, "COOR_X") - x).abs() < 1e-9 && (num(r, "COOR_Y") - y).abs() < 1e-9)
+            .unwrap_or_else(|| panic!("no node at ({x}, {y})"))
+    };
+    let mut ties = 0;
+    for r in &depl {
+        let (x, y) = (num(r, "COOR_X"), num(r, "COOR_Y"));
+        let half = |v: f64| (v - v.round()).abs() > 0.25;
+        let ends = match (half(x), half(y)) {
+            (true, false) => [at(x - 0.5, y), at(x + 0.5, y)],
+            (false, true) => [at(x, y - 0.5), at(x, y + 0.5)],
+            _ => continue,
+        };
+        for c in ["DX", "DY", "DZ"] {
+            let mean = 0.5 * (num(ends[0], c) + num(ends[1], c));
+            assert!((num(r, c) - mean).abs() <= 1e-15, "{} {c}", r["NOEUD"]);
+        }
+        ties += 1;
+    }
+    assert_eq!(ties, 12);
+    // The Poisson expansion of the foot is not zero: the ties are tested
+    // on a displacement that moves.
+    assert!(depl.iter().any(|r| num(r, "DX").abs() > 1e-9));
+}

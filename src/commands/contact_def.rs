@@ -4,7 +4,10 @@
 //! about; what the engine does not implement is refused, never ignored.
 
 use crate::catalog::args::Args;
-use crate::contact::{continuous, is_contact_surface, ContactDef, ContactZone, Coulomb, ReacGeom};
+use crate::contact::{
+    continuous, is_contact_surface, ContactDef, ContactZone, Coulomb, DiscreteAlgo, MidTie,
+    ReacGeom,
+};
 use crate::diag::Diagnostic;
 use crate::mesh::{CellType, Mesh};
 use crate::nonlinear::explicit_contact::Enforcement;
@@ -95,10 +98,16 @@ fn build(args: &Args, mesh: &Mesh, explicit: bool) -> Result<ContactDef, Diagnos
         } else {
             None
         };
-        let zones = zones
+        let algo = discrete_algo(zones, continuous || explicit)?;
+        let mut zones = zones
             .iter()
             .map(|z| zone(z, mesh, friction, continuous, explicit))
             .collect::<Result<Vec<_>, _>>()?;
+        let ties = if algo == DiscreteAlgo::ActiveSet && mesh.dim == 3 {
+            quad8_ties(&mut zones, mesh)
+        } else {
+            Vec::new()
+        };
         let continuous = match czones {
             None => None,
             Some(czones) => Some(continuous_def(args, czones)?),
@@ -107,10 +116,77 @@ fn build(args: &Args, mesh: &Mesh, explicit: bool) -> Result<ContactDef, Diagnos
             dim: mesh.dim,
             friction,
             reac_geom,
+            algo,
+            ties,
             zones,
             continuous,
         })
     }
+}
+
+/// The discrete method's ALGO_CONT, one for all zones (code_aster's
+/// algorithm is global to the DEFI_CONTACT: CONTACT3_4 when zones
+/// differ). `other`: continuous or explicit contact, which read
+/// ALGO_CONT their own way.
+fn discrete_algo(zones: &[Args], other: bool) -> Result<DiscreteAlgo, Diagnostic> {
+    if other {
+        return Ok(DiscreteAlgo::Penalty);
+    }
+    let first = zones[0].text("ALGO_CONT").unwrap_or("CONTRAINTE");
+    for z in &zones[1..] {
+        let a = z.text("ALGO_CONT").unwrap_or("CONTRAINTE");
+        if a != first {
+            return Err(z.error(
+                "ALGO_CONT",
+                format!("ALGO_CONT='{a}' differs from the first zone's '{first}': the discrete formulation needs the same ALGO_CONT in every ZONE (code_aster CONTACT3_4)"),
+            ));
+        }
+    }
+    Ok(if first == "CONTRAINTE" {
+        DiscreteAlgo::ActiveSet
+    } else {
+        DiscreteAlgo::Penalty
+    })
+}
+
+/// code_aster's `elimcq`/`cacoeq` for the active-set discrete method: each
+/// mid-side node (5 to 8) of a QUAD8 slave cell whose edge's three nodes
+/// are all slave nodes of the zone (none in SANS_GROUP_NO/SANS_GROUP_MA)
+/// is tied to the edge's vertices and leaves the slave nodes. TRIA6 and
+/// QUAD9 faces are left as they are, as in code_aster.
+fn quad8_ties(zones: &mut [ContactZone], mesh: &Mesh) -> Vec<MidTie> {
+    const EDGES: [(usize, usize, usize); 4] = [(4, 0, 1), (5, 1, 2), (6, 2, 3), (7, 3, 0)];
+    let mut ties: Vec<MidTie> = Vec::new();
+    for zone in zones.iter_mut() {
+        let cells = mesh
+            .cell_groups
+            .get(&zone.slave_group)
+            .map(Vec::as_slice)
+            .unwrap_or(&[]);
+        let mut tied = Vec::new();
+        for &c in cells {
+            let cell = &mesh.cells[c];
+            if cell.kind != CellType::Quad8 {
+                continue;
+            }
+            for (m, a, b) in EDGES {
+                let [m, a, b] = [cell.nodes[m], cell.nodes[a], cell.nodes[b]];
+                let slave = |n: usize| zone.slave_nodes.binary_search(&n).is_ok();
+                if slave(m) && slave(a) && slave(b) {
+                    tied.push(m);
+                    if !ties.iter().any(|t| t.mid == m) {
+                        ties.push(MidTie {
+                            mid: m,
+                            ends: [a, b],
+                        });
+                    }
+                }
+            }
+        }
+        tied.sort_unstable();
+        zone.slave_nodes.retain(|n| tied.binary_search(n).is_err());
+    }
+    ties
 }
 
 fn reac_geom(args: &Args) -> Result<ReacGeom, Diagnostic> {
@@ -429,10 +505,20 @@ fn zone(
             )
             .note("the catalogue default of ALGO_CONT is 'CONTRAINTE': write ALGO_CONT='PENALISATION' and give E_N"));
     }
+    if algo == "CONTRAINTE" {
+        if z.text("GLISSIERE") == Some("OUI") {
+            return Err(z.not_implemented(
+                "GLISSIERE",
+                "bilateral sliding (GLISSIERE='OUI': a link once closed stays closed)",
+            ));
+        }
+        // The active set: exact conditions, no penalty (E_N unused).
+        return zone_groups(z, mesh, 0.0, None);
+    }
     if algo != "PENALISATION" {
         return Err(z.not_implemented(
             "ALGO_CONT",
-            &format!("ALGO_CONT='{algo}'; only the penalised discrete method (ALGO_CONT='PENALISATION' with E_N) is available"),
+            &format!("ALGO_CONT='{algo}'; the discrete formulation has 'CONTRAINTE' (active set) and 'PENALISATION' (with E_N)"),
         ));
     }
     let positive = |key: &str| -> Result<f64, Diagnostic> {

@@ -1646,6 +1646,16 @@ pub(crate) fn run(
         &mut evol,
         &mut log,
     );
+    if let Some(a) = contact.as_ref().and_then(|c| c.active.as_ref()) {
+        let s = a.stats;
+        log(&format!(
+            "  contact ALGO_CONT='CONTRAINTE': {} active-set calls, {} passes (at most {} in one call); {} link(s) active at the last solve",
+            s.calls,
+            s.passes,
+            s.max_passes,
+            a.active_links()
+        ));
+    }
     if let Some(u) = &unil {
         let s = u.stats;
         match u.def.algo {

@@ -290,3 +290,22 @@ pub fn link_gap(link: &Link, u: &[[f64; 3]]) -> f64 {
     }
     g
 }
+
+/// The active-set form of a link (ALGO_CONT='CONTRAINTE'): g(u) ≥ 0 is
+/// A·u ≤ g_ref with A = −B_n, the coefficients returned per (node,
+/// component), slave then master nodes, whether the dof is free or
+/// imposed (the caller splits them). A multiplier μ ≥ 0 on it is the
+/// force μ·Aᵀ on the F_int side, which is the penalised r_c = −λ_n·B_n
+/// with λ_n = μ: both methods report the same CONT_NOEU quantities.
+pub fn link_constraint(link: &Link, dim: usize) -> Vec<((usize, usize), f64)> {
+    let mut out = Vec::with_capacity((1 + link.master_nodes.len()) * dim);
+    for c in 0..dim {
+        out.push(((link.slave, c), link.normal[c]));
+    }
+    for (j, &n) in link.master_nodes.iter().enumerate() {
+        for c in 0..dim {
+            out.push(((n, c), -link.shape[j] * link.normal[c]));
+        }
+    }
+    out
+}

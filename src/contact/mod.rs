@@ -1,5 +1,6 @@
 //! Discrete frictional contact (`DEFI_CONTACT` with `FORMULATION='DISCRETE'`,
-//! penalised contact and penalised Coulomb friction), as a library the
+//! penalised contact and penalised Coulomb friction, or the exact
+//! conditions of the active set, `ALGO_CONT='CONTRAINTE'`), as a library the
 //! Newton loop of DYNA_NON_LINE calls (docs/contact.md, semantics.md §6).
 //!
 //! The flow of one time step is:
@@ -83,6 +84,32 @@ pub struct ContactZone {
     pub dist_appa: Option<f64>,
 }
 
+/// How the discrete formulation enforces non-penetration (`ALGO_CONT`,
+/// the same in every zone).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiscreteAlgo {
+    /// `'PENALISATION'`: the force E_N·(−g) and its tangent.
+    Penalty,
+    /// `'CONTRAINTE'` (the catalogue default) in implicit dynamics and
+    /// statics: exact conditions g ≥ 0 by code_aster's active set on the
+    /// Schur complement (`algoco`, the algorithm LIAISON_UNIL's `algocu`
+    /// was drawn from), frictionless. Explicit schemes enforce
+    /// 'CONTRAINTE' kinematically instead (`nonlinear::explicit_contact`).
+    ActiveSet,
+}
+
+/// A mid-side node of a QUAD8 slave cell tied to its edge,
+/// u_mid = ½ (u_a + u_b) on every component: code_aster's `cacoeq`
+/// relations of the active-set discrete method (docs/contact.md §2).
+/// The tied node is no slave node: the face's normal motion becomes
+/// bilinear, driven by its vertices, which is what lets a node-wise
+/// unilateral condition carry a uniform pressure on a QUAD8 face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MidTie {
+    pub mid: usize,
+    pub ends: [usize; 2],
+}
+
 /// A checked `DEFI_CONTACT` with `FORMULATION='DISCRETE'`, ready for the
 /// solver.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,6 +120,9 @@ pub struct ContactDef {
     /// `FROTTEMENT='COULOMB'`.
     pub friction: bool,
     pub reac_geom: ReacGeom,
+    pub algo: DiscreteAlgo,
+    /// The QUAD8 mid-node ties ([`DiscreteAlgo::ActiveSet`] in 3D only).
+    pub ties: Vec<MidTie>,
     pub zones: Vec<ContactZone>,
     /// FORMULATION='CONTINUE': the continuous keywords (the zones above
     /// then carry only the groups, the pairing options and the slave

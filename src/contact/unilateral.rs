@@ -203,12 +203,32 @@ pub fn active_set(
     solve: &mut dyn FnMut(&mut [f64]) -> Result<(), String>,
     zero_set: &mut [bool],
 ) -> Result<ActiveSetResult, ActiveSetFailure> {
+    active_set_with_equalities(rows, 0, gaps, delta, solve, zero_set)
+}
+
+/// [`active_set`] where the first `equalities` rows are equalities
+/// (A_i·u = c_i): always in the set, their multipliers of either sign,
+/// never removed nor tested by the step length. The discrete contact's
+/// ties of QUAD8 mid-side nodes (code_aster's `cacoeq` relations, which
+/// its `algoco` carries as links always active) are such rows. With no
+/// equality it is code_aster's `algocu` pass for pass.
+pub fn active_set_with_equalities(
+    rows: &[Row],
+    equalities: usize,
+    gaps: &mut [f64],
+    delta: &mut [f64],
+    solve: &mut dyn FnMut(&mut [f64]) -> Result<(), String>,
+    zero_set: &mut [bool],
+) -> Result<ActiveSetResult, ActiveSetFailure> {
     let nl = rows.len();
     let n = delta.len();
     let d0 = delta.to_vec();
     let a_d0: Vec<f64> = rows.iter().map(|r| r.dot(&d0)).collect();
-    // Initial set: the links δ⁰ violates (strictly), increasing order.
-    let mut set: Vec<usize> = (0..nl).filter(|&i| gaps[i] - a_d0[i] < 0.0).collect();
+    // Initial set: the equalities, then the links δ⁰ violates
+    // (strictly), increasing order.
+    let mut set: Vec<usize> = (0..nl)
+        .filter(|&i| (i < equalities && !zero_set[i]) || gaps[i] - a_d0[i] < 0.0)
+        .collect();
     let mut columns: Vec<Option<Vec<f64>>> = vec![None; nl];
     let mut v = vec![0.0; n];
     let mut d = vec![0.0; n];
@@ -279,7 +299,7 @@ pub fn active_set(
             let mut entering = None;
             if set.len() < nl {
                 let mut best = f64::INFINITY;
-                for i in 0..nl {
+                for i in equalities..nl {
                     if zero_set[i] || set.contains(&i) {
                         continue;
                     }
@@ -305,11 +325,14 @@ pub fn active_set(
             } else if set.is_empty() {
                 break;
             } else {
-                let (p, &m) = mu
+                let Some((p, &m)) = mu
                     .iter()
                     .enumerate()
+                    .filter(|&(p, _)| set[p] >= equalities)
                     .min_by(|a, b| a.1.total_cmp(b.1))
-                    .expect("J is not empty");
+                else {
+                    break;
+                };
                 if m >= 0.0 {
                     break;
                 }

@@ -8,10 +8,13 @@
 //! Newton has converged, and the iterations then continue with the new
 //! pairing at the same displacement (the same ITER_GLOB_MAXI counter).
 
+use super::contact_active::ActiveSetContact;
 use super::continuous::ContinuousContact;
 use super::dofs::{DofNumbering, NONE};
-use super::newton::{ContactIteration, ContactTerm};
-use crate::contact::{evaluate, pair, ContactDef, ContactState, IterationInput, Pairing, ReacGeom};
+use super::newton::{ContactIteration, ContactTerm, IncrementCorrection};
+use crate::contact::{
+    evaluate, pair, ContactDef, ContactState, DiscreteAlgo, IterationInput, Pairing, ReacGeom,
+};
 use crate::mesh::Mesh;
 use crate::result::NodalField;
 
@@ -22,6 +25,9 @@ use crate::result::NodalField;
 pub struct DiscreteContact {
     /// FORMULATION='CONTINUE': the term that does the work.
     pub continuous: Option<ContinuousContact>,
+    /// ALGO_CONT='CONTRAINTE': the active set, which replaces the
+    /// penalised forces.
+    pub active: Option<ActiveSetContact>,
     pub def: ContactDef,
     mesh: Mesh,
     ndpn: usize,
@@ -45,7 +51,7 @@ pub struct DiscreteContact {
     pub steps_committed: usize,
 }
 
-fn per_node(ndpn: usize, u: &[f64]) -> Vec<[f64; 3]> {
+pub(super) fn per_node(ndpn: usize, u: &[f64]) -> Vec<[f64; 3]> {
     u.chunks(ndpn)
         .map(|c| {
             let mut v = [0.0; 3];
@@ -63,6 +69,7 @@ impl DiscreteContact {
         let ndpn = numbering.ndpn;
         let mut c = DiscreteContact {
             continuous: None,
+            active: (def.algo == DiscreteAlgo::ActiveSet).then(|| ActiveSetContact::new(numbering)),
             def,
             mesh: mesh.clone(),
             ndpn,
@@ -112,6 +119,7 @@ impl DiscreteContact {
             trial: cc.trial.clone(),
             committed: cc.committed.clone(),
             continuous: Some(cc),
+            active: None,
             def,
             mesh: mesh.clone(),
             ndpn: numbering.ndpn,
@@ -151,6 +159,12 @@ impl DiscreteContact {
                     entries.push((a, b));
                 }
             }
+        }
+        if let Some(a) = self.active.as_mut() {
+            // The active set adds no stiffness: it works on the Schur
+            // complement of the factorised matrix.
+            entries.clear();
+            a.rebuild(&self.def, &p, numbering);
         }
         entries.sort_unstable();
         entries.dedup();
@@ -201,6 +215,9 @@ impl ContactTerm for DiscreteContact {
         let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.u_start = per_node(self.ndpn, u_start);
         self.pairings_in_step = 0;
+        if let Some(a) = self.active.as_mut() {
+            a.begin_step();
+        }
         // REAC_GEOM='SANS' keeps the first pairing of the computation
         // (semantics.md §14 leaves "once per step" open; docs/contact.md).
         if self.def.reac_geom != ReacGeom::Sans || self.pairing.is_none() {
@@ -225,6 +242,10 @@ impl ContactTerm for DiscreteContact {
         let Some(pairing) = self.pairing.as_ref() else {
             return Err("no pairing before the first iteration".into());
         };
+        if let Some(a) = self.active.as_mut() {
+            self.trial = a.add(&self.def, pairing, it);
+            return Ok(());
+        }
         let nb = it.numbering;
         let u = per_node(self.ndpn, it.u);
         let (contrib, state) = evaluate(
@@ -298,6 +319,14 @@ impl ContactTerm for DiscreteContact {
                 Ok(false)
             }
         }
+    }
+
+    fn correct(&mut self, c: IncrementCorrection) -> Result<(), String> {
+        let (Some(a), Some(p)) = (self.active.as_mut(), self.pairing.as_ref()) else {
+            return Ok(());
+        };
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
+        a.correct(p, c)
     }
 
     fn extra_unknowns(&self) -> usize {

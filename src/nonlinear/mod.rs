@@ -12,6 +12,7 @@
 pub mod assembly;
 pub mod behaviour;
 pub mod contact;
+pub mod contact_active;
 pub mod continuous;
 pub mod cycling;
 pub mod dofs;
