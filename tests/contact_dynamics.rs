@@ -78,6 +78,8 @@ fn landing(nu: f64, e_n: f64, friction: Option<(f64, f64)>, k_radial: f64) -> Ru
              ALGO_CONT='PENALISATION', E_N={e_n:e}, ALGO_FROT='PENALISATION', E_T={e_t:e}, \
              COULOMB={mu}, COEF_MATR_FROT=0.4)"
         ),
+        // E_N = 0: the catalogue default ALGO_CONT='CONTRAINTE' (active set).
+        None if e_n == 0.0 => "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ')".to_string(),
         None => format!(
             "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', ALGO_CONT='PENALISATION', E_N={e_n:e})"
         ),
@@ -275,6 +277,73 @@ fn elastic_bar_lands_and_rebounds() {
         "landing: contact from step {first} to {last}, duration {t_contact:.4e} s (2L/c = {:.4e}), impulse {impulse:.6e}, dp {dp:.6e}, p0 {p_before:.6e}, p1 {p_after:.6e}, max penetration {:.4e}",
         2.0 * 32.4 / c,
         r.max_penetration()
+    );
+}
+
+/// (1b) The same landing with ALGO_CONT='CONTRAINTE' (the active set):
+/// no slave node ever goes through the foundation (JEU ≥ −1e-12 mm at
+/// every step) and a closed node sits on it (|JEU| ≤ 1e-12); the impulse
+/// of the multipliers equals the change of momentum within 2 %; the bar
+/// leaves after about 2L/c with about the opposite momentum, as the 1D
+/// elastic bar does.
+#[test]
+fn elastic_bar_lands_and_rebounds_on_the_active_set() {
+    let r = landing(0.0, 0.0, None, 0.0);
+    let steps = r.result.steps.len();
+    assert!(!r.in_contact(1));
+    let first = (1..steps)
+        .find(|&s| r.in_contact(s))
+        .expect("the bar lands");
+    let last = (first..steps)
+        .rev()
+        .find(|&s| r.in_contact(s))
+        .expect("contact");
+    assert!(last + 5 < steps, "the bar must have left before the end");
+    let p_before = r.momentum_y(first - 1);
+    let p_after = r.momentum_y(last + 1);
+    let mut impulse = 0.0;
+    for s in first..=last + 1 {
+        let dt = r.result.steps[s].inst - r.result.steps[s - 1].inst;
+        impulse += dt * (GAMMA * r.total(s, "RY") + (1.0 - GAMMA) * r.total(s - 1, "RY"));
+    }
+    let dp = p_after - p_before;
+    assert!(
+        (impulse - dp).abs() <= 0.02 * dp.abs(),
+        "impulse {impulse} vs momentum change {dp}"
+    );
+    let c = (E / RHO).sqrt();
+    let t_contact = r.result.steps[last + 1].inst - r.result.steps[first - 1].inst;
+    assert!(
+        (t_contact - 2.0 * 32.4 / c).abs() < 0.1 * 2.0 * 32.4 / c,
+        "contact duration {t_contact} vs 2L/c = {}",
+        2.0 * 32.4 / c
+    );
+    assert!(
+        (p_after + p_before).abs() < 0.1 * p_before.abs(),
+        "rebound momentum {p_after} vs {}",
+        -p_before
+    );
+    let mut closed = 0;
+    for s in 0..steps {
+        for &n in &r.slaves {
+            let (jeu, rn) = (r.cont(s, n, "JEU"), r.cont(s, n, "RN"));
+            assert!(jeu >= -1e-12, "step {s} node {}: JEU {jeu}", n + 1);
+            if r.cont(s, n, "CONT") > 0.0 {
+                closed += 1;
+                assert!(
+                    rn > 0.0 && jeu.abs() <= 1e-12,
+                    "step {s} node {}: JEU {jeu} RN {rn}",
+                    n + 1
+                );
+            } else {
+                assert_eq!(rn, 0.0);
+            }
+        }
+    }
+    assert!(closed > 20);
+    eprintln!(
+        "active-set landing: contact from step {first} to {last}, duration {t_contact:.4e} s (2L/c = {:.4e}), impulse {impulse:.6e}, dp {dp:.6e}, p0 {p_before:.6e}, p1 {p_after:.6e}",
+        2.0 * 32.4 / c
     );
 }
 

@@ -351,5 +351,6 @@ impl ContactTerm for DiscreteContact {
         self.continuous
             .as_ref()
             .is_none_or(ContinuousContact::settled)
+            && self.active.as_ref().is_none_or(ActiveSetContact::settled)
     }
 }

@@ -57,6 +57,11 @@ pub struct ActiveSetContact {
     /// Rows never tested again by the step length (zero rows), reset with
     /// the pairing that numbers them.
     zero_set: Vec<bool>,
+    /// No solve since the last pairing: the multipliers belong to the
+    /// previous links, so Newton must iterate once more (the geometric
+    /// loop's new pairing is resolved, as code_aster's `cfalgo` runs after
+    /// each solve of the loop).
+    stale: bool,
     pub stats: ActiveSetStats,
 }
 
@@ -70,6 +75,7 @@ impl ActiveSetContact {
             mu: Vec::new(),
             force: vec![0.0; numbering.nfull()],
             zero_set: Vec::new(),
+            stale: true,
             stats: ActiveSetStats::default(),
         }
     }
@@ -119,6 +125,12 @@ impl ActiveSetContact {
         self.zero_set = vec![false; self.rows.len()];
         self.mu = vec![0.0; self.rows.len()];
         self.gaps = None;
+        self.stale = true;
+    }
+
+    /// False until a solve has run the active set on the current pairing.
+    pub fn settled(&self) -> bool {
+        !self.stale
     }
 
     /// A new step: no multiplier yet (the prediction is solved without the
@@ -214,6 +226,7 @@ impl ActiveSetContact {
             &mut self.zero_set,
         )
         .map_err(|e| failure(e, self.ties))?;
+        self.stale = false;
         self.stats.calls += 1;
         self.stats.passes += r.passes + 1;
         self.stats.max_passes = self.stats.max_passes.max(r.passes + 1);
