@@ -274,8 +274,9 @@ fn affe_char_meca_f_distributed_loads() {
 
 /// FACE_IMPO: DNOR on the symmetry planes and an outward normal
 /// displacement of the bottom face, against the uniform stretch
-/// (displacement, stress, reaction to 1e-9), and DX/DY/DZ on the cells'
-/// nodes giving the same (face_impo.comm).
+/// (displacement, stress, reaction to 1e-9), DX/DY/DZ on the cells'
+/// nodes giving the same, and AFFE_CHAR_MECA_F's FACE_IMPO with DZ a
+/// function of INST giving half of it at INST = 0.5 (face_impo.comm).
 #[test]
 fn face_impo_normal_and_components() {
     run_study("face_impo");
@@ -307,6 +308,11 @@ fn face_impo_errors() {
             "volume",
             ("_F(GROUP_MA='SZZ', DNOR=D)", "_F(GROUP_MA='VOL', DNOR=D)"),
             "DNOR needs the TRIA/QUAD faces",
+        ),
+        (
+            "dnor_function",
+            ("_F(GROUP_MA='SZZ', DZ=DZT)", "_F(GROUP_MA='SZZ', DNOR=DZT)"),
+            "not implemented yet: AFFE_CHAR_MECA_F/FACE_IMPO/DNOR",
         ),
     ];
     let export = format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display());
@@ -1848,9 +1854,9 @@ fn bad_function_valued_loads_are_located_errors() {
             "pres_rep",
             (
                 "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE)",
-                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE), FACE_IMPO=_F(GROUP_MA='SZZ', DZ=RAMPE)",
+                "DDL_IMPO=_F(GROUP_NO='HAUT', DZ=RAMPE), LIAISON_OBLIQUE=_F(GROUP_NO='HAUT', ANGL_NAUT=(0., 0., 0.), DZ=RAMPE)",
             ),
-            "not implemented yet: AFFE_CHAR_MECA_F/FACE_IMPO",
+            "not implemented yet: AFFE_CHAR_MECA_F/LIAISON_OBLIQUE",
         ),
         (
             "twice_imposed",

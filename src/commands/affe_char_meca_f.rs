@@ -29,7 +29,7 @@ fn function(name: &'static str, doc: &'static str) -> Keyword {
 
 /// Keywords of code_aster's catalogue that are declared (so that a
 /// command file using them reads) and refused when given.
-const NOT_BUILT: &[&str] = &["FACE_IMPO", "LIAISON_DDL", "LIAISON_OBLIQUE"];
+const NOT_BUILT: &[&str] = &["LIAISON_DDL", "LIAISON_OBLIQUE"];
 
 /// The keywords of distributed loads, whose values are functions of INST
 /// and of the position of the Gauss point.
@@ -87,15 +87,6 @@ pub fn def() -> CommandDef {
         nodal.push(concept(c, &[C::Fonction, C::Formule]).kw());
     }
     nodal.push(concept("ANGL_NAUT", &[C::Fonction, C::Formule]).many().kw());
-    let selection = || vec![tout(), group_ma(), maille()];
-    let not_built = |name: &'static str, cmps: &[&'static str]| {
-        let mut kws = selection();
-        kws.push(group_no());
-        for &c in cmps {
-            kws.push(concept(c, &[C::Fonction, C::Formule]).kw());
-        }
-        fact(name, kws).many().doc("not implemented yet").kw()
-    };
     let spec = command(
         "AFFE_CHAR_MECA_F",
         Produces::Concept(C::CharMeca),
@@ -142,7 +133,29 @@ pub fn def() -> CommandDef {
                 &["FX", "FY", "FZ"],
                 "force per unit volume on the volume elements of the selection (per radian in AXIS), each component a function of INST, X, Y, Z",
             ),
-            not_built("FACE_IMPO", &["DX", "DY", "DZ", "DNOR", "DTAN"]),
+            fact(
+                "FACE_IMPO",
+                vec![
+                    group_ma(),
+                    maille(),
+                    text("SANS_GROUP_MA").many().kw(),
+                    text("SANS_MAILLE").many().hidden().kw(),
+                    text("SANS_GROUP_NO").many().doc("nodes excluded from the selection").kw(),
+                    text("SANS_NOEUD").many().hidden().kw(),
+                    function("DX", "imposed value of this component on every node of the cells: a function of INST and the node's initial X, Y, Z"),
+                    function("DY", "imposed value of this component on every node of the cells: a function of INST and the node's initial X, Y, Z"),
+                    function("DZ", "imposed value of this component on every node of the cells: a function of INST and the node's initial X, Y, Z"),
+                    concept("DNOR", &[C::Fonction, C::Formule]).kw(),
+                    concept("DTAN", &[C::Fonction, C::Formule]).kw(),
+                ],
+            )
+            .many()
+            .rules(vec![
+                au_moins_un(&["GROUP_MA", "MAILLE"]),
+                au_moins_un(&["DX", "DY", "DZ", "DNOR", "DTAN"]),
+            ])
+            .doc("imposed dofs on the nodes of the cells of the selection (less SANS_*), as DDL_IMPO with GROUP_MA: DX, DY, DZ functions of INST and the node's initial X, Y, Z; DNOR and DTAN are not implemented here")
+            .kw(),
             fact(
                 "LIAISON_DDL",
                 vec![
@@ -180,7 +193,7 @@ pub fn def() -> CommandDef {
         ],
     )
     .rules(vec![au_moins_un(
-        &[["DDL_IMPO", "FORCE_NODALE"].as_slice(), DISTRIBUTED, NOT_BUILT].concat(),
+        &[["DDL_IMPO", "FACE_IMPO", "FORCE_NODALE"].as_slice(), DISTRIBUTED, NOT_BUILT].concat(),
     )])
     .doc("Defines mechanical boundary conditions and loads whose values are functions of time (INST) and of the nodes' initial coordinates (X, Y, Z).");
     CommandDef { spec, exec }
@@ -227,7 +240,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     for &key in NOT_BUILT {
         if let Some(occ) = args.facts(key).first() {
             return Err(
-                occ.not_implemented("", "AFFE_CHAR_MECA_F builds DDL_IMPO, FORCE_NODALE, PRES_REP, FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR and FORCE_INTERNE")
+                occ.not_implemented("", "AFFE_CHAR_MECA_F builds DDL_IMPO, FACE_IMPO, FORCE_NODALE, PRES_REP, FORCE_FACE, FORCE_ARETE, FORCE_CONTOUR and FORCE_INTERNE")
             );
         }
     }
@@ -243,6 +256,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut lines = Vec::new();
     for (key, target, cmps) in [
         ("DDL_IMPO", FunctionTarget::Imposed, CMP_DEPL),
+        (
+            "FACE_IMPO",
+            FunctionTarget::Imposed,
+            &["DX", "DY", "DZ"][..],
+        ),
         (
             "FORCE_NODALE",
             FunctionTarget::Force,
@@ -263,6 +281,16 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                     return Err(
                         occ.not_implemented("ANGL_NAUT", "forces are given in the global frame")
                     );
+                }
+            }
+            if key == "FACE_IMPO" {
+                for c in ["DNOR", "DTAN"] {
+                    if occ.has(c) {
+                        return Err(occ.not_implemented(
+                            c,
+                            &format!("{c} as a function in AFFE_CHAR_MECA_F (FACE_IMPO takes DX, DY, DZ here; AFFE_CHAR_MECA takes a constant DNOR on faces along an axis)"),
+                        ));
+                    }
                 }
             }
             let mut given: Vec<(Dof, &str, Coef)> = Vec::new();
