@@ -148,7 +148,7 @@ pub(crate) fn exec(
             } else {
                 let (def, enf) = crate::contact::ContactDef::explicit_from_args(cargs, &md.mesh)?;
                 notes.push(format!(
-                "contact in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_22): {} against a fixed master",
+                "contact in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_22): {} against a fixed master (or, penalised, a deformable one)",
                 match enf {
                     Enforcement::Kinematic => "ALGO_CONT='CONTRAINTE' enforced kinematically (predictor-corrector, momentum-conserving)",
                     Enforcement::Penalty => "ALGO_CONT='PENALISATION' (penalty force; its stiffness enters the stable step)",
@@ -240,6 +240,7 @@ pub(crate) fn exec(
                 enf,
                 &md.mesh,
                 &engine.asm.numbering,
+                &ex.mass,
                 &engine.committed.motion.u,
             )
             .map_err(|m| args.error("CONTACT", m))?;

@@ -1,9 +1,10 @@
 //! Contact in explicit dynamics, an aster extension: code_aster refuses
 //! DEFI_CONTACT with DIFF_CENT/TCHAMWA (MECANONLINE5_22). Node-to-surface
-//! contact of the slave nodes against a master surface held fixed by
-//! DDL_IMPO (a rigid obstacle, as the Taylor bar's foundation), in the
-//! discrete formulation's pairing (`contact::pair`, master/slave,
-//! inward normal n, gap g = g_ref + n·(Σ N_j u_j − u_s) > 0 when open).
+//! contact of the slave nodes against a master surface, in the discrete
+//! formulation's pairing (`contact::pair`, master/slave, inward normal n,
+//! gap g = g_ref + n·(Σ N_j u_j − u_s) > 0 when open). The master is
+//! either held fixed by DDL_IMPO on all its dofs (a rigid obstacle, as the
+//! Taylor bar's foundation), or deformable with the penalty only.
 //!
 //! Two enforcements (notes/explicit.md §10):
 //! - ALGO_CONT='PENALISATION': the force E_N⟨−g⟩ at u_{n+1} enters the
@@ -22,6 +23,18 @@
 //!   predicted tangential motion up to μ|f_N| (a radial return in
 //!   velocity). The node-by-node constraints are decoupled because the
 //!   mass is lumped and the master immobile, so no iteration is needed.
+//!
+//! A deformable master (some master dof free): the penalty only. The force
+//! f of a link acts on the slave node and −N_j f on each master node j
+//! (N_j the master shape functions at the projection, as the implicit
+//! discrete method distributes it), the friction force included, its slip
+//! being the relative one. The contact forces are then internal: the
+//! momentum of the bodies is conserved by them to round-off, TRAV_LIAI
+//! (the trapezoid of the full force vector on Δu) is their work on both
+//! sides, DISS_FROT the friction's on the relative slip. The kinematic
+//! correction is refused there: with a moving master the links share
+//! master nodes, and putting every slave node back on a surface that
+//! moves with the correction is a coupled solve, not node by node.
 
 use std::collections::HashMap;
 
@@ -122,31 +135,73 @@ pub struct ExplicitContact {
     pub max_active: usize,
     active: usize,
     pub pairings: usize,
+    /// Some master node has a free dof (penalty only).
+    deformable: bool,
+    /// Per zone: the largest inverse lumped mass over the free master dofs
+    /// (0 for a held master) times the largest Σ N_j² of its master cells,
+    /// the master side of the stable step's penalty term.
+    master_inv_mass: Vec<f64>,
+    /// The master nodes and shape functions of each frictional link of
+    /// the last state and of the state before (deformable master only):
+    /// the master side of the friction work.
+    ft_master: HashMap<(usize, usize), (Vec<usize>, Vec<f64>)>,
+    ft_master_prev: HashMap<(usize, usize), (Vec<usize>, Vec<f64>)>,
+}
+
+/// The supremum of Σ N_j² over the reference cell of a master surface:
+/// 1 for the linear cells (N_j ≥ 0 with Σ N_j = 1) and for SEG3 and TRIA6
+/// (reached at the vertices), 1.25 for QUAD8 (at the centre, where the
+/// corner functions are −1/4 and the mid-side ones 1/2). The unit test
+/// below samples each cell against these values.
+fn shape_square_sum_bound(kind: CellType) -> f64 {
+    match kind {
+        CellType::Quad8 => 1.25,
+        _ => 1.0,
+    }
 }
 
 impl ExplicitContact {
-    /// Checks that every master node is fixed (all its dofs imposed, or
-    /// outside the model): deformable masters are not implemented.
+    /// A master with a free dof is deformable: the penalty handles it, the
+    /// kinematic correction does not (see the module doc). `mass` is the
+    /// lumped mass of each full dof (for the master side of the stable
+    /// step); a held master node, or a zero mass, adds nothing there.
     pub fn new(
         def: ContactDef,
         enforcement: Enforcement,
         mesh: &Mesh,
         numbering: &DofNumbering,
+        mass: &[f64],
         u0: &[f64],
     ) -> Result<ExplicitContact, String> {
         let ndpn = numbering.ndpn;
+        let mut deformable = false;
+        let mut master_inv_mass = Vec::with_capacity(def.zones.len());
         for z in &def.zones {
+            let mut inv: f64 = 0.0;
+            let mut kappa: f64 = 0.0;
             for &c in &z.master_cells {
+                kappa = kappa.max(shape_square_sum_bound(mesh.cells[c].kind));
                 for &n in &mesh.cells[c].nodes {
-                    if (0..ndpn).any(|k| numbering.eq[n * ndpn + k] != NONE) {
-                        return Err(format!(
-                            "not implemented yet: explicit contact against a deformable master surface: node {} of the master group {} has free dofs (the master must be held by DDL_IMPO on all its dofs, a rigid obstacle)",
-                            n + 1,
-                            z.master_group
-                        ));
+                    for k in 0..ndpn {
+                        let f = n * ndpn + k;
+                        if numbering.eq[f] == NONE {
+                            continue;
+                        }
+                        if enforcement == Enforcement::Kinematic {
+                            return Err(format!(
+                                "not implemented yet: explicit contact with ALGO_CONT='CONTRAINTE' against a deformable master surface: node {} of the master group {} has free dofs (the kinematic correction against a moving master is a coupled solve); use ALGO_CONT='PENALISATION', or hold the master by DDL_IMPO on all its dofs (a rigid obstacle)",
+                                n + 1,
+                                z.master_group
+                            ));
+                        }
+                        deformable = true;
+                        if mass.get(f).is_some_and(|&m| m > 0.0) {
+                            inv = inv.max(1.0 / mass[f]);
+                        }
                     }
                 }
             }
+            master_inv_mass.push(kappa * inv);
         }
         let nfull = numbering.nfull();
         Ok(ExplicitContact {
@@ -169,7 +224,16 @@ impl ExplicitContact {
             max_active: 0,
             active: 0,
             pairings: 0,
+            deformable,
+            master_inv_mass,
+            ft_master: HashMap::new(),
+            ft_master_prev: HashMap::new(),
         })
+    }
+
+    /// Some master node has a free dof.
+    pub fn deformable(&self) -> bool {
+        self.deformable
     }
 
     pub fn kinematic(&self) -> bool {
@@ -216,8 +280,19 @@ impl ExplicitContact {
         (count, deepest)
     }
 
-    /// The largest k/m of the penalty springs over the slave nodes
-    /// (0 for the kinematic enforcement): what the contact adds to ω².
+    /// The largest ω² of the penalty springs (0 for the kinematic
+    /// enforcement): what the contact adds to ω². Against a held master a
+    /// slave node's spring is k/m_s. Against a deformable master a link is
+    /// a spring between the slave node and the point Σ N_j u_j: its ω² is
+    /// the two-body k (1/m_s + Σ N_j²/m_j), bounded before any pairing by
+    /// k/m_s + k κ max_j 1/m_j (κ = sup Σ N_j² of the zone's master cells,
+    /// max_j over its free master dofs), whichever slave node and master
+    /// point the pairing brings together. It is the bound of one link in
+    /// isolation, as the rigid case's: a master node pressed by several
+    /// slave nodes at once (a slave mesh finer than the master's) carries
+    /// their springs together, up to that many times stiffer. The master
+    /// term is added only when the master is deformable, so that the
+    /// held-master estimate is the same number as before, to the bit.
     pub fn penalty_omega2(&self, mass: &[f64]) -> f64 {
         if self.kinematic() {
             return 0.0;
@@ -230,7 +305,12 @@ impl ExplicitContact {
                 .map(|c| mass[s * self.ndpn + c])
                 .fold(0.0, f64::max);
             if m > 0.0 {
-                w2 = w2.max(k / m);
+                let master = self.master_inv_mass[z];
+                w2 = w2.max(if master > 0.0 {
+                    k / m + k * master
+                } else {
+                    k / m
+                });
             }
         }
         w2
@@ -249,6 +329,7 @@ impl ExplicitContact {
     pub fn penalty_forces(&mut self, _numbering: &DofNumbering, u_n: &[f64], u: &[f64]) {
         self.force_on_fint_side.iter_mut().for_each(|x| *x = 0.0);
         let mut ft_new = HashMap::new();
+        let mut ft_master = HashMap::new();
         let mut body = [0.0; 3];
         let mut active = 0;
         let links = std::mem::take(&mut self.pairing.links);
@@ -300,6 +381,9 @@ impl ExplicitContact {
                     f[c] += tr[c];
                 }
                 ft_new.insert((l.zone, l.slave), tr);
+                if self.deformable {
+                    ft_master.insert((l.zone, l.slave), (l.master_nodes.clone(), l.shape.clone()));
+                }
             }
             for c in 0..self.dim {
                 self.force_on_fint_side[l.slave * self.ndpn + c] -= f[c];
@@ -313,6 +397,7 @@ impl ExplicitContact {
         self.active = active;
         self.max_active = self.max_active.max(active);
         self.ft = ft_new;
+        self.ft_master = ft_master;
         self.body_force = body;
     }
 
@@ -443,6 +528,7 @@ impl ExplicitContact {
     pub fn start(&mut self) {
         self.body_force_prev = self.body_force;
         self.ft_prev = self.ft.clone();
+        self.ft_master_prev = self.ft_master.clone();
     }
 
     /// After the step of length `dt` ending at the committed `u`: the
@@ -452,7 +538,15 @@ impl ExplicitContact {
     /// DISS_FROT is the tangential part of TRAV_LIAI for both enforcements;
     /// with the kinematic correction of the step's start alone, DISS_FROT
     /// of the oblique-impact block exceeded TRAV_LIAI by a third: the
-    /// initial state's correction acts over half a step only).
+    /// initial state's correction acts over half a step only). Against a
+    /// deformable master the friction force f of a link also does the work
+    /// −f·Σ N_j Δu_j on the master nodes (each state's force with its own
+    /// link's N_j), so that DISS_FROT is the work on the relative slip.
+    /// The impulse is that of the forces on the slave nodes: against a
+    /// held master the momentum the bodies exchange with the obstacle;
+    /// against a deformable one the momentum the slave side receives from
+    /// the master side (which receives its opposite: the total is
+    /// conserved).
     pub fn commit(&mut self, u: &[f64], dt: f64) {
         for k in 0..3 {
             self.impulse[k] += 0.5 * dt * (self.body_force_prev[k] + self.body_force[k]);
@@ -469,8 +563,23 @@ impl ExplicitContact {
                 let f = 0.5 * (old[k] + new[k]);
                 self.friction_dissipation -= f * d;
             }
+            if self.deformable {
+                // The master side: −f · Σ N_j Δu_j for each state's force.
+                for (force, links) in [(old, &self.ft_master_prev), (new, &self.ft_master)] {
+                    let Some((nodes, shape)) = links.get(&key) else {
+                        continue;
+                    };
+                    for (&mn, &nj) in nodes.iter().zip(shape) {
+                        for k in 0..self.dim {
+                            let d = u[mn * nd + k] - self.u_prev[mn * nd + k];
+                            self.friction_dissipation += 0.5 * force[k] * nj * d;
+                        }
+                    }
+                }
+            }
         }
         self.ft_prev = self.ft.clone();
+        self.ft_master_prev = self.ft_master.clone();
         self.body_force_prev = self.body_force;
         self.u_prev.copy_from_slice(u);
     }
@@ -487,7 +596,9 @@ impl ExplicitContact {
     /// friction components −f·τ_k of the force f on the slave node; CONT 2
     /// (sliding, or frictionless) when the tangential force reaches μλ_n
     /// within 1e-9, else 1; GLIX/GLIY the slave's tangential displacement
-    /// over the step (the master is fixed). The percussion I is R·dt of
+    /// over the step, relative to the master point Σ N_j u_j when the
+    /// master is deformable (a held master does not move). The
+    /// percussion I is R·dt of
     /// the last step, which is what code_aster's `cfresu` stores (the
     /// implicit loop accumulates it, an open question of §4); steps are
     /// tiny here, so I is small.
@@ -523,10 +634,18 @@ impl ExplicitContact {
                 friction[k] = -dot(&f, t);
             }
             let mut slip = [0.0; 2];
-            let d = {
+            let mut d = {
                 let (a, b) = (self.node_u(u, s), self.node_u(u_start, s));
                 [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
             };
+            if self.deformable {
+                for (j, &mn) in l.master_nodes.iter().enumerate() {
+                    let (a, b) = (self.node_u(u, mn), self.node_u(u_start, mn));
+                    for k in 0..3 {
+                        d[k] -= l.shape[j] * (a[k] - b[k]);
+                    }
+                }
+            }
             for (k, t) in l.tangents.iter().enumerate().take(l.ntangents) {
                 slip[k] = dot(&d, t);
             }
@@ -592,8 +711,18 @@ impl ExplicitContact {
             }
             Enforcement::Kinematic => "kinematic (no penetration by construction)".to_string(),
         };
+        let impulse = if self.deformable {
+            "impulse of the contact forces on the slave side (the master side takes its opposite)"
+        } else {
+            "impulse of the contact reactions on the bodies"
+        };
         format!(
-            "  explicit contact, {what}: {} pairings, at most {} slave nodes in contact at once; impulse of the contact reactions on the bodies ({})",
+            "  explicit contact, {what}{}: {} pairings, at most {} slave nodes in contact at once; {impulse} ({})",
+            if self.deformable {
+                ", deformable master"
+            } else {
+                ""
+            },
             self.pairings,
             self.max_active,
             self.impulse[..self.dim]
@@ -606,8 +735,8 @@ impl ExplicitContact {
 }
 
 /// The explicit loop's view of the discrete contact: the pairing is the
-/// preparation; the instants are not needed (the master is fixed and
-/// the gaps depend on the geometry only).
+/// preparation; the instants are not needed (the gaps depend on the
+/// geometry only, the master's included).
 impl ExplicitConstraint for ExplicitContact {
     fn kinematic(&self) -> bool {
         ExplicitContact::kinematic(self)
@@ -689,5 +818,54 @@ impl ExplicitConstraint for ExplicitContact {
 
     fn summary_line(&self) -> String {
         ExplicitContact::summary_line(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shape;
+
+    /// Σ N_j² sampled on a fine grid of each master cell's reference
+    /// element never exceeds the bound the stable step uses, and reaches
+    /// it (so the bound is not loose).
+    #[test]
+    fn shape_square_sum_bound_is_the_supremum() {
+        for kind in [
+            CellType::Seg2,
+            CellType::Seg3,
+            CellType::Tria3,
+            CellType::Tria6,
+            CellType::Quad4,
+            CellType::Quad8,
+        ] {
+            let bound = shape_square_sum_bound(kind);
+            let m = 200;
+            let mut top: f64 = 0.0;
+            for i in 0..=m {
+                for j in 0..=m {
+                    let (a, b) = (i as f64 / m as f64, j as f64 / m as f64);
+                    let xi = match kind {
+                        CellType::Seg2 | CellType::Seg3 => {
+                            if j > 0 {
+                                continue;
+                            }
+                            [2.0 * a - 1.0, 0.0, 0.0]
+                        }
+                        CellType::Tria3 | CellType::Tria6 => {
+                            if a + b > 1.0 {
+                                continue;
+                            }
+                            [a, b, 0.0]
+                        }
+                        _ => [2.0 * a - 1.0, 2.0 * b - 1.0, 0.0],
+                    };
+                    let s: f64 = shape::eval(kind, xi).n().iter().map(|x| x * x).sum();
+                    top = top.max(s);
+                }
+            }
+            assert!(top <= bound * (1.0 + 1e-12), "{kind:?}: {top} > {bound}");
+            assert!(top >= bound * (1.0 - 1e-12), "{kind:?}: {top} < {bound}");
+        }
     }
 }
