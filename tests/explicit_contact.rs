@@ -543,6 +543,40 @@ fn two_bars_meeting_conserve_momentum_and_rebound() {
     }
     let trav = num(&rows[320], "TRAV_LIAI");
     assert!(trav.abs() < 1e-3 * ek0, "TRAV_LIAI at the end {trav}");
+    // RES_F, with Coulomb friction and the faces sliding sideways at
+    // +-VX: the momentum stays 0 along x as along y (measured 6e-20 and
+    // 5e-20 against p0 = 4e-4); the slave side did receive a tangential
+    // impulse (measured 0.86 MU times the normal one: the faces tilt as
+    // the friction bends the bars, so the global x is not quite their
+    // tangent); TRAV_LIAI ends at DISS_FROT, the friction's work on the
+    // relative slip (measured 0.3416 and 0.3408, 4 % of EK0), within the
+    // normal penalty's residual (0.1 % of EK0; 0.02 % in RESU): with the
+    // slave side's work alone DISS_FROT would be about half of TRAV_LIAI.
+    let momentum = tuples(&mess, "momentum of the model (M v): change over the run ");
+    let impulse = tuples(
+        &mess,
+        "impulse of the contact forces on the slave side (the master side takes its opposite) ",
+    );
+    assert_eq!((momentum.len(), impulse.len()), (2, 2), "{mess}");
+    for (k, m) in momentum.iter().enumerate() {
+        for (c, x) in m.iter().enumerate() {
+            assert!(x.abs() <= 1e-12 * p0, "run {k}, component {c}: ΔP = {x:e}");
+        }
+    }
+    let mu = 0.05;
+    let (ix, iy) = (impulse[1][0], impulse[1][1]);
+    assert!(
+        ix < 0.0 && -ix > 0.5 * mu * iy.abs() && -ix <= mu * iy.abs() * (1.0 + 1e-9),
+        "tangential impulse {ix:e}, normal {iy:e}"
+    );
+    let ek0_f = rho * h * l * (v * v + 1.0e8);
+    let last = common::printed_table(&resu, "EN_F").pop().unwrap();
+    let (trav, diss) = (num(&last, "TRAV_LIAI"), num(&last, "DISS_FROT"));
+    assert!(diss > 0.02 * ek0_f, "DISS_FROT {diss}");
+    assert!(
+        (trav - diss).abs() < 1e-3 * ek0_f,
+        "TRAV_LIAI {trav} against DISS_FROT {diss}"
+    );
 }
 
 /// The kinematic enforcement against a deformable master is refused
