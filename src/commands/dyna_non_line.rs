@@ -53,7 +53,7 @@ pub fn def() -> CommandDef {
             .doc("loads and boundary conditions")
             .kw(),
             concept("CONTACT", &[C::CharContact])
-                .doc("contact definition from DEFI_CONTACT (with explicit schemes, an aster extension: DISCRETE against a fixed master, or LIAISON_UNIL; MASS_DIAG='OUI')")
+                .doc("contact definition from DEFI_CONTACT (with explicit schemes, an aster extension: DISCRETE against a fixed master or, penalised, a deformable one, or LIAISON_UNIL; MASS_DIAG='OUI')")
                 .kw(),
             text("AMOR_RAYL_RIGI")
                 .into(&["TANGENTE", "ELASTIQUE"])
