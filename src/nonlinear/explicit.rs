@@ -57,7 +57,7 @@ use crate::time::explicit::{
 };
 
 /// What the explicit loop needs of a contact treatment: the discrete
-/// contact against a fixed master (`explicit_contact`) and LIAISON_UNIL
+/// contact (`explicit_contact`, a held or a penalised deformable master) and LIAISON_UNIL
 /// (`explicit_unilateral`), both aster extensions. Either enforcement
 /// plugs into the same two places: the penalty adds its forces at
 /// u_{n+1} to the right-hand side of a_{n+1} (and k/m to ω²); the
