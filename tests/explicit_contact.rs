@@ -6,21 +6,7 @@
 //! trapezoidal time integral of the contact forces), and the rebound.
 
 mod common;
-
-/// The numbers in parentheses after `tag` on each line of `mess` that has it.
-fn tuples(mess: &str, tag: &str) -> Vec<Vec<f64>> {
-    mess.lines()
-        .filter_map(|l| l.find(tag).map(|k| &l[k + tag.len()..]))
-        .map(|rest| {
-            let a = rest.find('(').unwrap();
-            let b = rest.find(')').unwrap();
-            rest[a + 1..b]
-                .split(',')
-                .map(|x| x.trim().parse::<f64>().unwrap())
-                .collect()
-        })
-        .collect()
-}
+use common::tuples;
 
 #[test]
 fn landing_bar_momentum_is_the_impulse_of_the_reactions() {

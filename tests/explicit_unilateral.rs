@@ -9,21 +9,7 @@
 use std::path::{Path, PathBuf};
 
 mod common;
-
-/// The numbers in parentheses after `tag` on each line of `mess` that has it.
-fn tuples(mess: &str, tag: &str) -> Vec<Vec<f64>> {
-    mess.lines()
-        .filter_map(|l| l.find(tag).map(|k| &l[k + tag.len()..]))
-        .map(|rest| {
-            let a = rest.find('(').unwrap();
-            let b = rest.find(')').unwrap();
-            rest[a + 1..b]
-                .split(',')
-                .map(|x| x.trim().parse::<f64>().unwrap())
-                .collect()
-        })
-        .collect()
-}
+use common::tuples;
 
 const IMPULSE: &str = "impulse of the contact reactions on the bodies ";
 const MOMENTUM: &str = "momentum of the model (M v): change over the run ";

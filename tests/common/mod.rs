@@ -116,3 +116,19 @@ pub fn run_variant(dir: &Path, scratch: &str, study: &str, tag: &str, from: &str
     std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
     run_study(tmp.join(format!("{tag}.comm")).to_str().unwrap(), tag)
 }
+
+/// The numbers in parentheses after `tag` on each line of `mess` that has
+/// it (the explicit runs' momentum and impulse lines of the .mess).
+pub fn tuples(mess: &str, tag: &str) -> Vec<Vec<f64>> {
+    mess.lines()
+        .filter_map(|l| l.find(tag).map(|k| &l[k + tag.len()..]))
+        .map(|rest| {
+            let a = rest.find('(').unwrap();
+            let b = rest.find(')').unwrap();
+            rest[a + 1..b]
+                .split(',')
+                .map(|x| x.trim().parse::<f64>().unwrap())
+                .collect()
+        })
+        .collect()
+}
