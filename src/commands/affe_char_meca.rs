@@ -14,6 +14,22 @@ use crate::model::{
 };
 use crate::study::Study;
 
+/// FACE_IMPO's cells and exclusions, the same in AFFE_CHAR_MECA and
+/// AFFE_CHAR_MECA_F (only the values' type differs).
+pub(super) fn face_impo_selection() -> Vec<Keyword> {
+    vec![
+        group_ma(),
+        maille(),
+        text("SANS_GROUP_MA").many().kw(),
+        text("SANS_MAILLE").many().hidden().kw(),
+        text("SANS_GROUP_NO")
+            .many()
+            .doc("nodes excluded from the selection")
+            .kw(),
+        text("SANS_NOEUD").many().hidden().kw(),
+    ]
+}
+
 pub fn def() -> CommandDef {
     let mut ddl = ddl_selection();
     ddl.push(
@@ -42,21 +58,19 @@ pub fn def() -> CommandDef {
                 .kw(),
             fact(
                 "FACE_IMPO",
-                vec![
-                    group_ma(),
-                    maille(),
-                    text("SANS_GROUP_MA").many().kw(),
-                    text("SANS_MAILLE").many().hidden().kw(),
-                    text("SANS_GROUP_NO").many().doc("nodes excluded from the selection").kw(),
-                    text("SANS_NOEUD").many().hidden().kw(),
-                    real("DX").doc("imposed value of this component").kw(),
-                    real("DY").doc("imposed value of this component").kw(),
-                    real("DZ").doc("imposed value of this component").kw(),
-                    real("DNOR")
-                        .doc("imposed normal displacement u.n (n the mean unit normal of the selected cells at the node); where n is along x, y or z only")
-                        .kw(),
-                    real("DTAN").kw(),
-                ],
+                [
+                    face_impo_selection(),
+                    vec![
+                        real("DX").doc("imposed value of this component").kw(),
+                        real("DY").doc("imposed value of this component").kw(),
+                        real("DZ").doc("imposed value of this component").kw(),
+                        real("DNOR")
+                            .doc("imposed normal displacement u.n (n the mean unit normal of the selected cells at the node); where n is along x, y or z only")
+                            .kw(),
+                        real("DTAN").kw(),
+                    ],
+                ]
+                .concat(),
             )
             .many()
             .rules(vec![

@@ -6,7 +6,7 @@
 //! the functions at each step's end instant (`nonlinear::loads`).
 
 use super::affe_char_meca::{
-    distributed_cells, force_components, pressure_cells, DISTRIBUTED_KINDS,
+    distributed_cells, face_impo_selection, force_components, pressure_cells, DISTRIBUTED_KINDS,
 };
 use super::blocks::*;
 use super::model_args::{load_model, select_nodes, selection_label, LoadModel};
@@ -135,19 +135,14 @@ pub fn def() -> CommandDef {
             ),
             fact(
                 "FACE_IMPO",
-                vec![
-                    group_ma(),
-                    maille(),
-                    text("SANS_GROUP_MA").many().kw(),
-                    text("SANS_MAILLE").many().hidden().kw(),
-                    text("SANS_GROUP_NO").many().doc("nodes excluded from the selection").kw(),
-                    text("SANS_NOEUD").many().hidden().kw(),
+                [face_impo_selection(), vec![
                     function("DX", "imposed value of this component on every node of the cells: a function of INST and the node's initial X, Y, Z"),
                     function("DY", "imposed value of this component on every node of the cells: a function of INST and the node's initial X, Y, Z"),
                     function("DZ", "imposed value of this component on every node of the cells: a function of INST and the node's initial X, Y, Z"),
                     concept("DNOR", &[C::Fonction, C::Formule]).kw(),
                     concept("DTAN", &[C::Fonction, C::Formule]).kw(),
-                ],
+                ]]
+                .concat(),
             )
             .many()
             .rules(vec![

@@ -124,29 +124,22 @@ fn build(args: &Args, mesh: &Mesh, explicit: bool) -> Result<ContactDef, Diagnos
     }
 }
 
-/// The discrete method's ALGO_CONT, one for all zones (code_aster's
-/// algorithm is global to the DEFI_CONTACT: CONTACT3_4 when zones
-/// differ). `other`: continuous or explicit contact, which read
+/// The discrete method's ALGO_CONT, one for all zones (DEFI_CONTACT's
+/// `same_algorithm` check, repeated here for a definition built without
+/// the command). `other`: continuous or explicit contact, which read
 /// ALGO_CONT their own way.
 fn discrete_algo(zones: &[Args], other: bool) -> Result<DiscreteAlgo, Diagnostic> {
     if other {
         return Ok(DiscreteAlgo::Penalty);
     }
-    let first = zones[0].text("ALGO_CONT").unwrap_or("CONTRAINTE");
-    for z in &zones[1..] {
-        let a = z.text("ALGO_CONT").unwrap_or("CONTRAINTE");
-        if a != first {
-            return Err(z.error(
-                "ALGO_CONT",
-                format!("ALGO_CONT='{a}' differs from the first zone's '{first}': the discrete formulation needs the same ALGO_CONT in every ZONE (code_aster CONTACT3_4)"),
-            ));
-        }
-    }
-    Ok(if first == "CONTRAINTE" {
-        DiscreteAlgo::ActiveSet
-    } else {
-        DiscreteAlgo::Penalty
-    })
+    super::defi_contact::same_algorithm(zones)?;
+    Ok(
+        if zones[0].text("ALGO_CONT").unwrap_or("CONTRAINTE") == "CONTRAINTE" {
+            DiscreteAlgo::ActiveSet
+        } else {
+            DiscreteAlgo::Penalty
+        },
+    )
 }
 
 /// code_aster's `elimcq`/`cacoeq` for the active-set discrete method: each

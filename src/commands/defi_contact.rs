@@ -483,8 +483,8 @@ fn unil_zone(
 }
 
 /// DISCRETE and LIAISON_UNIL solve all zones with one algorithm, so the
-/// zones must agree on it.
-fn same_algorithm(zones: &[Args]) -> Result<(), Diagnostic> {
+/// zones must agree on it (code_aster's CONTACT3_4).
+pub(super) fn same_algorithm(zones: &[Args]) -> Result<(), Diagnostic> {
     let Some(first) = zones.first().and_then(|z| z.text("ALGO_CONT")) else {
         return Ok(());
     };
@@ -494,7 +494,7 @@ fn same_algorithm(zones: &[Args]) -> Result<(), Diagnostic> {
             return Err(z.error(
                 "ALGO_CONT",
                 format!(
-                    "all zones must use the same ALGO_CONT: zone 1 uses '{first}', zone {} '{a}'",
+                    "all zones must use the same ALGO_CONT: zone 1 uses '{first}', zone {} '{a}' (code_aster CONTACT3_4)",
                     k + 1
                 ),
             ));

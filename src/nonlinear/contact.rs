@@ -147,7 +147,14 @@ impl DiscreteContact {
         let p = pair(&self.def, &self.mesh, &un);
         let d = self.def.dim.min(self.ndpn);
         let mut entries = Vec::new();
-        for l in &p.links {
+        // The active set adds no stiffness (it works on the Schur
+        // complement of the factorised matrix): no couplings to list.
+        let stiff_links = if self.active.is_some() {
+            &[][..]
+        } else {
+            &p.links[..]
+        };
+        for l in stiff_links {
             let eqs: Vec<usize> = std::iter::once(l.slave)
                 .chain(l.master_nodes.iter().copied())
                 .flat_map(|n| (0..d).map(move |c| n * numbering.ndpn + c))
@@ -161,9 +168,6 @@ impl DiscreteContact {
             }
         }
         if let Some(a) = self.active.as_mut() {
-            // The active set adds no stiffness: it works on the Schur
-            // complement of the factorised matrix.
-            entries.clear();
             a.rebuild(&self.def, &p, numbering);
         }
         entries.sort_unstable();
