@@ -319,6 +319,49 @@ fn face_impo_errors() {
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_face_impo");
 }
 
+/// DEFI_CONTACT input the discrete active set refuses, in the command file
+/// of contact_contrainte.comm: GLISSIERE='OUI' and ALGO_CONT='GCP' (not
+/// built), a second zone with another ALGO_CONT (CONTACT3_4), friction
+/// without PENALISATION (CONTACT3_3); each names the file, line, command
+/// and keyword.
+#[test]
+fn active_set_contact_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("contact_contrainte_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("contact_contrainte.comm")).unwrap();
+    let zone = "ZONE=_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL'))";
+    let cases = [
+        (
+            "glissiere",
+            (zone, "ZONE=_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL', GLISSIERE='OUI'))"),
+            "not implemented yet: DEFI_CONTACT/ZONE/GLISSIERE",
+        ),
+        (
+            "gcp",
+            (zone, "ZONE=_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL', ALGO_CONT='GCP'))"),
+            "not implemented yet: DEFI_CONTACT/ZONE/ALGO_CONT",
+        ),
+        (
+            "two_algos",
+            (
+                zone,
+                "ZONE=(_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL'), _F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL', ALGO_CONT='PENALISATION', E_N=1.E6)))",
+            ),
+            "CONTACT3_4",
+        ),
+        (
+            "friction",
+            (
+                zone,
+                "FROTTEMENT='COULOMB', ZONE=_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL', COULOMB=0.1, E_T=1.E5))",
+            ),
+            "CONTACT3_3",
+        ),
+    ];
+    let export = format!("F mmed {} D 20\n", dir().join("block.mmed").display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_contact_contrainte");
+}
+
 /// Located errors of AFFE_CHAR_MECA_F's distributed loads.
 #[test]
 fn affe_char_meca_f_distributed_load_errors() {
