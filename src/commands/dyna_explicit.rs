@@ -386,6 +386,7 @@ pub(crate) fn exec(
         &tl,
         &settings,
         has_acce,
+        init.contact.as_ref(),
         &mut evol,
         &mut log,
     );

@@ -1138,6 +1138,8 @@ pub(crate) struct Init {
     pub v: Option<Vec<f64>>,
     pub a: Option<Vec<f64>>,
     pub points: Option<Vec<crate::element::PointState>>,
+    /// The explicit contact history of an EVOL_NOLI step.
+    pub contact: Option<crate::result::ContactHistory>,
 }
 
 pub(crate) fn etat_init(
@@ -1152,6 +1154,7 @@ pub(crate) fn etat_init(
         v: None,
         a: None,
         points: None,
+        contact: None,
     };
     let Some(o) = args.fact("ETAT_INIT") else {
         return Ok(init);
@@ -1185,6 +1188,7 @@ pub(crate) fn etat_init(
         init.u = nodal("DEPL");
         init.v = nodal("VITE");
         init.a = nodal("ACCE");
+        init.contact = step.contact_history.clone();
         if let (Some(s), Some(v)) = (step.gauss.get("SIEF_ELGA"), step.gauss.get("VARI_ELGA")) {
             init.points =
                 Some(fields::states_from_gauss(asm, s, v).map_err(|m| o.error("EVOL_NOLI", m))?);

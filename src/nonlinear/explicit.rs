@@ -49,7 +49,7 @@ use super::observation::{Observer, TABLE_NAME as OBSERVATION_TABLE};
 use super::team::{with_team, Parts, Team};
 use crate::element::{internal_forces, mass, PointState, MAX_DOFS};
 use crate::law::TangentKind;
-use crate::result::EvolNoli;
+use crate::result::{ContactHistory, EvolNoli};
 use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
 use crate::time::explicit::{
     hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_lumped, max_eigenvalue_warm,
@@ -112,6 +112,16 @@ pub trait ExplicitConstraint {
     fn cont_noeu_initial(&self) -> Option<crate::result::NodalField>;
     /// The .mess line of the end of the run.
     fn summary_line(&self) -> String;
+    /// The state of the last committed step (or the initial one) that the
+    /// next step reads besides the motion: archived with the step, so that
+    /// a continuation restarts from it (`result::ContactHistory`).
+    fn history(&self) -> ContactHistory;
+    /// Takes the archived `h` at the initial state of a continuation, after
+    /// that state's own preparation and correction: the stored forces add
+    /// to those of a correction made now (none for the penalty, which is
+    /// not evaluated there). Err (nothing taken) when `h` does not fit
+    /// this contact (another numbering, zones or slave nodes).
+    fn restore(&mut self, h: &ContactHistory) -> Result<(), String>;
 }
 
 /// Dofs per piece of the step's dof-wise phase (forces, acceleration,
@@ -670,7 +680,8 @@ pub fn first_step_above(instants: &[f64], bound: f64) -> Option<(usize, f64, f64
 
 /// Runs the explicit loop over the instants of `tl` from the engine's
 /// committed state (internal forces computed; `has_acce`: ETAT_INIT gave
-/// the acceleration), archiving into `result`.
+/// the acceleration; `history`: the contact history archived with an
+/// EVOL_NOLI initial state), archiving into `result`.
 #[allow(clippy::too_many_arguments)]
 pub fn run(
     engine: &mut Engine,
@@ -679,6 +690,7 @@ pub fn run(
     tl: &TimeLoop,
     settings: &ExplicitSettings,
     has_acce: bool,
+    history: Option<&ContactHistory>,
     result: &mut EvolNoli,
     log: &mut dyn FnMut(&str),
 ) -> Result<RunSummary, Stopped> {
@@ -692,7 +704,7 @@ pub fn run(
     };
     with_team(threads, |team| {
         run_on(
-            team, engine, ex, contact, tl, settings, has_acce, result, log,
+            team, engine, ex, contact, tl, settings, has_acce, history, result, log,
         )
     })
 }
@@ -706,6 +718,7 @@ fn run_on(
     tl: &TimeLoop,
     settings: &ExplicitSettings,
     has_acce: bool,
+    history: Option<&ContactHistory>,
     result: &mut EvolNoli,
     log: &mut dyn FnMut(&str),
 ) -> Result<RunSummary, Stopped> {
@@ -759,6 +772,11 @@ fn run_on(
     // end, as LIAISON_UNIL's coefficients are evaluated at the step ends
     // only (t+, never at the initial instant, as code_aster).
     let t_first = engine.committed.t + first_dt;
+    // A continuation's stored history is the state's own contact forces and
+    // friction: the penalty is not evaluated again at the initial state (it
+    // would restart the friction's predictor from zero). It only goes with
+    // the stored acceleration, which those forces produced.
+    let restored = history.filter(|_| has_acce);
     if let Some(ct) = contact.as_deref_mut() {
         ct.prepare(&engine.asm.numbering, &engine.committed.motion.u, t_first)
             .map_err(|m| stop(m, &summary))?;
@@ -766,11 +784,16 @@ fn run_on(
         // first step (kinematic: the nodes are put back on the surface
         // within one step, i.e. at a speed depth/dt; penalty: a force
         // E_N depth), an impulse the user did not model.
+        // A continuation's penetrations are the penalty's own, balanced by
+        // the stored forces: no alarm there.
         let (n, depth) = ct.penetrations(&engine.asm.numbering, &engine.committed.motion.u);
-        if n > 0 {
+        if n > 0 && restored.is_none() {
             log(&ct.initial_alarm(n, depth));
         }
-        if !has_acce && !ct.kinematic() {
+        // Without a history the penalty of the initial state is evaluated
+        // even when ETAT_INIT gives the acceleration: it does not change a,
+        // but it starts the first step's trapezoids (impulse, TRAV_LIAI).
+        if restored.is_none() && !ct.kinematic() {
             ct.penalty(
                 &engine.asm.numbering,
                 &engine.committed.motion.u,
@@ -795,6 +818,18 @@ fn run_on(
         if ct.kinematic() {
             ex.correct(engine, ct, 0.0, first_dt, false)
                 .map_err(|m| stop(m, &summary))?;
+        }
+        if let Some(h) = restored {
+            match ct.restore(h) {
+                Ok(()) => log(&format!(
+                    "  continuation: the contact forces and the friction history of the initial state are those stored with it ({} nonzero force components, {} frictional links)",
+                    h.force.len(),
+                    h.friction.len()
+                )),
+                Err(why) => log(&format!(
+                    "  alarm: the contact history stored with the initial state is not taken ({why}): the continuation starts its friction and the first step's contact work from zero, unlike the run in one call"
+                )),
+            }
         }
         ct.start();
     }
@@ -1067,6 +1102,7 @@ fn archive_with_contact(
         if let Some(field) = field {
             step.nodal.insert("CONT_NOEU".into(), field);
         }
+        step.contact_history = Some(ct.history());
     }
     true
 }

@@ -117,6 +117,9 @@ pub struct ExplicitContact {
     /// Contact forces of the last state on the F_int side (the opposite of
     /// the force on the nodes), full vector.
     pub force_on_fint_side: Vec<f64>,
+    /// The same of the last committed state (a failed step overwrites the
+    /// one above before the archive of the state it started from).
+    force_prev: Vec<f64>,
     /// Sum of the contact forces on the slave nodes of the last state and
     /// of the state before.
     body_force: [f64; 3],
@@ -214,6 +217,7 @@ impl ExplicitContact {
             ft: HashMap::new(),
             ft_prev: HashMap::new(),
             force_on_fint_side: vec![0.0; nfull],
+            force_prev: vec![0.0; nfull],
             body_force: [0.0; 3],
             body_force_prev: [0.0; 3],
             u_prev: u0.to_vec(),
@@ -526,6 +530,7 @@ impl ExplicitContact {
     /// (measured: the impulse of tests/verification/explicit_oblique_impact
     /// was short of Σ M Δv by the contact layer's normal momentum).
     pub fn start(&mut self) {
+        self.force_prev.copy_from_slice(&self.force_on_fint_side);
         self.body_force_prev = self.body_force;
         self.ft_prev = self.ft.clone();
         self.ft_master_prev = self.ft_master.clone();
@@ -581,7 +586,93 @@ impl ExplicitContact {
         self.ft_prev = self.ft.clone();
         self.ft_master_prev = self.ft_master.clone();
         self.body_force_prev = self.body_force;
+        self.force_prev.copy_from_slice(&self.force_on_fint_side);
         self.u_prev.copy_from_slice(u);
+    }
+
+    /// The committed state's history (`ExplicitConstraint::history`).
+    pub fn history(&self) -> crate::result::ContactHistory {
+        let mut friction: Vec<_> = self.ft_prev.iter().map(|(&k, &f)| (k, f)).collect();
+        friction.sort_unstable_by_key(|&(k, _)| k);
+        let mut friction_master: Vec<_> = self
+            .ft_master_prev
+            .iter()
+            .map(|(&k, (n, s))| (k, n.clone(), s.clone()))
+            .collect();
+        friction_master.sort_unstable_by_key(|x| x.0);
+        crate::result::ContactHistory {
+            ndpn: self.ndpn,
+            force: sparse(&self.force_prev),
+            body_force: self.body_force_prev,
+            friction,
+            friction_master,
+        }
+    }
+
+    /// Takes an archived history at the initial state of a continuation
+    /// (`ExplicitConstraint::restore`): its forces add to the current ones
+    /// (zero, or a kinematic correction of that state), its friction
+    /// forces become the links' history. Checked whole before anything is
+    /// taken.
+    pub fn restore(&mut self, h: &crate::result::ContactHistory) -> Result<(), String> {
+        let nfull = self.force_on_fint_side.len();
+        if h.ndpn != self.ndpn {
+            return Err(format!(
+                "it was stored with {} dofs per node, this model has {}",
+                h.ndpn, self.ndpn
+            ));
+        }
+        if let Some(&(f, _)) = h.force.iter().find(|&&(f, _)| f >= nfull) {
+            return Err(format!("its dof {f} is outside this model's {nfull} dofs"));
+        }
+        let keys = h
+            .friction
+            .iter()
+            .map(|x| x.0)
+            .chain(h.friction_master.iter().map(|x| x.0));
+        for (z, s) in keys {
+            let fits = self
+                .def
+                .zones
+                .get(z)
+                .is_some_and(|zone| zone.slave_nodes.binary_search(&s).is_ok());
+            if !fits {
+                return Err(format!(
+                    "its friction link of zone {} at node {} is not a slave node of this contact's zone {}",
+                    z + 1,
+                    s + 1,
+                    z + 1
+                ));
+            }
+        }
+        let nnodes = self.mesh.nnodes();
+        if let Some(&n) = h
+            .friction_master
+            .iter()
+            .flat_map(|x| &x.1)
+            .find(|&&n| n >= nnodes)
+        {
+            return Err(format!(
+                "its master node {} is not a node of this mesh",
+                n + 1
+            ));
+        }
+        for &(f, v) in &h.force {
+            self.force_on_fint_side[f] += v;
+        }
+        for k in 0..3 {
+            self.body_force[k] += h.body_force[k];
+        }
+        for &(key, f) in &h.friction {
+            let e = self.ft.entry(key).or_insert([0.0; 3]);
+            for k in 0..3 {
+                e[k] += f[k];
+            }
+        }
+        for (key, nodes, shape) in &h.friction_master {
+            self.ft_master.insert(*key, (nodes.clone(), shape.clone()));
+        }
+        Ok(())
     }
 
     /// `CONT_NOEU` of the committed state `u`, reached by a step of `dt`
@@ -819,6 +910,23 @@ impl ExplicitConstraint for ExplicitContact {
     fn summary_line(&self) -> String {
         ExplicitContact::summary_line(self)
     }
+
+    fn history(&self) -> crate::result::ContactHistory {
+        ExplicitContact::history(self)
+    }
+
+    fn restore(&mut self, h: &crate::result::ContactHistory) -> Result<(), String> {
+        ExplicitContact::restore(self, h)
+    }
+}
+
+/// The nonzero entries of a full vector, as (dof, value).
+pub(super) fn sparse(v: &[f64]) -> Vec<(usize, f64)> {
+    v.iter()
+        .enumerate()
+        .filter(|&(_, &x)| x != 0.0)
+        .map(|(f, &x)| (f, x))
+        .collect()
 }
 
 #[cfg(test)]

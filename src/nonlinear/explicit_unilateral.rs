@@ -28,6 +28,7 @@ use super::unilateral::imposed_value;
 use crate::contact::unilateral::{
     eval_coef_mult, node_projection, penalty, Row, UnilAlgo, UnilDef,
 };
+use crate::result::ContactHistory;
 use crate::time::Kinematics as Motion;
 
 pub struct ExplicitUnilateral {
@@ -42,6 +43,9 @@ pub struct ExplicitUnilateral {
     /// instants of the run (the penalty's stiffness in the step bound).
     coef_max: Vec<Vec<f64>>,
     force: Vec<f64>,
+    /// The forces of the last committed state (a failed step overwrites
+    /// `force` before the archive of the state it started from).
+    force_prev: Vec<f64>,
     body_force: [f64; 3],
     body_force_prev: [f64; 3],
     pub impulse: [f64; 3],
@@ -94,6 +98,7 @@ impl ExplicitUnilateral {
             by_node: by_node.into_iter().collect(),
             coef_max,
             force: vec![0.0; numbering.nfull()],
+            force_prev: vec![0.0; numbering.nfull()],
             body_force: [0.0; 3],
             body_force_prev: [0.0; 3],
             impulse: [0.0; 3],
@@ -322,6 +327,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
 
     fn start(&mut self) {
         self.body_force_prev = self.body_force;
+        self.force_prev.copy_from_slice(&self.force);
     }
 
     fn commit(&mut self, _u: &[f64], dt: f64) {
@@ -329,6 +335,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
             self.impulse[k] += 0.5 * dt * (self.body_force_prev[k] + self.body_force[k]);
         }
         self.body_force_prev = self.body_force;
+        self.force_prev.copy_from_slice(&self.force);
     }
 
     fn force_on_fint_side(&self) -> &[f64] {
@@ -370,5 +377,40 @@ impl ExplicitConstraint for ExplicitUnilateral {
                 .collect::<Vec<_>>()
                 .join(", ")
         )
+    }
+
+    /// The forces of the committed state: the links are functions of the
+    /// state and the instant, no friction, so this is what starts the
+    /// trapezoids of a continuation's first step.
+    fn history(&self) -> ContactHistory {
+        ContactHistory {
+            ndpn: self.ndpn,
+            force: super::explicit_contact::sparse(&self.force_prev),
+            body_force: self.body_force_prev,
+            ..ContactHistory::default()
+        }
+    }
+
+    fn restore(&mut self, h: &ContactHistory) -> Result<(), String> {
+        let nfull = self.force.len();
+        if h.ndpn != self.ndpn {
+            return Err(format!(
+                "it was stored with {} dofs per node, this model has {}",
+                h.ndpn, self.ndpn
+            ));
+        }
+        if let Some(&(f, _)) = h.force.iter().find(|&&(f, _)| f >= nfull) {
+            return Err(format!("its dof {f} is outside this model's {nfull} dofs"));
+        }
+        if !h.friction.is_empty() {
+            return Err("it holds friction links, which LIAISON_UNIL has not".into());
+        }
+        for &(f, v) in &h.force {
+            self.force[f] += v;
+        }
+        for k in 0..3 {
+            self.body_force[k] += h.body_force[k];
+        }
+        Ok(())
     }
 }

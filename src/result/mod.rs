@@ -125,7 +125,45 @@ pub struct Step {
     /// of CALC_CHAMP): a [`GaussField`] whose "points" of a cell are its
     /// nodes, MED order.
     pub elno: IndexMap<String, GaussField>,
+    /// The explicit contact's state of this instant beyond the motion
+    /// (None without explicit contact): what a continuation needs to
+    /// restart from here as the run in one call would go on.
+    pub contact_history: Option<ContactHistory>,
 }
+
+/// What an explicit contact treatment (discrete contact or LIAISON_UNIL,
+/// both aster extensions) carries from one step to the next besides the
+/// motion: the penalised friction's tangential force of each link, which
+/// the next step's elastic predictor starts from, and the contact forces
+/// of the state, which start the next step's trapezoids (impulse,
+/// TRAV_LIAI, DISS_FROT). Archived with each step so that ETAT_INIT
+/// EVOL_NOLI restarts from it: without it a continuation in the middle of
+/// a sticking contact started its friction from zero (measured: the slave
+/// corner's DX 149 % off the one-call run). Kept in memory only (MED has
+/// no place for it, and code_aster, which has no explicit contact, no
+/// such field).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ContactHistory {
+    /// Dofs per node of the full numbering the dofs below index.
+    pub ndpn: usize,
+    /// The contact forces of the state on the F_int side (the opposite of
+    /// the force on the nodes), nonzero entries, as (full dof, value).
+    pub force: Vec<(usize, f64)>,
+    /// The sum of the contact forces on the slave nodes (the impulse's).
+    pub body_force: [f64; 3],
+    /// The tangential force on the slave node of each frictional link in
+    /// contact, by (zone, slave node) ascending (the penalised friction's
+    /// history; for the kinematic friction the force of the correction).
+    pub friction: Vec<((usize, usize), [f64; 3])>,
+    /// Against a deformable master: the master nodes and shape functions
+    /// of each frictional link, by (zone, slave node) ascending (the
+    /// master side of the friction's work).
+    pub friction_master: Vec<MasterLink>,
+}
+
+/// A frictional link's (zone, slave node), master nodes and their shape
+/// functions at the projection.
+pub type MasterLink = ((usize, usize), Vec<usize>, Vec<f64>);
 
 /// A transient nonlinear result (evol_noli).
 #[derive(Debug, Clone, PartialEq, Default)]
