@@ -34,6 +34,14 @@ fn free_flight() {
     run_study("free_flight");
 }
 
+/// Names bound again without reuse= (a pass written as a Python loop):
+/// STAT_NON_LINE and DYNA_NON_LINE make new results, on a new mesh too,
+/// against the 1D bar's closed forms (tests/verification/rebind.comm).
+#[test]
+fn rebound_names_make_new_results() {
+    run_study("rebind");
+}
+
 /// The A and J quarter meshes (HEXS20/PENTA15 and HEXS8/PENTA6, block in
 /// HEXS8) in free flight: every node keeps V0, DZ = V0 (t - t0).
 #[test]

@@ -87,6 +87,11 @@ pub struct Args {
     /// Span of the whole level (`_F(...)` or the call).
     pub span: Span,
     pub entries: IndexMap<String, Entry>,
+    /// `reuse=NAME` at the top level: the concept the command modifies in
+    /// place. A command whose result name is already bound without it
+    /// makes a new concept (Python rebinds the name), so an executor must
+    /// not read the old concept of that name as its own.
+    pub reuse: Option<String>,
 }
 
 impl Args {
@@ -96,6 +101,7 @@ impl Args {
             path: path.into(),
             span,
             entries: IndexMap::new(),
+            reuse: None,
         }
     }
 

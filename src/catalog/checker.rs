@@ -587,6 +587,7 @@ impl Checker<'_> {
             _ => {}
         }
         let reuse_name = reuse.as_ref().map(|(n, _)| n.clone());
+        top.reuse = reuse_name.clone();
         self.check_reuse(
             cmd,
             &spec.reentrant,

@@ -187,7 +187,7 @@ pub(crate) fn exec(
     };
     let mut evol = result_to_fill(
         study,
-        result,
+        args.reuse.as_deref(),
         &md.model,
         &model_name,
         &mat_name,

@@ -1543,7 +1543,7 @@ pub(crate) fn run(
     };
     let mut evol = result_to_fill(
         study,
-        result,
+        args.reuse.as_deref(),
         &md.model,
         &model_name,
         &mat_name,
@@ -1710,18 +1710,20 @@ pub(crate) fn result_of_run<T>(
 
 /// The result a run fills, implicit or explicit. With reuse= the result is
 /// still in the table: new steps are appended to it (instants not after
-/// its last one are not stored again); otherwise a new one. Either way it
-/// takes the run's model, material field, loads and behaviours.
+/// its last one are not stored again); otherwise a new one, even when the
+/// name is already bound (`R = DYNA_NON_LINE(...)` twice without reuse=
+/// makes a new R, as Python rebinds the name). Either way it takes the
+/// run's model, material field, loads and behaviours.
 pub(crate) fn result_to_fill(
     study: &Study,
-    result: Option<&str>,
+    reuse: Option<&str>,
     model: &Model,
     model_name: &str,
     mat_name: &str,
     load_names: &[String],
     occs: &[Occurrence],
 ) -> EvolNoli {
-    let mut evol = match result.and_then(|r| study.concepts.data(r)) {
+    let mut evol = match reuse.and_then(|r| study.concepts.data(r)) {
         Some(ConceptData::Result(r)) => (**r).clone(),
         _ => EvolNoli::default(),
     };

@@ -64,7 +64,9 @@ pub mod test_table;
 pub type ExecResult = Result<Option<ConceptData>, Diagnostic>;
 
 /// Executes a checked command. `result` is the name the result is bound to
-/// (for `reuse=`, the concept being modified, still in the table).
+/// (for `reuse=`, the concept being modified, still in the table; without
+/// it a concept of that name may still be in the table too, the one the
+/// new result replaces: `args.reuse` says which case it is).
 pub type ExecFn = fn(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult;
 
 pub struct CommandDef {
