@@ -753,9 +753,39 @@ fn elastic_wave_in_a_rod() {
 
 /// Free flight under DIFF_CENT and TCHAMWA, lumped and consistent mass,
 /// and a run continued with ETAT_INIT EVOL_NOLI: exact rigid motion.
+/// SUIVI_DDL in explicit prints one line per instant of the list: the
+/// 201 lines of the first run (initial state included) read DY and VY of
+/// A2 on the rigid motion.
 #[test]
 fn free_flight_explicit() {
-    run_study("free_flight_explicit");
+    let run = common::run_study(
+        "tests/verification/free_flight_explicit.comm",
+        "verif_free_flight_explicit",
+    );
+    common::assert_all_ok(&run, "free_flight_explicit.resu");
+    let (v0, t0) = (-227000.0, -1e-5);
+    let mess = run.file("free_flight_explicit.mess");
+    let rows: Vec<Vec<f64>> = mess
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("SUIVI_DDL"))
+        .filter_map(|l| {
+            l.split_whitespace()
+                .map(|w| w.parse::<f64>())
+                .collect::<Result<Vec<_>, _>>()
+                .ok()
+        })
+        .collect();
+    assert_eq!(rows.len(), 201, "one SUIVI_DDL line per instant:\n{mess}");
+    for (k, r) in rows.iter().enumerate() {
+        let (step, t, dy, vy) = (r[0], r[1], r[2], r[3]);
+        assert_eq!(step, k as f64);
+        assert!((t - (t0 + 5e-8 * k as f64)).abs() < 1e-15, "{r:?}");
+        assert!(
+            (dy - v0 * (t - t0)).abs() <= 1e-6 * v0.abs() * 1e-5 + 1e-6,
+            "{r:?}"
+        );
+        assert!((vy - v0).abs() <= 1e-6 * v0.abs(), "{r:?}");
+    }
 }
 
 /// The elastic wave in a rod under DIFF_CENT: the wave speed from the

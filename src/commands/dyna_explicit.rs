@@ -75,9 +75,6 @@ pub(crate) fn exec(
             ));
         }
     }
-    if args.has("SUIVI_DDL") {
-        return Err(args.not_implemented("SUIVI_DDL", "SUIVI_DDL with an explicit scheme"));
-    }
     if args.has("CONVERGENCE") || args.has("NEWTON") {
         notes.push("CONVERGENCE and NEWTON have no effect with an explicit scheme: every step is converged by definition (as code_aster)".into());
     }
@@ -174,7 +171,7 @@ pub(crate) fn exec(
         on_error: Action::Arret,
         archive,
         newton_table: false,
-        suivi: Vec::new(),
+        suivi: super::dyna_non_line::suivi_of(&md.mesh, &md.model, args, true)?,
         observations,
         progress: false,
         dof_names,

@@ -852,6 +852,13 @@ fn run_on(
         o.observe(&tl.observations, &engine.committed, None, ndpn, &offsets);
         o
     });
+    // SUIVI_DDL: no Newton table in explicit, so one line per instant of
+    // the list (the sub-steps of the critical step are not instants of
+    // the computation), from the initial state on.
+    if !tl.suivi.is_empty() {
+        log(&suivi_header(tl));
+        log(&suivi_line(tl, &engine.committed, 0, ndpn, &offsets));
+    }
     let mut dt = first_dt;
     // The length of the last step done (for CONT_NOEU's percussion).
     let mut last_dt = 0.0;
@@ -1014,6 +1021,15 @@ fn run_on(
         if let Some(ct) = contact.as_deref() {
             energy.friction = ct.friction_dissipation();
         }
+        if at_list && !tl.suivi.is_empty() {
+            log(&suivi_line(
+                tl,
+                &engine.committed,
+                list_steps,
+                ndpn,
+                &offsets,
+            ));
+        }
         if let (true, Some(o)) = (at_list, observer.as_mut()) {
             o.observe(
                 &tl.observations,
@@ -1105,6 +1121,30 @@ fn archive_with_contact(
         step.contact_history = Some(ct.history());
     }
     true
+}
+
+fn suivi_header(tl: &TimeLoop) -> String {
+    let mut h = format!("  SUIVI_DDL  {:>6}  {:>13}", "step", "INST");
+    for s in &tl.suivi {
+        h.push_str(&format!("  {:>14}", s.label));
+    }
+    h
+}
+
+/// The SUIVI_DDL columns on the committed state after `step` steps of the
+/// list.
+fn suivi_line(
+    tl: &TimeLoop,
+    state: &super::State,
+    step: usize,
+    ndpn: usize,
+    offsets: &[usize],
+) -> String {
+    let mut line = format!("  SUIVI_DDL  {step:>6}  {:>13.6e}", state.t);
+    for s in &tl.suivi {
+        line.push_str(&format!("  {:>14.6e}", s.evaluate(state, ndpn, offsets)));
+    }
+    line
 }
 
 fn archive_line(
