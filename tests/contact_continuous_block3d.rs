@@ -277,6 +277,11 @@ fn run_on(mesh: Mesh, contact_text: &str, friction: bool, ramp: &[f64]) -> Vec<S
         conv,
         state,
     );
+    // Along z the block is held by the contact and its negligible density
+    // only: before the contact acts, the matrix loses ~15 decimals in that
+    // rigid mode, where code_aster's solvers stop (SOLVEUR NPREC); this
+    // quasi-static construction turns the test off, as NPREC < 0 does.
+    engine.lu.check.limit = None;
     engine.initialize(true).unwrap();
     let u0 = vec![0.0; nfull];
     let mut contact =

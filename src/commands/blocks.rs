@@ -410,6 +410,22 @@ pub fn c_convergence() -> Keyword {
     .kw()
 }
 
+/// The singularity test of `SOLVEUR` (NPREC, STOP_SINGULIER, read as the
+/// chosen METHODE reads them; code_aster's defaults without SOLVEUR).
+pub fn singularity_check(args: &crate::commands::Args) -> crate::solver::SingularityCheck {
+    let Some(o) = args.fact("SOLVEUR") else {
+        return Default::default();
+    };
+    crate::solver::SingularityCheck::from_solveur(
+        o.text("METHODE").unwrap_or("MUMPS"),
+        o.int("NPREC").unwrap_or(8),
+        o.text("STOP_SINGULIER").unwrap_or("OUI") == "OUI",
+    )
+}
+
+/// The .mess note of a given `SOLVEUR`.
+pub const SOLVEUR_NOTE: &str = "SOLVEUR: every METHODE maps to one sparse direct solver (faer: Cholesky for a symmetric matrix, LU otherwise); NPREC and STOP_SINGULIER are honoured (a pivot that lost NPREC decimals against its diagonal entry is singular), the other settings are accepted and ignored";
+
 /// `SOLVEUR` (`C_SOLVEUR`, nonlinear commands): the linear solver.
 pub fn c_solveur() -> Keyword {
     let npred = || int("NPREC").default(i(8)).kw();

@@ -1521,7 +1521,7 @@ pub(crate) fn run(
         ));
     }
     if args.has("SOLVEUR") {
-        notes.push("SOLVEUR: every METHODE maps to one sparse direct solver (faer: Cholesky for a symmetric matrix, LU otherwise); the settings are accepted and ignored".into());
+        notes.push(super::blocks::SOLVEUR_NOTE.into());
     }
     let info = args.int("INFO").unwrap_or(1);
     let progress = study.verbose && std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -1560,6 +1560,7 @@ pub(crate) fn run(
         state.points = p;
     }
     let mut engine = Engine::new(asm, scheme, newton, conv, state);
+    engine.lu.check = super::blocks::singularity_check(args);
     // PESANTEUR and FORCE_NODALE: dead loads, scaled by their FONC_MULT.
     set_loads(
         args,
@@ -1658,6 +1659,12 @@ pub(crate) fn run(
             s.passes,
             s.max_passes,
             a.active_links()
+        ));
+    }
+    if let Some(w) = engine.lu.tolerated {
+        log(&format!(
+            "  {}",
+            crate::nonlinear::linear::singularity_alarm(&engine.asm.numbering, w, engine.lu.check)
         ));
     }
     if let Some(u) = &unil {

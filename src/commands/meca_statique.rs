@@ -201,8 +201,9 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         all_instants[all_instants.len() - 1]
     ));
     if args.has("SOLVEUR") {
-        study.log("  SOLVEUR: every METHODE maps to one sparse direct solver (faer: Cholesky for a symmetric matrix, LU otherwise); the settings are accepted and ignored");
+        study.log(format!("  {}", super::blocks::SOLVEUR_NOTE));
     }
+    linear.check = super::blocks::singularity_check(args);
     let mut fext = vec![0.0; linear.asm.numbering.nfull()];
     for &(nume, t) in &todo {
         let at = |m: String| args.error("EXCIT", format!("INST = {t:e}: {m}"));
@@ -237,6 +238,9 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             step.gauss.insert("SIEF_ELGA".into(), sief);
         }
         evol.steps.push(step);
+    }
+    if let Some(alarm) = linear.tolerated_singularity() {
+        study.log(format!("  {alarm}"));
     }
     evol.steps.sort_by_key(|s| s.nume_ordre);
     Ok(Some(ConceptData::Result(Box::new(evol))))

@@ -11,6 +11,7 @@
 
 use crate::mesh::Mesh;
 use crate::model::{MechLoad, Model};
+use crate::solver::{fmt_decimals, SolverError};
 
 /// Marker of "no equation".
 pub const NONE: usize = usize::MAX;
@@ -49,6 +50,44 @@ impl DofNumbering {
     }
     pub fn is_active(&self, full: usize) -> bool {
         self.active_node[full / self.ndpn]
+    }
+
+    /// Equation `e` for a message: its node (code_aster's default name)
+    /// and component; past the displacement equations, an unknown the
+    /// contact added (CONTINUE's multipliers).
+    pub fn equation_name(&self, e: usize) -> String {
+        match self.free.get(e) {
+            Some(&f) => format!(
+                "node N{} component {}",
+                f / self.ndpn + 1,
+                ["DX", "DY", "DZ"].get(f % self.ndpn).unwrap_or(&"?")
+            ),
+            None => format!(
+                "the contact unknown {} (after the displacements)",
+                e - self.neq() + 1
+            ),
+        }
+    }
+
+    /// A failed factorization or solve of a system on these equations,
+    /// for the user: the lost-decimals criterion names the dof where the
+    /// pivot vanished and its likely causes.
+    pub fn solver_failure(&self, e: &SolverError) -> String {
+        match e {
+            SolverError::LostDecimals {
+                unknown,
+                decimals,
+                nprec,
+            } => format!(
+                "the matrix is singular: {} decimals lost at the pivot of {} (SOLVEUR NPREC = {nprec}, \
+                 STOP_SINGULIER='OUI'); the structure has a mode without stiffness there: a missing support \
+                 (DDL_IMPO), or a zero-energy (spurious) mode of under-integrated elements \
+                 (3D_SI, D_PLAN_SI, AXIS_SI) that the supports do not hold",
+                fmt_decimals(*decimals),
+                self.equation_name(*unknown)
+            ),
+            e => e.to_string(),
+        }
     }
 }
 

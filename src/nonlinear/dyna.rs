@@ -369,7 +369,8 @@ pub fn archive(
 /// nothing else can): the message says so.
 fn describe(engine: &Engine, tl: &TimeLoop, failure: &StepFailure) -> String {
     let text = match failure {
-        StepFailure::Singular(m) if !engine.scheme.inertia => format!(
+        // The lost-decimals message names its dof and causes already.
+        StepFailure::Singular(m) if !engine.scheme.inertia && !m.contains("NPREC") => format!(
             "{m}: the stiffness of STAT_NON_LINE is singular, a rigid-body mode (or a mechanism) of the structure is not held; \
              add the missing DDL_IMPO (or a contact that holds it)"
         ),

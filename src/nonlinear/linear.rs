@@ -20,7 +20,7 @@ use super::dofs::NONE;
 use crate::element::hexs8::{self, Variant};
 use crate::element::{initial_states, internal_forces, ElementFailure, Kinematics, PointState};
 use crate::law::TangentKind;
-use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
+use crate::solver::{DirectLu, LinearSolver, SingularityCheck, SolverError, SparseMatrix};
 
 /// Why a linear solve failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -177,6 +177,8 @@ pub struct LinearStatics {
     pub variant: Variant,
     ks: Vec<Vec<f64>>,
     solver: Option<DirectLu>,
+    /// SOLVEUR NPREC / STOP_SINGULIER.
+    pub check: SingularityCheck,
 }
 
 impl LinearStatics {
@@ -188,6 +190,7 @@ impl LinearStatics {
             variant,
             ks,
             solver: None,
+            check: SingularityCheck::default(),
         })
     }
 
@@ -203,14 +206,26 @@ impl LinearStatics {
                 }
             }
             let mut solver = DirectLu::new();
+            solver.check = self.check;
             solver.factorize(&k).map_err(|e| {
-                LinearError::Singular(format!(
-                    "the stiffness of the free dofs cannot be factorized ({e}): a part of the model can move without deforming"
-                ))
+                LinearError::Singular(match e {
+                    SolverError::LostDecimals { .. } => self.asm.numbering.solver_failure(&e),
+                    e => format!(
+                        "the stiffness of the free dofs cannot be factorized ({e}): a part of the model can move without deforming"
+                    ),
+                })
             })?;
             self.solver = Some(solver);
         }
         Ok(self.solver.as_ref().expect("factorized above"))
+    }
+
+    /// With STOP_SINGULIER='NON', the alarm of a stiffness that lost NPREC
+    /// decimals or more at a pivot (the solution was kept).
+    pub fn tolerated_singularity(&self) -> Option<String> {
+        let s = self.solver.as_ref()?;
+        let w = s.tolerated?;
+        Some(singularity_alarm(&self.asm.numbering, w, self.check))
     }
 
     /// Solves K u = F_ext (full vector) with the imposed values of the
@@ -264,4 +279,21 @@ impl LinearStatics {
     pub fn stresses(&self, u: &[f64]) -> Result<Vec<PointState>, LinearError> {
         linear_stresses(&self.asm, u).map_err(LinearError::Cell)
     }
+}
+
+/// The alarm of STOP_SINGULIER='NON' when a pivot lost NPREC decimals or
+/// more: code_aster goes on with the solution, which is then unreliable.
+pub fn singularity_alarm(
+    nb: &crate::nonlinear::dofs::DofNumbering,
+    w: crate::solver::WorstPivot,
+    check: SingularityCheck,
+) -> String {
+    format!(
+        "alarm: the matrix is singular or nearly: {} decimals lost at the pivot of {} (SOLVEUR NPREC = {}); \
+         STOP_SINGULIER='NON' keeps the solution, which may be wrong (a missing support, or a zero-energy \
+         mode of under-integrated elements)",
+        crate::solver::fmt_decimals(w.decimals()),
+        nb.equation_name(w.unknown),
+        check.limit.unwrap_or(8)
+    )
 }

@@ -426,12 +426,12 @@ impl Engine {
         self.matrix_dt = None;
         self.lu
             .factorize(&self.matrix)
-            .map_err(|e| StepFailure::Singular(e.to_string()))?;
+            .map_err(|e| StepFailure::Singular(self.asm.numbering.solver_failure(&e)))?;
         let nb = &self.asm.numbering;
         let mut rhs: Vec<f64> = nb.free.iter().map(|&f| -self.work[f]).collect();
         self.lu
             .solve(&mut rhs)
-            .map_err(|e| StepFailure::Singular(e.to_string()))?;
+            .map_err(|e| StepFailure::Singular(self.asm.numbering.solver_failure(&e)))?;
         self.du.iter_mut().for_each(|v| *v = 0.0);
         for (e, &f) in nb.free.iter().enumerate() {
             self.du[f] = rhs[e];
@@ -669,7 +669,7 @@ impl Engine {
             if reassemble {
                 self.lu
                     .factorize(&self.matrix)
-                    .map_err(|e| StepFailure::Singular(e.to_string()))?;
+                    .map_err(|e| StepFailure::Singular(self.asm.numbering.solver_failure(&e)))?;
                 self.matrix_dt = Some(dt);
             }
             let nb = &self.asm.numbering;
@@ -683,7 +683,7 @@ impl Engine {
             }
             self.lu
                 .solve(&mut self.rhs)
-                .map_err(|e| StepFailure::Singular(e.to_string()))?;
+                .map_err(|e| StepFailure::Singular(self.asm.numbering.solver_failure(&e)))?;
             if let Some(c) = contact.as_deref_mut() {
                 c.correct(IncrementCorrection {
                     numbering: nb,

@@ -12,7 +12,9 @@
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
@@ -172,6 +174,21 @@ impl SparseMatrix {
             && p.diagonal.iter().all(|&k| v[k].is_finite())
     }
 
+    /// |A_ij − A_ji| ≤ rel·max_k |A_kk| for every pair: symmetric up to
+    /// round-off measured against the matrix's scale, where
+    /// [`Self::is_symmetric_within`] compares each pair with itself (and
+    /// refuses two round-off residues of opposite sign).
+    pub fn is_symmetric_to_scale(&self, rel: f64) -> bool {
+        let p = &self.pattern;
+        let v = &self.values;
+        let scale = p.diagonal.iter().map(|&k| v[k].abs()).fold(0.0, f64::max);
+        let tol = rel * scale;
+        p.upper_pairs
+            .iter()
+            .all(|&(k, kt)| (v[k] - v[kt]).abs() <= tol)
+            && p.unpaired.iter().all(|&k| v[k].abs() <= tol)
+    }
+
     /// Replaces A by (A + A^T)/2 in place (MATR_RIGI_SYME='OUI'); the
     /// pattern of a finite-element matrix is structurally symmetric.
     pub fn symmetrize(&mut self) {
@@ -197,6 +214,14 @@ pub enum SolverError {
     Singular(String),
     /// `solve` before a successful `factorize`, or a size mismatch.
     Usage(String),
+    /// code_aster's singularity criterion (SOLVEUR NPREC): the pivot of
+    /// `unknown` lost `decimals` ≥ `nprec` decimals against the matrix's
+    /// diagonal entry (infinity for a zero pivot).
+    LostDecimals {
+        unknown: usize,
+        decimals: f64,
+        nprec: i64,
+    },
 }
 
 impl std::fmt::Display for SolverError {
@@ -204,11 +229,95 @@ impl std::fmt::Display for SolverError {
         match self {
             SolverError::Singular(m) => write!(f, "singular matrix: {m}"),
             SolverError::Usage(m) => write!(f, "linear solver misuse: {m}"),
+            SolverError::LostDecimals {
+                unknown,
+                decimals,
+                nprec,
+            } => write!(
+                f,
+                "singular matrix: {} decimals lost at the pivot of unknown {unknown} (NPREC = {nprec})",
+                fmt_decimals(*decimals)
+            ),
         }
     }
 }
 
 impl std::error::Error for SolverError {}
+
+/// "12.3", or "all" for a zero pivot.
+pub fn fmt_decimals(d: f64) -> String {
+    if d.is_finite() {
+        format!("{d:.1}")
+    } else {
+        "all".into()
+    }
+}
+
+/// code_aster's detection of a singular matrix by its direct solvers
+/// (SOLVEUR NPREC and STOP_SINGULIER, U4.50.01): a pivot that lost NPREC
+/// decimals or more against the diagonal entry of its row before the
+/// factorization, |a_ii / d_i| ≥ 10^NPREC, makes the matrix singular;
+/// with STOP_SINGULIER='OUI' the factorization fails, with 'NON' the
+/// solution is kept (the caller emits an alarm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SingularityCheck {
+    /// The decimals whose loss is fatal; `None`: no test.
+    pub limit: Option<i64>,
+    pub stop: bool,
+}
+
+impl Default for SingularityCheck {
+    fn default() -> Self {
+        SingularityCheck {
+            limit: Some(8),
+            stop: true,
+        }
+    }
+}
+
+impl SingularityCheck {
+    /// The check of SOLVEUR's METHODE, NPREC and STOP_SINGULIER. MUMPS
+    /// reads the sign of NPREC (negative: no test); MULT_FRONT and LDLT
+    /// take its absolute value; 0 means the default 8 for all.
+    pub fn from_solveur(methode: &str, nprec: i64, stop: bool) -> SingularityCheck {
+        let limit = match nprec {
+            0 => Some(8),
+            p if p < 0 && methode == "MUMPS" => None,
+            p => Some(p.abs()),
+        };
+        SingularityCheck { limit, stop }
+    }
+}
+
+/// The pivot that lost the most decimals in a factorization: |d_i| / |a_ii|
+/// (the pivot of LDLᵀ, L_ii² of LLᵀ, over the diagonal entry of the
+/// matrix), at the unknown i of the matrix's own numbering.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WorstPivot {
+    pub unknown: usize,
+    pub ratio: f64,
+}
+
+impl WorstPivot {
+    /// Decimals lost, log10(|a_ii| / |d_i|): infinite for a zero pivot.
+    pub fn decimals(&self) -> f64 {
+        -self.ratio.log10()
+    }
+
+    /// Keeps the smaller ratio; a NaN ratio counts as a zero pivot.
+    fn update(worst: &mut Option<WorstPivot>, unknown: usize, pivot: f64, diagonal: f64) {
+        if diagonal == 0.0 {
+            // No reference: a row without diagonal term (a Lagrange-like
+            // unknown) has no decimals to lose.
+            return;
+        }
+        let r = pivot.abs() / diagonal.abs();
+        let r = if r.is_nan() { 0.0 } else { r };
+        if worst.is_none_or(|w| r < w.ratio) {
+            *worst = Some(WorstPivot { unknown, ratio: r });
+        }
+    }
+}
 
 /// A linear solver: factorize once, solve many right-hand sides.
 pub trait LinearSolver {
@@ -246,6 +355,18 @@ pub struct DirectLu {
     /// Factorizations that went to LU because Cholesky met a
     /// non-positive pivot (or the matrix was not symmetric).
     pub lu_count: usize,
+    /// SOLVEUR NPREC / STOP_SINGULIER.
+    pub check: SingularityCheck,
+    /// The pivot that lost the most decimals in the last factorization
+    /// of a symmetric matrix (`None` for a non-symmetric one: faer's LU
+    /// does not show its pivots).
+    pub worst: Option<WorstPivot>,
+    /// With STOP_SINGULIER='NON', the worst pivot over NPREC met so far
+    /// (the caller's alarm).
+    pub tolerated: Option<WorstPivot>,
+    /// LDLᵀ factor of a symmetric matrix that Cholesky refused, computed
+    /// only to read its pivots (the solve uses LU).
+    ldlt_values: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -284,7 +405,8 @@ impl DirectLu {
         MemStack::new(&mut mem.as_mut().expect("allocated above").0)
     }
 
-    fn factorize_llt(&mut self, a: &SparseMatrix) -> Result<bool, SolverError> {
+    /// The symbolic Cholesky factorization of the pattern, once.
+    fn llt_symbolic(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
         if self.llt.is_none() {
             let symbolic = factorize_symbolic_cholesky(
                 a.pattern.symbolic(),
@@ -303,6 +425,11 @@ impl DirectLu {
             });
             self.symbolic_count += 1;
         }
+        Ok(())
+    }
+
+    fn factorize_llt(&mut self, a: &SparseMatrix) -> Result<bool, SolverError> {
+        self.llt_symbolic(a)?;
         let f = self.llt.as_mut().expect("set above");
         let ok = if let Some(plan) = &mut f.plan {
             plan.factorize(&a.values, &mut f.values)
@@ -363,6 +490,112 @@ impl DirectLu {
         self.lu_count += 1;
         Ok(())
     }
+}
+
+impl DirectLu {
+    /// The pivots of the LLᵀ factor just computed, L_kk².
+    fn llt_pivots(&self, a: &SparseMatrix) -> Option<WorstPivot> {
+        let f = self.llt.as_ref()?;
+        worst_pivot(&f.symbolic, &f.values, a, |l| l * l)
+    }
+
+    /// The pivots D_kk of the LDLᵀ factorization of `a` (symmetric), in
+    /// a buffer of its own: the factor that solves is not touched.
+    fn ldlt_pivots(&mut self, a: &SparseMatrix) -> Result<Option<WorstPivot>, SolverError> {
+        self.llt_symbolic(a)?;
+        let f = self.llt.as_ref().expect("set above");
+        self.ldlt_values.resize(f.symbolic.len_val(), 0.0);
+        let req = f
+            .symbolic
+            .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default());
+        let stack = Self::stack(&mut self.mem, req);
+        let done = f.symbolic.factorize_numeric_ldlt(
+            &mut self.ldlt_values,
+            a.faer(),
+            Side::Lower,
+            LdltRegularization::default(),
+            Par::Seq,
+            stack,
+            Default::default(),
+        );
+        Ok(match done {
+            Ok(_) => worst_pivot(&f.symbolic, &self.ldlt_values, a, |d| d),
+            // faer counts this pivot from 1 (the pivots done before it).
+            Err(LdltError::ZeroPivot { index }) => {
+                let k = index.saturating_sub(1).min(a.n().saturating_sub(1));
+                Some(WorstPivot {
+                    unknown: f.symbolic.perm().map_or(k, |p| p.arrays().0[k]),
+                    ratio: 0.0,
+                })
+            }
+        })
+    }
+
+    /// Applies the singularity check to the factorization just made.
+    fn judge(&mut self) -> Result<(), SolverError> {
+        let Some(w) = self.worst else {
+            return Ok(());
+        };
+        let Some(limit) = self.check.limit else {
+            return Ok(());
+        };
+        if w.ratio > 10f64.powi(-(limit.min(400) as i32)) {
+            return Ok(());
+        }
+        if self.check.stop {
+            self.current = None;
+            return Err(SolverError::LostDecimals {
+                unknown: w.unknown,
+                decimals: w.decimals(),
+                nprec: limit,
+            });
+        }
+        if self.tolerated.is_none_or(|t| w.ratio < t.ratio) {
+            self.tolerated = Some(w);
+        }
+        Ok(())
+    }
+}
+
+/// The pivot of a Cholesky-shaped factor (`values` laid out by
+/// `symbolic`, diagonal entry l of each column turned into the pivot by
+/// `pivot`) that lost the most decimals against the diagonal of `a`,
+/// named in `a`'s numbering (faer's permutation: the k-th pivot is the
+/// unknown fwd[k]).
+fn worst_pivot(
+    symbolic: &SymbolicCholesky<usize>,
+    values: &[f64],
+    a: &SparseMatrix,
+    pivot: impl Fn(f64) -> f64,
+) -> Option<WorstPivot> {
+    let fwd = symbolic.perm().map(|p| p.arrays().0);
+    let unknown = |k: usize| fwd.map_or(k, |f| f[k]);
+    let diag = &a.pattern.diagonal;
+    let mut worst = None;
+    let mut see = |k: usize, l: f64| {
+        let i = unknown(k);
+        WorstPivot::update(&mut worst, i, pivot(l), a.values[diag[i]]);
+    };
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            // Column k of L starts with its diagonal entry.
+            let cp = s.col_ptr();
+            for k in 0..a.n() {
+                see(k, values[cp[k]]);
+            }
+        }
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let l = SupernodalLltRef::new(s, values);
+            for q in 0..s.n_supernodes() {
+                let node = l.supernode(q);
+                let (start, m) = (node.start(), node.val());
+                for j in 0..m.ncols() {
+                    see(start + j, m[(j, j)]);
+                }
+            }
+        }
+    }
+    worst
 }
 
 /// faer's simplicial up-looking LLᵀ (`factorize_simplicial_numeric_llt`,
@@ -655,13 +888,33 @@ impl LinearSolver for DirectLu {
         // Symmetric up to round-off (the contact tangent is summed in a
         // different order for (i, j) and (j, i)): Cholesky reads the lower
         // triangle, a relative perturbation of 1e-12 at most.
-        if a.is_symmetric_within(1e-12) && self.factorize_llt(a)? {
+        let symmetric = a.is_symmetric_within(1e-12);
+        if symmetric && self.factorize_llt(a)? {
             self.current = Some(Kind::Llt);
-            return Ok(());
+            self.worst = self.llt_pivots(a);
+            return self.judge();
         }
+        // Cholesky refused a pivot, or the matrix is symmetric but for
+        // round-off on entries that should be zero (a few 1e-16 of the
+        // largest: HEXS20's stiffness) and LU solves it: the LDLᵀ of the
+        // same ordering (the factorization of code_aster's MULT_FRONT and
+        // LDLT, which takes negative pivots) gives the pivots to judge.
+        // A truly non-symmetric matrix (friction) is not judged: faer's LU
+        // does not show its pivots.
+        // A row with a zero diagonal entry (the contact multipliers of
+        // CONTINUE: a saddle point) is not judged either: LDLᵀ without
+        // pivoting meets a zero pivot there in faer's ordering, which
+        // says nothing about the matrix (code_aster orders its Lagrange
+        // rows around the constrained dofs for that reason).
+        let zero_diagonal = a.pattern.diagonal.iter().any(|&k| a.values[k] == 0.0);
+        self.worst = if !zero_diagonal && (symmetric || a.is_symmetric_to_scale(1e-12)) {
+            self.ldlt_pivots(a)?
+        } else {
+            None
+        };
         self.factorize_lu(a)?;
         self.current = Some(Kind::Lu);
-        Ok(())
+        self.judge()
     }
 
     fn solve(&self, b: &mut [f64]) -> Result<(), SolverError> {
@@ -821,8 +1074,105 @@ mod tests {
         let a = vec![vec![1.0, 2.0], vec![2.0, 4.0]];
         let m = build(&a);
         let mut s = DirectLu::new();
+        s.check.limit = None;
         let r = s.factorize(&m).and_then(|_| s.solve(&mut [1.0, 1.0]));
         assert!(matches!(r, Err(SolverError::Singular(_))), "{r:?}");
+        // With the check (the default), the factorization itself refuses it.
+        let mut s = DirectLu::new();
+        let r = s.factorize(&m);
+        assert!(
+            matches!(r, Err(SolverError::LostDecimals { nprec: 8, .. })),
+            "{r:?}"
+        );
+    }
+
+    /// The pivot ratio against a hand LDLᵀ: in [[4, 2, 0], [2, 3, 0], [0,
+    /// 0, ±7]] the 2 x 2 block has pivots (4, 3 − 1) or (3, 4 − 4/3)
+    /// whichever unknown comes first, a worst ratio 2/3 either way (the
+    /// unknown 1, resp. 0); the third pivot is its diagonal. With +7 it
+    /// is Cholesky's L_kk², with −7 Cholesky fails and LDLᵀ gives it.
+    #[test]
+    fn pivot_ratio_matches_a_hand_factorization() {
+        for (d, lu) in [(7.0, 0), (-7.0, 1)] {
+            let a = vec![vec![4.0, 2.0, 0.0], vec![2.0, 3.0, 0.0], vec![0.0, 0.0, d]];
+            let mut s = DirectLu::new();
+            s.factorize(&build(&a)).unwrap();
+            assert_eq!(s.lu_count, lu);
+            let w = s.worst.expect("a symmetric matrix is judged");
+            assert!((w.ratio - 2.0 / 3.0).abs() < 1e-15, "{w:?}");
+            assert!(w.unknown < 2, "{w:?}");
+        }
+    }
+
+    /// A zero-energy mode of unknowns 2 and 3 (a free spring pair) in an
+    /// otherwise stiff matrix: the pivot at one of them vanishes (exactly
+    /// or to round-off), over any NPREC; the check names that unknown,
+    /// through faer's permutation. STOP_SINGULIER='NON' keeps the
+    /// factorization and records the pivot; NPREC < 0 (MUMPS) skips it.
+    #[test]
+    fn zero_energy_mode_loses_every_decimal_at_its_unknown() {
+        let a = vec![
+            vec![5.0, -1.0, 0.0, 0.0],
+            vec![-1.0, 5.0, 0.0, 0.0],
+            vec![0.0, 0.0, 3.0, -3.0],
+            vec![0.0, 0.0, -3.0, 3.0],
+        ];
+        let m = build(&a);
+        let mut s = DirectLu::new();
+        match s.factorize(&m) {
+            Err(SolverError::LostDecimals {
+                unknown, decimals, ..
+            }) => {
+                assert!(unknown == 2 || unknown == 3, "{unknown}");
+                assert!(decimals > 14.0, "{decimals}");
+            }
+            r => panic!("{r:?}"),
+        }
+        assert!(s.solve(&mut [1.0; 4]).is_err(), "no factor after a refusal");
+        s.check = SingularityCheck::from_solveur("MUMPS", 8, false);
+        s.factorize(&m).unwrap();
+        assert!(s.tolerated.is_some_and(|w| w.unknown >= 2));
+        let mut s = DirectLu::new();
+        s.check = SingularityCheck::from_solveur("MUMPS", -1, true);
+        s.factorize(&m).unwrap();
+        assert!(s.tolerated.is_none());
+    }
+
+    #[test]
+    fn nprec_is_read_as_each_method_reads_it() {
+        let c = SingularityCheck::from_solveur;
+        assert_eq!(c("MUMPS", -1, true).limit, None);
+        assert_eq!(c("MULT_FRONT", -6, true).limit, Some(6));
+        assert_eq!(c("LDLT", 0, true).limit, Some(8));
+        assert_eq!(c("MUMPS", 0, true).limit, Some(8));
+        assert_eq!(
+            c("MUMPS", 12, false),
+            SingularityCheck {
+                limit: Some(12),
+                stop: false
+            }
+        );
+    }
+
+    /// A symmetric matrix whose zero entries carry round-off of opposite
+    /// signs (1e-16 of the diagonal) goes to LU, but is still judged by
+    /// LDLᵀ; a truly non-symmetric one is not.
+    #[test]
+    fn round_off_asymmetry_is_judged_a_true_one_is_not() {
+        let mut a = vec![
+            vec![5.0, -1.0, 1e-16, 0.0],
+            vec![-1.0, 5.0, 0.0, 0.0],
+            vec![-1e-16, 0.0, 3.0, -3.0],
+            vec![0.0, 0.0, -3.0, 3.0],
+        ];
+        let mut s = DirectLu::new();
+        let r = s.factorize(&build(&a));
+        assert!(matches!(r, Err(SolverError::LostDecimals { .. })), "{r:?}");
+        assert_eq!(s.lu_count, 1);
+        a[0][1] = -2.0;
+        let mut s = DirectLu::new();
+        s.factorize(&build(&a)).unwrap();
+        assert_eq!(s.worst, None);
     }
 
     #[test]
