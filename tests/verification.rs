@@ -1852,6 +1852,41 @@ fn expect_located_errors(
     }
 }
 
+/// MODI_MAILLAGE ROTATION: the column turned by 40 degrees about (1,1,1)
+/// passes the linear patch test written in the turned axes (HEXS8,
+/// STAT_NON_LINE and MECA_STATIQUE, 1e-7), and an axis that is missing or
+/// zero, or DIR with a 2D POIN_1, is a located error.
+#[test]
+fn turned_mesh_passes_the_patch_test() {
+    run_study("modi_rotation");
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("modi_rotation_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("modi_rotation.comm")).unwrap();
+    let turn = "POIN_1=(0., 0., 0.), DIR=(1., 1., 1.)";
+    let cases = [
+        (
+            "no_axis",
+            (turn, "POIN_1=(0., 0., 0.)"),
+            "give DIR (its direction) or POIN_2",
+        ),
+        (
+            "zero_axis",
+            (turn, "POIN_1=(1., 1., 1.), POIN_2=(1., 1., 1.)"),
+            "zero direction (ALGORITH10_48)",
+        ),
+        (
+            "plane_with_dir",
+            (turn, "POIN_1=(0., 0.), DIR=(1., 1., 1.)"),
+            "rotation in the plane",
+        ),
+    ];
+    let export = format!(
+        "F mmed {} D 20\n",
+        dir().join("../studies/hexs8_beam1.mmed").display()
+    );
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_modi_rotation");
+}
+
 /// AFFE_CHAR_MECA_F on the distorted HEXS8 patch: the linear field u = A x
 /// given as three FORMULEs of X, Y, Z on every node but the interior ones
 /// gives the interior nodes u = A x (1e-9) and the uniform stress

@@ -105,8 +105,7 @@ pub fn def() -> CommandDef {
     CommandDef { spec, exec }
 }
 
-/// ORIE_PEAU, ORIE_PEAU_2D/3D, TRANSLATION and ECHELLE; ROTATION is not
-/// built yet.
+/// ORIE_PEAU, ORIE_PEAU_2D/3D, TRANSLATION, ROTATION and ECHELLE.
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let mut mesh = mesh_of(study, args, "MAILLAGE")?.clone();
     for (key, dim, skin, support) in [
@@ -149,9 +148,8 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             log_report(study, "MODI_MAILLAGE", &r.report);
         }
     }
-    if args.has("ROTATION") {
-        return Err(args.not_implemented("ROTATION", ""));
-    }
+    // code_aster's order (op0154): TRANSLATION, ROTATION, ECHELLE; the
+    // orientation of skins does not depend on where the mesh is.
     let t = args.reals("TRANSLATION");
     if !t.is_empty() {
         for p in &mut mesh.coords {
@@ -160,12 +158,99 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             }
         }
     }
+    for occ in args.facts("ROTATION") {
+        let rotation = rotation_of(occ)?;
+        for p in &mut mesh.coords {
+            *p = rotation.apply(*p);
+        }
+    }
     if let Some(s) = args.real("ECHELLE") {
         for p in &mut mesh.coords {
             p.iter_mut().for_each(|x| *x *= s);
         }
     }
     Ok(Some(ConceptData::Mesh(Box::new(mesh))))
+}
+
+/// A rotation of ROTATION: ANGLE degrees about the axis through POIN_1,
+/// right-handed about its direction (code_aster's `rotama`). POIN_1 of
+/// two values is the 2D case, about the z axis through that point; of
+/// three, the axis is DIR or POIN_2 - POIN_1.
+#[derive(Debug, Clone, Copy)]
+struct Rotation {
+    point: [f64; 3],
+    /// Unit direction of the axis.
+    axis: [f64; 3],
+    cos: f64,
+    sin: f64,
+}
+
+impl Rotation {
+    /// Rodrigues' formula: p' = c + cos (p-c) + (1-cos) ((p-c).d) d + sin d x (p-c).
+    fn apply(&self, p: [f64; 3]) -> [f64; 3] {
+        let r = [0, 1, 2].map(|k| p[k] - self.point[k]);
+        let d = self.axis;
+        let along = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
+        let cross = [
+            d[1] * r[2] - d[2] * r[1],
+            d[2] * r[0] - d[0] * r[2],
+            d[0] * r[1] - d[1] * r[0],
+        ];
+        [0, 1, 2].map(|k| {
+            self.point[k] + self.cos * r[k] + (1.0 - self.cos) * along * d[k] + self.sin * cross[k]
+        })
+    }
+}
+
+fn rotation_of(occ: &Args) -> Result<Rotation, crate::diag::Diagnostic> {
+    let p1 = occ.reals("POIN_1");
+    let angle = occ.real("ANGLE").unwrap_or(0.0).to_radians();
+    let (point, axis) = if p1.len() == 2 {
+        if occ.has("DIR") || occ.has("POIN_2") {
+            let key = if occ.has("DIR") { "DIR" } else { "POIN_2" };
+            return Err(occ.error(
+                key,
+                "POIN_1 of two values is a rotation in the plane (about the z axis through POIN_1): DIR and POIN_2 are for a 3D axis, give POIN_1 three values",
+            ));
+        }
+        ([p1[0], p1[1], 0.0], [0.0, 0.0, 1.0])
+    } else {
+        let point = [p1[0], p1[1], p1[2]];
+        let (key, d) = if occ.has("DIR") {
+            ("DIR", occ.reals("DIR"))
+        } else if occ.has("POIN_2") {
+            let p2 = occ.reals("POIN_2");
+            ("POIN_2", p2.iter().zip(&p1).map(|(b, a)| b - a).collect())
+        } else {
+            return Err(occ.error(
+                "POIN_1",
+                "a 3D rotation needs its axis: give DIR (its direction) or POIN_2 (a second point on it)",
+            ));
+        };
+        if d.len() != 3 {
+            return Err(occ.error(
+                key,
+                format!(
+                    "{key} takes three values with POIN_1 of three, here {}",
+                    d.len()
+                ),
+            ));
+        }
+        let norm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        if norm < 1e-14 {
+            return Err(occ.error(
+                key,
+                "the axis of the rotation has a zero direction (ALGORITH10_48)",
+            ));
+        }
+        (point, [d[0] / norm, d[1] / norm, d[2] / norm])
+    };
+    Ok(Rotation {
+        point,
+        axis,
+        cos: angle.cos(),
+        sin: angle.sin(),
+    })
 }
 
 /// The dimension of ORIE_PEAU from its skin cells: segments orient as in
