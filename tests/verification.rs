@@ -1852,6 +1852,15 @@ fn expect_located_errors(
     }
 }
 
+/// AFFE_CHAR_CINE (MECA_IMPO) in STAT_NON_LINE, MECA_STATIQUE (held
+/// bar under an end force, a pull scaled by FONC_MULT: tip and base
+/// reaction against the 1D bar, 1e-9) and DYNA_NON_LINE (a held bar at
+/// rest stays at rest).
+#[test]
+fn kinematic_loads_hold_and_pull_the_bar() {
+    run_study("char_cine");
+}
+
 /// MODI_MAILLAGE ROTATION: the column turned by 40 degrees about (1,1,1)
 /// passes the linear patch test written in the turned axes (HEXS8,
 /// STAT_NON_LINE and MECA_STATIQUE, 1e-7), and an axis that is missing or

@@ -207,60 +207,19 @@ fn distributed_fact(name: &'static str, cmps: &[&'static str], doc: &'static str
         .kw()
 }
 
-/// DDL_IMPO: for each occurrence, every selected node gets each given
-/// component. `GROUP_MA` means all nodes of those cells and `TOUT` all
-/// nodes of the model. Entries are kept in occurrence order, duplicates
-/// included (the engine keeps the last value and fails if two differ).
+/// DDL_IMPO ([`ddl_impo`]), FACE_IMPO, then the loads.
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let lm = load_model(study, args)?;
+    let mut lines = Vec::new();
+    let mut imposed = ddl_impo(args, "DDL_IMPO", &lm, &mut lines)?;
     let LoadModel {
         name: model_name,
         model,
         mesh,
         in_model,
-        nodes: model_nodes,
         dof_names,
-    } = load_model(study, args)?;
-    let mut imposed = Vec::new();
-    let mut lines = Vec::new();
-    for (k, occ) in args.facts("DDL_IMPO").iter().enumerate() {
-        let mut dofs: Vec<(Dof, f64)> = Vec::new();
-        if occ.has("LIAISON") {
-            dofs.extend(model.dofs.iter().map(|&d| (d, 0.0)));
-        }
-        for (d, v) in given_components(occ, &model, &model_name, &dof_names)? {
-            dofs.retain(|(e, _)| *e != d);
-            dofs.push((d, v));
-        }
-        let nodes = select_nodes(mesh, occ, &model_nodes)?;
-        impose(
-            occ,
-            "DDL_IMPO",
-            k,
-            &nodes,
-            &in_model,
-            &model_name,
-            &mut lines,
-        )?;
-        for &n in &nodes {
-            for &(dof, value) in &dofs {
-                imposed.push(ImposedDof {
-                    node: n,
-                    dof,
-                    value,
-                });
-            }
-        }
-        lines.push(format!(
-            "      DDL_IMPO {}: {} nodes of {}, {}",
-            k + 1,
-            nodes.len(),
-            selection_label(occ),
-            dofs.iter()
-                .map(|(d, v)| format!("{}={v}", d.name()))
-                .collect::<Vec<_>>()
-                .join(" ")
-        ));
-    }
+        ..
+    } = lm;
     for (k, occ) in args.facts("FACE_IMPO").iter().enumerate() {
         face_impo(
             occ,
@@ -302,6 +261,61 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
 }
 
 /// DX, DY, DZ given in an occurrence, each a dof of the model.
+/// DDL_IMPO's occurrences under `key` (also AFFE_CHAR_CINE's MECA_IMPO,
+/// the same selection and components): every selected node gets each
+/// given component; `GROUP_MA` means all nodes of those cells and `TOUT`
+/// all nodes of the model. Entries are kept in occurrence order,
+/// duplicates included (the engine keeps the last value and fails if two
+/// differ).
+pub(super) fn ddl_impo(
+    args: &Args,
+    key: &str,
+    lm: &LoadModel,
+    lines: &mut Vec<String>,
+) -> Result<Vec<ImposedDof>, Diagnostic> {
+    let LoadModel {
+        name: model_name,
+        model,
+        mesh,
+        in_model,
+        nodes: model_nodes,
+        dof_names,
+    } = lm;
+    let mut imposed = Vec::new();
+    for (k, occ) in args.facts(key).iter().enumerate() {
+        let mut dofs: Vec<(Dof, f64)> = Vec::new();
+        if occ.has("LIAISON") {
+            dofs.extend(model.dofs.iter().map(|&d| (d, 0.0)));
+        }
+        for (d, v) in given_components(occ, model, model_name, dof_names)? {
+            dofs.retain(|(e, _)| *e != d);
+            dofs.push((d, v));
+        }
+        let nodes = select_nodes(mesh, occ, model_nodes)?;
+        impose(occ, key, k, &nodes, in_model, model_name, lines)?;
+        for &n in &nodes {
+            for &(dof, value) in &dofs {
+                imposed.push(ImposedDof {
+                    node: n,
+                    dof,
+                    value,
+                });
+            }
+        }
+        lines.push(format!(
+            "      {key} {}: {} nodes of {}, {}",
+            k + 1,
+            nodes.len(),
+            selection_label(occ),
+            dofs.iter()
+                .map(|(d, v)| format!("{}={v}", d.name()))
+                .collect::<Vec<_>>()
+                .join(" ")
+        ));
+    }
+    Ok(imposed)
+}
+
 fn given_components(
     occ: &Args,
     model: &crate::model::Model,
@@ -351,7 +365,8 @@ fn impose(
     }
     if nodes.is_empty() {
         lines.push(format!(
-            "<A> <AFFE_CHAR_MECA> occurrence {} of {key} selects no node",
+            "<A> <{}> occurrence {} of {key} selects no node",
+            occ.command,
             k + 1
         ));
     }

@@ -27,7 +27,9 @@ pub fn def() -> CommandDef {
         fact(
             "EXCIT",
             vec![
-                concept("CHARGE", &[C::CharMeca]).required().kw(),
+                concept("CHARGE", &[C::CharMeca, C::CharCineMeca])
+                    .required()
+                    .kw(),
                 concept("FONC_MULT", &[C::Fonction]).kw(),
                 text("TYPE_CHARGE")
                     .into(&["FIXE_CSTE", "SUIV", "DIDI"])

@@ -43,7 +43,7 @@ pub fn def() -> CommandDef {
                         .default(t("FIXE_CSTE"))
                         .doc("dead load, follower load, or differential imposed displacement")
                         .kw(),
-                    concept("CHARGE", &[C::CharMeca]).required().kw(),
+                    concept("CHARGE", &[C::CharMeca, C::CharCineMeca]).required().kw(),
                     concept("FONC_MULT", &[C::Fonction])
                         .doc("time multiplier of the load")
                         .kw(),

@@ -49,7 +49,7 @@ pub fn def() -> CommandDef {
             fact(
                 "EXCIT",
                 vec![
-                    concept("CHARGE", &[C::CharMeca]).required().kw(),
+                    concept("CHARGE", &[C::CharMeca, C::CharCineMeca]).required().kw(),
                     concept("FONC_MULT", &[C::Fonction])
                         .doc("multiplier of the load, a function of INST evaluated at each instant")
                         .kw(),

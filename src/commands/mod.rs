@@ -14,6 +14,7 @@ use crate::concepts::ConceptData;
 use crate::diag::Diagnostic;
 use crate::study::Study;
 
+pub mod affe_char_cine;
 pub mod affe_char_meca;
 pub mod affe_char_meca_f;
 pub mod affe_materiau;
@@ -88,6 +89,7 @@ pub fn not_implemented(_study: &mut Study, args: &Args, _result: Option<&str>) -
 /// Every command of the catalogue, in alphabetical order.
 pub fn all() -> Vec<CommandDef> {
     vec![
+        affe_char_cine::def(),
         affe_char_meca::def(),
         affe_char_meca_f::def(),
         affe_materiau::def(),

@@ -122,7 +122,7 @@ pub fn def() -> CommandDef {
         concept("CHAM_MATER", &[C::ChamMater])
             .doc("the material field (default: the result's)")
             .kw(),
-        concept("CHARGE", &[C::CharMeca])
+        concept("CHARGE", &[C::CharMeca, C::CharCineMeca])
             .many()
             .doc("read by code_aster for a few options; unused here")
             .kw(),

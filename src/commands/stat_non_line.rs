@@ -32,7 +32,7 @@ pub fn def() -> CommandDef {
                         .default(t("FIXE_CSTE"))
                         .doc("dead load (FIXE_CSTE); the others are not implemented yet")
                         .kw(),
-                    concept("CHARGE", &[C::CharMeca]).required().kw(),
+                    concept("CHARGE", &[C::CharMeca, C::CharCineMeca]).required().kw(),
                     concept("FONC_MULT", &[C::Fonction])
                         .doc("multiplier of the load, a function of INST (pseudo-time)")
                         .kw(),

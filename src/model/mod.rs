@@ -149,7 +149,7 @@ pub struct ImposedDof {
 /// The result of AFFE_CHAR_MECA. The same dof may be imposed several times
 /// (sdnv103a blocks the nodes shared by RIGID and VOL_RIG twice); the engine
 /// keeps the last value and fails if two differ.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct MechLoad {
     pub model: String,
     pub imposed: Vec<ImposedDof>,
