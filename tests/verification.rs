@@ -813,6 +813,21 @@ fn explicit_friction_braking_and_penalty_penetration() {
     run_study("explicit_friction");
 }
 
+/// PESANTEUR with the lumped mass is the lumped mass times g (an aster
+/// departure from code_aster's consistent load): the free fall of a
+/// HEXA20 + PENTA15 and of a distorted HEXA8 + PENTA6 quarter bar is exact
+/// at every node under DIFF_CENT and TCHAMWA, without stress (the study
+/// checks every node and Gauss point by TYPE_TEST MIN and MAX). With the
+/// consistent load all 240 lines were NOOK or SKIP.
+#[test]
+fn explicit_free_fall_with_the_lumped_mass() {
+    let resu = run_study("explicit_gravity_lumped");
+    // 4 runs x 30 occurrences (DEPL, VITE, ACCE x 3 components and 6
+    // stresses, MIN and MAX) x 2 lines (NON_REGRESSION and ANALYTIQUE).
+    let ok = resu.lines().filter(|l| l.starts_with(" OK ")).count();
+    assert_eq!(ok, 240, "{resu}");
+}
+
 /// The Taylor bar on a frictionless wall, 10 x 40 QUAD8, 80 us (about 30 s
 /// in an optimised build).
 #[test]

@@ -148,12 +148,14 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             format!("the result {name} does not say which model and material field it was computed with: give MODELE and CHAM_MATER"),
         ));
     }
-    let md = model_data(
+    let mut md = model_data(
         study,
         args,
         ("MODELE", &model_name),
         ("CHAM_MATER", &mat_name),
     )?;
+    // The run's PESANTEUR: the lumped mass times g with MASS_DIAG='OUI'.
+    md.lumped_gravity = evol.mass_diag;
     let (load_names, load_mults): (Vec<String>, Vec<Option<String>>) = if args.has("EXCIT") {
         for ex in args.facts("EXCIT") {
             if ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {

@@ -50,7 +50,7 @@ pub(crate) fn exec(
 ) -> ExecResult {
     let Prepared {
         scheme,
-        md,
+        mut md,
         occs,
         loads,
         load_names,
@@ -65,6 +65,7 @@ pub(crate) fn exec(
         .ok_or_else(|| args.error("SCHEMA_TEMPS", "SCHEMA_TEMPS is compulsory"))?;
     let stop_cfl = st.text("STOP_CFL").unwrap_or("OUI") == "OUI";
     let lumped = args.text("MASS_DIAG") == Some("OUI");
+    md.lumped_gravity = lumped;
     if let Some(o) = args.fact("NEWTON") {
         let matrice = o.text("MATRICE").unwrap_or("TANGENTE");
         let prediction = o.text("PREDICTION").unwrap_or(matrice);
@@ -90,6 +91,9 @@ pub(crate) fn exec(
     }
     if lumped {
         notes.push("MASS_DIAG='OUI': lumped mass by HRZ diagonal scaling (Hinton, Rock & Zienkiewicz: the consistent diagonal scaled to keep each element's mass, positive on quadratic elements; code_aster's MASS_MECA_EXPLI recipe); each step is a division, no factorisation".into());
+        if loads.iter().any(|l| l.gravity.is_some()) {
+            notes.push("PESANTEUR with the lumped mass is the lumped mass times g at each node (f_i = m_i g, the lumped counterpart of the consistent load M (g at every node)), so that a free body falls at exactly g on every element; an aster departure: code_aster keeps the consistent load (integral of rho g N), which on quadratic or distorted cells does not match the lumped mass (HEXA20 corners loaded upwards). The other loads (FORCE_*, PRES_REP) stay consistent".into());
+        }
         if md
             .model
             .element_cells()

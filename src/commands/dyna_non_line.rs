@@ -198,6 +198,10 @@ pub(crate) struct ModelData {
     pub mesh: Mesh,
     pub matfield: MaterialField,
     pub materials: IndexMap<String, Material>,
+    /// PESANTEUR as the lumped mass times g: set for an explicit run with
+    /// MASS_DIAG='OUI' and for CALC_CHAMP on its result, so that the
+    /// load matches the run's inertia (`element::body_force`).
+    pub lumped_gravity: bool,
 }
 
 impl ModelData {
@@ -210,6 +214,7 @@ impl ModelData {
             &self.matfield,
             &self.materials,
             load,
+            self.lumped_gravity,
         )
     }
 }
@@ -266,6 +271,7 @@ pub(crate) fn model_data(
         mesh,
         matfield,
         materials,
+        lumped_gravity: false,
     })
 }
 

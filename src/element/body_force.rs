@@ -9,6 +9,19 @@
 //! exactly (mass of the element)·b on any geometry the mass integrates.
 //! In AXIS the integral is weighted by r without 2π (per radian), like the
 //! mass and the internal forces.
+//!
+//! With the lumped mass of an explicit run (MASS_DIAG='OUI') PESANTEUR is
+//! instead the lumped mass times b, f_a = m_a b (m_a the HRZ mass of
+//! [`super::mechanics::hrz_lumped`]): the lumped counterpart of M·(b at
+//! every node), so that a free body falls at exactly b on every element.
+//! The consistent load against the HRZ masses does not: on HEXA20 its
+//! corner loads are −1/8 of the cell's weight each against positive corner
+//! masses (ACCE 4.6 % off g, and stresses in a free fall), on distorted
+//! linear cells the two distributions differ by up to 0.6 %. This departs
+//! from code_aster, which keeps the consistent load in explicit. Only
+//! PESANTEUR, a uniform acceleration field, is lumped; the other body and
+//! surface forces (FORCE_INTERNE, FORCE_FACE, PRES_REP...) stay
+//! integrated consistently, as they are not an acceleration of the mass.
 
 use indexmap::IndexMap;
 
@@ -87,6 +100,31 @@ pub fn element_body_force_with(
     Ok(out)
 }
 
+/// The lumped nodal forces m_a b of one element (node-major, as
+/// [`element_body_force`]): its HRZ lumped mass, the one the explicit
+/// run's inertia uses, times the acceleration b.
+pub fn lumped_body_force(
+    spec: &ElementSpec,
+    coords: &[[f64; 3]],
+    rho: f64,
+    b: [f64; 3],
+) -> Result<Vec<f64>, ElementFailure> {
+    if b.iter().any(|v| !v.is_finite()) {
+        return Err(ElementFailure::BadInput {
+            message: format!("{}: acceleration {b:?} must be finite", spec.name),
+        });
+    }
+    let d = spec.formulation.dofs_per_node();
+    let m = super::mechanics::mass(spec, coords, rho)?;
+    let l = super::mechanics::hrz_lumped(&m, d).ok_or_else(|| ElementFailure::BadInput {
+        message: format!(
+            "{}: the lumped (HRZ) mass is not positive (zero density or volume)",
+            spec.name
+        ),
+    })?;
+    Ok(l.iter().enumerate().map(|(k, m)| m * b[k % d]).collect())
+}
+
 /// Σ N_a x_a: where a Gauss point is.
 pub(crate) fn point_position(n: &[f64], coords: &[[f64; 3]]) -> [f64; 3] {
     let mut x = [0.0; 3];
@@ -131,13 +169,16 @@ fn measure(f: Formulation, n: &[f64], dn: &[[f64; 3]], x: &[[f64; 3]]) -> Result
 /// `node·ndpn + component`, as the engine's numbering), on the initial
 /// geometry: a dead load (FIXE_CSTE), constant in time. Each load's
 /// gravity acts on its cells that are volume elements of the model (skin
-/// cells of a GROUP_MA carry no mass); the loads add up.
+/// cells of a GROUP_MA carry no mass); the loads add up. `lumped`: each
+/// cell's HRZ lumped mass times b (an explicit run with MASS_DIAG='OUI',
+/// see the module doc), else the consistent ∫ ρ b N.
 pub fn gravity_forces(
     mesh: &Mesh,
     model: &Model,
     matfield: &MaterialField,
     materials: &IndexMap<String, Material>,
     loads: &[&MechLoad],
+    lumped: bool,
 ) -> Result<Vec<f64>, String> {
     let d = model.ndof_per_node();
     let mut out = vec![0.0; mesh.nnodes() * d];
@@ -165,8 +206,12 @@ pub fn gravity_forces(
                 })?;
             let nodes = &mesh.cells[c].nodes;
             let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
-            let f = element_body_force(spec, &coords, rho, b)
-                .map_err(|e| format!("PESANTEUR: cell {}: {e}", c + 1))?;
+            let f = if lumped {
+                lumped_body_force(spec, &coords, rho, b)
+            } else {
+                element_body_force(spec, &coords, rho, b)
+            }
+            .map_err(|e| format!("PESANTEUR: cell {}: {e}", c + 1))?;
             for (a, &n) in nodes.iter().enumerate() {
                 for i in 0..d {
                     out[n * d + i] += f[a * d + i];
@@ -183,15 +228,17 @@ pub fn gravity_forces(
 /// ([`super::pressure`], on the initial geometry), plus its FORCE_FACE,
 /// FORCE_ARETE, FORCE_CONTOUR and FORCE_INTERNE ([`super::distributed`]).
 /// DYNA_NON_LINE scales this
-/// vector by the load's FONC_MULT.
+/// vector by the load's FONC_MULT. `lumped_gravity`: PESANTEUR as the
+/// lumped mass times g ([`gravity_forces`]).
 pub fn load_forces(
     mesh: &Mesh,
     model: &Model,
     matfield: &MaterialField,
     materials: &IndexMap<String, Material>,
     load: &MechLoad,
+    lumped_gravity: bool,
 ) -> Result<Vec<f64>, String> {
-    let mut out = gravity_forces(mesh, model, matfield, materials, &[load])?;
+    let mut out = gravity_forces(mesh, model, matfield, materials, &[load], lumped_gravity)?;
     let d = model.ndof_per_node();
     for &(node, dof, f) in &load.nodal_forces {
         let k = model
@@ -331,6 +378,50 @@ mod tests {
         let volume = (9.0 - 1.0) + s * ((27.0 - 1.0) / 3.0 - (9.0 - 1.0) / 2.0);
         let spec = element_spec("AXIS", CellType::Quad8).unwrap();
         check(spec, &coords, 8.93e-9, [0.0, -9.81e3, 0.0], volume);
+    }
+
+    /// The lumped PESANTEUR of a HEXA20 cube: the HRZ fractions of the
+    /// element mass times b (7/248 at the corners, 16/248 at the mid-edges,
+    /// notes/explicit.md §6), positive along b at every node where the
+    /// consistent load gives each corner −1/8 of the weight; the total is
+    /// still ρ V b.
+    #[test]
+    fn hexa20_lumped_gravity_is_the_hrz_mass_times_g() {
+        let spec = element_spec("3D", CellType::Hexa20).unwrap();
+        let corners = [
+            [0., 0., 0.],
+            [0., 1., 0.],
+            [1., 1., 0.],
+            [1., 0., 0.],
+            [0., 0., 1.],
+            [0., 1., 1.],
+            [1., 1., 1.],
+            [1., 0., 1.],
+        ];
+        let mut coords = corners.to_vec();
+        for &(a, b) in CellType::Hexa20.mid_edges() {
+            let (p, q) = (corners[a], corners[b]);
+            coords.push([0, 1, 2].map(|k| (p[k] + q[k]) / 2.0));
+        }
+        let (rho, b) = (8.0e-9, [0.0, 0.0, -1.0e9]);
+        let weight = rho * b[2];
+        let lumped = lumped_body_force(&spec, &coords, rho, b).unwrap();
+        let consistent = element_body_force(&spec, &coords, rho, b).unwrap();
+        for a in 0..20 {
+            let share = if a < 8 { 7.0 / 248.0 } else { 16.0 / 248.0 };
+            let f = lumped[a * 3 + 2];
+            assert!(
+                (f - share * weight).abs() <= 1e-13 * weight.abs(),
+                "{a}: {f}"
+            );
+            assert_eq!(lumped[a * 3], 0.0);
+            if a < 8 {
+                let c = consistent[a * 3 + 2];
+                assert!((c + weight / 8.0).abs() <= 1e-13 * weight.abs(), "{a}: {c}");
+            }
+        }
+        let total: f64 = (0..20).map(|a| lumped[a * 3 + 2]).sum();
+        assert!((total - weight).abs() <= 1e-13 * weight.abs());
     }
 
     #[test]

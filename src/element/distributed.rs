@@ -13,7 +13,9 @@
 //! which integrate the force exactly on straight edges and flat faces;
 //! volume cells use the mass family of PESANTEUR
 //! ([`super::body_force::element_body_force`] with ρ = 1), so that
-//! FORCE_INTERNE = ρ g d gives the same nodal forces as PESANTEUR. In
+//! FORCE_INTERNE = ρ g d gives the same nodal forces as PESANTEUR (its
+//! consistent form: with the lumped mass of an explicit run PESANTEUR is
+//! the lumped mass times g, `body_force`, and FORCE_INTERNE stays this). In
 //! AXIS every integral carries r without 2π (per radian), like every
 //! nodal force there; in D_PLAN it is per unit thickness.
 

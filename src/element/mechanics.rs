@@ -1216,6 +1216,34 @@ pub fn check_initial_geometry(spec: &ElementSpec, coords: &[[f64; 3]]) -> Result
     Ok(())
 }
 
+/// HRZ lumped mass of an element: the consistent mass `m` (`nn·d` square,
+/// node-major, directions uncoupled) to one positive mass per local dof.
+/// Returns None when a diagonal entry is not positive (a degenerate
+/// element: zero density or volume).
+pub fn hrz_lumped(m: &nalgebra::DMatrix<f64>, d: usize) -> Option<Vec<f64>> {
+    let n = m.nrows();
+    if n == 0 || d == 0 || !n.is_multiple_of(d) || m.ncols() != n {
+        return None;
+    }
+    let mut out = vec![0.0; n];
+    for i in 0..d {
+        let dofs: Vec<usize> = (i..n).step_by(d).collect();
+        let total: f64 = dofs
+            .iter()
+            .flat_map(|&a| dofs.iter().map(move |&b| (a, b)))
+            .map(|(a, b)| m[(a, b)])
+            .sum();
+        let diag: f64 = dofs.iter().map(|&a| m[(a, a)]).sum();
+        if !(diag > 0.0 && total > 0.0) || dofs.iter().any(|&a| m[(a, a)] <= 0.0) {
+            return None;
+        }
+        for &a in &dofs {
+            out[a] = m[(a, a)] * total / diag;
+        }
+    }
+    Some(out)
+}
+
 /// Consistent mass ∫ ρ Nᵀ N dV₀ on the MASS family (per radian in AXIS).
 pub fn mass(
     spec: &ElementSpec,

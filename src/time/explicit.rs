@@ -139,33 +139,9 @@ pub fn max_eigenvalue_lumped(k: &DMatrix<f64>, lumped: &[f64]) -> f64 {
     SymmetricEigen::new(a).eigenvalues.max().max(0.0)
 }
 
-/// HRZ lumped mass of an element: the consistent mass `m` (`nn·d` square,
-/// node-major, directions uncoupled) to one positive mass per local dof.
-/// Returns None when a diagonal entry is not positive (a degenerate
-/// element: zero density or volume).
-pub fn hrz_lumped(m: &DMatrix<f64>, d: usize) -> Option<Vec<f64>> {
-    let n = m.nrows();
-    if n == 0 || d == 0 || !n.is_multiple_of(d) || m.ncols() != n {
-        return None;
-    }
-    let mut out = vec![0.0; n];
-    for i in 0..d {
-        let dofs: Vec<usize> = (i..n).step_by(d).collect();
-        let total: f64 = dofs
-            .iter()
-            .flat_map(|&a| dofs.iter().map(move |&b| (a, b)))
-            .map(|(a, b)| m[(a, b)])
-            .sum();
-        let diag: f64 = dofs.iter().map(|&a| m[(a, a)]).sum();
-        if !(diag > 0.0 && total > 0.0) || dofs.iter().any(|&a| m[(a, a)] <= 0.0) {
-            return None;
-        }
-        for &a in &dofs {
-            out[a] = m[(a, a)] * total / diag;
-        }
-    }
-    Some(out)
-}
+/// HRZ lumped mass of an element (`element::mechanics::hrz_lumped`, next
+/// to the consistent mass, where PESANTEUR's lumped load reads it too).
+pub use crate::element::mechanics::hrz_lumped;
 
 /// The largest ω² of K_e x = ω² D x (D = diag(`lumped`), K_e symmetric
 /// positive semi-definite) by power iteration on D^{-1/2} K_e D^{-1/2},
