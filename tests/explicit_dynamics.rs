@@ -23,6 +23,45 @@ const E: f64 = 117_000.0;
 const NU: f64 = 0.35;
 const RHO: f64 = 8.93e-9;
 
+/// The .mess says which mass an explicit run uses, in the words of the
+/// command file: MASS_DIAG='NON' given is not "MASS_DIAG absent"; the
+/// lumped mass of D_PLAN elements is announced as an aster extension
+/// (code_aster's 2D continuum elements have no diagonal mass, CALCUL_38),
+/// as AXIS's was (tests/verification/dplan_wave_explicit.comm and two
+/// variants of it).
+#[test]
+fn mess_names_the_mass_as_the_command_file_gives_it() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
+    let note = "the lumped mass of D_PLAN elements is an aster extension: code_aster's 2D continuum elements have no diagonal mass (CALCUL_38)";
+    let run = |tag: &str, to: &str| {
+        let r = common::run_variant(
+            &dir,
+            "mass_messages",
+            "dplan_wave_explicit",
+            tag,
+            "MASS_DIAG='OUI',",
+            to,
+        );
+        r.file(&format!("{tag}.mess"))
+    };
+    let lumped = run("mass_oui", "MASS_DIAG='OUI',");
+    assert!(lumped.contains(note), "{lumped}");
+    let non = run("mass_non", "MASS_DIAG='NON',");
+    assert!(
+        non.contains("MASS_DIAG='NON': the consistent mass is used"),
+        "{non}"
+    );
+    assert!(
+        !non.contains("MASS_DIAG absent") && !non.contains(note),
+        "{non}"
+    );
+    let absent = run("mass_absent", "");
+    assert!(
+        absent.contains("MASS_DIAG absent: the consistent mass is used"),
+        "{absent}"
+    );
+}
+
 /// A 1 x 4 QUAD8 Taylor bar, bottom held in DY, axis in DX; one node of
 /// the top given a velocity (a rough field: it excites the highest modes).
 fn setup() -> (Mesh, Model, Vec<aster::model::ImposedDof>, usize) {

@@ -419,6 +419,25 @@ fn test_table_filters_and_aggregates() {
                     FILTRE=_F(NOM_PARA='NUME_ORDRE', VALE_I=3))\n",
     );
     assert!(e.contains("2 rows are left after filtering"), "{e}");
+
+    // An integer column tested against a real VALE_REFE: the error is on
+    // VALE_REFE and asks for VALE_REFE_I (it was on VALE_CALC, absent here);
+    // a real VALE_CALC on it stays an error on VALE_CALC.
+    let table = "TAB = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='DEPL_B',
+                RESULTAT=RESU, NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY'))\n";
+    let e = run_err(&format!(
+        "{table}TEST_TABLE(TABLE=TAB, NOM_PARA='NUME_ORDRE', TYPE_TEST='MAX', \
+         REFERENCE='ANALYTIQUE', VALE_REFE=4., PRECISION=1.E-12)\n"
+    ));
+    assert!(e.contains("TEST_TABLE/VALE_REFE:"), "{e}");
+    assert!(e.contains("give it as VALE_REFE_I"), "{e}");
+    assert!(!e.contains("VALE_CALC"), "{e}");
+    let e = run_err(&format!(
+        "{table}TEST_TABLE(TABLE=TAB, NOM_PARA='NUME_ORDRE', TYPE_TEST='MAX', VALE_CALC=4., \
+         REFERENCE='ANALYTIQUE', VALE_REFE_I=4)\n"
+    ));
+    assert!(e.contains("TEST_TABLE/VALE_CALC:"), "{e}");
+    assert!(e.contains("give it as VALE_CALC_I"), "{e}");
 }
 
 #[test]

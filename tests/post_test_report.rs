@@ -310,6 +310,23 @@ fn type_mismatch_is_an_error() {
     )
     .unwrap_err();
     assert!(e.contains("VALE_CALC_I") && e.contains("real"), "{e}");
+    // A reference names the VALE_REFE keywords, the one given and the one
+    // expected (the message named VALE_CALC).
+    let e = check(
+        RefKind::Analytique,
+        &Value::Int(50),
+        &[real(50.0)],
+        1e-6,
+        Critere::Relatif,
+        None,
+        false,
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("a real (VALE_REFE)") && e.contains("give it as VALE_REFE_I"),
+        "{e}"
+    );
+    assert!(!e.contains("VALE_CALC"), "{e}");
     let e = check(
         RefKind::NonRegression,
         &real(1.0),

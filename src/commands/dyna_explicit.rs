@@ -94,18 +94,32 @@ pub(crate) fn exec(
         if loads.iter().any(|l| l.gravity.is_some()) {
             notes.push("PESANTEUR with the lumped mass is the lumped mass times g at each node (f_i = m_i g, the lumped counterpart of the consistent load M (g at every node)), so that a free body falls at exactly g on every element; an aster departure: code_aster keeps the consistent load (integral of rho g N), which on quadratic or distorted cells does not match the lumped mass (HEXA20 corners loaded upwards). The other loads (FORCE_*, PRES_REP) stay consistent".into());
         }
-        if md
-            .model
-            .element_cells()
-            .any(|(_, s)| s.formulation == crate::model::spec::Formulation::Axis)
-        {
-            notes.push("the lumped mass of AXIS elements (HRZ with the weight r) is an aster extension: code_aster has no diagonal mass for AXIS elements (CALCUL_38)".into());
+        // code_aster's 2D continuum elements (meca_axis, meca_d_plan,
+        // meca_c_plan and their _SI variants) declare no diagonal mass.
+        use crate::model::spec::Formulation;
+        let two_d: Vec<&str> = [
+            (Formulation::Axis, "AXIS (HRZ with the weight r)"),
+            (Formulation::PlaneStrain, "D_PLAN"),
+        ]
+        .into_iter()
+        .filter(|(f, _)| md.model.element_cells().any(|(_, s)| s.formulation == *f))
+        .map(|(_, name)| name)
+        .collect();
+        if !two_d.is_empty() {
+            notes.push(format!("the lumped mass of {} elements is an aster extension: code_aster's 2D continuum elements have no diagonal mass (CALCUL_38)", two_d.join(" and ")));
         }
         if md.model.element_cells().any(|(_, s)| s.is_hexs8()) {
             notes.push("the lumped mass of HEXS8 (3D_SI HEXA8) cells is an aster extension: code_aster's MECA_HEXS8 declares no MASS_MECA_EXPLI".into());
         }
     } else {
-        notes.push("MASS_DIAG absent: the consistent mass is used, factorised once and solved at every step, as code_aster does; MASS_DIAG='OUI' gives the lumped mass (no solve)".into());
+        notes.push(format!(
+            "{}: the consistent mass is used, factorised once and solved at every step, as code_aster does; MASS_DIAG='OUI' gives the lumped mass (no solve)",
+            if args.given("MASS_DIAG") {
+                "MASS_DIAG='NON'"
+            } else {
+                "MASS_DIAG absent"
+            }
+        ));
     }
     let mut unil_def = None;
     let contact_def = match args.concept("CONTACT") {

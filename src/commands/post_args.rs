@@ -627,22 +627,33 @@ pub fn test_spec(occ: &Args) -> Result<TestSpec, Diagnostic> {
     Ok(spec)
 }
 
-/// Runs the checks of one occurrence on `computed`; a reference of the
-/// wrong type or a bad tolerance is an error on VALE_CALC.
+/// Runs the checks of one occurrence on `computed`; a bad tolerance, or
+/// VALE_CALC of the wrong type, is an error on the VALE_CALC keyword
+/// given, a VALE_REFE of the wrong type (VALE_CALC being right or absent)
+/// on the VALE_REFE keyword given: the message names the keyword the
+/// value must be given with.
 pub fn run_checks(
     occ: &Args,
     spec: &TestSpec,
     computed: &TestValue,
 ) -> Result<Vec<CheckLine>, Diagnostic> {
     occurrence_checks(spec, computed).map_err(|e| {
-        let key = if occ.has("VALE_CALC_I") {
-            "VALE_CALC_I"
-        } else if occ.has("VALE_CALC_K") {
-            "VALE_CALC_K"
+        let calc_fits = spec.vale_calc.iter().all(|v| v.same_type(computed));
+        let refe_fits = spec
+            .reference
+            .as_ref()
+            .is_none_or(|r| r.values.iter().all(|v| v.same_type(computed)));
+        let family = if calc_fits && !refe_fits {
+            "VALE_REFE"
         } else {
             "VALE_CALC"
         };
-        occ.error(key, e)
+        let key = ["_I", "_K", ""]
+            .into_iter()
+            .map(|s| format!("{family}{s}"))
+            .find(|k| occ.has(k))
+            .unwrap_or_else(|| family.to_string());
+        occ.error(&key, e)
     })
 }
 

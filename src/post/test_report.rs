@@ -117,13 +117,23 @@ impl Value {
 
     fn type_name(&self) -> &'static str {
         match self {
-            Value::Real(_) => "a real (VALE_CALC)",
-            Value::Int(_) => "an integer (VALE_CALC_I)",
-            Value::Text(_) => "a text (VALE_CALC_K)",
+            Value::Real(_) => "a real",
+            Value::Int(_) => "an integer",
+            Value::Text(_) => "a text",
         }
     }
 
-    fn same_type(&self, other: &Value) -> bool {
+    /// The suffix of the keywords that give a value of this type:
+    /// VALE_CALC, VALE_CALC_I, VALE_CALC_K (VALE_REFE likewise).
+    pub fn keyword_suffix(&self) -> &'static str {
+        match self {
+            Value::Real(_) => "",
+            Value::Int(_) => "_I",
+            Value::Text(_) => "_K",
+        }
+    }
+
+    pub fn same_type(&self, other: &Value) -> bool {
         std::mem::discriminant(self) == std::mem::discriminant(other)
     }
 }
@@ -250,11 +260,19 @@ pub fn check(
         return Ok(line);
     }
     if let Some(bad) = references.iter().find(|r| !r.same_type(computed)) {
+        // The non-regression value is VALE_CALC*, a reference's VALE_REFE*.
+        let family = if kind == RefKind::NonRegression {
+            "VALE_CALC"
+        } else {
+            "VALE_REFE"
+        };
         return Err(format!(
-            "the {kind} reference is {} but the tested value is {}: give the reference \
-             keyword of the same type",
+            "the {kind} reference is {} ({family}{}) but the tested value is {}: give it as \
+             {family}{}",
             bad.type_name(),
-            computed.type_name()
+            bad.keyword_suffix(),
+            computed.type_name(),
+            computed.keyword_suffix()
         ));
     }
     if let Value::Text(text) = computed {
