@@ -34,6 +34,59 @@ fn free_flight() {
     run_study("free_flight");
 }
 
+/// FORMULATION='ACCELERATION' (implicit) solves the discrete equations of
+/// 'DEPLACEMENT' from another predictor (a0 = a_n): SDNV103 D
+/// (plasticity, contact with Coulomb friction) ends within 2e-4 of its
+/// recorded non-regression values (the Newton tolerance 1e-6 carried along
+/// a path-dependent run; measured 3e-6 to 5e-5); a predictor off the
+/// Newmark relations would converge elsewhere. LIAISON_UNIL refuses it,
+/// as code_aster's active set can (E, a located error).
+#[test]
+fn acceleration_formulation_reaches_the_same_answer() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("formulation_acceleration");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(root.join("comm/sdnv103d.comm")).unwrap();
+    let text = comm.replacen("FORMULATION='DEPLACEMENT'", "FORMULATION='ACCELERATION'", 1);
+    assert_ne!(text, comm);
+    std::fs::write(tmp.join("d_acc.comm"), text).unwrap();
+    std::fs::write(
+        tmp.join("d_acc.export"),
+        format!("F mmed {} D 20\n", root.join("med/sdnv103d.mmed").display()),
+    )
+    .unwrap();
+    let run = common::run_study(tmp.join("d_acc.comm").to_str().unwrap(), "verif_d_acc");
+    let resu = run.file("d_acc.resu");
+    let mut compared = 0;
+    for line in resu.lines() {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        if f.len() < 5 || f[1] != "NON_REGRESSION" {
+            continue;
+        }
+        let (recorded, computed): (f64, f64) = (f[3].parse().unwrap(), f[4].parse().unwrap());
+        let scale = recorded.abs().max(1e-300);
+        if recorded != 0.0 {
+            assert!(
+                (computed - recorded).abs() <= 2e-4 * scale,
+                "{line}\n{}",
+                run.term
+            );
+            compared += 1;
+        } else {
+            assert!(computed.abs() <= 1e-12, "{line}");
+        }
+    }
+    assert!(compared >= 6, "{resu}");
+    let comm_e = std::fs::read_to_string(root.join("comm/sdnv103e.comm")).unwrap();
+    let cases = [(
+        "unil_acceleration",
+        ("FORMULATION='DEPLACEMENT'", "FORMULATION='ACCELERATION'"),
+        "LIAISON_UNIL needs FORMULATION='DEPLACEMENT'",
+    )];
+    let export = format!("F mmed {} D 20\n", root.join("med/sdnv103e.mmed").display());
+    expect_located_errors(&comm_e, &cases, &tmp, &export, "verif_formulation");
+}
+
 /// Names bound again without reuse= (a pass written as a Python loop):
 /// STAT_NON_LINE and DYNA_NON_LINE make new results, on a new mesh too,
 /// against the 1D bar's closed forms (tests/verification/rebind.comm).

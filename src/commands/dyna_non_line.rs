@@ -22,7 +22,7 @@ use crate::result::{Access, EvolNoli};
 use crate::study::Study;
 use crate::time::explicit::ExplicitScheme;
 use crate::time::list::{Action, Event, Subdivision, TimeList, TplusMode};
-use crate::time::Scheme;
+use crate::time::{Predictor, Scheme};
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -700,13 +700,17 @@ fn scheme_of(args: &Args) -> Result<SchemeChoice, Diagnostic> {
     .map_err(|m| st.error("SCHEMA", m))?;
     match formulation {
         "DEPLACEMENT" => Ok(SchemeChoice::Implicit(scheme)),
+        "ACCELERATION" => Ok(SchemeChoice::Implicit(Scheme {
+            predictor: Predictor::Acceleration,
+            ..scheme
+        })),
         "VITESSE" => Err(st.error(
             "FORMULATION",
             format!("FORMULATION='VITESSE' is forbidden with SCHEMA='{schema}' (as in code_aster)"),
         )),
         other => Err(st.not_implemented(
             "FORMULATION",
-            &format!("FORMULATION='{other}'; only 'DEPLACEMENT' is implemented"),
+            &format!("FORMULATION='{other}'; 'DEPLACEMENT' and 'ACCELERATION' are implemented"),
         )),
     }
 }
@@ -1271,6 +1275,17 @@ pub(crate) fn run(
     });
     // LIAISON_UNIL with DIFF_CENT/TCHAMWA (code_aster: MECANONLINE5_23)
     // is an aster extension, checked by the explicit path.
+    if let (true, SchemeChoice::Implicit(s)) = (unilateral, &choice) {
+        if s.predictor == Predictor::Acceleration {
+            return Err(args
+                .fact("SCHEMA_TEMPS")
+                .unwrap_or(args)
+                .error(
+                    "FORMULATION",
+                    "LIAISON_UNIL needs FORMULATION='DEPLACEMENT' with an implicit scheme: code_aster's active set corrects the displacement increment (nmsolm stops otherwise)",
+                ));
+        }
+    }
     let mut notes: Vec<String> = Vec::new();
     let model_name = args.concept("MODELE").unwrap_or("").to_string();
     let mat_name = args.concept("CHAM_MATER").unwrap_or("").to_string();

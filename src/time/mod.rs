@@ -13,7 +13,12 @@
 //!   which code_aster divides by (1+alpha) (semantics.md section 8.1).
 //!
 //! Unknown of the Newton iterations: the displacement increment; velocity
-//! and acceleration follow from the Newmark relations.
+//! and acceleration follow from the Newmark relations. code_aster's
+//! FORMULATION='ACCELERATION' takes the acceleration increment instead:
+//! its iteration matrix is the displacement one times beta dt^2 and its
+//! increments are the same ones scaled (ndnpas: coerig = beta dt^2,
+//! coemas = 1), so the Newton iterations are the same; only its
+//! predictor differs (a0 = a_n), which [`Predictor`] carries.
 //!
 //! STAT_NON_LINE runs the same engine with [`Scheme::quasi_static`]: no
 //! inertia, time a pseudo-time, velocity and acceleration held at zero.
@@ -34,6 +39,21 @@ pub struct Scheme {
     /// matrix or the residual, v = a = 0), the rest of the engine is the
     /// same.
     pub inertia: bool,
+    /// The prediction of the step, from SCHEMA_TEMPS/FORMULATION.
+    pub predictor: Predictor,
+}
+
+/// The predictor of an implicit step (code_aster's `ndnpas`, coefd,
+/// coefv, coefa).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Predictor {
+    /// FORMULATION='DEPLACEMENT': u0 = u_n.
+    #[default]
+    Displacement,
+    /// FORMULATION='ACCELERATION': a0 = a_n, u0 = u_n + dt v_n + dt^2/2 a_n,
+    /// v0 = v_n + dt a_n (the Newmark relations with a0 = a_n, for
+    /// NEWMARK and HHT alike: code_aster's eps + beta = 1/2 for both).
+    Acceleration,
 }
 
 /// Kinematic state of all dofs at one instant.
@@ -58,6 +78,7 @@ impl Scheme {
             alpha: 0.0,
             hht_full: false,
             inertia: true,
+            predictor: Predictor::Displacement,
         })
     }
 
@@ -70,6 +91,7 @@ impl Scheme {
             alpha: 0.0,
             hht_full: false,
             inertia: false,
+            predictor: Predictor::Displacement,
         }
     }
 
@@ -86,6 +108,7 @@ impl Scheme {
             alpha,
             hht_full: modi_equi,
             inertia: true,
+            predictor: Predictor::Displacement,
         })
     }
 
@@ -128,6 +151,8 @@ impl Scheme {
     /// u0 = u_n, v0 = (1 - gamma/beta) v_n + (1 - gamma/(2 beta)) dt a_n,
     /// a0 = -v_n/(beta dt) + (1 - 1/(2 beta)) a_n.
     /// Quasi-static: u0 = u_n, v0 = a0 = 0.
+    /// With [`Predictor::Acceleration`]: a0 = a_n, v0 = v_n + dt a_n,
+    /// u0 = u_n + dt v_n + dt^2/2 a_n.
     pub fn predict(&self, dt: f64, prev: &Kinematics, next: &mut Kinematics) {
         let (b, g) = (self.beta, self.gamma);
         next.u.clone_from(&prev.u);
@@ -136,6 +161,15 @@ impl Scheme {
         if !self.inertia {
             next.v.iter_mut().for_each(|v| *v = 0.0);
             next.a.iter_mut().for_each(|v| *v = 0.0);
+            return;
+        }
+        if self.predictor == Predictor::Acceleration {
+            for i in 0..prev.u.len() {
+                let (vn, an) = (prev.v[i], prev.a[i]);
+                next.u[i] = prev.u[i] + dt * vn + 0.5 * dt * dt * an;
+                next.v[i] = vn + dt * an;
+                next.a[i] = an;
+            }
             return;
         }
         for i in 0..prev.u.len() {
@@ -243,6 +277,55 @@ mod tests {
             let per_period: Vec<f64> = e.iter().step_by(20).copied().collect();
             for w in per_period.windows(2) {
                 assert!(w[1] < w[0], "{s:?}: {per_period:?}");
+            }
+        }
+    }
+
+    /// FORMULATION='ACCELERATION' changes the predictor only: the
+    /// predicted state satisfies the Newmark relations with a0 = a_n, and
+    /// on a linear oscillator (one exact Newton iteration per step) both
+    /// formulations give the same trajectory to round-off, for Newmark
+    /// and both HHT variants.
+    #[test]
+    fn acceleration_formulation_predicts_differently_and_converges_alike() {
+        let (m, k) = (1.0, (2.0 * std::f64::consts::PI).powi(2));
+        for s in [
+            Scheme::newmark(0.49, 0.9).unwrap(),
+            Scheme::hht(-0.6, false).unwrap(),
+            Scheme::hht(-0.1, true).unwrap(),
+        ] {
+            let a = Scheme {
+                predictor: Predictor::Acceleration,
+                ..s
+            };
+            let prev = Kinematics {
+                u: vec![0.3],
+                v: vec![-2.0],
+                a: vec![5.0],
+            };
+            let (mut pd, mut pa) = (Kinematics::default(), Kinematics::default());
+            let dt = 0.01;
+            s.predict(dt, &prev, &mut pd);
+            a.predict(dt, &prev, &mut pa);
+            assert_eq!(pd.u[0], 0.3);
+            assert!((pa.u[0] - (0.3 - 2.0 * dt + 0.5 * dt * dt * 5.0)).abs() < 1e-15);
+            assert!((pa.v[0] - (-2.0 + dt * 5.0)).abs() < 1e-15);
+            assert_eq!(pa.a[0], 5.0);
+            // Both predicted states lie on the Newmark manifold of prev.
+            for p in [&pd, &pa] {
+                let u = prev.u[0]
+                    + dt * prev.v[0]
+                    + dt * dt * ((0.5 - s.beta) * prev.a[0] + s.beta * p.a[0]);
+                let v = prev.v[0] + dt * ((1.0 - s.gamma) * prev.a[0] + s.gamma * p.a[0]);
+                assert!((p.u[0] - u).abs() < 1e-14 && (p.v[0] - v).abs() < 1e-12);
+            }
+            let hd = sdof(&s, m, k, 1.0, 0.0, 0.05, 200);
+            let ha = sdof(&a, m, k, 1.0, 0.0, 0.05, 200);
+            for (x, y) in hd.iter().zip(&ha) {
+                assert!(
+                    (x.0 - y.0).abs() < 1e-12 && (x.1 - y.1).abs() < 1e-11,
+                    "{s:?}"
+                );
             }
         }
     }
