@@ -294,3 +294,26 @@ fn bad_formulas_are_located_errors() {
     ];
     expect_errors(&cases);
 }
+
+/// A link on a component imposed by DDL_IMPO (the corner P0 of the floor
+/// zone held at DZ = 0, tests/studies/unil_ddl_conflict.comm): once the
+/// floor passes P0 its link, without unknown, is dropped from the active
+/// set next to the three others (code_aster's zero-row test) and its
+/// penalty has nothing to act on; the imposed DZ = 0 wins (in the command
+/// file, with P3 on the floor at 0.02 to 1e-8), and each run writes the
+/// alarm naming the link, its node and the largest violation, f(1) = 0.02.
+#[test]
+fn link_on_an_imposed_component_is_left_violated_with_an_alarm() {
+    let run = common::run_study("tests/studies/unil_ddl_conflict.comm", "unil_ddl_conflict");
+    common::assert_all_ok(&run, "unil_ddl_conflict.resu");
+    let mess = run.file("unil_ddl_conflict.mess");
+    let alarms: Vec<&str> = mess
+        .lines()
+        .filter(|l| l.contains("alarm: LIAISON_UNIL: 1 link(s) violated"))
+        .collect();
+    assert_eq!(alarms.len(), 2, "{mess}");
+    for a in alarms {
+        assert!(a.contains(", DZ) violated by 2.000e-2"), "{a}");
+        assert!(a.contains("PIVOT NUL"), "{a}");
+    }
+}

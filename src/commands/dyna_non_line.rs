@@ -1700,6 +1700,9 @@ pub(crate) fn run(
                 s.active
             )),
         }
+        if let Some(a) = u.unheld_alarm() {
+            log(&format!("  {a}"));
+        }
     }
     result_of_run(study, args, result, evol, outcome)
 }

@@ -104,8 +104,9 @@ impl UnilDef {
     /// moves to the right-hand side. This is what code_aster's dualised
     /// DDL_IMPO amounts to: its column C⁻¹Aᵀ is zero on that dof, and the
     /// gap c − A·u counts the imposed value. A row left empty is inert
-    /// while its gap is ≥ 0 and singular (MECANONLINE9_6) once violated,
-    /// as there.
+    /// while its gap is ≥ 0; violated, it is singular (MECANONLINE9_6)
+    /// alone and dropped into the zero set next to other active links, as
+    /// there (the run's alarm lists it).
     pub fn rows(
         &self,
         t: f64,
@@ -677,8 +678,9 @@ mod tests {
 
     /// A component imposed by DDL_IMPO leaves the unknowns: its term
     /// moves to c. A link left without unknown is inert while its gap is
-    /// non-negative, and singular (code 2) once violated, as with
-    /// code_aster's dualised DDL_IMPO (liaison-unil.md §8).
+    /// non-negative, and singular (code 2) once violated alone, as with
+    /// code_aster's dualised DDL_IMPO (liaison-unil.md §8); next to other
+    /// active links its zero row drops it into the zero set.
     #[test]
     fn imposed_components_move_to_the_right_hand_side() {
         let c = Function::constant(1.0, "TOUTRESU");
@@ -737,6 +739,28 @@ mod tests {
         let (mut gaps, mut zero) = (vec![-0.5], vec![false]);
         let r = active_set(&empty, &mut gaps, &mut delta, &mut solve, &mut zero);
         assert_eq!(r, Err(ActiveSetFailure::Singular { link: 0 }));
+        // ... and next to an active link (-DX <= 0, which δ⁰ = (-1, 0)
+        // violates), a zero row: dropped into the zero set, the other
+        // link enforced exactly (μ = 1, DX = 0), the empty one left
+        // violated (code_aster's cupivo).
+        let rows = vec![
+            Row {
+                entries: vec![(0, -1.0)],
+                c: 0.0,
+            },
+            Row {
+                entries: vec![],
+                c: -0.5,
+            },
+        ];
+        let mut delta = vec![-1.0, 0.0];
+        let (mut gaps, mut zero) = (vec![0.0, -0.5], vec![false, false]);
+        let r = active_set(&rows, &mut gaps, &mut delta, &mut solve, &mut zero).unwrap();
+        assert_eq!(zero, vec![false, true]);
+        assert_eq!(r.active, vec![0]);
+        assert!(close(r.mu[0], 1.0));
+        assert!(delta[0].abs() < 1e-15 && delta[1] == 0.0, "{delta:?}");
+        assert!(gaps[1] < 0.0);
     }
 
     #[test]

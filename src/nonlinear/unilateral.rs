@@ -50,6 +50,11 @@ pub struct UnilateralContact {
     zero_set: Vec<bool>,
     active_now: usize,
     pub stats: UnilStats,
+    /// Links violated at the end of a converged step that nothing holds,
+    /// with their most negative gap: a link whose every component is
+    /// imposed (an empty row), or one dropped for a zero row of the Schur
+    /// complement.
+    pub unheld: std::collections::BTreeMap<usize, f64>,
 }
 
 impl UnilateralContact {
@@ -67,6 +72,7 @@ impl UnilateralContact {
             zero_set: vec![false; nl],
             active_now: 0,
             stats: UnilStats::default(),
+            unheld: Default::default(),
         }
     }
 
@@ -74,6 +80,63 @@ impl UnilateralContact {
     pub fn commit(&mut self) {
         self.committed_force.clone_from(&self.force);
         self.stats.active = self.active_now;
+        for (i, row) in self.rows.iter().enumerate() {
+            if !(row.entries.is_empty() || self.zero_set[i]) {
+                continue;
+            }
+            // An empty row's gap is its c; a dropped one's was updated by
+            // every corrected increment.
+            let gap = match &self.gaps {
+                Some(g) if !row.entries.is_empty() => g[i],
+                _ => row.c,
+            };
+            if gap < 0.0 {
+                let worst = self.unheld.entry(i).or_insert(gap);
+                *worst = worst.min(gap);
+            }
+        }
+    }
+
+    /// The alarm of the links left violated ([`Self::unheld`]), if any:
+    /// code_aster drops such a link from its active set silently but for
+    /// a "PIVOT NUL" line (`cupivo`), and its penalty acts on a blocked
+    /// dof: the imposed value wins, the condition is not enforced.
+    pub fn unheld_alarm(&self) -> Option<String> {
+        if self.unheld.is_empty() {
+            return None;
+        }
+        let names = ["DX", "DY", "DZ"];
+        let list: Vec<String> = self
+            .unheld
+            .iter()
+            .take(5)
+            .map(|(&i, &g)| {
+                let l = &self.def.links[i];
+                let cmps: Vec<&str> = self.def.zones[l.zone]
+                    .components
+                    .iter()
+                    .map(|(k, _)| *names.get(*k).unwrap_or(&"?"))
+                    .collect();
+                format!(
+                    "link {} (zone {}, node N{}, {}) violated by {:.3e}",
+                    i + 1,
+                    l.zone + 1,
+                    l.node + 1,
+                    cmps.join("+"),
+                    -g
+                )
+            })
+            .collect();
+        Some(format!(
+            "alarm: LIAISON_UNIL: {} link(s) violated at the end of a step are held by nothing: {}{}; \
+             a link whose components are all imposed by DDL_IMPO has no unknown and the imposed value wins: \
+             code_aster drops it from its active set (a zero pivot of the contact matrix, \
+             `LIAISON i (node - cmp): PIVOT NUL` in its message file) and its penalty acts on a blocked dof; \
+             the condition is not enforced there",
+            self.unheld.len(),
+            list.join(", "),
+            if self.unheld.len() > 5 { ", ..." } else { "" }
+        ))
     }
 
     /// The unilateral force of the last iteration (full, on the
