@@ -1923,7 +1923,8 @@ fn expect_located_errors(
 /// AFFE_CHAR_CINE (MECA_IMPO) in STAT_NON_LINE, MECA_STATIQUE (held
 /// bar under an end force, a pull scaled by FONC_MULT: tip and base
 /// reaction against the 1D bar, 1e-9) and DYNA_NON_LINE (a held bar at
-/// rest stays at rest).
+/// rest stays at rest); AFFE_CHAR_CINE_F (the pull a FORMULE of INST
+/// and Z).
 #[test]
 fn kinematic_loads_hold_and_pull_the_bar() {
     run_study("char_cine");

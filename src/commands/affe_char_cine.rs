@@ -5,8 +5,11 @@
 //! (REAC_NODA is the residual at the held dofs either way), and aster
 //! holds imposed dofs one way only, so MECA_IMPO gives the data of a
 //! DDL_IMPO: the concept type differs, for the checker, not the engine.
+//! AFFE_CHAR_CINE_F likewise gives AFFE_CHAR_MECA_F's DDL_IMPO, values
+//! functions of INST and of the node's initial X, Y, Z.
 
 use super::affe_char_meca::ddl_impo;
+use super::affe_char_meca_f::function_load;
 use super::blocks::*;
 use super::model_args::load_model;
 use super::{CommandDef, ExecResult};
@@ -14,7 +17,7 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
-use crate::model::MechLoad;
+use crate::model::{FunctionTarget, MechLoad};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -68,4 +71,43 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         imposed,
         ..MechLoad::default()
     }))))
+}
+
+pub fn def_f() -> CommandDef {
+    let mut impo = vec![tout(), group_ma(), maille(), group_no(), noeud()];
+    for &c in CMP_DEPL {
+        impo.push(
+            concept(c, &[C::Fonction, C::Formule])
+                .doc("imposed value of this component: a function of INST and the node's initial X, Y, Z")
+                .kw(),
+        );
+    }
+    let spec = command(
+        "AFFE_CHAR_CINE_F",
+        Produces::Concept(C::CharCineMeca),
+        vec![
+            concept("MODELE", &[C::Modele]).required().kw(),
+            fact("MECA_IMPO", impo)
+                .many()
+                .rules(vec![
+                    au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]),
+                    au_moins_un(CMP_DEPL),
+                ])
+                .doc("imposed displacements, functions of INST and of the node's initial X, Y, Z evaluated at each step's end instant, eliminated from the system; GROUP_MA means all nodes of those cells; a node given again keeps the later function of that component")
+                .required()
+                .kw(),
+            info(),
+        ],
+    )
+    .doc("Defines imposed displacements given as functions (of INST, X, Y, Z) as a kinematic load (char_cine_meca), taken by EXCIT like a char_meca.");
+    CommandDef { spec, exec: exec_f }
+}
+
+fn exec_f(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    function_load(
+        study,
+        args,
+        result,
+        &[("MECA_IMPO", FunctionTarget::Imposed, CMP_DEPL)],
+    )
 }

@@ -239,6 +239,35 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             );
         }
     }
+    function_load(
+        study,
+        args,
+        result,
+        &[
+            ("DDL_IMPO", FunctionTarget::Imposed, CMP_DEPL),
+            (
+                "FACE_IMPO",
+                FunctionTarget::Imposed,
+                &["DX", "DY", "DZ"][..],
+            ),
+            (
+                "FORCE_NODALE",
+                FunctionTarget::Force,
+                &["FX", "FY", "FZ"][..],
+            ),
+        ],
+    )
+}
+
+/// The nodal keywords of `sources` (keyword, what its values are, the
+/// components it takes) and the distributed ones, as functions of INST,
+/// X, Y, Z: AFFE_CHAR_MECA_F's and AFFE_CHAR_CINE_F's (MECA_IMPO).
+pub(super) fn function_load(
+    study: &mut Study,
+    args: &Args,
+    result: Option<&str>,
+    sources: &[(&str, FunctionTarget, &[&str])],
+) -> ExecResult {
     let LoadModel {
         name: model_name,
         model,
@@ -249,19 +278,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     } = load_model(study, args)?;
     let mut functions: Vec<NodalFunction> = Vec::new();
     let mut lines = Vec::new();
-    for (key, target, cmps) in [
-        ("DDL_IMPO", FunctionTarget::Imposed, CMP_DEPL),
-        (
-            "FACE_IMPO",
-            FunctionTarget::Imposed,
-            &["DX", "DY", "DZ"][..],
-        ),
-        (
-            "FORCE_NODALE",
-            FunctionTarget::Force,
-            &["FX", "FY", "FZ"][..],
-        ),
-    ] {
+    for &(key, target, cmps) in sources {
         for (k, occ) in args.facts(key).iter().enumerate() {
             if target == FunctionTarget::Force {
                 for m in ["MX", "MY", "MZ"] {
@@ -322,7 +339,8 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             }
             if nodes.is_empty() {
                 lines.push(format!(
-                    "<A> <AFFE_CHAR_MECA_F> occurrence {} of {key} selects no node",
+                    "<A> <{}> occurrence {} of {key} selects no node",
+                    occ.command,
                     k + 1
                 ));
             }

@@ -90,6 +90,7 @@ pub fn not_implemented(_study: &mut Study, args: &Args, _result: Option<&str>) -
 pub fn all() -> Vec<CommandDef> {
     vec![
         affe_char_cine::def(),
+        affe_char_cine::def_f(),
         affe_char_meca::def(),
         affe_char_meca_f::def(),
         affe_materiau::def(),
