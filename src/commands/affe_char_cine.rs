@@ -30,14 +30,13 @@ pub fn def() -> CommandDef {
         Produces::Concept(C::CharCineMeca),
         vec![
             concept("MODELE", &[C::Modele]).required().kw(),
-            fact("MECA_IMPO", impo)
-                .many()
-                .rules(vec![
-                    au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]),
-                    au_moins_un(CMP_DEPL),
-                ])
-                .doc("imposed displacements, eliminated from the system; GROUP_MA means all nodes of those cells")
-                .kw(),
+            imposed_dofs(
+                "MECA_IMPO",
+                impo,
+                CMP_DEPL,
+                "imposed displacements, eliminated from the system; GROUP_MA means all nodes of those cells",
+            )
+            .kw(),
             concept("EVOL_IMPO", &[C::EvolNoli, C::EvolElas])
                 .doc("displacements imposed from a result: not implemented yet")
                 .kw(),
@@ -87,15 +86,14 @@ pub fn def_f() -> CommandDef {
         Produces::Concept(C::CharCineMeca),
         vec![
             concept("MODELE", &[C::Modele]).required().kw(),
-            fact("MECA_IMPO", impo)
-                .many()
-                .rules(vec![
-                    au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]),
-                    au_moins_un(CMP_DEPL),
-                ])
-                .doc("imposed displacements, functions of INST and of the node's initial X, Y, Z evaluated at each step's end instant, eliminated from the system; GROUP_MA means all nodes of those cells; a node given again keeps the later function of that component")
-                .required()
-                .kw(),
+            imposed_dofs(
+                "MECA_IMPO",
+                impo,
+                CMP_DEPL,
+                "imposed displacements, functions of INST and of the node's initial X, Y, Z evaluated at each step's end instant, eliminated from the system; GROUP_MA means all nodes of those cells; a node given again keeps the later function of that component",
+            )
+            .required()
+            .kw(),
             info(),
         ],
     )

@@ -48,14 +48,13 @@ pub fn def() -> CommandDef {
         Produces::Concept(C::CharMeca),
         vec![
             concept("MODELE", &[C::Modele]).required().kw(),
-            fact("DDL_IMPO", ddl)
-                .many()
-                .rules(vec![
-                    au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]),
-                    Rule::AtLeastOne(cmp_or_liaison),
-                ])
-                .doc("imposed dofs (dualised by Lagrange multipliers); GROUP_MA means all nodes of those cells")
-                .kw(),
+            imposed_dofs(
+                "DDL_IMPO",
+                ddl,
+                &cmp_or_liaison,
+                "imposed dofs (dualised by Lagrange multipliers); GROUP_MA means all nodes of those cells",
+            )
+            .kw(),
             fact(
                 "FACE_IMPO",
                 [

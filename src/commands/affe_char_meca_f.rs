@@ -92,14 +92,13 @@ pub fn def() -> CommandDef {
         Produces::Concept(C::CharMeca),
         vec![
             concept("MODELE", &[C::Modele]).required().kw(),
-            fact("DDL_IMPO", ddl)
-                .many()
-                .rules(vec![
-                    au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]),
-                    au_moins_un(CMP_DEPL),
-                ])
-                .doc("imposed dofs whose values are functions of INST and of the node's initial X, Y, Z, evaluated at each step's end instant; GROUP_MA means all nodes of those cells; a node given again by a later occurrence keeps the later function of that component")
-                .kw(),
+            imposed_dofs(
+                "DDL_IMPO",
+                ddl,
+                CMP_DEPL,
+                "imposed dofs whose values are functions of INST and of the node's initial X, Y, Z, evaluated at each step's end instant; GROUP_MA means all nodes of those cells; a node given again by a later occurrence keeps the later function of that component",
+            )
+            .kw(),
             fact("FORCE_NODALE", nodal)
                 .many()
                 .rules(vec![

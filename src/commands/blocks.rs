@@ -991,6 +991,24 @@ pub fn c_test_reference(multi: bool, with_text: bool) -> (Vec<Keyword>, Vec<Rule
 
 /// Where a DDL_IMPO applies: TOUT, GROUP_MA, MAILLE, GROUP_NO, NOEUD and
 /// the SANS_* exclusions (AFFE_CHAR_MECA and AFFE_CHAR_MECA_F).
+/// An imposed-dof factor keyword (DDL_IMPO, MECA_IMPO): the selection
+/// `kws` with one value keyword per component, repeatable, needing a
+/// location and one of `components`.
+pub fn imposed_dofs(
+    name: &'static str,
+    kws: Vec<Keyword>,
+    components: &[&'static str],
+    doc: &'static str,
+) -> Factor {
+    fact(name, kws)
+        .many()
+        .rules(vec![
+            au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]),
+            au_moins_un(components),
+        ])
+        .doc(doc)
+}
+
 pub fn ddl_selection() -> Vec<Keyword> {
     vec![
         tout(),
