@@ -615,16 +615,7 @@ impl ExplicitContact {
     /// forces become the links' history. Checked whole before anything is
     /// taken.
     pub fn restore(&mut self, h: &crate::result::ContactHistory) -> Result<(), String> {
-        let nfull = self.force_on_fint_side.len();
-        if h.ndpn != self.ndpn {
-            return Err(format!(
-                "it was stored with {} dofs per node, this model has {}",
-                h.ndpn, self.ndpn
-            ));
-        }
-        if let Some(&(f, _)) = h.force.iter().find(|&&(f, _)| f >= nfull) {
-            return Err(format!("its dof {f} is outside this model's {nfull} dofs"));
-        }
+        h.check_fits(self.ndpn, self.force_on_fint_side.len())?;
         let keys = h
             .friction
             .iter()

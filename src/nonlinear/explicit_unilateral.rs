@@ -392,16 +392,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
     }
 
     fn restore(&mut self, h: &ContactHistory) -> Result<(), String> {
-        let nfull = self.force.len();
-        if h.ndpn != self.ndpn {
-            return Err(format!(
-                "it was stored with {} dofs per node, this model has {}",
-                h.ndpn, self.ndpn
-            ));
-        }
-        if let Some(&(f, _)) = h.force.iter().find(|&&(f, _)| f >= nfull) {
-            return Err(format!("its dof {f} is outside this model's {nfull} dofs"));
-        }
+        h.check_fits(self.ndpn, self.force.len())?;
         if !h.friction.is_empty() {
             return Err("it holds friction links, which LIAISON_UNIL has not".into());
         }

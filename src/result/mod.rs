@@ -161,6 +161,25 @@ pub struct ContactHistory {
     pub friction_master: Vec<MasterLink>,
 }
 
+impl ContactHistory {
+    /// Whether this history can be restored into a model numbered with
+    /// `ndpn` dofs per node and `nfull` dofs in all: a restart on another
+    /// model (or after another AFFE_MODELE) must be refused, not indexed
+    /// out of bounds. The message completes "the contact history ...".
+    pub fn check_fits(&self, ndpn: usize, nfull: usize) -> Result<(), String> {
+        if self.ndpn != ndpn {
+            return Err(format!(
+                "it was stored with {} dofs per node, this model has {ndpn}",
+                self.ndpn
+            ));
+        }
+        if let Some(&(f, _)) = self.force.iter().find(|&&(f, _)| f >= nfull) {
+            return Err(format!("its dof {f} is outside this model's {nfull} dofs"));
+        }
+        Ok(())
+    }
+}
+
 /// A frictional link's (zone, slave node), master nodes and their shape
 /// functions at the projection.
 pub type MasterLink = ((usize, usize), Vec<usize>, Vec<f64>);
