@@ -112,7 +112,7 @@ L = DEFI_LIST_REEL(VALE=sorted_list) if 0 else DEFI_LIST_REEL(VALE=(1., 2.))
 ";
     let e = check(&format!("DEBUT()\n{text}\nFIN()\n")).unwrap_err();
     assert!(
-        e[0].message.contains("cannot be used inside an expression"),
+        e[0].message.contains("cannot be called here"),
         "{}",
         e[0].message
     );
@@ -175,6 +175,65 @@ fn commands_in_loops_keep_their_own_lines() {
         ds.iter().filter(|d| d.message.contains("VALEUR")).count(),
         1
     );
+}
+
+/// A command called in another's keyword runs first, as Python runs it, and
+/// the keyword receives its concept; innermost first, once per loop pass.
+#[test]
+fn commands_inside_keywords_run_before_their_command() {
+    let text = "DEBUT()\n\
+for k in (1., 2.):
+    LI = DEFI_LIST_INST(DEFI_LIST=_F(LIST_INST=DEFI_LIST_REEL(VALE=(0., k))))
+F = CALC_FONCTION(COMB=_F(FONCTION=DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 2.)),
+                          COEF=2.))
+FIN()\n";
+    let src = Source::new("t.comm", text);
+    let c = check(text).unwrap_or_else(|ds| {
+        panic!(
+            "{}",
+            ds.iter().map(|d| d.render(Some(&src))).collect::<String>()
+        )
+    });
+    let names: Vec<&str> = c.commands.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "DEBUT",
+            "DEFI_LIST_REEL",
+            "DEFI_LIST_INST",
+            "DEFI_LIST_REEL",
+            "DEFI_LIST_INST",
+            "DEFI_FONCTION",
+            "CALC_FONCTION",
+            "FIN"
+        ]
+    );
+    // Each DEFI_LIST_INST gets the list made just before it, at its line.
+    for i in [1, 3] {
+        let inner = c.commands[i].result.as_ref().expect("named").name.clone();
+        let outer = c.commands[i + 1].args.facts("DEFI_LIST")[0].concept("LIST_INST");
+        assert_eq!(outer, Some(inner.as_str()));
+        assert_eq!(
+            c.commands[i].args.reals("VALE"),
+            vec![0.0, (i / 2 + 1) as f64]
+        );
+        assert_eq!(src.line_col(c.commands[i].span.start), (3, 48));
+    }
+    let inner = c.commands[5].result.as_ref().unwrap().name.clone();
+    assert_eq!(
+        c.commands[6].args.facts("COMB")[0].concept("FONCTION"),
+        Some(inner.as_str())
+    );
+    // Where Python may evaluate the call several times or not at all, the
+    // result must be named first.
+    for (text, col) in [
+        ("L = DEFI_LIST_INST(DEFI_LIST=_F(LIST_INST=DEFI_LIST_REEL(VALE=(0., 1.)) if 1 else None))", 43),
+        ("X = [DEFI_LIST_REEL(VALE=(0., k)) for k in (1., 2.)]", 6),
+    ] {
+        let (m, l, c) = error(text);
+        assert!(m.contains("DEFI_LIST_REEL cannot be called here"), "{m}");
+        assert_eq!((l, c), (1, col), "{m}");
+    }
 }
 
 #[test]

@@ -71,6 +71,7 @@ pub fn check_program<D: AsRef<CommandSpec>>(
 ) -> Result<CheckedProgram, Vec<Diagnostic>> {
     let registry: Vec<&CommandSpec> = registry.iter().map(AsRef::as_ref).collect();
     let names: Vec<&str> = registry.iter().map(|d| d.name).collect();
+    let program = &super::inline_commands::hoist(program, &is_cmd(&names));
     let mut ck = Checker {
         registry: &registry,
         names: &names,

@@ -5,4 +5,5 @@ pub mod checker;
 pub mod concept_type;
 pub mod doc;
 pub mod eval;
+pub mod inline_commands;
 pub mod schema;

@@ -424,10 +424,11 @@ impl Env {
                     self.builtin(func, args, e.span, is_command)?
                 } else if is_command(&func.name) {
                     return Err(Diagnostic::error(format!(
-                        "the command {} cannot be used inside an expression; assign its result to a name first",
+                        "the command {} cannot be called here: its result must be named first",
                         func.name
                     ))
-                    .at(func.span));
+                    .at(func.span)
+                    .note("a command runs where a keyword takes its result (ARCHIVAGE=_F(LIST_INST=DEFI_LIST_REEL(...))), but not inside a list comprehension or a branch of `if ... else`, `and`, `or`, which Python may evaluate several times or not at all: write NAME = COMMAND(...) on a line of its own and use NAME"));
                 } else {
                     let mut known: Vec<&str> = BUILTINS.to_vec();
                     known.push("_F");
