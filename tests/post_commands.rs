@@ -553,6 +553,153 @@ fn impr_resu_resultat_listing() {
     snapshot("impr_resu_resultat", &s.resu);
 }
 
+/// The data lines of a listing: (entity, point or node label, values),
+/// the block titles and the header lines left out.
+fn listing_rows(text: &str) -> Vec<(String, String, Vec<f64>)> {
+    text.lines()
+        .filter(|l| l.starts_with(" M") || l.starts_with(" N"))
+        .filter(|l| {
+            !l.starts_with(" MAILLE") && !l.starts_with(" NOEUD") && !l.starts_with(" NUMERO")
+        })
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            let vals = |from: usize| {
+                w[from..]
+                    .iter()
+                    .map(|v| v.parse().unwrap_or(f64::NAN))
+                    .collect()
+            };
+            if w[0].starts_with('M') {
+                (w[0].to_string(), w[1].to_string(), vals(2))
+            } else {
+                (w[0].to_string(), String::new(), vals(1))
+            }
+        })
+        .collect()
+}
+
+/// FORMAT='RESULTAT' restricts the listing as code_aster's irdepl/irchml:
+/// a Gauss field to the cells of GROUP_MA/MAILLE, or to the cells holding
+/// a node of GROUP_NO/NOEUD; a nodal field to the nodes of GROUP_NO/NOEUD
+/// and of the cells of GROUP_MA; NOM_CMP picks Gauss components too. The
+/// values are checked against the closed form of the synthetic result
+/// (SIXX = 10 c + p + 1e6 t, DX = 1000 t x, DY = -227000 t + 0.1 (n + 1)).
+#[test]
+fn impr_resu_resultat_honours_the_selection() {
+    let t = INSTS[2];
+    let listing = |tag: &str, resu: &str| {
+        run(
+            tag,
+            &format!(
+                "IMPR_RESU(FORMAT='RESULTAT', RESU=_F(RESULTAT=RESU, NUME_ORDRE=2, {resu}))\n"
+            ),
+        )
+        .resu
+    };
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * (1.0 + b.abs());
+    // One cell: its 4 points, SIXX and SIYY exact to the printed 15 digits.
+    let text = listing("sel_c2", "NOM_CHAM='SIEF_ELGA', GROUP_MA='C2'");
+    let rows = listing_rows(&text);
+    assert_eq!(rows.len(), 4, "{text}");
+    for (p, (cell, point, v)) in rows.iter().enumerate() {
+        assert_eq!(
+            (cell.as_str(), point.as_str()),
+            ("M2", &*(p + 1).to_string())
+        );
+        assert!(
+            close(v[0], sixx(t, 1, p)) && close(v[1], -sixx(t, 1, p)),
+            "{text}"
+        );
+    }
+    // MAILLE too; TOUT='OUI' lists everything.
+    assert_eq!(
+        listing_rows(&listing("sel_m1", "NOM_CHAM='SIEF_ELGA', MAILLE='M1'")).len(),
+        4
+    );
+    assert_eq!(
+        listing_rows(&listing("sel_tout", "NOM_CHAM='SIEF_ELGA', TOUT='OUI'")).len(),
+        8
+    );
+    // Nodes only: the cells that hold them (N1 is in M1 only, N5 in both).
+    let rows = listing_rows(&listing("sel_o", "NOM_CHAM='SIEF_ELGA', GROUP_NO='O'"));
+    assert!(
+        rows.len() == 4 && rows.iter().all(|r| r.0 == "M1"),
+        "{rows:?}"
+    );
+    assert_eq!(
+        listing_rows(&listing("sel_a", "NOM_CHAM='SIEF_ELGA', GROUP_NO='A'")).len(),
+        8
+    );
+    // NOM_CMP on a Gauss field: SIYY alone.
+    let text = listing(
+        "sel_cmp",
+        "NOM_CHAM='SIEF_ELGA', GROUP_MA='C1', NOM_CMP='SIYY'",
+    );
+    assert!(text.contains("SIYY") && !text.contains("SIXX"), "{text}");
+    let rows = listing_rows(&text);
+    assert_eq!(rows.len(), 4);
+    for (p, r) in rows.iter().enumerate() {
+        assert!(r.2.len() == 1 && close(r.2[0], -sixx(t, 0, p)), "{text}");
+    }
+    // A nodal field on GROUP_MA: the 4 nodes of M1 (N1 N2 N5 N4) in
+    // increasing order, after the nodes of GROUP_NO in their own order.
+    let m = mesh();
+    let text = listing("sel_depl", "NOM_CHAM='DEPL', GROUP_MA='C1'");
+    let rows = listing_rows(&text);
+    let names: Vec<&str> = rows.iter().map(|r| r.0.as_str()).collect();
+    assert_eq!(names, ["N1", "N2", "N4", "N5"], "{text}");
+    for (r, n) in rows.iter().zip([0usize, 1, 3, 4]) {
+        assert!(
+            close(r.2[0], dx(t, m.coords[n][0])) && close(r.2[1], dy(t, n)),
+            "{text}"
+        );
+    }
+    let rows = listing_rows(&listing(
+        "sel_depl2",
+        "NOM_CHAM='DEPL', GROUP_NO='A', GROUP_MA='C2'",
+    ));
+    let names: Vec<&str> = rows.iter().map(|r| r.0.as_str()).collect();
+    assert_eq!(names, ["N5", "N2", "N3", "N6"]);
+    // A cham_no on a cell group.
+    let s = run(
+        "sel_ch",
+        "IMPR_RESU(FORMAT='RESULTAT', RESU=_F(CHAM_GD=CH, GROUP_MA='C2'))\n",
+    );
+    let names: Vec<String> = listing_rows(&s.resu).into_iter().map(|r| r.0).collect();
+    assert_eq!(names, ["N2", "N3", "N5", "N6"]);
+
+    // What the listing does not do is refused, located.
+    for (resu, expected) in [
+        (
+            "VALE_MAX='OUI'",
+            "not implemented yet: IMPR_RESU/RESU/VALE_MAX",
+        ),
+        (
+            "BORNE_INF=0.",
+            "not implemented yet: IMPR_RESU/RESU/BORNE_INF",
+        ),
+        (
+            "IMPR_COOR='OUI'",
+            "not implemented yet: IMPR_RESU/RESU/IMPR_COOR",
+        ),
+        ("NOM_CHAM_MED='X'", "IMPR_RESU/RESU/NOM_CHAM_MED"),
+        ("GROUP_MA='C3'", "'C3'"),
+    ] {
+        let e = run_err(&format!(
+            "IMPR_RESU(FORMAT='RESULTAT', RESU=_F(RESULTAT=RESU, NOM_CHAM='SIEF_ELGA', {resu}))\n"
+        ));
+        assert!(
+            e.contains(expected) && e.contains("t.comm:5:"),
+            "{resu}: {e}"
+        );
+    }
+    let e = run_err("IMPR_RESU(FORMAT='RESULTAT', RESU=_F(MAILLAGE=MA, GROUP_MA='C1'))\n");
+    assert!(
+        e.contains("IMPR_RESU/RESU/GROUP_MA") && e.contains("MAILLAGE alone"),
+        "{e}"
+    );
+}
+
 #[test]
 fn post_releve_t_refuses_other_operations() {
     let e = run_err(

@@ -479,13 +479,58 @@ fn pick_components(
 
 // ---------------------------------------------------------------- RESULTAT
 
+/// Keywords of a RESU occurrence the listing does not honour yet; they are
+/// refused so that a listing is never silently different from the request
+/// (code_aster's ircnrl/ircerl filter or summarise the values with them).
+const LISTING_UNSUPPORTED: [(&str, &str); 4] = [
+    (
+        "VALE_MAX",
+        "the largest value of each component (FORMAT='RESULTAT')",
+    ),
+    (
+        "VALE_MIN",
+        "the smallest value of each component (FORMAT='RESULTAT')",
+    ),
+    (
+        "BORNE_SUP",
+        "values filtered by a bound (FORMAT='RESULTAT')",
+    ),
+    (
+        "BORNE_INF",
+        "values filtered by a bound (FORMAT='RESULTAT')",
+    ),
+];
+
+/// Keywords that code_aster's catalogue offers with FORMAT='MED' only.
+const MED_ONLY: [&str; 2] = ["NOM_CHAM_MED", "NOM_RESU_MED"];
+
 /// FORMAT='RESULTAT': readable listings of the fields, per stored step,
 /// one line per node (`1X, name, values` in FORMAT_R, six values per
 /// line) or per Gauss point.
 fn listing(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
     let unit = args.int("UNITE").unwrap_or(8);
     let mut text = String::new();
+    let mut notes: Vec<String> = Vec::new();
     for occ in args.facts("RESU") {
+        for (k, what) in LISTING_UNSUPPORTED {
+            if occ.has(k) {
+                return Err(occ.not_implemented(k, what));
+            }
+        }
+        if occ.text("IMPR_COOR") == Some("OUI") {
+            return Err(occ.not_implemented(
+                "IMPR_COOR",
+                "the coordinates in the listing (FORMAT='RESULTAT')",
+            ));
+        }
+        for k in MED_ONLY {
+            if occ.has(k) {
+                return Err(occ.error(
+                    k,
+                    format!("{k} names a field of a MED file: it is read with FORMAT='MED' only"),
+                ));
+            }
+        }
         let fmt_text = occ.text("FORMAT_R").unwrap_or("1PE21.14");
         let fmt = RealFormat::from_fortran(fmt_text).ok_or_else(|| {
             occ.error(
@@ -493,6 +538,9 @@ fn listing(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
                 format!("'{fmt_text}' is not a Fortran real format"),
             )
         })?;
+        for title in occ.texts("SOUS_TITRE") {
+            text.push_str(&format!("\n {title}\n"));
+        }
         if occ.has("RESULTAT") {
             let (rname, res) = result_of(study, occ, "RESULTAT")?;
             let mesh = mesh_named(study, &res.mesh).ok_or_else(|| {
@@ -501,9 +549,22 @@ fn listing(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
                     format!("the mesh of result {rname} is not available"),
                 )
             })?;
-            let nodes = selected_nodes(mesh, occ)?;
+            let sel = Selection::of(mesh, occ)?;
             let wanted: Vec<&str> = occ.texts("NOM_CHAM");
-            for s in select_steps(study, res, occ)? {
+            let steps = select_steps(study, res, occ)?;
+            for name in &wanted {
+                let stored = steps.iter().any(|s| {
+                    s.nodal.contains_key(*name)
+                        || s.gauss.contains_key(*name)
+                        || s.elno.contains_key(*name)
+                });
+                if !stored {
+                    notes.push(format!(
+                        "field {name} is not stored in result {rname} at the selected steps: not written"
+                    ));
+                }
+            }
+            for s in steps {
                 for (name, f) in &s.nodal {
                     if wanted.is_empty() || wanted.contains(&name.as_str()) {
                         let (components, values) = pick_components(occ, f, name)?;
@@ -513,26 +574,41 @@ fn listing(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
                             s.nume_ordre,
                             fmt.format(s.inst)
                         ));
-                        text.push_str(&node_lines(&f, &nodes, &fmt));
+                        text.push_str(&node_lines(&f, &sel.nodes, &fmt));
                     }
                 }
                 for (name, f) in &s.gauss {
                     if wanted.is_empty() || wanted.contains(&name.as_str()) {
+                        let f = pick_cell_components(occ, f, name)?;
                         text.push_str(&format!(
                             "\n CHAMP AUX POINTS DE GAUSS DE NOM SYMBOLIQUE  {name}\n NUMERO D'ORDRE: {:>8} INST: {}\n\n",
                             s.nume_ordre,
                             fmt.format(s.inst)
                         ));
-                        text.push_str(&gauss_lines(f, &fmt));
+                        text.push_str(&cell_lines(&f, &sel.cells, None, &fmt));
+                    }
+                }
+                // Fields by element at nodes are printed when named only,
+                // as the MED writer does: TOUT_CHAM means the fields the
+                // run stored.
+                for (name, f) in &s.elno {
+                    if wanted.contains(&name.as_str()) {
+                        let f = pick_cell_components(occ, f, name)?;
+                        text.push_str(&format!(
+                            "\n CHAMP PAR ELEMENT AUX NOEUDS DE NOM SYMBOLIQUE  {name}\n NUMERO D'ORDRE: {:>8} INST: {}\n\n",
+                            s.nume_ordre,
+                            fmt.format(s.inst)
+                        ));
+                        text.push_str(&cell_lines(&f, &sel.cells, Some(mesh), &fmt));
                     }
                 }
             }
         } else if occ.has("CHAM_GD") {
             let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
-            let nodes: Vec<usize> = if occ.has("GROUP_NO") || occ.has("NOEUD") {
+            let nodes: Vec<usize> = if SELECTION.iter().any(|k| occ.has(k)) && !occ.has("TOUT") {
                 let groups = occ.texts("GROUP_NO");
                 let mesh = mesh_for_field(study, occ, "CHAM_GD", fname, field, &groups)?;
-                nodes_of(mesh, occ)?
+                Selection::of(mesh, occ)?.nodes
             } else {
                 (0..field.nnodes()).collect()
             };
@@ -544,21 +620,106 @@ fn listing(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
                 &fmt,
             ));
         } else if let Some(m) = occ.concept("MAILLAGE") {
+            if let Some(k) = SELECTION.iter().find(|k| occ.has(k)) {
+                return Err(occ.error(
+                    k,
+                    format!(
+                        "{k} selects the values of a field: with MAILLAGE alone there is none \
+                         (give RESULTAT or CHAM_GD)"
+                    ),
+                ));
+            }
             let mesh = mesh_named(study, m)
                 .ok_or_else(|| occ.error("MAILLAGE", format!("{m} holds no mesh")))?;
             text.push_str(&format!("\n MAILLAGE {m}\n{}", medio::mesh_info(mesh)));
         }
     }
+    for n in notes {
+        alarm(study, "IMPR_RESU", "", &n);
+    }
     study.write_unit(unit, &text);
     Ok(())
 }
 
-fn selected_nodes(mesh: &Mesh, occ: &Args) -> Result<Vec<usize>, Diagnostic> {
-    if occ.has("GROUP_NO") || occ.has("NOEUD") {
-        nodes_of(mesh, occ)
-    } else {
-        Ok((0..mesh.nnodes()).collect())
+/// The keywords that select parts of the mesh in a RESU occurrence.
+const SELECTION: [&str; 5] = ["TOUT", "GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"];
+
+/// What a RESU occurrence lists, as code_aster's IMPR_RESU (irdepl,
+/// irchml): nodal fields at the nodes of GROUP_NO and NOEUD and at the
+/// nodes of the cells of GROUP_MA and MAILLE; element fields on the cells
+/// of GROUP_MA and MAILLE or, when only nodes are given, on the cells that
+/// hold one of them. Nothing given, or TOUT='OUI': everything.
+struct Selection {
+    nodes: Vec<usize>,
+    cells: Vec<usize>,
+}
+
+impl Selection {
+    fn of(mesh: &Mesh, occ: &Args) -> Result<Selection, Diagnostic> {
+        let by_nodes = occ.has("GROUP_NO") || occ.has("NOEUD");
+        let by_cells = occ.has("GROUP_MA") || occ.has("MAILLE");
+        if occ.has("TOUT") || !(by_nodes || by_cells) {
+            return Ok(Selection {
+                nodes: (0..mesh.nnodes()).collect(),
+                cells: (0..mesh.ncells()).collect(),
+            });
+        }
+        // GROUP_NO/NOEUD keep the order written (as before cells were
+        // selectable), the nodes of the cells follow in increasing order.
+        let mut nodes = nodes_of(mesh, occ)?;
+        let cells = if by_cells {
+            let cells = super::model_args::select_cells(mesh, occ)?;
+            let mut seen = vec![false; mesh.nnodes()];
+            for &n in &nodes {
+                seen[n] = true;
+            }
+            let mut extra: Vec<usize> = cells
+                .iter()
+                .flat_map(|&c| mesh.cells[c].nodes.iter().copied())
+                .filter(|&n| !seen[n])
+                .collect();
+            extra.sort_unstable();
+            extra.dedup();
+            nodes.extend(extra);
+            cells
+        } else {
+            let mut mask = vec![false; mesh.nnodes()];
+            for &n in &nodes {
+                mask[n] = true;
+            }
+            (0..mesh.ncells())
+                .filter(|&c| mesh.cells[c].nodes.iter().any(|&n| mask[n]))
+                .collect()
+        };
+        Ok(Selection { nodes, cells })
     }
+}
+
+/// NOM_CMP on a field by element: the components asked, in that order.
+fn pick_cell_components(occ: &Args, f: &GaussField, field: &str) -> Result<GaussField, Diagnostic> {
+    if !occ.has("NOM_CMP") {
+        return Ok(f.clone());
+    }
+    let idx: Vec<usize> = occ
+        .texts("NOM_CMP")
+        .iter()
+        .map(|c| component_index(&f.components, c, occ, "NOM_CMP", field))
+        .collect::<Result<_, _>>()?;
+    let nc = f.ncmp();
+    let mut out = GaussField {
+        components: idx.iter().map(|&k| f.components[k].clone()).collect(),
+        offsets: Vec::with_capacity(f.offsets.len()),
+        values: Vec::new(),
+    };
+    for c in 0..f.offsets.len().saturating_sub(1) {
+        out.offsets.push(out.values.len());
+        for p in 0..f.npg(c) {
+            let vals = &f.cell(c)[p * nc..(p + 1) * nc];
+            out.values.extend(idx.iter().map(|&k| vals[k]));
+        }
+    }
+    out.offsets.push(out.values.len());
+    Ok(out)
 }
 
 /// Values in `fmt`, six per line, an absent value printed `-`.
@@ -596,19 +757,30 @@ fn node_lines(f: &NodalField, nodes: &[usize], fmt: &RealFormat) -> String {
     out
 }
 
-fn gauss_lines(f: &GaussField, fmt: &RealFormat) -> String {
+/// One line per (cell, point) of `cells`: the point's number for a Gauss
+/// field, the node's name for a field by element at nodes (`mesh` given).
+fn cell_lines(f: &GaussField, cells: &[usize], mesh: Option<&Mesh>, fmt: &RealFormat) -> String {
     let w = fmt.format(0.0).len();
-    let mut out = format!(" {:<8} {:>5}", "MAILLE", "POINT");
+    let mut out = format!(
+        " {:<8} {:>5}",
+        "MAILLE",
+        if mesh.is_some() { "NOEUD" } else { "POINT" }
+    );
     for c in &f.components {
         out.push_str(&format!("{c:>w$}"));
     }
     out.push('\n');
     let nc = f.ncmp();
-    for c in 0..f.offsets.len().saturating_sub(1) {
+    let ncells = f.offsets.len().saturating_sub(1);
+    for &c in cells.iter().filter(|&&c| c < ncells) {
         for p in 0..f.npg(c) {
             let vals = &f.cell(c)[p * nc..(p + 1) * nc];
+            let point = match mesh.and_then(|m| m.cells.get(c)?.nodes.get(p)) {
+                Some(&n) => node_name(n),
+                None => (p + 1).to_string(),
+            };
             out.push_str(&value_lines(
-                &format!(" {:<8} {:>5}", cell_name(c), p + 1),
+                &format!(" {:<8} {:>5}", cell_name(c), point),
                 vals,
                 fmt,
             ));
