@@ -1920,6 +1920,39 @@ fn expect_located_errors(
     }
 }
 
+/// Rayleigh damping (ELAS AMOR_ALPHA/AMOR_BETA) in DYNA_NON_LINE: a
+/// one-dof bar follows the damped Newmark and full-HHT recurrences to 1e-8
+/// (mass, stiffness tangent or elastic, both), its damping work is the
+/// energy lost (TRAV_AMOR, DISS_SCH = 0); what aster cannot do yet is
+/// refused where written, never dropped (it was ignored before).
+#[test]
+fn rayleigh_damping_follows_the_scheme_recurrence() {
+    run_study("rayleigh_sdof");
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("rayleigh_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("rayleigh_sdof.comm")).unwrap();
+    let cases = [
+        (
+            "explicit",
+            (
+                "SCHEMA_TEMPS=NEWMARK, CONVERGENCE=CONV,",
+                "SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'),",
+            ),
+            "Rayleigh damping with an explicit scheme: the material MB",
+        ),
+        (
+            "two_materials",
+            (
+                "CB = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=MB))",
+                "CB = AFFE_MATERIAU(MAILLAGE=MA, AFFE=(_F(TOUT='OUI', MATER=MB), _F(GROUP_MA='HAUT', MATER=MK)))",
+            ),
+            "Rayleigh damping with different coefficients on different materials",
+        ),
+    ];
+    let export = format!("F mmed {}/sdof_bar.mmed D 20\n", dir().display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "rayleigh");
+}
+
 /// AFFE_CHAR_CINE (MECA_IMPO) in STAT_NON_LINE, MECA_STATIQUE (held
 /// bar under an end force, a pull scaled by FONC_MULT: tip and base
 /// reaction against the 1D bar, 1e-9) and DYNA_NON_LINE (a held bar at

@@ -651,6 +651,57 @@ pub(crate) fn prepare_error(args: &Args, e: PrepareError) -> Diagnostic {
     }
 }
 
+/// Rayleigh damping from the ELAS AMOR_ALPHA and AMOR_BETA of the
+/// materials (semantics.md §4.1: their presence switches it on in
+/// DYNA_NON_LINE). What aster cannot do yet is refused, never dropped: a
+/// study whose damping was ignored would run and be wrong.
+fn rayleigh_of(
+    args: &Args,
+    md: &ModelData,
+    explicit: bool,
+) -> Result<Option<nonlinear::damping::Rayleigh>, Diagnostic> {
+    let pairs: Vec<(&str, f64, f64)> = md
+        .materials
+        .iter()
+        .map(|(n, m)| {
+            (
+                n.as_str(),
+                m.get("ELAS", "AMOR_ALPHA").unwrap_or(0.0),
+                m.get("ELAS", "AMOR_BETA").unwrap_or(0.0),
+            )
+        })
+        .collect();
+    let Some(&(n0, a0, b0)) = pairs.iter().find(|p| p.1 != 0.0 || p.2 != 0.0) else {
+        return Ok(None);
+    };
+    if explicit {
+        return Err(args.not_implemented(
+            "SCHEMA_TEMPS",
+            &format!(
+                "Rayleigh damping with an explicit scheme: the material {n0} has AMOR_ALPHA={a0}, AMOR_BETA={b0}; use NEWMARK or HHT, or remove them"
+            ),
+        ));
+    }
+    if let Some(&(n, a, b)) = pairs.iter().find(|p| (p.1, p.2) != (a0, b0)) {
+        return Err(args.not_implemented(
+            "CHAM_MATER",
+            &format!(
+                "Rayleigh damping with different coefficients on different materials ({n0}: AMOR_ALPHA={a0}, AMOR_BETA={b0}; {n}: AMOR_ALPHA={a}, AMOR_BETA={b}): one pair for the whole model"
+            ),
+        ));
+    }
+    let kind = if args.text("AMOR_RAYL_RIGI") == Some("ELASTIQUE") {
+        crate::law::TangentKind::Elastic
+    } else {
+        crate::law::TangentKind::Consistent
+    };
+    Ok(Some(nonlinear::damping::Rayleigh {
+        stiffness: a0,
+        mass: b0,
+        kind,
+    }))
+}
+
 /// The scheme of SCHEMA_TEMPS: implicit (Newmark family) or explicit.
 enum SchemeChoice {
     Implicit(Scheme),
@@ -1354,6 +1405,24 @@ pub(crate) fn run(
             ),
         ));
     }
+    let damping = if inertia {
+        rayleigh_of(args, &md, matches!(choice, SchemeChoice::Explicit(_)))?
+    } else {
+        // STAT_NON_LINE has no velocity: code_aster ignores the coefficients.
+        None
+    };
+    if let Some(d) = damping {
+        notes.push(format!(
+            "Rayleigh damping C = {:e} K + {:e} M (ELAS AMOR_ALPHA, AMOR_BETA; K {})",
+            d.stiffness,
+            d.mass,
+            if d.kind == crate::law::TangentKind::Elastic {
+                "elastic, AMOR_RAYL_RIGI='ELASTIQUE'"
+            } else {
+                "tangent at the start of each step, AMOR_RAYL_RIGI='TANGENTE'"
+            }
+        ));
+    }
     let scheme = match choice {
         SchemeChoice::Implicit(s) => s,
         SchemeChoice::Explicit(es) => {
@@ -1581,6 +1650,7 @@ pub(crate) fn run(
         state.points = p;
     }
     let mut engine = Engine::new(asm, scheme, newton, conv, state);
+    engine.damping = damping;
     engine.lu.check = super::blocks::singularity_check(args);
     // PESANTEUR and FORCE_NODALE: dead loads, scaled by their FONC_MULT.
     set_loads(

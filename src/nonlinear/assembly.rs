@@ -488,17 +488,19 @@ impl Assembler {
         self.mass_full.mul_vec(x, y);
     }
 
-    /// K(u_n)·du added into `out` (full): the tangent of each element
-    /// that `du` touches, evaluated at the start of the step (zero
-    /// increment from `states_n`), applied to its part of `du`. The
-    /// prediction of a step whose imposed values move uses it to carry
-    /// their increment into the free dofs.
+    /// K(u_n)·du added into `out` (full): the tangent (`kind`: consistent
+    /// or elastic) of each element that `du` touches, evaluated at the
+    /// start of the step (zero increment from `states_n`), applied to its
+    /// part of `du`. The prediction of a step whose imposed values move
+    /// uses it to carry their increment into the free dofs, Rayleigh
+    /// damping to apply its stiffness part to the velocity.
     pub fn tangent_action(
         &mut self,
         u_n: &[f64],
         states_n: &[PointState],
         dt: f64,
         du: &[f64],
+        kind: TangentKind,
         out: &mut [f64],
     ) -> Result<(), CellFailure> {
         let laws = &self.laws;
@@ -508,20 +510,12 @@ impl Assembler {
             }
             let mut chunk: Vec<PointState> =
                 states_n[e.state_offset..e.state_offset + e.npg].to_vec();
-            integrate_one(
-                e,
-                laws,
-                (u_n, u_n),
-                states_n,
-                dt,
-                TangentKind::Consistent,
-                buf,
-                &mut chunk,
-            )
-            .map_err(|failure| CellFailure {
-                cell: e.cell,
-                failure,
-            })?;
+            integrate_one(e, laws, (u_n, u_n), states_n, dt, kind, buf, &mut chunk).map_err(
+                |failure| CellFailure {
+                    cell: e.cell,
+                    failure,
+                },
+            )?;
             let n = e.full.len();
             for (a, &fa) in e.full.iter().enumerate() {
                 let row = &buf.stiffness[a * n..(a + 1) * n];

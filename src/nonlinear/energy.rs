@@ -26,8 +26,11 @@
 //!   it is part of TRAV_LIAI. (With the end-of-step force alone, the first
 //!   sliding step alone overcounts by ½ μ N V Δt: 0.8 % in
 //!   tests/verification/energy_friction.comm.)
-//! - `DISS_SCH` = TRAV_EXT − (ENER_CIN − ENER_CIN₀) − ENER_TOT − TRAV_LIAI:
-//!   the balance error, energy the time scheme dissipated (or created).
+//! - `TRAV_AMOR` = ∫ C_R v·du: the work of Rayleigh damping (C_R = AMOR_ALPHA
+//!   K + AMOR_BETA M, nonlinear::damping), the energy it dissipated;
+//! - `DISS_SCH` = TRAV_EXT − (ENER_CIN − ENER_CIN₀) − ENER_TOT − TRAV_AMOR −
+//!   TRAV_LIAI: the balance error, energy the time scheme dissipated (or
+//!   created).
 //!
 //! For the trapezoidal rule (Newmark β = 1/4, γ = 1/2) on a linear problem
 //! the identity is exact, so DISS_SCH measures only the solver tolerances;
@@ -63,10 +66,14 @@ pub struct EnergyBalance {
     pub external: f64,
     pub contact: f64,
     pub friction: f64,
+    /// TRAV_AMOR.
+    pub damping: f64,
     u: Vec<f64>,
     fint: Vec<f64>,
     fext: Vec<f64>,
     cforce: Vec<f64>,
+    /// The damping force of the committed state.
+    dforce: Vec<f64>,
     work: Vec<f64>,
     /// Friction force on the slave node of each (zone, slave) link at the
     /// end of the last step.
@@ -87,10 +94,12 @@ impl EnergyBalance {
             external: 0.0,
             contact: 0.0,
             friction: 0.0,
+            damping: 0.0,
             u: engine.committed.motion.u.clone(),
             fint: engine.committed.fint.clone(),
             fext: vec![0.0; n],
             cforce: vec![0.0; n],
+            dforce: engine.damping_force().to_vec(),
             work: vec![0.0; n],
             friction_prev: HashMap::new(),
             rows: Vec::new(),
@@ -109,16 +118,17 @@ impl EnergyBalance {
         0.5 * v.iter().zip(&self.work).map(|(a, b)| a * b).sum::<f64>()
     }
 
-    /// F_ext + λ of the committed state into `self.fext`, λ = M a + F_int
-    /// + C − F_ext at the imposed dofs (0 elsewhere).
+    /// F_ext + λ of the committed state into `self.fext`, λ = M a + C_R v
+    /// + F_int + C − F_ext at the imposed dofs (0 elsewhere).
     fn external_forces(&mut self, engine: &Engine, with_contact: bool) {
         let st = &engine.committed;
         engine.asm.mass_mul(&st.motion.a, &mut self.work);
         self.fext.copy_from_slice(&engine.fext);
         let c = engine.contact_force();
+        let d = engine.damping_force();
         for &(f, _) in &engine.asm.numbering.imposed {
             let cf = if with_contact { c[f] } else { 0.0 };
-            self.fext[f] = self.work[f] + st.fint[f] + cf;
+            self.fext[f] = self.work[f] + d[f] + st.fint[f] + cf;
         }
     }
 
@@ -131,19 +141,22 @@ impl EnergyBalance {
         let old_fext = std::mem::take(&mut self.fext);
         self.fext = vec![0.0; old_fext.len()];
         self.external_forces(engine, has_term);
-        let (mut wi, mut we, mut wc) = (0.0, 0.0, 0.0);
+        let d = engine.damping_force();
+        let (mut wi, mut we, mut wc, mut wd) = (0.0, 0.0, 0.0, 0.0);
         for f in 0..u.len() {
             let du = u[f] - self.u[f];
             if du == 0.0 {
                 continue;
             }
             wi += 0.5 * du * (self.fint[f] + st.fint[f]);
+            wd += 0.5 * du * (self.dforce[f] + d[f]);
             we += 0.5 * du * (old_fext[f] + self.fext[f]);
             if has_term {
                 wc += 0.5 * du * (self.cforce[f] + c[f]);
             }
         }
         self.internal += wi;
+        self.damping += wd;
         self.external += we;
         self.contact += wc;
         if let Some(dc) = contact {
@@ -166,6 +179,7 @@ impl EnergyBalance {
         }
         self.u.copy_from_slice(u);
         self.fint.copy_from_slice(&st.fint);
+        self.dforce.copy_from_slice(d);
         if has_term {
             self.cforce.copy_from_slice(c);
         }
@@ -174,12 +188,16 @@ impl EnergyBalance {
 
     /// TRAV_EXT, ENER_CIN, ENER_TOT, TRAV_AMOR, TRAV_LIAI, DISS_FROT, DISS_SCH.
     pub fn values(&self) -> [f64; 7] {
-        let error = self.external - (self.kinetic - self.kinetic0) - self.internal - self.contact;
+        let error = self.external
+            - (self.kinetic - self.kinetic0)
+            - self.internal
+            - self.damping
+            - self.contact;
         [
             self.external,
             self.kinetic,
             self.internal,
-            0.0,
+            self.damping,
             self.contact,
             self.friction,
             error,
@@ -190,8 +208,14 @@ impl EnergyBalance {
     pub fn archive(&mut self, nume_ordre: usize, t: f64) -> String {
         let v = self.values();
         self.rows.push((nume_ordre, t, v));
+        // TRAV_AMOR only where Rayleigh damping exists.
+        let amor = if v[3] != 0.0 {
+            format!("  TRAV_AMOR {:.6e}", v[3])
+        } else {
+            String::new()
+        };
         format!(
-            "  energy at t = {t:e}: ENER_CIN {:.6e}  ENER_TOT {:.6e}  TRAV_EXT {:.6e}  TRAV_LIAI {:.6e}  DISS_FROT {:.6e}  DISS_SCH {:.6e} ({:.3e} of ENER_CIN0)",
+            "  energy at t = {t:e}: ENER_CIN {:.6e}  ENER_TOT {:.6e}  TRAV_EXT {:.6e}{amor}  TRAV_LIAI {:.6e}  DISS_FROT {:.6e}  DISS_SCH {:.6e} ({:.3e} of ENER_CIN0)",
             v[1],
             v[2],
             v[0],

@@ -15,6 +15,7 @@ pub mod contact;
 pub mod contact_active;
 pub mod continuous;
 pub mod cycling;
+pub mod damping;
 pub mod dofs;
 pub mod dyna;
 pub mod energy;

@@ -10,6 +10,7 @@
 //! full HHT), on the free equations.
 
 use super::assembly::{Assembler, CellFailure};
+use super::damping::Rayleigh;
 use super::dofs::DofNumbering;
 use crate::element::{ElementFailure, PointState};
 use crate::law::TangentKind;
@@ -278,6 +279,11 @@ pub struct Engine {
     pub trial: State,
     /// Converged steps so far (REAC_INCR, the swap rule).
     pub steps_done: usize,
+    /// Rayleigh damping (DYNA_NON_LINE with AMOR_ALPHA/AMOR_BETA).
+    pub damping: Option<Rayleigh>,
+    /// The damping force C·v of the last evaluation (full; zero without
+    /// damping).
+    dforce: Vec<f64>,
     resid: Vec<f64>,
     /// Contact forces of the last iteration (full).
     cforce: Vec<f64>,
@@ -315,6 +321,8 @@ impl Engine {
             trial: initial.clone(),
             committed: initial,
             steps_done: 0,
+            damping: None,
+            dforce: vec![0.0; nfull],
             resid: vec![0.0; nfull],
             cforce: vec![0.0; nfull],
             excluded: vec![0.0; nfull],
@@ -352,12 +360,24 @@ impl Engine {
                 None,
             )
             .map_err(StepFailure::Element)?;
+        // C v₀: in the initial equilibrium and the first step's damping work.
+        if let Some(d) = self.damping {
+            d.force(
+                &mut self.asm,
+                &c.motion.u,
+                &c.points,
+                0.0,
+                &c.motion.v,
+                &mut self.dforce,
+            )
+            .map_err(StepFailure::Element)?;
+        }
         if !solve_acceleration {
             return Ok(None);
         }
         let nb = &self.asm.numbering;
         for (e, &f) in nb.free.iter().enumerate() {
-            self.rhs[e] = self.fext[f] - c.fint[f];
+            self.rhs[e] = self.fext[f] - c.fint[f] - self.dforce[f];
         }
         self.matrix.values.copy_from_slice(&self.asm.mass_free);
         c.motion.a.iter_mut().for_each(|v| *v = 0.0);
@@ -390,17 +410,21 @@ impl Engine {
     /// (tests/studies/hexs8_compression.comm stalled so with HEXS8).
     fn extend_imposed_increment(&mut self, dt: f64) -> Result<(), StepFailure> {
         let s = self.scheme;
-        let cm = s.mass_coefficient(dt);
+        // The iteration matrix (1 + c_C α) K + (c_M + c_C β) M of Rayleigh
+        // damping C = α K + β M (c_C its coefficient), K + c_M M without.
+        let (ck, cm) = self.matrix_coefficients(dt);
         self.asm.mass_mul(&self.du, &mut self.work);
         for v in self.work.iter_mut() {
             *v *= cm;
         }
+        let scaled: Vec<f64> = self.du.iter().map(|x| x * ck).collect();
         self.asm
             .tangent_action(
                 &self.committed.motion.u,
                 &self.committed.points,
                 dt,
-                &self.du,
+                &scaled,
+                TangentKind::Consistent,
                 &mut self.work,
             )
             .map_err(StepFailure::Element)?;
@@ -420,7 +444,7 @@ impl Engine {
             self.matrix.symmetrize();
         }
         for (v, m) in self.matrix.values.iter_mut().zip(&self.asm.mass_free) {
-            *v += cm * m;
+            *v = ck * *v + cm * m;
         }
         // the iteration matrix must be rebuilt at the first iterate
         self.matrix_dt = None;
@@ -545,16 +569,34 @@ impl Engine {
                 if self.newton.symmetrize {
                     self.matrix.symmetrize();
                 }
-                let cm = s.mass_coefficient(dt);
-                for (v, m) in self.matrix.values.iter_mut().zip(&self.asm.mass_free) {
-                    *v += cm * m;
+                let (ck, cm) = self.matrix_coefficients(dt);
+                if ck == 1.0 {
+                    for (v, m) in self.matrix.values.iter_mut().zip(&self.asm.mass_free) {
+                        *v += cm * m;
+                    }
+                } else {
+                    for (v, m) in self.matrix.values.iter_mut().zip(&self.asm.mass_free) {
+                        *v = ck * *v + cm * m;
+                    }
                 }
+            }
+            if let Some(d) = self.damping {
+                d.force(
+                    &mut self.asm,
+                    &self.committed.motion.u,
+                    &self.committed.points,
+                    dt,
+                    &self.trial.motion.v,
+                    &mut self.dforce,
+                )
+                .map_err(StepFailure::Element)?;
             }
             self.asm.mass_mul(&self.trial.motion.a, &mut self.work);
             let nb = &self.asm.numbering;
             for f in 0..self.resid.len() {
                 self.resid[f] = if nb.is_active(f) {
-                    wi * self.work[f] + self.trial.fint[f] - self.fext[f] + self.prev_term[f]
+                    wi * (self.work[f] + self.dforce[f]) + self.trial.fint[f] - self.fext[f]
+                        + self.prev_term[f]
                 } else {
                     0.0
                 };
@@ -752,6 +794,27 @@ impl Engine {
     pub fn commit(&mut self) {
         std::mem::swap(&mut self.committed, &mut self.trial);
         self.steps_done += 1;
+    }
+
+    /// The factors of K and M in the iteration matrix: (1, c_M) without
+    /// damping, (1 + c_C α, c_M + c_C β) with Rayleigh damping α K + β M
+    /// (c_C = γ/(β Δt), divided by 1 + α for full HHT, as c_M).
+    fn matrix_coefficients(&self, dt: f64) -> (f64, f64) {
+        let s = self.scheme;
+        let cm = s.mass_coefficient(dt);
+        match self.damping {
+            Some(d) if s.inertia => {
+                let cc = s.damping_coefficient(dt);
+                (1.0 + cc * d.stiffness, cm + cc * d.mass)
+            }
+            _ => (1.0, cm),
+        }
+    }
+
+    /// The damping force C·v of the last evaluation (full; zero without
+    /// Rayleigh damping).
+    pub fn damping_force(&self) -> &[f64] {
+        &self.dforce
     }
 
     /// The contact forces of the last evaluation (full, on the F_int side;

@@ -1,0 +1,59 @@
+//! Rayleigh damping of the implicit schemes: C = AMOR_ALPHA·K + AMOR_BETA·M
+//! (DEFI_MATERIAU/ELAS, semantics.md §4.1), switched on in DYNA_NON_LINE by
+//! the presence of the coefficients.
+//!
+//! As in code_aster (ndnpas), the damping force C·v enters the equilibrium
+//! beside the inertia, with the same weight: with full HHT both are divided
+//! by 1 + α (coeamo = γ/(β Δt)/(1+α), coemas = 1/(β Δt²)/(1+α)), so the
+//! damping is not part of the α-averaged forces.
+//!
+//! Which K: AMOR_RAYL_RIGI='TANGENTE' (code_aster's default) the tangent,
+//! 'ELASTIQUE' the elastic stiffness. aster evaluates it at the start of the
+//! step (the committed state), applied element by element to the current
+//! velocity, so C is fixed during a step's Newton iterations and the
+//! converged answer does not depend on the iterates; for an elastic body
+//! the two choices and code_aster's coincide. The iteration matrix takes
+//! the current tangent for K (only the convergence rate depends on it).
+//!
+//! Limits (each refused where the study is read, not ignored): one pair
+//! (AMOR_ALPHA, AMOR_BETA) for the whole model (a per-material C needs the
+//! element mass matrices, which the assembler does not keep), implicit
+//! schemes only (the explicit step has no stiffness to apply).
+
+use super::assembly::{Assembler, CellFailure};
+use crate::element::PointState;
+use crate::law::TangentKind;
+
+/// The damping coefficients of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rayleigh {
+    /// AMOR_ALPHA: the factor of the stiffness.
+    pub stiffness: f64,
+    /// AMOR_BETA: the factor of the mass.
+    pub mass: f64,
+    /// The stiffness of C: [`TangentKind::Consistent`] ('TANGENTE') or
+    /// [`TangentKind::Elastic`] ('ELASTIQUE').
+    pub kind: TangentKind,
+}
+
+impl Rayleigh {
+    /// C·v into `out` (full, overwritten), K evaluated at the state
+    /// (`u_n`, `states_n`) over a step `dt`.
+    pub fn force(
+        &self,
+        asm: &mut Assembler,
+        u_n: &[f64],
+        states_n: &[PointState],
+        dt: f64,
+        v: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), CellFailure> {
+        asm.mass_mul(v, out);
+        out.iter_mut().for_each(|x| *x *= self.mass);
+        if self.stiffness != 0.0 {
+            let scaled: Vec<f64> = v.iter().map(|x| x * self.stiffness).collect();
+            asm.tangent_action(u_n, states_n, dt, &scaled, self.kind, out)?;
+        }
+        Ok(())
+    }
+}
