@@ -2337,3 +2337,91 @@ fn active_set_contact_is_the_limit_of_the_penalty() {
     // on a displacement that moves.
     assert!(depl.iter().any(|r| num(r, "DX").abs() > 1e-9));
 }
+
+/// The single-HEXA8 spring of elas_initial_depl.comm: VOL, the bar
+/// [0, 1] x [0, 1] x [0, 10]; NBAS and NHAUT its bottom and top nodes,
+/// P0 the top node at x = y = 0.
+fn sdof_hexa8_mesh() -> Mesh {
+    let mut mesh = Mesh {
+        name: "SDOF3D".into(),
+        dim: 3,
+        ..Mesh::default()
+    };
+    for z in [0.0, 10.0] {
+        for (x, y) in [(0.0, 0.0), (0.0, 1.0), (1.0, 1.0), (1.0, 0.0)] {
+            mesh.coords.push([x, y, z]);
+        }
+    }
+    mesh.cells.push(Cell {
+        kind: CellType::Hexa8,
+        nodes: (0..8).collect(),
+    });
+    mesh.cell_groups.insert("VOL".into(), vec![0]);
+    mesh.node_groups.insert("NBAS".into(), vec![0, 1, 2, 3]);
+    mesh.node_groups.insert("NHAUT".into(), vec![4, 5, 6, 7]);
+    mesh.node_groups.insert("P0".into(), vec![4]);
+    mesh
+}
+
+/// The single-QUAD4 spring of elas_initial_depl.comm (D_PLAN and AXIS):
+/// SURF, [1, 2] x [0, 10]; NBAS, NHAUT, and P0 the top node at x = 1.
+fn sdof_quad4_mesh() -> Mesh {
+    let mut mesh = Mesh {
+        name: "SDOF2D".into(),
+        dim: 2,
+        ..Mesh::default()
+    };
+    for p in [
+        [1.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [2.0, 10.0, 0.0],
+        [1.0, 10.0, 0.0],
+    ] {
+        mesh.coords.push(p);
+    }
+    mesh.cells.push(Cell {
+        kind: CellType::Quad4,
+        nodes: vec![0, 1, 2, 3],
+    });
+    mesh.cell_groups.insert("SURF".into(), vec![0]);
+    mesh.node_groups.insert("NBAS".into(), vec![0, 1]);
+    mesh.node_groups.insert("NHAUT".into(), vec![2, 3]);
+    mesh.node_groups.insert("P0".into(), vec![3]);
+    mesh
+}
+
+/// The committed SDOF meshes are the ones built above (regenerate with
+/// `UPDATE_MESHES=1 cargo test --test verification sdof_meshes`).
+#[test]
+fn sdof_meshes_are_committed() {
+    for (name, mesh) in [
+        ("sdof_hexa8", sdof_hexa8_mesh()),
+        ("sdof_quad4", sdof_quad4_mesh()),
+    ] {
+        let file = dir().join(format!("{name}.mmed"));
+        if std::env::var_os("UPDATE_MESHES").is_some() {
+            aster::medio::write_mesh(&file, &mesh).unwrap();
+        }
+        let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}_regen.mmed"));
+        aster::medio::write_mesh(&tmp, &mesh).unwrap();
+        let committed = aster::medio::read_mesh(&file, None).unwrap();
+        assert_eq!(committed, aster::medio::read_mesh(&tmp, None).unwrap());
+    }
+}
+
+/// RELATION='ELAS' with DEFORMATION='PETIT' and an initial state without
+/// stresses is code_aster's COMP_ELAS: an ETAT_INIT DEPL is stressed. The
+/// study releases an exact SDOF (k = EA/L = 100, m = rho A L/3 = 1e-3)
+/// from U0 = 0.1 in NEWMARK (3D, D_PLAN, AXIS), DIFF_CENT (consistent
+/// mass) and STAT_NON_LINE, against the closed forms; VMIS_ISOT_LINE and
+/// ELAS/PETIT_REAC stay incremental (U0 stress-free), and a continuation
+/// from EVOL_NOLI keeps the stress it is given (see the .comm).
+#[test]
+fn elas_initial_displacement_is_stressed() {
+    let resu = run_study("elas_initial_depl");
+    let oks = resu
+        .lines()
+        .filter(|l| l.trim_start().starts_with("OK ") && l.contains("ANALYTIQUE"))
+        .count();
+    assert_eq!(oks, 28, "{resu}");
+}

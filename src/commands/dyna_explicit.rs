@@ -55,7 +55,7 @@ pub(crate) fn exec(
         loads,
         load_names,
         load_mults,
-        asm,
+        mut asm,
         mut notes,
         model_name,
         mat_name,
@@ -214,6 +214,7 @@ pub(crate) fn exec(
 
     let has_acce = init.a.is_some();
     let mut state = nonlinear::initial_state(&asm, tl.instants[0], init.u, init.v, init.a);
+    super::dyna_non_line::start_comp_elas(args, init.stressed, &mut asm, &mut state, &mut notes)?;
     if let Some(pts) = init.points {
         state.points = pts;
     }

@@ -1201,6 +1201,43 @@ pub(crate) struct Init {
     pub points: Option<Vec<crate::element::PointState>>,
     /// The explicit contact history of an EVOL_NOLI step.
     pub contact: Option<crate::result::ContactHistory>,
+    /// The initial state carries stresses (EVOL_NOLI): RELATION='ELAS' is
+    /// then incremental, as in code_aster (`start_comp_elas`).
+    pub stressed: bool,
+}
+
+/// Starts the COMP_ELAS elements (ELAS/PETIT) of an initial state that
+/// carries no stresses at σ0 = D ε(u0) (`Assembler::start_comp_elas` says
+/// why), with a note naming how many; nothing when ETAT_INIT gives no
+/// DEPL or gives EVOL_NOLI, whose stresses ELAS then continues from.
+pub(crate) fn start_comp_elas(
+    args: &Args,
+    stressed: bool,
+    asm: &mut Assembler,
+    state: &mut nonlinear::State,
+    notes: &mut Vec<String>,
+) -> Result<(), Diagnostic> {
+    if stressed || state.motion.u.iter().all(|&x| x == 0.0) {
+        return Ok(());
+    }
+    let n = asm
+        .start_comp_elas(&state.motion.u, &mut state.points)
+        .map_err(|f| {
+            args.error(
+                "ETAT_INIT",
+                format!(
+                    "the stress of the initial displacement DEPL: cell {}: {}",
+                    f.cell + 1,
+                    f.failure
+                ),
+            )
+        })?;
+    if n > 0 {
+        notes.push(format!(
+            "RELATION='ELAS' with DEFORMATION='PETIT' and an initial state without stresses is of type COMP_ELAS (as code_aster): the stress is D eps of the total displacement, so the initial DEPL is stressed, sigma0 = D eps(u0) on {n} element(s)"
+        ));
+    }
+    Ok(())
 }
 
 pub(crate) fn etat_init(
@@ -1216,6 +1253,7 @@ pub(crate) fn etat_init(
         a: None,
         points: None,
         contact: None,
+        stressed: false,
     };
     let Some(o) = args.fact("ETAT_INIT") else {
         return Ok(init);
@@ -1224,6 +1262,7 @@ pub(crate) fn etat_init(
         return Err(o.not_implemented("NUME_DIDI", ""));
     }
     if let Some(name) = o.concept("EVOL_NOLI") {
+        init.stressed = true;
         let Some(ConceptData::Result(r)) = study.concepts.data(name) else {
             return Err(o.error("EVOL_NOLI", format!("the result {name} holds no data")));
         };
@@ -1366,7 +1405,7 @@ pub(crate) fn run(
         .is_some_and(|o| o.given("SIGM") || o.given("EVOL_NOLI"));
     nonlinear::behaviour::check_hexs8(&md.model, &occs, initial_state)
         .map_err(|e| prepare_error(args, PrepareError::Behaviour(e)))?;
-    let (asm, alarms) = nonlinear::discretize_for(
+    let (mut asm, alarms) = nonlinear::discretize_for(
         &md.mesh,
         &md.model,
         &md.matfield,
@@ -1646,6 +1685,7 @@ pub(crate) fn run(
     let t_start = tl.instants[0];
     let has_acce = init.a.is_some();
     let mut state = nonlinear::initial_state(&asm, t_start, init.u, init.v, init.a);
+    start_comp_elas(args, init.stressed, &mut asm, &mut state, &mut notes)?;
     if let Some(p) = init.points {
         state.points = p;
     }
@@ -1840,7 +1880,7 @@ pub(crate) fn result_to_fill(
 /// ENER_TOT is the work of the internal forces, code_aster's column) into
 /// two aster columns at each archived instant: ENER_ELAS, the elastic
 /// strain energy of the stress (POST_ELEM's ENER_ELAS over every element),
-/// and TRAV_PLAS = ENER_TOT − ENER_ELAS, the internal work not stored
+/// and TRAV_PLAS = ENER_TOT − (ENER_ELAS − ENER_ELAS₀), the internal work not stored
 /// elastically: the plastic work (dissipation and the energy stored by
 /// hardening), plus, in 3D_SI elements, the hourglass stabilisation's
 /// energy, and the trapezoidal rule's error in ENER_TOT. Where a cell's
@@ -1887,6 +1927,29 @@ fn split_internal_energy(study: &mut Study, args: &Args, name: &str, evol: &mut 
     ) else {
         return;
     };
+    // ENER_TOT is cumulated from the initial state, whose stresses may
+    // already hold elastic energy (a continuation, or an ELAS initial DEPL
+    // of type COMP_ELAS): TRAV_PLAS is the internal work not stored since
+    // then, ENER_TOT - (ENER_ELAS - ENER_ELAS of the initial state). A
+    // fresh run's table starts at its initial state, NUME_ORDRE 0; a
+    // continuation's starts at its first new step, right after the stored
+    // step it continues from.
+    let first = table.rows.iter().find_map(|row| match &row[nume] {
+        Some(Cell::Int(n)) => Some(*n as usize),
+        _ => None,
+    });
+    let initial = first.and_then(|f| {
+        if f == 0 {
+            values.get(&0).copied()
+        } else {
+            values
+                .iter()
+                .filter(|(&n, _)| n < f)
+                .max_by_key(|(&n, _)| n)
+                .map(|(_, &w)| w)
+        }
+    });
+    let w0 = initial.unwrap_or(0.0);
     let mut last = None;
     for row in table.rows.iter_mut() {
         let n = match &row[nume] {
@@ -1898,12 +1961,18 @@ fn split_internal_energy(study: &mut Study, args: &Args, name: &str, evol: &mut 
             continue;
         };
         row[elas] = Some(Cell::Real(w));
-        row[plas] = Some(Cell::Real(total - w));
-        last = Some((n, w, total - w));
+        row[plas] = Some(Cell::Real(total - (w - w0)));
+        last = Some((n, w, total - (w - w0), w0));
     }
-    if let Some((n, w, p)) = last {
-        study.log(format!(
-            "  energy balance split at NUME_ORDRE {n}: ENER_ELAS {w:e}  TRAV_PLAS {p:e} (ENER_TOT - ENER_ELAS)"
-        ));
+    if let Some((n, w, p, w0)) = last {
+        study.log(if w0 == 0.0 {
+            format!(
+                "  energy balance split at NUME_ORDRE {n}: ENER_ELAS {w:e}  TRAV_PLAS {p:e} (ENER_TOT - ENER_ELAS)"
+            )
+        } else {
+            format!(
+                "  energy balance split at NUME_ORDRE {n}: ENER_ELAS {w:e}  TRAV_PLAS {p:e} (ENER_TOT - (ENER_ELAS - {w0:e}, the elastic energy of the initial state))"
+            )
+        });
     }
 }

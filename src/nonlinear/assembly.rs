@@ -247,6 +247,64 @@ impl Assembler {
         out
     }
 
+    /// Starts the Gauss points of the COMP_ELAS elements (RELATION='ELAS'
+    /// with DEFORMATION='PETIT') at the stress of the displacement `u0`,
+    /// σ0 = D ε(u0), leaving every other element's `states` as they are;
+    /// returns how many elements were started so.
+    ///
+    /// code_aster's ELAS is of type COMP_ELAS unless DEFORMATION is
+    /// PETIT_REAC or the initial state carries stresses (ETAT_INIT SIGM or
+    /// EVOL_NOLI) [comp_meca_incr.F90, nmdata.F90]: its elements then
+    /// integrate the total displacement u_n + Δu, so an initial
+    /// ETAT_INIT DEPL is stressed. aster's ELAS is written incrementally
+    /// (σ_n + D Δε, law/elas.rs); started at σ0 = D ε(u0) it gives the same
+    /// stress D ε(u0 + Σ Δu) at every later step, to round-off, because D
+    /// is constant and PETIT's B is the reference one. This keeps one law,
+    /// one element path and one state format for both types (a total path
+    /// would be threaded through every element family, the implicit and
+    /// explicit loops and the restarts), and the stored stress of step 0 is
+    /// then the one its internal forces come from. The incremental laws
+    /// (VMIS_*) and ELAS/PETIT_REAC are incremental in code_aster too: u0
+    /// stays stress-free for them. MECA_HEXS8 is left out: code_aster
+    /// refuses COMP_ELAS there (checked before, `behaviour::check_hexs8`).
+    pub fn start_comp_elas(
+        &mut self,
+        u0: &[f64],
+        states: &mut [PointState],
+    ) -> Result<usize, CellFailure> {
+        let mut started = 0;
+        for (e, buf) in self.elements.iter().zip(self.buffers.iter_mut()) {
+            if !matches!(self.laws[e.law], CellLaw::Elas(_))
+                || e.kin != Kinematics::Petit
+                || e.spec.is_hexs8()
+            {
+                continue;
+            }
+            let virgin = initial_states(&e.spec, self.laws[e.law].law_ref());
+            let zeros = vec![0.0; e.full.len()];
+            let lu: Vec<f64> = e.full.iter().map(|&f| u0[f]).collect();
+            internal_forces_to(
+                &e.spec,
+                e.kin,
+                &e.coords,
+                &zeros,
+                &lu,
+                &virgin,
+                self.laws[e.law].law_ref(),
+                0.0,
+                TangentKind::None,
+                buf,
+                &mut states[e.state_offset..e.state_offset + e.npg],
+            )
+            .map_err(|failure| CellFailure {
+                cell: e.cell,
+                failure,
+            })?;
+            started += 1;
+        }
+        Ok(started)
+    }
+
     /// Internal variables count of each mesh cell's law (0 outside).
     pub fn nvari_of_cell(&self, ncells: usize) -> Vec<usize> {
         let mut out = vec![0; ncells];
