@@ -688,3 +688,40 @@ fn imposed_displacement_ramp_drives_the_rod() {
     assert_eq!(vite.len(), 2);
     assert!(vite.iter().all(|v| (v + 1000.0).abs() < 1e-6), "{vite:?}");
 }
+
+/// DEFI_LIST_INST METHODE='AUTO' on PENTA15 cells made by LINE_QUAD
+/// (tests/verification/explicit_auto_penta15.comm): each span of the list
+/// is crossed in ceil(span / bound) steps of the critical step the .mess
+/// prints (3.552168e-8 s: 2816 steps to 1e-4, 2816 more to 2e-4, 1127 to
+/// 2.4e-4), never in fewer (the run stepped at 4.537e-8 s, 2204 steps to
+/// 1e-4, and blew up at 3.9e-5 s); the quasi-static stretch then reaches
+/// E U / L = 200 to 1 % (measured 200.06, every check in the file).
+#[test]
+fn auto_steps_stay_at_the_printed_bound_on_line_quad_pentas() {
+    let run = common::run_study(
+        "tests/verification/explicit_auto_penta15.comm",
+        "explicit_auto_penta15",
+    );
+    common::assert_all_ok(&run, "explicit_auto_penta15.resu");
+    let mess = run.file("explicit_auto_penta15.mess");
+    let bound: f64 = mess
+        .lines()
+        .find_map(|l| l.split_once("DIFF_CENT: critical step "))
+        .and_then(|(_, r)| r.split_whitespace().next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("no critical step in\n{mess}"));
+    assert!((bound - 3.552168e-8).abs() < 1e-13, "bound {bound:e}");
+    // The cumulated step count printed at each archived list instant.
+    let counts: Vec<usize> = mess
+        .lines()
+        .filter_map(|l| l.split_once(" after ")?.1.split_once(" steps"))
+        .filter_map(|(n, _)| n.trim().parse().ok())
+        .collect();
+    let instants = [0.0, 1e-4, 2e-4, 2.4e-4];
+    let mut expected = vec![0usize];
+    for w in instants.windows(2) {
+        let n = ((w[1] - w[0]) / bound).ceil() as usize;
+        expected.push(expected.last().unwrap() + n);
+    }
+    assert_eq!(counts, expected, "steps to each instant\n{mess}");
+}

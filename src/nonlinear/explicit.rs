@@ -52,8 +52,8 @@ use crate::law::TangentKind;
 use crate::result::{ContactHistory, EvolNoli};
 use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
 use crate::time::explicit::{
-    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_lumped, max_eigenvalue_warm,
-    scaled_lumped, ExplicitScheme,
+    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_warm, scaled_lumped, top_eigenpair,
+    ExplicitScheme,
 };
 
 /// What the explicit loop needs of a contact treatment: the discrete
@@ -323,11 +323,19 @@ impl Explicit {
                 Ok(match m {
                     // The first estimate (the CFL check of the list) is the
                     // exact decomposition; the run's re-estimates start
-                    // from its eigenvectors.
+                    // from its eigenvectors. The power iteration's upper
+                    // estimate is at or above the top eigenvalue when its
+                    // vector is the top mode's; below it, the vector is a
+                    // lower mode's and would stay one (`top_eigenpair`):
+                    // the top eigenvector replaces it.
                     ElemMass::Lumped(l) if first => {
                         let a = scaled_lumped(&k, l);
-                        let w = max_eigenvalue_lumped(&k, l);
-                        max_eigenvalue_warm(&a, x, 1e-3).max(w)
+                        let (w, top) = top_eigenpair(&a);
+                        let warm = max_eigenvalue_warm(&a, x, 1e-3);
+                        if warm < w {
+                            *x = top;
+                        }
+                        warm.max(w)
                     }
                     ElemMass::Lumped(l) => max_eigenvalue_warm(&scaled_lumped(&k, l), x, 1e-3),
                     ElemMass::Consistent(mc) => {
