@@ -403,12 +403,98 @@ fn bench_fails_when_the_study_fails() {
     std::fs::write(&comm, "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED'\nFIN()\n").unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_aster"))
         .args(["bench", comm.to_str().unwrap(), "--runs", "2"])
+        .env("TMPDIR", &tmp)
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{stdout}");
     assert!(stdout.contains("run 1 failed"), "{stdout}");
     assert!(!stdout.contains("wall time: median"), "{stdout}");
+}
+
+/// The .mess that a failed run's last line names is still there when
+/// `aster bench` has exited (it used to delete the directory): its path
+/// is read from the output, the file holds the error, and the output says
+/// the directory is kept. The run fails at run time (unit 20 is mapped to
+/// no mesh), after the .mess was started.
+#[test]
+fn bench_keeps_the_mess_of_a_failed_run_where_it_says() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench_cli_kept");
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = tmp.join("nomesh.comm");
+    std::fs::write(
+        &comm,
+        "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\nFIN()\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .args(["bench", comm.to_str().unwrap(), "--runs", "2"])
+        .env("TMPDIR", &tmp)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.contains("run 1 failed") && !stdout.contains("run  2"),
+        "{stdout}"
+    );
+    let named = stdout
+        .lines()
+        .find_map(|l| l.split("FAILED (messages in ").nth(1))
+        .and_then(|rest| rest.strip_suffix(')'))
+        .unwrap_or_else(|| panic!("no 'FAILED (messages in ...)' line in:\n{stdout}"));
+    let mess = std::fs::read_to_string(named)
+        .unwrap_or_else(|e| panic!("the .mess named, {named}, cannot be read after exit: {e}"));
+    assert!(mess.contains("LIRE_MAILLAGE"), "{mess}");
+    let dir = Path::new(named).parent().unwrap();
+    assert!(dir.starts_with(&tmp), "{named} is not under TMPDIR");
+    assert!(
+        stdout.contains(&format!(
+            "the .mess, .resu and result files of run 1 are kept in {}",
+            dir.display()
+        )),
+        "{stdout}"
+    );
+}
+
+/// `--json` into a directory that does not exist (or onto a directory) is
+/// a usage error before any run, like the other option errors; it used to
+/// be found after all the runs.
+#[test]
+fn bench_checks_the_json_path_before_running() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let study_dir = root.join("tests/verification");
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("bench_cli_json_path");
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp).unwrap();
+    for (target, expected) in [
+        (tmp.join("missing/x.json"), "the directory"),
+        (tmp.clone(), "is a directory"),
+    ] {
+        let t0 = std::time::Instant::now();
+        let out = Command::new(env!("CARGO_BIN_EXE_aster"))
+            .arg("bench")
+            .arg(study_dir.join("contact_landing.comm"))
+            .args(["--runs", "3", "--export"])
+            .arg(study_dir.join("contact_landing.export"))
+            .arg("--json")
+            .arg(&target)
+            .env("TMPDIR", &tmp)
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(2), "{stdout}");
+        assert!(stdout.starts_with("error: --json: "), "{stdout}");
+        assert!(stdout.contains(expected), "{stdout}");
+        assert!(!stdout.contains("run  1"), "a run started:\n{stdout}");
+        eprintln!(
+            "--json {}: refused in {:.3} s",
+            target.display(),
+            t0.elapsed().as_secs_f64()
+        );
+    }
+    assert!(!tmp.join("missing").exists());
 }
 
 /// A study that runs to its end but whose checks fail (here the landing
@@ -434,6 +520,7 @@ fn bench_measures_a_study_whose_checks_fail_and_says_so() {
         .arg(study_dir.join("contact_landing.export"))
         .arg("--json")
         .arg(&json_path)
+        .env("TMPDIR", &tmp)
         .output()
         .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -448,4 +535,12 @@ fn bench_measures_a_study_whose_checks_fail_and_says_so() {
     let j = Parser::parse(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
     assert_eq!(j.get("checks_failed"), &Json::Bool(true));
     assert_eq!(j.get("nook").num(), 1.0);
+    // The last run's .resu, with its NOOK line, is kept and named.
+    let kept = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("the .mess, .resu and result files of run 2 are kept in "))
+        .and_then(|l| l.strip_suffix("; remove it when done"))
+        .unwrap_or_else(|| panic!("no 'kept in' line in:\n{stdout}"));
+    let resu = std::fs::read_to_string(Path::new(kept).join("landing_nook.resu")).unwrap();
+    assert!(resu.contains("NOOK"), "{resu}");
 }

@@ -6,7 +6,8 @@
 //! Each run goes through [`driver::run_file`], exactly as `aster run`
 //! (same .export and `--unit` resolution), with every output file sent
 //! to a temporary directory so that benchmarking leaves the study's
-//! directory untouched.
+//! directory untouched (kept, and named, when a run fails or its checks
+//! do, so that its .mess can be read).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -55,6 +56,12 @@ pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
     if opts.runs == 0 {
         let _ = writeln!(out, "error: --runs must be at least 1");
         return EXIT_USAGE;
+    }
+    if let Some(path) = &opts.json {
+        if let Err(message) = json_target_ok(path) {
+            let _ = writeln!(out, "error: --json: {message}");
+            return EXIT_USAGE;
+        }
     }
     let files = match driver::export_files(&opts.run) {
         Ok(f) => f,
@@ -134,7 +141,7 @@ pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
         if code != EXIT_OK && !checks_only {
             let _ = out.write_all(&log);
             let _ = writeln!(out, "run {} failed (exit code {code})", i + 1);
-            let _ = std::fs::remove_dir_all(&tmp);
+            keep_outputs(&tmp, i + 1, out);
             return code;
         }
         if checks_only {
@@ -157,7 +164,10 @@ pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
             peak: peak_memory(),
         });
     }
-    let _ = std::fs::remove_dir_all(&tmp);
+    // The outputs are kept when checks failed (said after that line).
+    if nook_runs.is_empty() {
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
 
     let report = Report {
         study,
@@ -171,6 +181,9 @@ pub fn bench(opts: &BenchOptions, out: &mut dyn Write) -> i32 {
     if let Some(path) = &opts.json {
         if let Err(e) = std::fs::write(path, report.json()) {
             let _ = writeln!(out, "error: cannot write '{}': {e}", path.display());
+            if !nook_runs.is_empty() {
+                keep_outputs(&tmp, opts.runs, out);
+            }
             return EXIT_USAGE;
         }
         let _ = writeln!(out, "JSON report written to {}", path.display());
@@ -185,9 +198,49 @@ times above are measured, but its results do not pass its checks",
             if runs.len() == 1 { "" } else { "s" },
             runs.join(", ")
         );
+        keep_outputs(&tmp, opts.runs, out);
         return code;
     }
     EXIT_OK
+}
+
+/// Where `--json` will write: checked before the runs, so that a path
+/// that cannot be written is a usage error at once rather than after
+/// minutes of measurement. The file itself is written at the end.
+fn json_target_ok(path: &std::path::Path) -> Result<(), String> {
+    if path.is_dir() {
+        return Err(format!("'{}' is a directory, not a file", path.display()));
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    if !parent.is_dir() {
+        return Err(format!(
+            "cannot write '{}': the directory '{}' does not exist",
+            path.display(),
+            parent.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Keeps the temporary directory of the runs after a failure or failed
+/// checks, so that the .mess named by the run's last line (and the .resu
+/// with its NOOK lines) can be read, and says so; the runs share the
+/// directory, so it holds the last run's files. An empty one (the study
+/// did not start) is removed.
+fn keep_outputs(tmp: &std::path::Path, run: usize, out: &mut dyn Write) {
+    let holds_files = std::fs::read_dir(tmp).is_ok_and(|mut d| d.next().is_some());
+    if holds_files {
+        let _ = writeln!(
+            out,
+            "the .mess, .resu and result files of run {run} are kept in {}; remove it when done",
+            tmp.display()
+        );
+    } else {
+        let _ = std::fs::remove_dir_all(tmp);
+    }
 }
 
 /// The phase rows, per run. The element row is exclusive of the law
