@@ -385,14 +385,21 @@ fn plot(a: PlotArgs) -> i32 {
     };
     match draw_result(&data, &opts, &out) {
         Ok(r) => {
+            // A uniform field's bar range is padded around its value:
+            // the value is what to report.
+            let values = match r.uniform {
+                Some(v) => format!(
+                    "uniform value {v:e} (its range is below {:e} of it)",
+                    aster::plot::picture::UNIFORM_RTOL
+                ),
+                None => format!("values {:e} .. {:e}", r.range.0, r.range.1),
+            };
             println!(
-                "{}: {} {} at t = {:e}, values {:e} .. {:e}, {} polygons, displacement x {} ({:.2} s)",
+                "{}: {} {} at t = {:e}, {values}, {} polygons, displacement x {} ({:.2} s)",
                 out.display(),
                 r.field,
                 r.component,
                 r.time,
-                r.range.0,
-                r.range.1,
                 r.faces,
                 r.deform,
                 start.elapsed().as_secs_f64()

@@ -487,6 +487,105 @@ fn gauss_point_fields_are_drawn_as_their_mean_per_cell() {
     assert!(v[2].is_nan() && v[3].is_nan());
 }
 
+/// The row mesh translated rigidly by DX = A (1 + noise(x)), DY = 0, one
+/// instant: |DEPL| is A up to `noise`.
+const A: f64 = 3.99992152e-3;
+
+fn write_translation(path: &Path, noise: &dyn Fn(f64) -> f64) -> Mesh {
+    let mesh = row_mesh();
+    let depl: Vec<f64> = mesh
+        .coords
+        .iter()
+        .flat_map(|p| [A * (1.0 + noise(p[0])), 0.0])
+        .collect();
+    let nodal = vec![NodalField {
+        name: "RESU____DEPL".into(),
+        components: vec!["DX".into(), "DY".into()],
+        steps: vec![FieldStep {
+            numdt: 1,
+            time: 1e-5,
+            values: depl,
+        }],
+    }];
+    write_result_fields(path, &mesh, &nodal, &[]).unwrap();
+    mesh
+}
+
+/// The coloured pixels inside the drawing area (the colour bar is outside).
+fn mesh_colours(r: &aster::plot::Rendered, png: &Path) -> Vec<[u8; 3]> {
+    let (w, _, px) = read_png(png);
+    let (l, t, rr, b) = r.mesh_area;
+    let mut out = Vec::new();
+    for y in t..b {
+        for x in l..rr {
+            let p = px[(y as u32 * w + x as u32) as usize];
+            if coloured(p) {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
+/// A field whose range is round-off of its magnitude (q14: a rigid
+/// translation, |DEPL| = 3.99992152e-3 to 1e-15 relative) is drawn in one
+/// colour, the bar's single label giving the value; a narrow but real
+/// range (1e-6 relative) keeps the colour scale, its six labels distinct
+/// and each within a tenth of a step of the value it marks.
+#[test]
+fn a_uniform_field_is_one_colour_and_a_narrow_range_has_distinct_labels() {
+    let _turn = turn();
+    let rmed = tmp("uniform.rmed");
+    // Round-off: +-2 ulp alternating along x.
+    write_translation(&rmed, &|x| if (x as i64) % 2 == 0 { 4e-16 } else { -4e-16 });
+    let data = ResultData::read(&rmed, None).unwrap();
+    let png = tmp("uniform.png");
+    let r = draw_result(&data, &PictureOptions::default(), &png).unwrap();
+    assert_eq!(r.component, "|DX,DY|");
+    let v = r.uniform.expect("drawn as uniform");
+    assert!((v - A).abs() <= 1e-14 * A, "{v}");
+    assert_eq!(r.bar_labels, ["0.00399992152"]);
+    let colours = mesh_colours(&r, &png);
+    let mid = colour_at(0.5);
+    assert!(colours.len() > 10_000, "{} coloured pixels", colours.len());
+    assert!(
+        colours.iter().all(|&p| p == [mid.0, mid.1, mid.2]),
+        "{} pixels of {} are not the middle colour",
+        colours
+            .iter()
+            .filter(|&&p| p != [mid.0, mid.1, mid.2])
+            .count(),
+        colours.len()
+    );
+
+    // 1e-6 relative along x: a real gradient, drawn as one.
+    let rmed = tmp("narrow.rmed");
+    write_translation(&rmed, &|x| 1e-6 * x / 3.0);
+    let data = ResultData::read(&rmed, None).unwrap();
+    let png = tmp("narrow.png");
+    let r = draw_result(&data, &PictureOptions::default(), &png).unwrap();
+    assert!(r.uniform.is_none());
+    let (lo, hi) = r.range;
+    assert!((lo - A).abs() <= 1e-15 && (hi - A * (1.0 + 1e-6)).abs() <= 1e-15);
+    assert_eq!(r.bar_labels.len(), 6);
+    for (k, l) in r.bar_labels.iter().enumerate() {
+        assert!(k == 0 || r.bar_labels[k - 1] != *l, "{:?}", r.bar_labels);
+        let at = lo + (hi - lo) * k as f64 / 5.0;
+        let back: f64 = l.parse().unwrap();
+        assert!((back - at).abs() <= 0.1 * (hi - lo) / 5.0, "{l} for {at}");
+    }
+    let colours = mesh_colours(&r, &png);
+    let blue = colour_at(0.0);
+    let red = colour_at(1.0);
+    let near = |p: [u8; 3], c: plotters::style::RGBColor| {
+        (i32::from(p[0]) - i32::from(c.0)).abs()
+            + (i32::from(p[1]) - i32::from(c.1)).abs()
+            + (i32::from(p[2]) - i32::from(c.2)).abs()
+            <= 60
+    };
+    assert!(colours.iter().any(|&p| near(p, blue)) && colours.iter().any(|&p| near(p, red)));
+}
+
 fn aster(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_aster"))
         .args(args)

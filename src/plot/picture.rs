@@ -16,6 +16,15 @@ use super::data::{unit_of, Component, FieldChoice, ResultData};
 use super::geometry::{self, Face, Plane};
 use crate::sweep::plot::{ensure_font, tick_label, FONT};
 
+/// A field whose values differ by at most this fraction of their largest
+/// magnitude is drawn as uniform: a rigid translation's |DEPL| varies by
+/// ~1e-15 relative from round-off alone, which the colour scale would
+/// otherwise stretch into a patchwork. A billionth of a field's magnitude
+/// is far below what a colour can show, and far above f64 round-off.
+pub const UNIFORM_RTOL: f64 = 1e-9;
+/// Number of intervals of the colour bar (labels: one more).
+const BAR_STEPS: usize = 5;
+
 /// Pieces per side of each fan triangle when interpolating a nodal field.
 const SUBDIV: usize = 3;
 /// Colour of the initial shape.
@@ -68,6 +77,11 @@ pub struct Rendered {
     pub mesh_area: (i32, i32, i32, i32),
     /// Polygons painted (cells, or skin faces in 3D).
     pub faces: usize,
+    /// The value of a field drawn as uniform (its range is round-off of its
+    /// magnitude, see [`UNIFORM_RTOL`]): one colour, one label.
+    pub uniform: Option<f64>,
+    /// The labels of the colour bar, bottom to top.
+    pub bar_labels: Vec<String>,
 }
 
 impl Rendered {
@@ -101,6 +115,60 @@ pub fn colour_at(t: f64) -> RGBColor {
     let s = (t - t0) / (t1 - t0);
     let c = |i: usize| (a[i] + s * (b[i] - a[i])).round() as u8;
     RGBColor(c(0), c(1), c(2))
+}
+
+/// The labels of `steps + 1` evenly spaced values from `lo` to `hi`, with
+/// the fewest significant digits (3 at least) that tell each one from its
+/// neighbours: a narrow range around a large value (0.0040000 to
+/// 0.0040004) needs more than the 3 digits that would print "0.004" six
+/// times. A value that is round-off of zero (|v| below 1e-12 of the
+/// range's magnitude) is labelled 0.
+pub fn bar_labels(lo: f64, hi: f64, steps: usize) -> Vec<String> {
+    let magnitude = lo.abs().max(hi.abs());
+    let values: Vec<f64> = (0..=steps)
+        .map(|k| {
+            let v = lo + (hi - lo) * k as f64 / steps.max(1) as f64;
+            if v.abs() <= 1e-12 * magnitude {
+                0.0
+            } else {
+                v
+            }
+        })
+        .collect();
+    let mut labels = Vec::new();
+    for digits in 3..=17 {
+        labels = values.iter().map(|&v| significant(v, digits)).collect();
+        if labels.windows(2).all(|w| w[0] != w[1]) {
+            break;
+        }
+    }
+    labels
+}
+
+/// `x` with `digits` significant digits, trailing zeros dropped; fixed
+/// notation from 1e-3 to 1e4, else scientific. With 3 digits this is the
+/// sweep plots' tick label.
+pub fn significant(x: f64, digits: usize) -> String {
+    if digits <= 3 {
+        return tick_label(x, false);
+    }
+    if x == 0.0 || !x.is_finite() {
+        return if x == 0.0 { "0".into() } else { format!("{x}") };
+    }
+    let trim = |s: &str| {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s.to_string()
+        }
+    };
+    if x.abs() >= 1e4 || x.abs() < 1e-3 {
+        let s = format!("{x:.prec$e}", prec = digits - 1);
+        let (mantissa, exp) = s.split_once('e').unwrap_or((s.as_str(), "0"));
+        return format!("{}e{exp}", trim(mantissa));
+    }
+    let decimals = (digits as i32 - 1 - x.abs().log10().floor() as i32).max(0) as usize;
+    trim(&format!("{x:.decimals$}"))
 }
 
 /// The field's code_aster name without the 8-character result prefix
@@ -209,11 +277,17 @@ pub fn draw_result(
             field.component_name(comp)
         ));
     }
-    let (lo, hi) = if hi > lo {
-        (lo, hi)
-    } else {
-        let pad = 1e-3 * lo.abs().max(1e-12);
-        (lo - pad, hi + pad)
+    let uniform = (hi - lo <= UNIFORM_RTOL * lo.abs().max(hi.abs())).then_some(0.5 * (lo + hi));
+    let (lo, hi) = match uniform {
+        None => (lo, hi),
+        Some(m) => {
+            let pad = 1e-3 * m.abs().max(1e-12);
+            (m - pad, m + pad)
+        }
+    };
+    let labels = match uniform {
+        None => bar_labels(lo, hi, BAR_STEPS),
+        Some(m) => vec![significant(m, 10)],
     };
 
     // Placement: the union of both shapes, fitted with its aspect ratio.
@@ -264,12 +338,21 @@ pub fn draw_result(
         origin_px,
         mesh_area: area,
         faces: faces.len(),
+        uniform,
+        bar_labels: labels,
     };
     let px = |p: [f64; 3]| {
         let (x, y) = rendered.to_pixel(p);
         (x.round() as i32, y.round() as i32)
     };
-    let norm = |v: f64| (v - lo) / (hi - lo);
+    // A uniform field is the middle colour everywhere, whatever its noise.
+    let norm = |v: f64| {
+        if uniform.is_some() {
+            0.5
+        } else {
+            (v - lo) / (hi - lo)
+        }
+    };
 
     ensure_font()?;
     let err = |e: &dyn std::fmt::Display| format!("picture '{}': {e}", out.display());
@@ -371,21 +454,36 @@ pub fn draw_result(
     let (by0, by1) = (area.1 + 30, area.3 - 10);
     for y in by0..=by1 {
         let t = f64::from(by1 - y) / f64::from(by1 - by0);
-        let c = colour_at(t);
+        let c = colour_at(if uniform.is_some() { 0.5 } else { t });
         for x in bx0..=bx1 {
             root.draw_pixel((x, y), &c).map_err(|e| err(&e))?;
         }
     }
     root.draw(&Rectangle::new([(bx0, by0), (bx1, by1)], BLACK))
         .map_err(|e| err(&e))?;
-    for k in 0..=5 {
-        let v = lo + (hi - lo) * f64::from(k) / 5.0;
-        let y = by1 - (f64::from(by1 - by0) * f64::from(k) / 5.0).round() as i32;
+    let nl = rendered.bar_labels.len();
+    for (k, label) in rendered.bar_labels.iter().enumerate() {
+        // One label (uniform) sits at the middle, several span the bar.
+        let t = if nl == 1 {
+            0.5
+        } else {
+            k as f64 / (nl - 1) as f64
+        };
+        let y = by1 - (f64::from(by1 - by0) * t).round() as i32;
         root.draw(&PathElement::new(vec![(bx1, y), (bx1 + 5, y)], BLACK))
             .map_err(|e| err(&e))?;
         root.draw(&Text::new(
-            tick_label(v, false),
+            label.as_str(),
             (bx1 + 9, y - 8),
+            (FONT, 15).into_font().color(&BLACK),
+        ))
+        .map_err(|e| err(&e))?;
+    }
+    if uniform.is_some() {
+        let y = (by0 + by1) / 2;
+        root.draw(&Text::new(
+            "(uniform)",
+            (bx1 + 9, y + 10),
             (FONT, 15).into_font().color(&BLACK),
         ))
         .map_err(|e| err(&e))?;
@@ -495,6 +593,33 @@ mod tests {
         assert_eq!(colour_at(1.0), RGBColor(215, 25, 25));
         assert_eq!(colour_at(0.5), RGBColor(40, 190, 60));
         assert_eq!(colour_at(2.0), colour_at(1.0));
+    }
+
+    #[test]
+    fn bar_labels_have_the_digits_that_tell_them_apart() {
+        // A wide range keeps the 3-digit labels.
+        assert_eq!(
+            bar_labels(0.0, 1.5, 5),
+            ["0", "0.3", "0.6", "0.9", "1.2", "1.5"]
+        );
+        // q14: 0.004 to 0.004 (1 + 1e-6): six distinct labels, each within
+        // a tenth of a step of its value.
+        let (lo, hi) = (3.99992152e-3, 3.99992152e-3 * (1.0 + 1e-6));
+        let labels = bar_labels(lo, hi, 5);
+        for (k, l) in labels.iter().enumerate() {
+            let v = lo + (hi - lo) * k as f64 / 5.0;
+            let back: f64 = l.parse().unwrap();
+            assert!((back - v).abs() <= 0.1 * (hi - lo) / 5.0, "{l} for {v}");
+        }
+        assert!(labels.windows(2).all(|w| w[0] != w[1]), "{labels:?}");
+        // A zero crossed by the range is 0, not its round-off 5.55e-17.
+        let (lo, hi) = (std::hint::black_box(-0.412), 0.618);
+        assert!(lo + (hi - lo) * 2.0 / 5.0 != 0.0);
+        assert_eq!(bar_labels(-0.412, 0.618, 5)[2], "0");
+        // Large and small magnitudes in scientific notation.
+        assert_eq!(significant(123456.0, 5), "1.2346e5");
+        assert_eq!(significant(1.5e-7, 6), "1.5e-7");
+        assert_eq!(significant(0.00399992152, 10), "0.00399992152");
     }
 
     #[test]
