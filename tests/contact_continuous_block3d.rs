@@ -762,7 +762,7 @@ fn landing(contact: &str, continuous: bool) {
         panic!("CREA_CHAMP gives a field")
     };
     assert_eq!(
-        f.components,
+        f.field.components,
         ["DX", "DY", "DZ", "LAGS_C", "LAGS_F1", "LAGS_F2"]
     );
     insert(&mut st, "V0", ConceptType::ChamNo, ConceptData::Field(f));

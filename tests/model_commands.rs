@@ -132,7 +132,7 @@ fn load<'a>(s: &'a Study, n: &str) -> &'a MechLoad {
 }
 fn field<'a>(s: &'a Study, n: &str) -> &'a NodalField {
     match data(s, n) {
-        ConceptData::Field(m) => m,
+        ConceptData::Field(m) => &m.field,
         _ => panic!("{n} is not a field"),
     }
 }

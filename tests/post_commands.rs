@@ -130,7 +130,12 @@ fn synth_champ(_s: &mut Study, _a: &Args, _r: Option<&str>) -> ExecResult {
         f.set(n, 0, n as f64);
         f.set(n, 1, -(n as f64));
     }
-    Ok(Some(ConceptData::Field(Box::new(f))))
+    Ok(Some(ConceptData::Field(Box::new(
+        aster::concepts::ChamNo {
+            mesh: "MA".into(),
+            field: f,
+        },
+    ))))
 }
 
 fn registry() -> Vec<CommandDef> {

@@ -1953,6 +1953,39 @@ fn rayleigh_damping_follows_the_scheme_recurrence() {
     expect_located_errors(&comm, &cases, &tmp, &export, "rayleigh");
 }
 
+/// Mistakes a user's study makes that used to pass or to be misread: an
+/// initial field built on another mesh (read by node index on the model's
+/// mesh, silently; now refused), and a modelisation with no element on the
+/// mesh's cells (D_PLAN_SI on QUAD4 is code_aster's MEDPQS4, which aster
+/// lacks; it was reported as a mesh without 2D cells).
+#[test]
+fn initial_field_of_another_mesh_and_missing_element_are_named() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("etat_init_mesh");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("rayleigh_sdof.comm")).unwrap();
+    let cases = [(
+        "field_other_mesh",
+        (
+            "V0 = CREA_CHAMP(TYPE_CHAM='NOEU_DEPL_R', OPERATION='AFFE', MODELE=MO,",
+            "MA2 = LIRE_MAILLAGE(FORMAT='MED')\nV0 = CREA_CHAMP(TYPE_CHAM='NOEU_DEPL_R', OPERATION='AFFE', MAILLAGE=MA2,",
+        ),
+        "the field V0 is defined on the mesh MA2, not on the mesh MA of the model",
+    )];
+    let export = format!("F mmed {}/sdof_bar.mmed D 20\n", dir().display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "etat_init");
+    let comm = std::fs::read_to_string(dir().join("dplan_patch.comm")).unwrap();
+    let cases = [(
+        "dplan_si_quad4",
+        (
+            "MO_R = AFFE_MODELE(MAILLAGE=MAIL,",
+            "ML = CREA_MAILLAGE(MAILLAGE=MAIL, QUAD_LINE=_F(TOUT='OUI'))\nMO_R = AFFE_MODELE(MAILLAGE=ML,",
+        ),
+        "D_PLAN_SI on QUAD4 is the element MEDPQS4, which aster does not have",
+    )];
+    let export = format!("F mmed {}/patch.mmed D 20\n", dir().display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "etat_init");
+}
+
 /// AFFE_CHAR_CINE (MECA_IMPO) in STAT_NON_LINE, MECA_STATIQUE (held
 /// bar under an end force, a pull scaled by FONC_MULT: tip and base
 /// reaction against the 1D bar, 1e-9) and DYNA_NON_LINE (a held bar at

@@ -221,12 +221,42 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         ));
     }
     if !roles.iter().any(|r| matches!(r, CellRole::Element(_))) {
+        let dim = main_dim(form);
+        let mut present: Vec<&str> = mesh
+            .cells
+            .iter()
+            .filter(|c| c.kind.dim() == dim)
+            .map(|c| c.kind.aster_name())
+            .collect();
+        present.sort_unstable();
+        present.dedup();
+        let why = if present.is_empty() {
+            format!("no cell of the mesh {mesh_name} has dimension {dim}")
+        } else {
+            // The mesh has cells of the dimension, of types the
+            // modelisations given define no element on.
+            let defined: Vec<String> = args
+                .facts("AFFE")
+                .iter()
+                .filter_map(|o| o.text("MODELISATION"))
+                .map(|m| {
+                    let cells: Vec<&str> = crate::model::spec::element_cells(m)
+                        .iter()
+                        .map(|c| c.aster_name())
+                        .collect();
+                    format!("{m} on {}", cells.join(", "))
+                })
+                .collect();
+            format!(
+                "the cells of dimension {dim} of the mesh {mesh_name} ({}) are of no type the modelisation defines an element on ({})",
+                present.join(", "),
+                defined.join("; ")
+            )
+        };
         return Err(args.error(
             "AFFE",
             format!(
-                "the model has only boundary elements ({assigned} cells) and no volume element: \
-                 no cell of the mesh {mesh_name} has dimension {} (MODELE1_6)",
-                main_dim(form)
+                "the model has only boundary elements ({assigned} cells) and no volume element: {why} (MODELE1_6)"
             ),
         ));
     }

@@ -108,16 +108,23 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
 /// by component; a pair never assigned stays absent (NaN), which is not
 /// zero: ETAT_INIT reads it as 0 but a field operation must not.
 fn affe(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
-    let (support, model, mesh) = if args.has("MODELE") {
+    let (support, model, mesh, mesh_name) = if args.has("MODELE") {
         let (name, m) = model_of(study, args, "MODELE")?;
         let mesh = mesh_of_model(study, args, "MODELE", m)?;
-        (format!("model {name}"), Some((name, m.clone())), mesh)
+        let mesh_name = m.mesh.clone();
+        (
+            format!("model {name}"),
+            Some((name, m.clone())),
+            mesh,
+            mesh_name,
+        )
     } else {
         let name = args.concept("MAILLAGE").unwrap_or_default();
         (
             format!("mesh {name}"),
             None,
             mesh_of(study, args, "MAILLAGE")?,
+            name.to_string(),
         )
     };
     let occs = args.facts("AFFE");
@@ -203,7 +210,12 @@ fn affe(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     for l in lines {
         study.log(l);
     }
-    Ok(Some(ConceptData::Field(Box::new(field))))
+    Ok(Some(ConceptData::Field(Box::new(
+        crate::concepts::ChamNo {
+            mesh: mesh_name,
+            field,
+        },
+    ))))
 }
 
 /// A component must belong to DEPL_R; on a model, a displacement or

@@ -638,9 +638,12 @@ pub(crate) fn prepare_error(args: &Args, e: PrepareError) -> Diagnostic {
                 .and_then(|k| args.facts("COMPORTEMENT").get(k))
                 .unwrap_or(args);
             if b.not_implemented {
-                Diagnostic::error(b.message)
-                    .at(level.span_of(b.keyword))
-                    .in_command(args.command.clone())
+                let message = match b.message.strip_prefix("not implemented yet: ") {
+                    Some(what) => format!("not implemented yet: {}/{what}", args.command),
+                    None => b.message,
+                };
+                // Named in the message, as Args::not_implemented does.
+                Diagnostic::error(message).at(level.span_of(b.keyword))
             } else {
                 level.error(b.keyword, b.message)
             }
@@ -1245,6 +1248,7 @@ pub(crate) fn etat_init(
     args: &Args,
     asm: &Assembler,
     dofs: &[String],
+    mesh: &str,
 ) -> Result<Init, Diagnostic> {
     let mut init = Init {
         t0: None,
@@ -1266,6 +1270,15 @@ pub(crate) fn etat_init(
         let Some(ConceptData::Result(r)) = study.concepts.data(name) else {
             return Err(o.error("EVOL_NOLI", format!("the result {name} holds no data")));
         };
+        if r.mesh != mesh {
+            return Err(o.error(
+                "EVOL_NOLI",
+                format!(
+                    "the result {name} was computed on the mesh {}, not on the mesh {mesh} of the model: its fields would be read on other nodes",
+                    r.mesh
+                ),
+            ));
+        }
         let step = if let Some(k) = o.int("NUME_ORDRE") {
             r.find(Access::NumeOrdre(k.max(0) as usize))
         } else if let Some(t) = o.real("INST") {
@@ -1302,7 +1315,18 @@ pub(crate) fn etat_init(
     ] {
         if let Some(name) = o.concept(key) {
             match study.concepts.data(name) {
-                Some(ConceptData::Field(f)) => *slot = Some(fields::from_nodal(asm, dofs, f)),
+                Some(ConceptData::Field(f)) if f.mesh != mesh => {
+                    return Err(o.error(
+                        key,
+                        format!(
+                            "the field {name} is defined on the mesh {}, not on the mesh {mesh} of the model: its values would be read on other nodes",
+                            f.mesh
+                        ),
+                    ))
+                }
+                Some(ConceptData::Field(f)) => {
+                    *slot = Some(fields::from_nodal(asm, dofs, &f.field))
+                }
                 _ => return Err(o.error(key, format!("the field {name} holds no data"))),
             }
         }
@@ -1570,7 +1594,7 @@ pub(crate) fn run(
     let suivi = suivi_of(&md.mesh, &md.model, args, inertia)?;
     let observations = observations_of(study, &md.mesh, &md.model, args, inertia)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
-    let mut init = etat_init(study, args, &asm, &dof_names)?;
+    let mut init = etat_init(study, args, &asm, &dof_names, &md.model.mesh)?;
     if !inertia {
         // A dynamic result continued statically: its motion is dropped.
         init.v = None;

@@ -93,7 +93,7 @@ pub fn cham_no_of<'s>(
         .ok_or_else(|| args.error(key, "a field concept is expected"))?;
     match study.concepts.get(name) {
         Some(c) => match &c.data {
-            ConceptData::Field(f) => Ok((c.name.as_str(), f)),
+            ConceptData::Field(f) => Ok((c.name.as_str(), &f.field)),
             _ => Err(no_data(args, key, name, "nodal field")),
         },
         None => Err(no_data(args, key, name, "nodal field")),

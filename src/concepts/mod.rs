@@ -31,7 +31,7 @@ pub enum ConceptData {
     /// DEFI_LIST_INST.
     TimeList(Box<crate::time::list::TimeList>),
     /// A nodal field (CREA_CHAMP).
-    Field(Box<crate::result::NodalField>),
+    Field(Box<ChamNo>),
     /// A transient result (DYNA_NON_LINE).
     Result(Box<crate::result::EvolNoli>),
     /// A tabulated or constant function (RECU_FONCTION, DEFI_CONSTANTE).
@@ -41,6 +41,17 @@ pub enum ConceptData {
     /// DEFI_CONTACT: kept as checked keywords until the contact engine
     /// turns them into its own data.
     Contact(Box<crate::catalog::args::Args>),
+}
+
+/// A nodal field concept (CREA_CHAMP): its values and the mesh they are
+/// numbered on. The mesh is kept because the values are by node index: a
+/// field of another mesh given to a model would be read on the wrong nodes,
+/// silently, so its users check it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChamNo {
+    /// The mesh concept (that of the model for CREA_CHAMP MODELE=).
+    pub mesh: String,
+    pub field: crate::result::NodalField,
 }
 
 #[derive(Debug, Clone)]

@@ -125,9 +125,21 @@ pub fn element_spec(modelisation: &str, cell: CellType) -> Option<ElementSpec> {
 
 /// code_aster elements that exist but are not implemented here, by name.
 /// The model builder must turn these into an error: treating them as "no
-/// element" would silently keep an earlier (e.g. fully integrated 3D)
-/// element on the cell. Every volume element of the SDNV103 models exists
-/// today, so the list is empty; the hook stays for the next one.
-pub fn unimplemented_element(_modelisation: &str, _cell: CellType) -> Option<&'static str> {
-    None
+/// element" would silently keep an earlier (e.g. fully integrated)
+/// element on the cell, or report a mesh without cells of the dimension.
+/// code_aster's D_PLAN_SI has MEDPQS4 on QUAD4 beside MEDPQS8 (its
+/// phenomenon catalogue); its AXIS_SI is QUAD8 only.
+pub fn unimplemented_element(modelisation: &str, cell: CellType) -> Option<&'static str> {
+    match (modelisation, cell) {
+        ("D_PLAN_SI", CellType::Quad4) => Some("MEDPQS4"),
+        _ => None,
+    }
+}
+
+/// The cell types on which `modelisation` defines a volume element here.
+pub fn element_cells(modelisation: &str) -> Vec<CellType> {
+    CellType::ALL
+        .into_iter()
+        .filter(|&c| element_spec(modelisation, c).is_some())
+        .collect()
 }

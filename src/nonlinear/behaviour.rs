@@ -293,7 +293,9 @@ fn kinematics_of(
         ..err(
             occ,
             "DEFORMATION",
-            format!("not implemented yet: DYNA_NON_LINE/COMPORTEMENT/DEFORMATION='{deformation}'"),
+            // The command (STAT_ or DYNA_NON_LINE) is put in front by the
+            // caller, which knows it.
+            format!("not implemented yet: COMPORTEMENT/DEFORMATION='{deformation}'"),
         )
     })
 }

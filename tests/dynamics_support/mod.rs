@@ -194,7 +194,10 @@ pub fn study(
             &mut s,
             "V0",
             ConceptType::ChamNo,
-            ConceptData::Field(Box::new(v)),
+            ConceptData::Field(Box::new(aster::concepts::ChamNo {
+                mesh: "MAIL".into(),
+                field: v,
+            })),
         );
     }
     insert(
