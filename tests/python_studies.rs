@@ -177,6 +177,45 @@ fn commands_in_loops_keep_their_own_lines() {
     );
 }
 
+/// `for M in (MA, MB): M = DEFI_GROUP(reuse=M, MAILLAGE=M, ...)`: the loop
+/// name holds each concept in turn, and Python modifies that concept in
+/// place; aster runs the command on the concept's own name (it refused the
+/// loop, calling M "the concept MA ... not a concept").
+#[test]
+fn reuse_through_a_loop_name_modifies_the_concept_it_holds() {
+    let text = "DEBUT()
+MA = LIRE_MAILLAGE(FORMAT='MED')
+MB = LIRE_MAILLAGE(FORMAT='MED', UNITE=21)
+for M in (MA, MB):
+    M = DEFI_GROUP(reuse=M, MAILLAGE=M, CREA_GROUP_NO=_F(TOUT_GROUP_MA='OUI'))
+    T = DEFI_GROUP(reuse=M, MAILLAGE=M, CREA_GROUP_NO=_F(TOUT_GROUP_MA='OUI'))
+FIN()
+";
+    let ds = check(text).unwrap_err();
+    // Only the second form, which binds another name, is refused.
+    assert!(
+        ds.iter()
+            .all(|d| d.message.contains("so the result must be assigned to")),
+        "{ds:?}"
+    );
+    let text = text.replace("    T = DEFI_GROUP", "    M = DEFI_GROUP");
+    let c = check(&text).unwrap();
+    let runs: Vec<(String, Option<String>, Option<String>)> = c
+        .commands
+        .iter()
+        .filter(|c| c.name == "DEFI_GROUP")
+        .map(|c| {
+            (
+                c.result.as_ref().unwrap().name.clone(),
+                c.reuse.clone(),
+                c.args.concept("MAILLAGE").map(str::to_string),
+            )
+        })
+        .collect();
+    let on = |n: &str| (n.to_string(), Some(n.to_string()), Some(n.to_string()));
+    assert_eq!(runs, vec![on("MA"), on("MA"), on("MB"), on("MB")]);
+}
+
 /// A command called in another's keyword runs first, as Python runs it, and
 /// the keyword receives its concept; innermost first, once per loop pass.
 #[test]

@@ -553,6 +553,22 @@ impl Checker<'_> {
             }
         }
 
+        // `for R in (RN, RL): R = CALC_CHAMP(reuse=R, RESULTAT=R, ...)`: R
+        // is a name holding the concept RN, and Python modifies RN in place
+        // and binds R to it again. aster knows concepts by their names, so
+        // the command is the one on RN, and R keeps holding RN.
+        let mut alias_target = None;
+        if let Some((n, sp)) = reuse.clone() {
+            if let Some(Binding::Var(PyVal::Concept { name: real, .. })) = self.env.names.get(&n) {
+                let real = real.clone();
+                alias_target = target.filter(|t| t.name == n).map(|t| Ident {
+                    name: real.clone(),
+                    span: t.span,
+                });
+                reuse = Some((real, sp));
+            }
+        }
+        let target = alias_target.as_ref().or(target);
         if cmd == "FORMULE" {
             formula_constants(&mut given, &self.env);
         }
