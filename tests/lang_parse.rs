@@ -310,6 +310,9 @@ fn arg_list(args: &[aster::lang::ast::Arg]) -> String {
 fn target(t: &Target) -> String {
     match t {
         Target::Name(n) => n.name.clone(),
+        // A one-name tuple shows its comma (`for f, in L`), as Python
+        // writes the target that unpacks one-item sequences.
+        Target::Tuple(v) if v.len() == 1 => format!("{},", v[0].name),
         Target::Tuple(v) => v
             .iter()
             .map(|n| n.name.as_str())

@@ -415,3 +415,29 @@ fn python_mistakes_are_located_errors() {
         assert_eq!((l, c), (line, col), "{text}: {m}");
     }
 }
+
+/// Loop targets in parentheses or brackets unpack as in Python, in `for`
+/// blocks and comprehensions: `(a, b)` and `[a, b]` take pairs apart,
+/// `(a)` is the name `a`, `[f]` unpacks a one-item sequence. The values
+/// are Python's: 1·2 + 3·4 + 5·6 + (1 + 2) + 7 = 54, [2, 12], [11].
+#[test]
+fn parenthesised_and_bracketed_loop_targets_unpack_as_in_python() {
+    let text = "S = 0.
+for (a, b) in ((1., 2.), (3., 4.)):
+    S = S + a * b
+for [c, d] in [(5., 6.)]:
+    S = S + c * d
+for (e) in (1., 2.):
+    S = S + e
+for [f] in ((7.,),):
+    S = S + f
+L = DEFI_LIST_REEL(VALE=[S] + [a * b for (a, b) in ((1., 2.), (3., 4.))]
+                   + [c + d for [c, d] in [(5., 6.)] if c > 0.])
+";
+    assert_eq!(lists(text), vec![vec![54.0, 2.0, 12.0, 11.0]]);
+    let (m, line, col) = error("for [f] in (7., 8.):\n    pass\n");
+    assert!(
+        m.contains("cannot loop over the real 7.0") && (line, col) == (1, 13),
+        "{m} at {line}:{col}"
+    );
+}

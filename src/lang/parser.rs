@@ -415,7 +415,7 @@ fn lower_compound(pair: Pair<'_, Rule>) -> Result<LineKind, Diagnostic> {
         Rule::for_head => {
             let mut h = head_pair.into_inner();
             let _kw = h.next();
-            let target = lower_targets(h.next().expect("targets"))?;
+            let target = lower_loop_targets(h.next().expect("targets"))?;
             let _in = h.next();
             let iter = lower_expr_list(h.next().expect("iterable"))?.expr;
             Head::For(target, iter)
@@ -444,6 +444,26 @@ fn lower_targets(pair: Pair<'_, Rule>) -> Result<Target, Diagnostic> {
         Target::Name(names.pop().expect("one name"))
     } else {
         Target::Tuple(names)
+    })
+}
+
+/// A `for` or comprehension target: Python reads `(a, b)` as `a, b` and
+/// `(a)` as `a`, while a bracketed list `[a]` always unpacks (a one-name
+/// list target takes a one-item sequence apart).
+fn lower_loop_targets(pair: Pair<'_, Rule>) -> Result<Target, Diagnostic> {
+    let mut bracket = false;
+    let mut names = None;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::targets => names = Some(lower_targets(p)?),
+            Rule::lbrack => bracket = true,
+            _ => {}
+        }
+    }
+    let names = names.expect("loop_targets holds targets");
+    Ok(match names {
+        Target::Name(n) if bracket => Target::Tuple(vec![n]),
+        t => t,
     })
 }
 
@@ -1042,7 +1062,7 @@ fn lower_sequence(pair: Pair<'_, Rule>, is_paren: bool) -> Result<Node, Diagnost
             Rule::comp_for => {
                 let mut it = p.into_inner();
                 let _for = it.next();
-                let target = lower_targets(it.next().expect("targets"))?;
+                let target = lower_loop_targets(it.next().expect("targets"))?;
                 let _in = it.next();
                 let iter = lower_expr(it.next().expect("iterable"))?;
                 depth = depth.max(iter.depth);
@@ -1400,7 +1420,7 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
                 continue;
             }
             Rule::arg | Rule::kwarg => "an argument (KEYWORD=value or a value)",
-            Rule::targets | Rule::name_as | Rule::import_list => "a name",
+            Rule::targets | Rule::loop_targets | Rule::name_as | Rule::import_list => "a name",
             Rule::module | Rule::import_item => "a module name",
             Rule::ident => "a name",
             Rule::program
