@@ -2458,3 +2458,45 @@ fn elas_initial_displacement_is_stressed() {
         .count();
     assert_eq!(oks, 28, "{resu}");
 }
+
+/// HHT's ALPHA outside ]-1, 0] runs, as code_aster accepts it (only
+/// ALPHA = -1 is fatal): ALPHA = 0.2 (both MODI_EQUI) and -1.5 (NON)
+/// follow their Newmark / alpha-method recurrences on the exact SDOF
+/// (hht_alpha_range.comm, 1e-9), each run with an alarm saying what the
+/// scheme then is; ALPHA = -1 stays a located error.
+#[test]
+fn hht_alpha_outside_its_range_runs_with_an_alarm() {
+    let run = common::run_study("tests/verification/hht_alpha_range.comm", "verif_hht_alpha");
+    let resu = common::assert_all_ok(&run, "hht_alpha_range.resu");
+    let oks = resu
+        .lines()
+        .filter(|l| l.trim_start().starts_with("OK ") && l.contains("ANALYTIQUE"))
+        .count();
+    assert_eq!(oks, 6, "{resu}");
+    let mess = run.file("hht_alpha_range.mess");
+    assert_eq!(
+        mess.matches("alarm: HHT with ALPHA = 0.2 > 0").count(),
+        2,
+        "{mess}"
+    );
+    assert!(mess.contains("negative numerical damping"), "{mess}");
+    assert!(
+        mess.contains("alarm: HHT with ALPHA = -1.5 < -1") && mess.contains("GAMMA = 2 > 3/2"),
+        "{mess}"
+    );
+    let bad = common::run_variant(
+        &dir(),
+        "hht_alpha_variants",
+        "hht_alpha_range",
+        "hht_alpha_minus_one",
+        "ALPHA=0.2, MODI_EQUI='NON'",
+        "ALPHA=-1., MODI_EQUI='NON'",
+    );
+    assert_eq!(bad.code, 1, "{}", bad.term);
+    assert!(
+        bad.term.contains("ALPHA = -1 is refused for HHT")
+            && bad.term.contains("hht_alpha_minus_one.comm:34"),
+        "{}",
+        bad.term
+    );
+}

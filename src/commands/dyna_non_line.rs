@@ -130,7 +130,7 @@ fn schema_temps() -> Keyword {
                 vec![
                     real("ALPHA")
                         .default(r(-0.1))
-                        .doc("HHT alpha <= 0: beta = (1-alpha)^2/4, gamma = 1/2 - alpha")
+                        .doc("HHT alpha, usually in [-1/3, 0]: beta = (1-alpha)^2/4, gamma = 1/2 - alpha; -1 refused, outside ]-1, 0] an alarm")
                         .kw(),
                     oui_non("MODI_EQUI", "OUI")
                         .doc("'OUI': true alpha-method (equilibrium weighted between steps); 'NON': only beta, gamma change")
@@ -1401,6 +1401,12 @@ pub(crate) fn run(
         }
     }
     let mut notes: Vec<String> = Vec::new();
+    if let Some(a) = match &choice {
+        SchemeChoice::Implicit(s) => s.hht_alarm(),
+        _ => None,
+    } {
+        notes.push(a);
+    }
     let model_name = args.concept("MODELE").unwrap_or("").to_string();
     let mat_name = args.concept("CHAM_MATER").unwrap_or("").to_string();
     let md = model_data(

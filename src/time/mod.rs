@@ -95,12 +95,19 @@ impl Scheme {
         }
     }
 
-    /// HHT with code_aster's `ALPHA` and `MODI_EQUI`.
+    /// HHT with code_aster's `ALPHA` and `MODI_EQUI`. code_aster refuses
+    /// only α = −1 (the equation is divided by 1 + α) and checks no range
+    /// (semantics.md §8.1): α outside [−1, 0] is accepted, with the alarm
+    /// of [`Scheme::hht_alarm`].
     pub fn hht(alpha: f64, modi_equi: bool) -> Result<Scheme, String> {
-        if !alpha.is_finite() || alpha <= -1.0 || alpha > 0.0 {
-            return Err(format!(
-                "ALPHA must be in ]-1, 0] for HHT (alpha = -1 is singular), found {alpha}"
-            ));
+        if !alpha.is_finite() {
+            return Err(format!("ALPHA must be a finite number, found {alpha}"));
+        }
+        if alpha == -1.0 {
+            return Err(
+                "ALPHA = -1 is refused for HHT, as in code_aster: the equilibrium is divided by 1 + ALPHA"
+                    .to_string(),
+            );
         }
         Ok(Scheme {
             beta: (1.0 - alpha).powi(2) / 4.0,
@@ -110,6 +117,38 @@ impl Scheme {
             inertia: true,
             predictor: Predictor::Displacement,
         })
+    }
+
+    /// The alarm of an HHT α that code_aster accepts without a check but
+    /// that is not the dissipative HHT: α > 0 gives γ = ½ − α < ½, a
+    /// negative numerical damping that makes the response grow (the
+    /// Newmark family is unstable for γ < ½); α < −1 makes 1 + α
+    /// negative, which with MODI_EQUI='OUI' changes the sign of the
+    /// inertia and damping weights 1/(1 + α) (no longer an equation of
+    /// motion), and with 'NON' is a stable Newmark with γ = ½ − α > 3/2,
+    /// first-order and damping far more than any HHT. `None` for NEWMARK
+    /// and α in ]−1, 0].
+    pub fn hht_alarm(&self) -> Option<String> {
+        let a = self.alpha;
+        if a > 0.0 {
+            Some(format!(
+                "alarm: HHT with ALPHA = {a} > 0 (code_aster does no range check): outside the dissipative range [-1/3, 0], GAMMA = 1/2 - ALPHA = {} < 1/2 gives a negative numerical damping, so the response grows step after step instead of being damped (an unstable scheme, not HHT's)",
+                self.gamma
+            ))
+        } else if a < -1.0 {
+            Some(if self.hht_full {
+                format!(
+                    "alarm: HHT with ALPHA = {a} < -1 (code_aster does no range check): 1 + ALPHA < 0 turns the inertia weight 1/(1 + ALPHA) of MODI_EQUI='OUI' negative: the equation solved is no longer one of motion"
+                )
+            } else {
+                format!(
+                    "alarm: HHT with ALPHA = {a} < -1 (code_aster does no range check): with MODI_EQUI='NON' this is Newmark with BETA = {}, GAMMA = {} > 3/2, stable but first-order and far more dissipative than any HHT",
+                    self.beta, self.gamma
+                )
+            })
+        } else {
+            None
+        }
     }
 
     /// Weight w_i of the inertia M a_{n+1} in the residual
@@ -377,6 +416,58 @@ mod tests {
         }
         assert!(growth(&Scheme::hht(-0.6, true).unwrap()) > 1.4);
         assert!(growth(&Scheme::hht(-0.6, false).unwrap()) < 1.0);
+    }
+
+    /// ALPHA outside ]-1, 0] (accepted by code_aster, with an alarm here):
+    /// the measured growth per step of the undamped SDOF at w dt = 0.5
+    /// against the spectral radius of Newmark's amplification,
+    /// sqrt(1 - (gamma - 1/2) W^2/(1 + beta W^2)) when its roots are
+    /// complex: 1.02376 for ALPHA = 0.2 (gamma = 0.3: it grows), 0.85460
+    /// for ALPHA = -1.5 with MODI_EQUI='NON' (beta = 1.5625, gamma = 2).
+    #[test]
+    fn hht_alpha_outside_the_range_is_an_alarm() {
+        assert!(Scheme::hht(-1.0, true).is_err() && Scheme::hht(-1.0, false).is_err());
+        assert!(Scheme::hht(f64::NAN, true).is_err());
+        let (m, k, dt) = (1.0, 1.0, 0.5);
+        let growth = |s: &Scheme| {
+            let h = sdof(s, m, k, 1.0, 0.0, dt, 400);
+            let norm = |i: usize| energy(m, k, h[i]).sqrt();
+            (norm(400) / norm(200)).powf(1.0 / 200.0)
+        };
+        let radius = |s: &Scheme| {
+            let w2 = 0.25;
+            (1.0 - (s.gamma - 0.5) * w2 / (1.0 + s.beta * w2)).sqrt()
+        };
+        let up = Scheme::hht(0.2, false).unwrap();
+        let down = Scheme::hht(-1.5, false).unwrap();
+        for (s, want) in [(&up, 1.02376), (&down, 0.85460)] {
+            assert!((radius(s) - want).abs() < 1e-5, "{}", radius(s));
+            let g = growth(s);
+            assert!(
+                (g - want).abs() < 1e-2 * want,
+                "measured {g}, expected {want}"
+            );
+        }
+        assert!(growth(&Scheme::hht(0.2, true).unwrap()) > 1.0);
+        assert!(up.hht_alarm().unwrap().contains("grows"));
+        assert!(Scheme::hht(0.2, true)
+            .unwrap()
+            .hht_alarm()
+            .unwrap()
+            .contains("grows"));
+        assert!(down.hht_alarm().unwrap().contains("GAMMA = 2 > 3/2"));
+        assert!(Scheme::hht(-1.5, true)
+            .unwrap()
+            .hht_alarm()
+            .unwrap()
+            .contains("negative"));
+        for s in [
+            Scheme::hht(-0.6, true).unwrap(),
+            Scheme::hht(0.0, false).unwrap(),
+            Scheme::newmark(0.25, 0.5).unwrap(),
+        ] {
+            assert!(s.hht_alarm().is_none());
+        }
     }
 
     #[test]
