@@ -692,3 +692,105 @@ fn continuation_keeps_the_friction_history() {
         );
     }
 }
+
+/// Penalised contact and the energy (tests/verification/explicit_penalty_energy.comm:
+/// a bar bouncing off a rigid wall through E_N = 1e6 per slave node, EK0 =
+/// 4, w_pen = sqrt(E_N / m) = 4.472e7 /s with m = rho V / 8 = 5e-10 t, the
+/// contact's own bound 2/w_pen = 4.472e-8 s below the elements' 9.995e-8
+/// s). At 1e-8 s (w_pen dt = 0.447) the balance holds (the file's checks:
+/// TRAV_LIAI 3.4e-4 after the rebound) and neither alarm is given. At 2.5e-8
+/// s (w_pen dt = 1.118) and 3.5e-8 s (1.565, the reproducer's step, 0.86 of
+/// the printed bound) the start-of-run alarm gives the two bounds and the
+/// ratio, and the energy alarm names the first archived instant where
+/// TRAV_LIAI is below -1 % of EK0, with the value the table holds there;
+/// measured after the rebound: TRAV_LIAI -0.051 and -2.563, ENER_CIN 3.93
+/// and 5.83 (+46 % of EK0 created).
+#[test]
+fn penalised_contact_resolved_by_too_few_steps_is_alarmed() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
+    let start = "alarm: penalised contact with a step";
+    let created = "the penalised contact has returned";
+    let run = common::run_study(
+        "tests/verification/explicit_penalty_energy.comm",
+        "explicit_penalty_energy",
+    );
+    common::assert_all_ok(&run, "explicit_penalty_energy.resu");
+    let mess = run.file("explicit_penalty_energy.mess");
+    assert!(!mess.contains(start) && !mess.contains(created), "{mess}");
+    let ek0 = 0.5 * 8e-9 * 10.0 * 1e4f64.powi(2);
+    let w = (1e6f64 / 5e-10).sqrt();
+    for (pas, dt, liai_max, cin_min) in [
+        ("2.5E-8", 2.5e-8, -0.04, 3.9),
+        ("3.5E-8", 3.5e-8, -2.0, 5.5),
+    ] {
+        let tag = format!("penalty_energy_{pas}");
+        let run = common::run_variant(
+            &dir,
+            "explicit_penalty_energy_variants",
+            "explicit_penalty_energy",
+            &tag,
+            "PAS=1.E-8",
+            &format!("PAS={pas}"),
+        );
+        let mess = run.file(&format!("{tag}.mess"));
+        let a = mess
+            .lines()
+            .find(|l| l.contains(start))
+            .unwrap_or_else(|| panic!("{pas}: no start alarm in\n{mess}"));
+        for part in [
+            format!("step of {dt:.4e} s"),
+            format!(
+                "{:.3} of the contact's own bound 2/w_pen = {:.4e} s",
+                dt * w / 2.0,
+                2.0 / w
+            ),
+            "below the elements' 9.9952e-8 s: the penalty governs the stable step".to_string(),
+            format!("w_pen dt = {:.3}", w * dt),
+            "not energy-conserving".to_string(),
+            format!("a step of at most {:.4e} s", 0.5 / w),
+        ] {
+            assert!(a.contains(&part), "{pas}: {part} not in {a}");
+        }
+        let resu = run.file(&format!("{tag}.resu"));
+        let rows = common::printed_table(&resu, "EN");
+        let num = |r: &std::collections::HashMap<String, String>, c: &str| -> f64 {
+            r[c].parse().unwrap()
+        };
+        let first = rows
+            .iter()
+            .find(|r| num(r, "TRAV_LIAI") < -0.01 * ek0)
+            .unwrap_or_else(|| panic!("{pas}: TRAV_LIAI never below 1 % of EK0\n{resu}"));
+        let b = mess
+            .lines()
+            .find(|l| l.contains(created))
+            .unwrap_or_else(|| panic!("{pas}: no energy alarm in\n{mess}"));
+        assert_eq!(mess.matches(created).count(), 1, "{mess}");
+        let at: f64 = b
+            .split_once("at t = ")
+            .and_then(|(_, r)| r.split_whitespace().next())
+            .and_then(|x| x.parse().ok())
+            .unwrap();
+        assert!(
+            (at - num(first, "INST")).abs() < 1e-4 * dt,
+            "{pas}: {b}\n{first:?}"
+        );
+        let liai: f64 = b
+            .split_once("(TRAV_LIAI = ")
+            .and_then(|(_, r)| r.split(',').next())
+            .and_then(|x| x.parse().ok())
+            .unwrap();
+        let want = num(first, "TRAV_LIAI");
+        assert!(
+            (liai - want).abs() <= 2e-4 * want.abs(),
+            "{pas}: {liai} vs {want}"
+        );
+        let last = rows.last().unwrap();
+        println!(
+            "{pas}: alarm at t = {at:e} (TRAV_LIAI {liai:e}); after the rebound TRAV_LIAI {}, ENER_CIN {}",
+            num(last, "TRAV_LIAI"),
+            num(last, "ENER_CIN")
+        );
+        assert!(num(last, "TRAV_LIAI") < liai_max, "{pas}: {last:?}");
+        assert!(num(last, "ENER_CIN") > cin_min, "{pas}: {last:?}");
+    }
+}

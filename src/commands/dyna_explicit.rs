@@ -330,6 +330,26 @@ pub(crate) fn exec(
             bound.dt, bound.dt_elements
         ));
     }
+    // The largest step the run takes: the bound itself with AUTO (or
+    // PAS_MAXI), else the list's largest step, cut to the bound with
+    // STOP_CFL='OUI'.
+    let largest = match &auto {
+        Some(g) => g.pas_maxi.map_or(bound.dt, |m| m.min(bound.dt)),
+        None => tl
+            .instants
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .map(|dt| if stop_cfl { dt.min(bound.dt) } else { dt })
+            .fold(0.0, f64::max),
+    };
+    if let Some(m) = explicit::penalty_step_alarm(
+        w2c,
+        &bound,
+        largest,
+        scheme.stability_factor().unwrap_or(1.0),
+    ) {
+        notes.push(m);
+    }
     if let Some(g) = &auto {
         notes.push(format!(
             "METHODE='AUTO' in explicit dynamics (an aster extension): the list's instants are the instants to reach, and each step is the current critical step bound{} (at most {} times the previous one), cut into equal steps to land on each instant; the bound is re-estimated on the current geometry during the run",

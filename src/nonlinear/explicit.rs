@@ -52,8 +52,8 @@ use crate::law::TangentKind;
 use crate::result::{ContactHistory, EvolNoli};
 use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
 use crate::time::explicit::{
-    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_warm, scaled_lumped, top_eigenpair,
-    ExplicitScheme,
+    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_warm, penalty_rebound_range,
+    scaled_lumped, top_eigenpair, ExplicitScheme,
 };
 
 /// What the explicit loop needs of a contact treatment: the discrete
@@ -676,6 +676,97 @@ impl Explicit {
     }
 }
 
+/// Above this ω_pen dt (ω_pen² the penalty's k/m, `penalty_omega2`) a
+/// penalised contact is not energy-conserving at the accuracy of a
+/// balance: one closing lasts a few steps and returns between
+/// [`penalty_rebound_range`] times the energy it received, depending on
+/// where in the step the contact closed (±4.5 % at 0.5, a penalty period
+/// resolved by 4π ≈ 12.6 steps; 0.49 to 2.06 at 1.56). Measured on a bar
+/// bouncing off a rigid wall through E_N (docs/contact.md): TRAV_LIAI
+/// 3.4e-4 of EK0 = 4 at ω_pen dt = 0.45 (26 closings of 8 to 10 steps),
+/// −0.051 at 1.12, −2.56 at 1.57 (18 closings of 1 or 2 steps).
+pub const PENALTY_WDT_MAX: f64 = 0.5;
+
+/// The start-of-run alarm of a penalised contact whose penalty is
+/// resolved by too few steps (ω_pen `dt` above [`PENALTY_WDT_MAX`], `dt`
+/// the largest step the run will take), with the contact's own bound
+/// f·2/ω_pen (`factor` the scheme's f) against the elements'; None when
+/// the step resolves it.
+pub fn penalty_step_alarm(w2c: f64, bound: &StepBound, dt: f64, factor: f64) -> Option<String> {
+    if w2c <= 0.0 || !dt.is_finite() {
+        return None;
+    }
+    let w = w2c.sqrt();
+    let wdt = w * dt;
+    if wdt <= PENALTY_WDT_MAX {
+        return None;
+    }
+    let contact = factor * 2.0 / w;
+    let (lo, hi) = penalty_rebound_range(wdt.min(1.999));
+    Some(format!(
+        "alarm: penalised contact with a step of {dt:.4e} s, {:.3} of the contact's own bound 2/w_pen = {contact:.4e} s ({} the elements' {:.4e} s{}): w_pen dt = {wdt:.3}, a penalty period 2 pi/w_pen resolved by {:.1} steps. Penalised contact is then not energy-conserving: its force is switched on at a penetration anywhere between 0 and v dt and a closing lasts {} step(s), so a node bouncing off the penalty alone leaves with {lo:.3} to {hi:.3} times the kinetic energy it came with, depending on where in the step it closed; TRAV_LIAI below zero in the energy table is the energy the contact created. Keep w_pen dt at most {PENALTY_WDT_MAX} (a step of at most {:.4e} s) or lower E_N (or COEF_PENA) by a factor {:.3}",
+        dt / contact,
+        if contact < bound.dt_elements { "below" } else { "above" },
+        bound.dt_elements,
+        if contact < bound.dt_elements {
+            ": the penalty governs the stable step"
+        } else {
+            ""
+        },
+        2.0 * std::f64::consts::PI / wdt,
+        contact_steps(wdt),
+        PENALTY_WDT_MAX / w,
+        (PENALTY_WDT_MAX / wdt).powi(2),
+    ))
+}
+
+/// The number of steps (a range "a to b") during which a node bouncing
+/// off the penalty alone is in contact at `wdt` (the single-node
+/// recurrence of [`penalty_rebound_range`], over the entry depth).
+fn contact_steps(wdt: f64) -> String {
+    let w2 = wdt * wdt;
+    let (mut lo, mut hi) = (usize::MAX, 0);
+    for i in 1..=100 {
+        let (mut a, mut b) = (i as f64 / 100.0 - 1.0, i as f64 / 100.0);
+        let mut n = 0;
+        while b > 0.0 && n < 10_000 {
+            let c = 2.0 * b - a - w2 * b;
+            a = b;
+            b = c;
+            n += 1;
+        }
+        lo = lo.min(n);
+        hi = hi.max(n);
+    }
+    if lo == hi {
+        format!("{lo}")
+    } else {
+        format!("{lo} to {hi}")
+    }
+}
+
+/// The alarm once a penalised contact has returned more energy than it
+/// absorbed by more than 1 % of the energy given to the model (the
+/// initial kinetic energy or the external work, whichever is larger): at
+/// the archived instant `t`, with the last step `dt` and ω_pen² `w2c`.
+/// None while the balance holds, or without penalty or energy given.
+pub fn contact_energy_alarm(energy: &EnergyBalance, t: f64, dt: f64, w2c: f64) -> Option<String> {
+    let given = energy.kinetic0.max(energy.external.abs());
+    if w2c <= 0.0 || given <= 0.0 || energy.contact >= -0.01 * given {
+        return None;
+    }
+    let w = w2c.sqrt();
+    let wdt = w * dt;
+    Some(format!(
+        "  alarm: at t = {t:e} the penalised contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of ENER_CIN at the start and |TRAV_EXT|): energy created by the penalty switched on and off at the step instants (w_pen dt = {wdt:.3}; ENER_CIN is that much too high once the bodies separate, and DISS_SCH does not show it). Take a step of at most {:.4e} s (w_pen dt <= {PENALTY_WDT_MAX}) or lower E_N (or COEF_PENA) by a factor {:.3}; this alarm is given once",
+        -energy.contact,
+        energy.contact,
+        -100.0 * energy.contact / given,
+        PENALTY_WDT_MAX / w,
+        (PENALTY_WDT_MAX / wdt).min(1.0).powi(2),
+    ))
+}
+
 /// The first list step above `bound` (index of the step, its start, its
 /// length), if any; equality passes, as in code_aster's `pascou`.
 pub fn first_step_above(instants: &[f64], bound: f64) -> Option<(usize, f64, f64)> {
@@ -873,6 +964,7 @@ fn run_on(
     let mut interval = settings.recheck;
     let mut next_estimate = interval;
     let mut alarmed_sub = false;
+    let mut energy_alarmed = false;
     let mut list_steps = 0usize;
     // A failed step (or a failed contact correction of its end state):
     // the last converged state is archived first, so that the message
@@ -1067,6 +1159,12 @@ fn run_on(
         {
             summary.archived += 1;
             archive_line(&mut energy, result, &summary, dt, log);
+            if !energy_alarmed {
+                if let Some(m) = contact_energy_alarm(&energy, engine.committed.t, dt, contact_w2) {
+                    log(&m);
+                    energy_alarmed = true;
+                }
+            }
         }
         if capped {
             break;
