@@ -2063,6 +2063,16 @@ fn function_valued_loads_follow_time() {
     run_study("char_f_ramp");
 }
 
+/// FORMULE calling functions: a DEFI_FONCTION or a FORMULE passed as a
+/// keyword (`VALE='RP(INST)', RP=RAMPE`) or named from the command file,
+/// nested two deep, a two-parameter formula tested by TEST_FONCTION in
+/// both NOM_PARA orders (1e-12), and formulas calling the ramp as the
+/// imposed top displacement of a rod (reactions E A RAMPE(t) / L, 1e-9).
+#[test]
+fn formulas_call_functions_and_formulas() {
+    run_study("formule_calls");
+}
+
 /// A prestressed HEXS8 turned rigidly by 90 degrees under PETIT_REAC by
 /// AFFE_CHAR_MECA_F formulas: the stress turns with the element (closed
 /// form with PETIT_REAC's spurious strain to 1e-9 for N = 20 and 40

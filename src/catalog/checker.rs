@@ -1211,18 +1211,24 @@ impl Checker<'_> {
 /// FORMULE's constants: code_aster evaluates VALE with the values passed
 /// as extra keywords (`FORMULE(VALE='H - X', NOM_PARA='X', H=H)`) and, in
 /// older versions, with the command file's variables. Both become the
-/// hidden keywords CONST_NOMS/CONST_VALE (numbers only; anything else is
-/// left to be reported as an unknown keyword).
+/// hidden keywords CONST_NOMS/CONST_VALE (numbers), the functions it
+/// calls (`VALE='GAM(INST) * Z', GAM=GAM`) FONC_NOMS/FONC_VALE; anything
+/// else is left to be reported as an unknown keyword.
 fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
     // The hidden keywords written by hand are checked as they are.
-    if given
-        .iter()
-        .any(|(k, _)| matches!(k.name.as_str(), "CONST_NOMS" | "CONST_VALE"))
-    {
+    if given.iter().any(|(k, _)| {
+        matches!(
+            k.name.as_str(),
+            "CONST_NOMS" | "CONST_VALE" | "FONC_NOMS" | "FONC_VALE"
+        )
+    }) {
         return;
     }
+    let is_function = |ty: &ConceptType| matches!(ty, ConceptType::Fonction | ConceptType::Formule);
     let mut names: Vec<String> = Vec::new();
     let mut values: Vec<f64> = Vec::new();
+    let mut fnames: Vec<String> = Vec::new();
+    let mut fvalues: Vec<SpVal> = Vec::new();
     let mut span = None;
     given.retain(|(k, v)| {
         if matches!(k.name.as_str(), "VALE" | "NOM_PARA") {
@@ -1231,9 +1237,15 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
             }
             return true;
         }
-        let x = match v.v {
-            PyVal::Int(i) => i as f64,
-            PyVal::Real(r) => r,
+        let x = match &v.v {
+            PyVal::Int(i) => *i as f64,
+            PyVal::Real(r) => *r,
+            PyVal::Concept { ty, .. } if is_function(ty) => {
+                span.get_or_insert(v.span);
+                fnames.push(k.name.clone());
+                fvalues.push(v.clone());
+                return false;
+            }
             _ => return true,
         };
         span.get_or_insert(v.span);
@@ -1270,12 +1282,32 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
                 }
             }
             for n in used {
-                if params.contains(&n) || names.contains(&n) {
+                if params.contains(&n) || names.contains(&n) || fnames.contains(&n) {
                     continue;
                 }
                 let x = match env.names.get(&n) {
                     Some(Binding::Var(PyVal::Int(i))) => *i as f64,
                     Some(Binding::Var(PyVal::Real(r))) => *r,
+                    Some(Binding::Concept { ty, .. }) if is_function(ty) => {
+                        if let Some(span) = span {
+                            fvalues.push(SpVal {
+                                v: PyVal::Concept {
+                                    name: n.clone(),
+                                    ty: *ty,
+                                },
+                                span,
+                            });
+                            fnames.push(n);
+                        }
+                        continue;
+                    }
+                    Some(Binding::Var(v @ PyVal::Concept { ty, .. })) if is_function(ty) => {
+                        if let Some(span) = span {
+                            fvalues.push(SpVal { v: v.clone(), span });
+                            fnames.push(n);
+                        }
+                        continue;
+                    }
                     _ => continue,
                 };
                 names.push(n);
@@ -1284,14 +1316,23 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
         }
     }
     let Some(span) = span else { return };
-    if names.is_empty() {
-        return;
-    }
     let ident = |n: &str| Ident {
         name: n.to_string(),
         span,
     };
     let sp = |v: PyVal| SpVal { v, span };
+    if !fnames.is_empty() {
+        given.push((
+            ident("FONC_NOMS"),
+            sp(PyVal::Tuple(
+                fnames.into_iter().map(|n| sp(PyVal::Str(n))).collect(),
+            )),
+        ));
+        given.push((ident("FONC_VALE"), sp(PyVal::Tuple(fvalues))));
+    }
+    if names.is_empty() {
+        return;
+    }
     given.push((
         ident("CONST_NOMS"),
         sp(PyVal::Tuple(
@@ -1314,7 +1355,12 @@ fn collect_names(e: &crate::lang::ast::Expr, out: &mut Vec<String>) {
             collect_names(lhs, out);
             collect_names(rhs, out);
         }
-        ExprKind::Call { args, .. } => args.iter().for_each(|a| collect_names(&a.value, out)),
+        ExprKind::Call { func, args } => {
+            if !out.contains(&func.name) {
+                out.push(func.name.clone());
+            }
+            args.iter().for_each(|a| collect_names(&a.value, out))
+        }
         ExprKind::Tuple(items) => items.iter().for_each(|x| collect_names(x, out)),
         _ => {}
     }

@@ -3,7 +3,10 @@
 //! minus), the math functions and constants code_aster puts in a
 //! formula's namespace, NOM_PARA, and numbers given as extra keywords
 //! (`H=H`) or defined earlier in the command file (the checker gathers
-//! them into CONST_NOMS/CONST_VALE). Only the
+//! them into CONST_NOMS/CONST_VALE), and functions called by name,
+//! DEFI_FONCTION/DEFI_CONSTANTE/RECU_FONCTION results or other formulas
+//! given the same two ways (`VALE='GAM(INST) * Z', GAM=GAM`; gathered
+//! into FONC_NOMS/FONC_VALE). Only the
 //! commands that evaluate code_aster's "function-like" arguments by
 //! parameter name take a formula (LIAISON_UNIL's COEF_IMPO and COEF_MULT,
 //! AFFE_CHAR_MECA_F's values);
@@ -15,7 +18,7 @@ use crate::catalog::schema::*;
 use crate::concepts::{ConceptData, ConceptType as C};
 use crate::diag::Source;
 use crate::lang::ast::{BinOp, Expr, ExprKind, StmtKind, UnOp};
-use crate::post::formula::{Formula, Func, Node, Op, CONSTANTS};
+use crate::post::formula::{Coef, Formula, Func, Node, Op, CONSTANTS};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -36,13 +39,19 @@ pub fn def() -> CommandDef {
             // variables, gathered by the checker.
             text("CONST_NOMS").many().hidden().kw(),
             real("CONST_VALE").many().hidden().kw(),
+            // The functions VALE calls, gathered the same way.
+            text("FONC_NOMS").many().hidden().kw(),
+            concept("FONC_VALE", &[C::Fonction, C::Formule])
+                .many()
+                .hidden()
+                .kw(),
         ],
     )
     .doc("Defines a function by an expression of its parameters (constants of the command file are written as numbers).");
     CommandDef { spec, exec }
 }
 
-fn exec(_study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let vale = args.text("VALE").unwrap_or_default();
     let params: Vec<String> = args
         .texts("NOM_PARA")
@@ -55,7 +64,25 @@ fn exec(_study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         .map(|s| s.to_string())
         .zip(args.reals("CONST_VALE"))
         .collect();
-    let f = parse(vale, &params, &consts).map_err(|m| args.error("VALE", m))?;
+    let mut callees = Vec::new();
+    for (name, concept) in args
+        .texts("FONC_NOMS")
+        .iter()
+        .zip(args.concepts("FONC_VALE"))
+    {
+        let f = match study.concepts.data(concept) {
+            Some(ConceptData::Function(f)) => Coef::Function((**f).clone()),
+            Some(ConceptData::Formula(g)) => Coef::Formula((**g).clone()),
+            _ => {
+                return Err(args.error(
+                    "VALE",
+                    format!("{name} = {concept} holds no function (its command did not run)"),
+                ))
+            }
+        };
+        callees.push((name.to_string(), f));
+    }
+    let f = parse_calling(vale, &params, &consts, callees).map_err(|m| args.error("VALE", m))?;
     Ok(Some(ConceptData::Formula(Box::new(f))))
 }
 
@@ -63,6 +90,16 @@ fn exec(_study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
 /// values of the other names (FORMULE's extra keywords, command-file
 /// variables).
 pub fn parse(text: &str, params: &[String], consts: &[(String, f64)]) -> Result<Formula, String> {
+    parse_calling(text, params, consts, Vec::new())
+}
+
+/// [`parse`], VALE calling the functions `callees` by their names.
+pub fn parse_calling(
+    text: &str,
+    params: &[String],
+    consts: &[(String, f64)],
+    callees: Vec<(String, Coef)>,
+) -> Result<Formula, String> {
     let src = Source::new("VALE", format!("F__ = ({text})\n"));
     let program = crate::lang::parser::parse(&src)
         .map_err(|d| format!("VALE '{text}' is not an expression: {}", d.message))?;
@@ -73,87 +110,121 @@ pub fn parse(text: &str, params: &[String], consts: &[(String, f64)]) -> Result<
         },
         _ => return Err(format!("VALE '{text}' is not one expression")),
     };
-    let node = tree(expr, text, params, consts)?;
+    let names = Names {
+        text,
+        params,
+        consts,
+        callees: &callees,
+    };
+    let node = names.tree(expr)?;
     Ok(Formula {
         params: params.to_vec(),
         text: text.to_string(),
         node,
+        callees,
     })
 }
 
-fn tree(e: &Expr, text: &str, params: &[String], consts: &[(String, f64)]) -> Result<Node, String> {
-    Ok(match &e.kind {
-        ExprKind::Int(i) => Node::Num(*i as f64),
-        ExprKind::Real(r) => Node::Num(*r),
-        ExprKind::Name(n) => {
-            if let Some(i) = params.iter().position(|p| p == n) {
-                Node::Param(i)
-            } else if let Some(c) = consts.iter().find(|c| &c.0 == n) {
-                Node::Num(c.1)
-            } else if let Some(c) = CONSTANTS.iter().find(|c| c.0 == n) {
-                Node::Num(c.1)
-            } else {
-                return Err(format!(
-                    "name '{n}' in VALE '{text}' is neither a parameter of NOM_PARA ({}), a number of the command file or of FORMULE's keywords, nor a math constant (pi, e)",
-                    params.join(", ")
-                ));
-            }
-        }
-        ExprKind::Unary { op, operand } => {
-            let a = tree(operand, text, params, consts)?;
-            match op {
-                UnOp::Neg => Node::Neg(Box::new(a)),
-                UnOp::Pos => a,
-                UnOp::Not => {
+/// What the names of VALE can be.
+struct Names<'a> {
+    text: &'a str,
+    params: &'a [String],
+    consts: &'a [(String, f64)],
+    callees: &'a [(String, Coef)],
+}
+
+impl Names<'_> {
+    fn tree(&self, e: &Expr) -> Result<Node, String> {
+        let text = self.text;
+        Ok(match &e.kind {
+            ExprKind::Int(i) => Node::Num(*i as f64),
+            ExprKind::Real(r) => Node::Num(*r),
+            ExprKind::Name(n) => {
+                if let Some(i) = self.params.iter().position(|p| p == n) {
+                    Node::Param(i)
+                } else if let Some(c) = self.consts.iter().find(|c| &c.0 == n) {
+                    Node::Num(c.1)
+                } else if let Some(c) = CONSTANTS.iter().find(|c| c.0 == n) {
+                    Node::Num(c.1)
+                } else if self.callees.iter().any(|c| &c.0 == n) {
                     return Err(format!(
-                        "'not' in VALE '{text}': a FORMULE computes a real from reals"
-                    ))
+                        "'{n}' in VALE '{text}' is a function: call it with its parameter, as {n}(INST)"
+                    ));
+                } else {
+                    return Err(format!(
+                        "name '{n}' in VALE '{text}' is neither a parameter of NOM_PARA ({}), a number of the command file or of FORMULE's keywords, a function passed as a keyword ({n}={n}), nor a math constant (pi, e)",
+                        self.params.join(", ")
+                    ));
                 }
             }
-        }
-        ExprKind::Binary { op, lhs, rhs } => {
-            let op = match op {
-                BinOp::Add => Op::Add,
-                BinOp::Sub => Op::Sub,
-                BinOp::Mul => Op::Mul,
-                BinOp::Div => Op::Div,
-                BinOp::Pow => Op::Pow,
-                BinOp::FloorDiv | BinOp::Mod => {
-                    return Err(format!(
+            ExprKind::Unary { op, operand } => {
+                let a = self.tree(operand)?;
+                match op {
+                    UnOp::Neg => Node::Neg(Box::new(a)),
+                    UnOp::Pos => a,
+                    UnOp::Not => {
+                        return Err(format!(
+                            "'not' in VALE '{text}': a FORMULE computes a real from reals"
+                        ))
+                    }
+                }
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let op = match op {
+                    BinOp::Add => Op::Add,
+                    BinOp::Sub => Op::Sub,
+                    BinOp::Mul => Op::Mul,
+                    BinOp::Div => Op::Div,
+                    BinOp::Pow => Op::Pow,
+                    BinOp::FloorDiv | BinOp::Mod => return Err(format!(
                         "operator '{}' in VALE '{text}' is not available in a FORMULE (+ - * / **)",
                         op.symbol()
-                    ))
-                }
-            };
-            Node::Bin(
-                op,
-                Box::new(tree(lhs, text, params, consts)?),
-                Box::new(tree(rhs, text, params, consts)?),
-            )
-        }
-        ExprKind::Call { func, args } => {
-            let n = func.name.as_str();
-            let Some((f, arity)) = Func::of_name(n) else {
-                return Err(format!(
-                    "function '{n}' in VALE '{text}' is not available in a FORMULE (math functions: {})",
-                    Func::NAMES
-                ));
-            };
-            let ok = match arity {
-                Some(k) => args.len() == k,
-                None => !args.is_empty(),
-            };
-            if !ok || args.iter().any(|a| a.name.is_some()) {
-                return Err(format!("wrong arguments for '{n}' in VALE '{text}'"));
+                    )),
+                };
+                Node::Bin(op, Box::new(self.tree(lhs)?), Box::new(self.tree(rhs)?))
             }
-            let xs = args
-                .iter()
-                .map(|a| tree(&a.value, text, params, consts))
-                .collect::<Result<_, _>>()?;
-            Node::Call(f, xs)
-        }
-        _ => return Err(format!("VALE '{text}' must compute a real from reals")),
-    })
+            ExprKind::Call { func, args } => {
+                let n = func.name.as_str();
+                // A function passed by the user hides a math function of
+                // the same name, as a Python keyword argument would.
+                let callee = self.callees.iter().position(|c| c.0 == n);
+                let arity = match callee {
+                    Some(i) => Some(self.callees[i].1.arity()),
+                    None => match Func::of_name(n) {
+                        Some((_, arity)) => arity,
+                        None => {
+                            return Err(format!(
+                                "function '{n}' in VALE '{text}' is not available in a FORMULE (math functions: {}; a DEFI_FONCTION or FORMULE is called by the name of the keyword that passes it, as {n}={n})",
+                                Func::NAMES
+                            ))
+                        }
+                    },
+                };
+                let ok = match arity {
+                    Some(k) => args.len() == k,
+                    None => !args.is_empty(),
+                };
+                if !ok || args.iter().any(|a| a.name.is_some()) {
+                    let expected = match (callee, arity) {
+                        (Some(_), Some(k)) => format!(" ({n} takes {k})"),
+                        _ => String::new(),
+                    };
+                    return Err(format!(
+                        "wrong arguments for '{n}' in VALE '{text}'{expected}"
+                    ));
+                }
+                let xs = args
+                    .iter()
+                    .map(|a| self.tree(&a.value))
+                    .collect::<Result<_, _>>()?;
+                match callee {
+                    Some(i) => Node::Apply(i, xs),
+                    None => Node::Call(Func::of_name(n).expect("checked above").0, xs),
+                }
+            }
+            _ => return Err(format!("VALE '{text}' must compute a real from reals")),
+        })
+    }
 }
 
 #[cfg(test)]
@@ -200,5 +271,39 @@ mod tests {
         assert!(g.eval(&[("INST", 0.0)]).unwrap_err().contains("needs X"));
         let s = f("sqrt(X)", &["X"]).unwrap();
         assert!(s.eval(&[("X", -1.0)]).unwrap_err().contains("not finite"));
+    }
+
+    #[test]
+    fn calls_of_functions_and_formulas_are_checked_and_evaluated() {
+        use crate::post::function::Function;
+        let ramp = Function::new("INST", "TOUTRESU", vec![0.0, 1.0], vec![0.0, 2.0]).unwrap();
+        let callees = || vec![("RP".to_string(), Coef::Function(ramp.clone()))];
+        let p = vec!["INST".to_string()];
+        let g = parse_calling("RP(INST) * 3", &p, &[], callees()).unwrap();
+        assert_eq!(g.eval(&[("INST", 0.25)]), Ok(1.5));
+        // A formula calling that formula, positionally.
+        let h = parse_calling(
+            "G(INST / 2) + 1",
+            &p,
+            &[],
+            vec![("G".to_string(), Coef::Formula(g.clone()))],
+        )
+        .unwrap();
+        assert_eq!(h.eval(&[("INST", 0.5)]), Ok(2.5));
+        let e = parse_calling("RP(INST, 1)", &p, &[], callees()).unwrap_err();
+        assert!(
+            e.contains("wrong arguments for 'RP'") && e.contains("RP takes 1"),
+            "{e}"
+        );
+        let e = parse_calling("RP + 1", &p, &[], callees()).unwrap_err();
+        assert!(e.contains("'RP'") && e.contains("is a function"), "{e}");
+        let e = parse_calling("GAM(INST)", &p, &[], callees()).unwrap_err();
+        assert!(e.contains("function 'GAM'") && e.contains("GAM=GAM"), "{e}");
+        // The ramp is excluded outside [0, 1]: the message names the callee.
+        let e = g.eval(&[("INST", 2.0)]).unwrap_err();
+        assert!(
+            e.starts_with("RP, called by the formula 'RP(INST) * 3'"),
+            "{e}"
+        );
     }
 }

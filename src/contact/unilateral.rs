@@ -797,6 +797,7 @@ mod tests {
             params: params.to_vec(),
             text: "INST + 10 * Y + 100 * Z".into(),
             node,
+            callees: Vec::new(),
         });
         assert_eq!(eval_coef_impo(&g, 1.0, [5.0, 2.0, 3.0]).unwrap(), 321.0);
         let e = eval_coef_mult(&g, 1.0).unwrap_err();

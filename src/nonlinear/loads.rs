@@ -313,6 +313,7 @@ mod tests {
                 Box::new(crate::post::formula::Node::Param(0)),
                 Box::new(crate::post::formula::Node::Param(1)),
             ),
+            callees: Vec::new(),
         };
         let two = Function::constant(2.0, "TOUTRESU");
         let part = |imposed| FunctionPart {

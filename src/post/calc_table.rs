@@ -354,6 +354,7 @@ mod tests {
             params: vec!["DY".into()],
             text: "DY / 2".into(),
             node: Node::Bin(Op::Div, Box::new(Node::Param(0)), Box::new(Node::Num(2.0))),
+            callees: Vec::new(),
         };
         let mut t = table(
             &["NOEUD", "DY", "V"],

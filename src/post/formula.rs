@@ -82,6 +82,10 @@ pub enum Node {
     Neg(Box<Node>),
     Bin(Op, Box<Node>, Box<Node>),
     Call(Func, Vec<Node>),
+    /// A call of the function of this index in `Formula::callees`: a
+    /// DEFI_FONCTION or another FORMULE passed to FORMULE as a keyword
+    /// (`FORMULE(VALE='GAM(INST) * Z', GAM=GAM, ...)`).
+    Apply(usize, Vec<Node>),
 }
 
 /// A FORMULE.
@@ -92,6 +96,10 @@ pub struct Formula {
     /// VALE as written.
     pub text: String,
     pub node: Node,
+    /// The functions VALE calls, by the name it calls them: copies of the
+    /// concepts as they were when FORMULE ran, as Python's closure would
+    /// see them (a DETRUIRE later does not reach them).
+    pub callees: Vec<(String, Coef)>,
 }
 
 impl Formula {
@@ -112,14 +120,20 @@ impl Formula {
                 }
             }
         }
-        let v = self.value(&self.node, &args)?;
+        self.eval_positional(&args)
+    }
+
+    /// The value for the parameters in NOM_PARA's order (a call of this
+    /// formula from another one).
+    pub fn eval_positional(&self, args: &[f64]) -> Result<f64, String> {
+        let v = self.value(&self.node, args)?;
         if v.is_finite() {
             Ok(v)
         } else {
             let at: Vec<String> = self
                 .params
                 .iter()
-                .zip(&args)
+                .zip(args)
                 .map(|(n, x)| format!("{n} = {x:e}"))
                 .collect();
             Err(format!(
@@ -177,6 +191,18 @@ impl Formula {
                     Func::Max => xs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
                 }
             }
+            Node::Apply(i, xs) => {
+                let xs: Vec<f64> = xs
+                    .iter()
+                    .map(|x| self.value(x, args))
+                    .collect::<Result<_, _>>()?;
+                let (name, f) = &self.callees[*i];
+                let v = match f {
+                    Coef::Function(f) => f.eval(xs[0]),
+                    Coef::Formula(g) => g.eval_positional(&xs),
+                };
+                v.map_err(|e| format!("{name}, called by the formula '{}': {e}", self.text))?
+            }
         })
     }
 }
@@ -202,6 +228,15 @@ impl From<super::function::Function> for Coef {
 pub const NODE_PARAMS: [&str; 4] = ["INST", "X", "Y", "Z"];
 
 impl Coef {
+    /// How many arguments a call takes: one for a tabulated or constant
+    /// function, NOM_PARA's count for a formula.
+    pub fn arity(&self) -> usize {
+        match self {
+            Coef::Function(_) => 1,
+            Coef::Formula(g) => g.params.len(),
+        }
+    }
+
     /// The first parameter of the function that is not among `allowed`
     /// (TOUTPARA, a constant's, always is).
     pub fn unknown_param(&self, allowed: &[&str]) -> Option<String> {

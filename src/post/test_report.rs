@@ -742,8 +742,14 @@ fn check_block(
 /// The .resu block of one TEST_FONCTION VALEUR occurrence: the header
 /// (`---- FONCTION`, the parameter and its value), the check lines and the
 /// closing blank record, as TEST_RESU's blocks.
-pub fn function_block(function: &str, para: &str, value: f64, lines: &[CheckLine]) -> String {
-    let v = py_repr(value);
+pub fn function_block(function: &str, para: &str, values: &[f64], lines: &[CheckLine]) -> String {
+    let v = match values {
+        [x] => py_repr(*x),
+        _ => {
+            let xs: Vec<String> = values.iter().map(|x| py_repr(*x)).collect();
+            format!("({})", xs.join(", "))
+        }
+    };
     check_block(
         "FONCTION",
         function,
