@@ -1096,6 +1096,15 @@ fn run_on(
                 ));
             }
         }
+        // The correction makes the state's a and v those that keep the
+        // next step out of the obstacle, so it needs a next step even
+        // after the last one: without it (dt_next = 0 predicts no motion,
+        // hence nothing to correct) the last state of a call kept the
+        // uncorrected velocity (a node resting on the wall stored with
+        // −V/2 or more), which a continuation then started from. The
+        // step just taken stands for the next one, as in a one-call run
+        // going on with the same step.
+        let dt_ahead = if dt_next > 0.0 { dt_next } else { dt };
         if let Some(ct) = contact.as_deref_mut() {
             if ct.kinematic() {
                 let corrected = ct
@@ -1104,7 +1113,7 @@ fn run_on(
                         &engine.trial.motion.u,
                         engine.trial.t,
                     )
-                    .and_then(|()| ex.correct(engine, ct, dt, dt_next, true));
+                    .and_then(|()| ex.correct(engine, ct, dt, dt_ahead, true));
                 if let Err(why) = corrected {
                     fail!(why, t0, dt);
                 }
