@@ -2063,6 +2063,17 @@ fn function_valued_loads_follow_time() {
     run_study("char_f_ramp");
 }
 
+/// Penalised DISCRETE contact between two deformable bodies, a matching
+/// 2 x 2 HEXA8 patch in STAT_NON_LINE (E_N 1e7 and 1e9): the uniform
+/// uniaxial stress within the penalty's bound f / (E_N D) (1e-2, 1e-4;
+/// measured errors 0.9 % and 9e-3 %, down by 100 with E_N). The slave
+/// nodes on master cell edges change cells by round-off between
+/// iterations; the pattern rebuild then panicked.
+#[test]
+fn penalised_contact_patch_between_deformable_bodies() {
+    run_study("contact_penalty_patch");
+}
+
 /// FORMULE calling functions: a DEFI_FONCTION or a FORMULE passed as a
 /// keyword (`VALE='RP(INST)', RP=RAMPE`) or named from the command file,
 /// nested two deep, a two-parameter formula tested by TEST_FONCTION in

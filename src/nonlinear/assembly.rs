@@ -226,10 +226,13 @@ impl Assembler {
         let mut mass_free = vec![0.0; pattern.nnz()];
         for j in 0..old.n {
             for k in old.col_ptr[j]..old.col_ptr[j + 1] {
-                let p = pattern
-                    .position(old.row_idx[k], j)
-                    .expect("the new pattern holds the element entries");
-                mass_free[p] = self.mass_free[k];
+                // The element entries are in every pattern; an old entry
+                // that is not is a coupling of the previous pairing that
+                // this one drops (a slave node paired to another master
+                // cell), and carries no mass.
+                if let Some(p) = pattern.position(old.row_idx[k], j) {
+                    mass_free[p] = self.mass_free[k];
+                }
             }
         }
         self.extra = wanted;
