@@ -301,15 +301,11 @@ pub fn c_comportement() -> Keyword {
     .kw()
 }
 
-/// `NEWTON` (`C_NEWTON`) of DYNA_NON_LINE (REAC_ITER = 1 by default).
+/// `NEWTON` (`C_NEWTON`) of STAT_NON_LINE and DYNA_NON_LINE: REAC_ITER = 1
+/// by default in both (code_aster 15+; its 2015 catalogue had 0 for both:
+/// semantics.md §8.4 is the version this project follows).
 pub fn c_newton() -> Keyword {
     newton_with(1)
-}
-
-/// `NEWTON` of STAT_NON_LINE: code_aster's REAC_ITER = 0 by default (the
-/// prediction's matrix is kept for the corrections).
-pub fn c_newton_stat() -> Keyword {
-    newton_with(0)
 }
 
 fn newton_with(reac_iter: i64) -> Keyword {

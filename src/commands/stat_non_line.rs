@@ -51,7 +51,7 @@ pub fn def() -> CommandDef {
                 .into(&["NEWTON", "IMPLEX", "NEWTON_KRYLOV", "SNES", "RASPEN"])
                 .default(t("NEWTON"))
                 .kw(),
-            c_newton_stat(),
+            c_newton(),
             c_rech_lineaire(),
             fact(
                 "PILOTAGE",
