@@ -2074,6 +2074,16 @@ fn penalised_contact_patch_between_deformable_bodies() {
     run_study("contact_penalty_patch");
 }
 
+/// STAT_NON_LINE without NEWTON reassembles the tangent at every
+/// iteration (REAC_ITER = 1, code_aster 15+): a plastic HEXS8 cantilever
+/// run with and without NEWTON=_F(REAC_ITER=1) gives the same tip load,
+/// within the limit-analysis bracket [20.51, 23.69] N (measured 23.275);
+/// with the former default 0 the run without NEWTON stopped at step 5.
+#[test]
+fn stat_non_line_reassembles_the_tangent_by_default() {
+    run_study("newton_default_plastic");
+}
+
 /// FORMULE calling functions: a DEFI_FONCTION or a FORMULE passed as a
 /// keyword (`VALE='RP(INST)', RP=RAMPE`) or named from the command file,
 /// nested two deep, a two-parameter formula tested by TEST_FONCTION in

@@ -176,10 +176,12 @@ impl Names<'_> {
                     BinOp::Mul => Op::Mul,
                     BinOp::Div => Op::Div,
                     BinOp::Pow => Op::Pow,
-                    BinOp::FloorDiv | BinOp::Mod => return Err(format!(
+                    BinOp::FloorDiv | BinOp::Mod => {
+                        return Err(format!(
                         "operator '{}' in VALE '{text}' is not available in a FORMULE (+ - * / **)",
                         op.symbol()
-                    )),
+                    ))
+                    }
                 };
                 Node::Bin(op, Box::new(self.tree(lhs)?), Box::new(self.tree(rhs)?))
             }
