@@ -574,13 +574,15 @@ impl Explicit {
     /// The kinematic contact correction of the trial state (its a and, for
     /// DIFF_CENT, its v) before the next step of `dt_next`; `dt_prev` is the
     /// step that led to the trial state (0 at the initial state, whose
-    /// velocity is given and not corrected).
+    /// velocity is given and not corrected). The links are those of the
+    /// next step's end, or of `t_links` when given.
     pub fn correct(
         &self,
         engine: &mut Engine,
         contact: &mut (dyn ExplicitConstraint + '_),
         dt_prev: f64,
         dt_next: f64,
+        t_links: Option<f64>,
         state_is_trial: bool,
     ) -> Result<(), String> {
         let kappa = match self.scheme {
@@ -593,7 +595,7 @@ impl Explicit {
         } else {
             &mut engine.committed
         };
-        let t_next = st.t + dt_next;
+        let t_next = t_links.unwrap_or(st.t + dt_next);
         contact.correct(
             &engine.asm.numbering,
             &self.mass,
@@ -915,7 +917,7 @@ fn run_on(
     }
     if let Some(ct) = contact.as_deref_mut() {
         if ct.kinematic() {
-            ex.correct(engine, ct, 0.0, first_dt, false)
+            ex.correct(engine, ct, 0.0, first_dt, None, false)
                 .map_err(|m| stop(m, &summary))?;
         }
         if let Some(h) = restored {
@@ -1103,7 +1105,9 @@ fn run_on(
         // uncorrected velocity (a node resting on the wall stored with
         // −V/2 or more), which a continuation then started from. The
         // step just taken stands for the next one, as in a one-call run
-        // going on with the same step.
+        // going on with the same step; LIAISON_UNIL's coefficients are
+        // taken at its end when defined there, else (PROL_DROITE='EXCLU'
+        // at the list's end) as they are at the last instant.
         let dt_ahead = if dt_next > 0.0 { dt_next } else { dt };
         if let Some(ct) = contact.as_deref_mut() {
             if ct.kinematic() {
@@ -1113,7 +1117,15 @@ fn run_on(
                         &engine.trial.motion.u,
                         engine.trial.t,
                     )
-                    .and_then(|()| ex.correct(engine, ct, dt, dt_ahead, true));
+                    .and_then(
+                        |()| match ex.correct(engine, ct, dt, dt_ahead, None, true) {
+                            Err(_) if dt_next <= 0.0 => {
+                                let t_end = engine.trial.t;
+                                ex.correct(engine, ct, dt, dt_ahead, Some(t_end), true)
+                            }
+                            r => r,
+                        },
+                    );
                 if let Err(why) = corrected {
                     fail!(why, t0, dt);
                 }
