@@ -189,6 +189,7 @@ fn same_node_in_two_zones_cut_then_held_on_the_stricter_wall() {
     for what in [
         "step failure from t = 9e-6 to 1.2e-5",
         "singular at link 8",
+        "zone 2 of LIAISON_UNIL, node N1 at (0, 0, 2.27)",
         "MECANONLINE9_6",
         "the step is cut into 4 sub-steps",
     ] {
@@ -316,4 +317,24 @@ fn link_on_an_imposed_component_is_left_violated_with_an_alarm() {
         assert!(a.contains(", DZ) violated by 2.000e-2"), "{a}");
         assert!(a.contains("PIVOT NUL"), "{a}");
     }
+}
+
+/// A zone naming nodes the model does not carry: they are dropped, as
+/// code_aster's elimun does, and the .mess says how many of the zone's
+/// nodes were (it said only "4 nodes" for 8 given); the kept links hold
+/// (tests/studies/unil_zone_outside_model.comm, DZ of PB1 = 0 at t = 1).
+#[test]
+fn zone_nodes_outside_the_model_are_dropped_and_counted() {
+    let run = common::run_study(
+        "tests/studies/unil_zone_outside_model.comm",
+        "unil_zone_outside_model",
+    );
+    common::assert_all_ok(&run, "unil_zone_outside_model.resu");
+    let mess = run.file("unil_zone_outside_model.mess");
+    assert!(
+        mess.contains(
+            "zone 1: 4 of its 8 nodes dropped: they carry no degree of freedom of the model MO (as code_aster's elimun)"
+        ),
+        "{mess}"
+    );
 }

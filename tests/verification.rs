@@ -2084,6 +2084,16 @@ fn stat_non_line_reassembles_the_tangent_by_default() {
     run_study("newton_default_plastic");
 }
 
+/// Penalised LIAISON_UNIL at SDNV103 K's COEF_PENA = 1e14 past code_aster's
+/// INST_FIN (E's bar to 1.007e-6 s): the run converges (it stalled at
+/// RESI_GLOB_RELA 1.17e-6 for 20 iterations in the step after 2.5e-7,
+/// the penalty force known only to COEF_PENA x ulp(u)), A1 on the stop
+/// to 1e-10, K's A1 VZ within 1e-5 of the active set's (measured 1.4e-6).
+#[test]
+fn stiff_penalty_on_a_unilateral_stop_converges_past_the_impact() {
+    run_study("unil_penalty_stiff");
+}
+
 /// FORMULE calling functions: a DEFI_FONCTION or a FORMULE passed as a
 /// keyword (`VALE='RP(INST)', RP=RAMPE`) or named from the command file,
 /// nested two deep, a two-parameter formula tested by TEST_FONCTION in

@@ -422,10 +422,9 @@ fn unil_zone(
     let in_model = model.node_mask(mesh);
     // Nodes without degrees of freedom are dropped (code_aster's elimun);
     // a zone left empty is an error.
-    let nodes: Vec<usize> = select_nodes(mesh, zone, &[])?
-        .into_iter()
-        .filter(|&n| in_model[n])
-        .collect();
+    let selected = select_nodes(mesh, zone, &[])?;
+    let given = selected.len();
+    let nodes: Vec<usize> = selected.into_iter().filter(|&n| in_model[n]).collect();
     if nodes.is_empty() {
         return Err(zone.error(
             "",
@@ -472,6 +471,13 @@ fn unil_zone(
         nodes.len(),
         kept.join(", ")
     );
+    if nodes.len() < given {
+        line.push_str(&format!(
+            "\n      zone {}: {} of its {given} nodes dropped: they carry no degree of freedom of the model {model_name} (as code_aster's elimun)",
+            k + 1,
+            given - nodes.len()
+        ));
+    }
     if !absent.is_empty() {
         line.push_str(&format!(
             "\n      zone {}: NOM_CMP {} dropped: not a degree of freedom of the model {model_name} (UNILATER_75)",

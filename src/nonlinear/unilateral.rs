@@ -18,7 +18,7 @@
 
 use super::dofs::{DofNumbering, NONE};
 use super::newton::{ContactIteration, ContactTerm, IncrementCorrection};
-use crate::contact::unilateral::{active_set, penalty, Row, UnilAlgo, UnilDef};
+use crate::contact::unilateral::{active_set, penalty, ActiveSetFailure, Row, UnilAlgo, UnilDef};
 
 /// Counters of a computation.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -40,7 +40,8 @@ pub struct UnilateralContact {
     rows: Vec<Row>,
     /// Why the coefficients could not be evaluated at this step's end.
     row_error: Option<String>,
-    /// Pseudo-gaps c − A u of the active set (None before iteration 0).
+    /// Pseudo-gaps c − A u of the step's iterate, from the first solve of
+    /// the step on (None before), updated by the increments.
     gaps: Option<Vec<f64>>,
     /// Aᵀμ (active set) or Σ λ Aᵀ (penalty) of the last iteration, full.
     force: Vec<f64>,
@@ -220,7 +221,10 @@ impl ContactTerm for UnilateralContact {
                     for (i, row) in self.rows.iter().enumerate() {
                         let z = self.def.links[i].zone;
                         let e = self.def.zones[z].coef_pena.unwrap_or(0.0);
-                        let gap = row.c - row.dot(&ueq);
+                        let gap = match &self.gaps {
+                            Some(g) => g[i],
+                            None => row.c - row.dot(&ueq),
+                        };
                         if let Some(lambda) = penalty(gap, e) {
                             weights.push((i, lambda));
                             if let Some(m) = matrix.as_deref_mut() {
@@ -251,9 +255,6 @@ impl ContactTerm for UnilateralContact {
     }
 
     fn correct(&mut self, c: IncrementCorrection) -> Result<(), String> {
-        if self.def.algo != UnilAlgo::ActiveSet {
-            return Ok(());
-        }
         let nb = c.numbering;
         let rows = &self.rows;
         let gaps = self.gaps.get_or_insert_with(|| {
@@ -263,10 +264,40 @@ impl ContactTerm for UnilateralContact {
             }
             rows.iter().map(|r| r.c - r.dot(&ueq)).collect()
         });
+        if self.def.algo == UnilAlgo::Penalty {
+            // The penalty reads the gap of the new iterate, c − A(u + δ)
+            // (liaison-unil.md §5), kept here as the step's first gap
+            // minus the increments. From the total displacement it would
+            // be known only to the ulp of u (4.4e-16 at u = −2.27), i.e.
+            // the force to COEF_PENA × 4.4e-16 = 0.044 N per link at
+            // COEF_PENA = 1e14: a floor under which the residual of K's
+            // impact stalled (RESI_GLOB_RELA 1.17e-6 for 1e-6). The
+            // increments' sum is known to the ulp of the step's motion.
+            for (g, r) in gaps.iter_mut().zip(rows) {
+                *g -= r.dot(c.delta);
+            }
+            return Ok(());
+        }
         let solver = c.solver;
         let mut solve = |b: &mut [f64]| solver.solve(b).map_err(|e| e.to_string());
-        let r = active_set(rows, gaps, c.delta, &mut solve, &mut self.zero_set)
-            .map_err(|e| e.to_string())?;
+        let links = &self.def.links;
+        let r = active_set(rows, gaps, c.delta, &mut solve, &mut self.zero_set).map_err(|e| {
+            match e {
+                // The link number alone makes the user count links.
+                ActiveSetFailure::Singular { link } => {
+                    let l = &links[link];
+                    format!(
+                        "{e}: zone {} of LIAISON_UNIL, node N{} at ({}, {}, {})",
+                        l.zone + 1,
+                        l.node + 1,
+                        l.coords[0],
+                        l.coords[1],
+                        l.coords[2]
+                    )
+                }
+                _ => e.to_string(),
+            }
+        })?;
         self.stats.calls += 1;
         self.stats.passes += r.passes + 1;
         self.stats.max_passes = self.stats.max_passes.max(r.passes + 1);
