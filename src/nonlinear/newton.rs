@@ -239,7 +239,22 @@ impl std::fmt::Display for StepFailure {
                     "Newton did not converge in {} iterations; residual history (RESI_GLOB_RELA / RESI_GLOB_MAXI):",
                     history.last().map_or(0, |r| r.iteration)
                 )?;
-                for r in history {
+                // The message is repeated (the step's failure line, the
+                // stop, the error): a long history keeps its start and
+                // its last rows, where a stall or a cycle shows.
+                let n = history.len();
+                for (k, r) in history.iter().enumerate() {
+                    if n > 10 && (3..n - 5).contains(&k) {
+                        if k == 3 {
+                            write!(
+                                f,
+                                " [{} to {} omitted]",
+                                r.iteration,
+                                history[n - 6].iteration
+                            )?;
+                        }
+                        continue;
+                    }
                     write!(
                         f,
                         " [{}] {:.3e} / {:.3e}",
@@ -827,5 +842,52 @@ impl Engine {
     /// are its opposite).
     pub fn residual(&self) -> &[f64] {
         &self.resid
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn history(n: usize) -> Vec<IterationRecord> {
+        (1..=n)
+            .map(|i| IterationRecord {
+                iteration: i,
+                resi_rela: 1.0 / i as f64,
+                resi_maxi: 2.0,
+                denominator: 1.0,
+                swapped: false,
+                matrix_updated: true,
+            })
+            .collect()
+    }
+
+    /// A long history keeps its first three and last five rows (the
+    /// message is printed three times: it was 6 kB for 50 iterations).
+    #[test]
+    fn a_long_residual_history_is_shortened_in_the_middle() {
+        let long = StepFailure::NotConverged {
+            history: history(30),
+        }
+        .to_string();
+        assert!(long.starts_with("Newton did not converge in 30 iterations"));
+        for kept in [
+            "[1] 1.000e0",
+            "[3] 3.333e-1",
+            "[4 to 25 omitted]",
+            "[26] 3.846e-2",
+            "[30] 3.333e-2",
+        ] {
+            assert!(long.contains(kept), "{kept}: {long}");
+        }
+        assert!(!long.contains("[10]") && !long.contains("[25]"), "{long}");
+        let short = StepFailure::NotConverged {
+            history: history(10),
+        }
+        .to_string();
+        assert!(
+            short.contains("[5] 2.000e-1") && !short.contains("omitted"),
+            "{short}"
+        );
     }
 }
