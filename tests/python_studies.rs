@@ -441,3 +441,20 @@ L = DEFI_LIST_REEL(VALE=[S] + [a * b for (a, b) in ((1., 2.), (3., 4.))]
         "{m} at {line}:{col}"
     );
 }
+
+/// A loop of appends builds its list in place: 200 000 appends give the
+/// list (the checker copied the whole list at each append, so a fuzzed
+/// study's range(1000000) ran for an hour in the fuzz test).
+#[test]
+fn appends_in_a_long_loop_build_the_list() {
+    let text = "\
+P = []
+for i in range(200000):
+    P.append(i % 7)
+L = DEFI_LIST_REEL(VALE=(float(len(P)), float(P[-1]), float(P[123456])))
+";
+    assert_eq!(
+        lists(text),
+        vec![vec![200000.0, (199999 % 7) as f64, (123456 % 7) as f64]]
+    );
+}
