@@ -723,6 +723,30 @@ fn post_releve_t_refuses_other_operations() {
         e.contains("not implemented yet: POST_RELEVE_T/ACTION/MOMENT"),
         "{e}"
     );
+    // A cylindrical frame written as code_aster wants it (ORIGINE, AXE_Z)
+    // is refused on REPERE, not on ORIGINE.
+    let e = run_err(
+        "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,
+                NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY', REPERE='CYLINDRIQUE',
+                ORIGINE=(0., 0., 0.), AXE_Z=(0., 0., 1.)))\n",
+    );
+    assert!(
+        e.contains(
+            "not implemented yet: POST_RELEVE_T/ACTION/REPERE (only the global frame is built)"
+        ),
+        "{e}"
+    );
+    // Extraction on cells is valid code_aster, not built here: said so,
+    // not "GROUP_NO or NOEUD must be given".
+    let e = run_err(
+        "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,
+                NOM_CHAM='SIEF_ELGA', GROUP_MA='C1', NOM_CMP='SIYY'))\n",
+    );
+    assert!(
+        e.contains("not implemented yet: POST_RELEVE_T/ACTION/GROUP_MA")
+            && e.contains("extraction on cells"),
+        "{e}"
+    );
 }
 
 /// EXTREMA and MOYENNE_ARITH: a cell group the mesh lacks is named with

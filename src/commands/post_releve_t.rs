@@ -85,7 +85,10 @@ pub fn def() -> CommandDef {
                         .kw(),
                     block("b_autre", not(is_in("OPERATION", &other)), vec![])
                         .rules(vec![
-                            au_moins_un(&["GROUP_NO", "NOEUD"]),
+                            // code_aster's rule; cells and TOUT are
+                            // refused when run, as not built, rather than
+                            // read as a missing node selection.
+                            au_moins_un(&["TOUT", "GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"]),
                             un_parmi(&[
                                 "TOUT_CMP",
                                 "NOM_CMP",
@@ -231,15 +234,22 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
             ))
         }
     };
+    // The frame first: ORIGINE and AXE_Z belong to REPERE='CYLINDRIQUE',
+    // and naming them would hide what is missing.
+    if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
+        return Err(occ.not_implemented("REPERE", "only the global frame is built"));
+    }
     for k in UNSUPPORTED {
         // EXTREMA and MOYENNE_ARITH select nodes by cells too.
         let selection = matches!(k, "TOUT" | "GROUP_MA" | "MAILLE");
         if occ.has(k) && !(selection && op != Operation::Extraction) {
-            return Err(occ.not_implemented(k, "only nodal extraction on GROUP_NO/NOEUD is built"));
+            let why = if selection {
+                "EXTRACTION reads nodal fields at the nodes of GROUP_NO/NOEUD; extraction on cells (Gauss-point fields by GROUP_MA/MAILLE, TOUT) is not built: extract a nodal field (CALC_CHAMP SIGM_NOEU, VARI_NOEU...) on the cells' nodes, or use EXTREMA / MOYENNE_ARITH"
+            } else {
+                "only nodal extraction on GROUP_NO/NOEUD is built"
+            };
+            return Err(occ.not_implemented(k, why));
         }
-    }
-    if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
-        return Err(occ.not_implemented("REPERE", "only the global frame is built"));
     }
     let intitule = occ.text("INTITULE").unwrap_or_default().to_string();
     if intitule.chars().count() > 16 {

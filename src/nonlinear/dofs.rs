@@ -81,8 +81,11 @@ impl DofNumbering {
             } => format!(
                 "the matrix is singular: {} decimals lost at the pivot of {} (SOLVEUR NPREC = {nprec}, \
                  STOP_SINGULIER='OUI'); the structure has a mode without stiffness there: a missing support \
-                 (DDL_IMPO), or a zero-energy (spurious) mode of under-integrated elements \
-                 (3D_SI, D_PLAN_SI, AXIS_SI) that the supports do not hold",
+                 (DDL_IMPO), a zero-energy (spurious) mode of under-integrated elements \
+                 (3D_SI, D_PLAN_SI, AXIS_SI) that the supports do not hold, a tangent that has lost \
+                 its stiffness (a perfectly plastic structure at its limit load, under imposed forces), \
+                 or a penalty (E_N, COEF_PENA) so much stiffer than its neighbours that they vanish \
+                 against it at that pivot",
                 fmt_decimals(*decimals),
                 self.equation_name(*unknown)
             ),
