@@ -1853,6 +1853,75 @@ fn observation_tables_hold_the_closed_forms() {
     run_study("observation");
 }
 
+/// ARCHIVAGE instants the run does not compute: nothing is archived there
+/// (as code_aster), with an alarm naming them in the .mess (a probe study
+/// met it as a later "no stored instant"); instants outside the run's span
+/// and the computed ones give none.
+#[test]
+fn archive_instants_not_computed_are_named() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("archive_not_computed");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("observation.comm")).unwrap();
+    let text = comm.replace(
+        "ARCHIVAGE=_F(INST=10.),",
+        "ARCHIVAGE=_F(INST=(2.5, 10., 12.)),",
+    );
+    assert_ne!(text, comm);
+    std::fs::write(tmp.join("arch.comm"), text).unwrap();
+    std::fs::write(
+        tmp.join("arch.export"),
+        std::fs::read_to_string(dir().join("observation.export"))
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let f: Vec<&str> = l.split_whitespace().collect();
+                format!(
+                    "{} {} {} {} {}\n",
+                    f[0],
+                    f[1],
+                    dir().join(f[2]).display(),
+                    f[3],
+                    f[4]
+                )
+            })
+            .collect::<String>(),
+    )
+    .unwrap();
+    let run = common::run_study(
+        tmp.join("arch.comm").to_str().unwrap(),
+        "verif_archive_not_computed",
+    );
+    let mess = run.file("arch.mess");
+    let alarm = "alarm: ARCHIVAGE: 1 instant(s) asked for within the run's span are not instants the run computed (2.5e0; CRITERE='RELATIF', PRECISION=1e-6)";
+    assert!(mess.contains(alarm), "{mess}");
+    assert_eq!(mess.matches("alarm: ARCHIVAGE").count(), 1, "{mess}");
+    let plain = common::run_study(
+        "tests/verification/observation.comm",
+        "verif_archive_computed",
+    );
+    assert!(!plain.file("observation.mess").contains("alarm: ARCHIVAGE"));
+}
+
+/// Full HHT with contact (tests/verification/hht_contact_rest.comm): a
+/// block at rest on a penalised floor, ALPHA = -0.3: the stresses carry
+/// the weight (REAC_NODA = m g) and CONT_NOEU holds the multipliers of the
+/// equation divided by 1 + ALPHA (sum RN = m g / 0.7), as code_aster's HHT
+/// keeps no contact force of the step's start; the .mess says it.
+#[test]
+fn hht_contact_multipliers_are_named_in_the_mess() {
+    let run = common::run_study(
+        "tests/verification/hht_contact_rest.comm",
+        "verif_hht_contact_rest",
+    );
+    common::assert_all_ok(&run, "hht_contact_rest.resu");
+    let mess = run.file("hht_contact_rest.mess");
+    assert!(
+        mess.contains("alarm: HHT with MODI_EQUI='OUI' and contact")
+            && mess.contains("the force on the bodies is (1 + ALPHA) = 0.7000 times them"),
+        "{mess}"
+    );
+}
+
 /// Bad OBSERVATION input: PAS_OBSE < 1, an unknown component, VITE in
 /// STAT_NON_LINE: located errors.
 #[test]

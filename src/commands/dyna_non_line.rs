@@ -1407,6 +1407,11 @@ pub(crate) fn run(
     } {
         notes.push(a);
     }
+    if let (SchemeChoice::Implicit(s), true) = (&choice, args.given("CONTACT")) {
+        if s.hht_full && s.alpha != 0.0 {
+            notes.push(hht_contact_note(s.alpha));
+        }
+    }
     let model_name = args.concept("MODELE").unwrap_or("").to_string();
     let mat_name = args.concept("CHAM_MATER").unwrap_or("").to_string();
     let md = model_data(
@@ -1847,6 +1852,63 @@ pub(crate) fn run(
     result_of_run(study, args, result, evol, outcome)
 }
 
+/// The alarm for ARCHIVAGE instants (LIST_INST or INST) inside the run's
+/// span that no computed step ended on: nothing is archived there, as in
+/// code_aster, but silently a later TEST_RESU or POST_RELEVE_T at that
+/// instant only finds "no stored instant".
+fn unarchived_instants(study: &Study, args: &Args, evol: &EvolNoli) -> Option<String> {
+    let Ok(ArchivePolicy::Instants {
+        instants,
+        precision,
+        relative,
+    }) = archive_of(study, args)
+    else {
+        return None;
+    };
+    let (first, last) = (evol.steps.first()?.inst, evol.steps.last()?.inst);
+    let near = |s: f64, t: f64| {
+        let tol = if relative {
+            precision * s.abs()
+        } else {
+            precision
+        };
+        (s - t).abs() <= tol
+    };
+    let missing: Vec<String> = instants
+        .iter()
+        .filter(|&&s| (first..=last).contains(&s) || near(s, first) || near(s, last))
+        .filter(|&&s| !evol.steps.iter().any(|st| near(s, st.inst)))
+        .map(|s| format!("{s:e}"))
+        .collect();
+    if missing.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "  alarm: ARCHIVAGE: {} instant(s) asked for within the run's span are not instants the run computed ({}; CRITERE='{}', PRECISION={precision:e}): nothing is archived there (as code_aster). Ask for instants of the time list, or use PAS_ARCH",
+        missing.len(),
+        missing.join(", "),
+        if relative { "RELATIF" } else { "ABSOLU" }
+    ))
+}
+
+/// Full HHT weights the internal and external forces of the step's end by
+/// 1 and of its start by −α/(1 + α) (the equation divided by 1 + α), but
+/// keeps no contact force of the step's start, as code_aster's `nmchht`,
+/// whose previous-step vectors hold none: the contact force enters at the
+/// step's end with weight 1. Its multipliers (CONT_NOEU RN, R, the
+/// LIAISON_UNIL forces) are then those of the weighted equation: the force
+/// the contact exerts on the bodies is (1 + α) times them (a body at rest
+/// on its support shows RN = weight / (1 + α)), while REAC_NODA (from the
+/// stresses) gives the force itself. A probe study read impacts 1.43 times
+/// too strong at α = −0.3; the .mess says it.
+fn hht_contact_note(alpha: f64) -> String {
+    format!(
+        "alarm: HHT with MODI_EQUI='OUI' and contact: the contact forces enter the step's end with weight 1 and none of the step's start, as code_aster keeps no contact force among HHT's previous-step vectors, so CONT_NOEU (RN, R) and the contact reactions are the multipliers of the equation divided by 1 + ALPHA: the force on the bodies is (1 + ALPHA) = {:.4} times them (a body at rest shows RN = its weight / {:.4}); REAC_NODA gives the force itself",
+        1.0 + alpha,
+        1.0 + alpha
+    )
+}
+
 /// The result concept of a run, implicit or explicit. A run stopped by a
 /// failed step or a signal still binds what it archived to the result's
 /// name before the stop is reported, so that what was computed stays
@@ -1860,6 +1922,11 @@ pub(crate) fn result_of_run<T>(
 ) -> ExecResult {
     let mut evol = evol;
     split_internal_energy(study, args, result.unwrap_or_default(), &mut evol);
+    if outcome.is_ok() {
+        if let Some(alarm) = unarchived_instants(study, args, &evol) {
+            study.log(&alarm);
+        }
+    }
     match outcome {
         Ok(_) => Ok(Some(ConceptData::Result(Box::new(evol)))),
         Err(stopped) => {
