@@ -198,6 +198,7 @@ pub(crate) fn exec(
         deltas: Vec::new(),
         event_actions: Vec::new(),
         growth: None,
+        subd_niveau: None,
         hint: None,
     };
     let mut evol = result_to_fill(

@@ -21,7 +21,7 @@ use crate::nonlinear::{
 use crate::result::{Access, EvolNoli};
 use crate::study::Study;
 use crate::time::explicit::ExplicitScheme;
-use crate::time::list::{Action, Event, Subdivision, TimeList, TplusMode};
+use crate::time::list::{Action, AdaptEvent, Event, Subdivision, TimeList, TplusMode};
 use crate::time::{Predictor, Scheme};
 
 pub fn def() -> CommandDef {
@@ -1096,24 +1096,57 @@ fn delta_grandeur(
 
 /// METHODE='AUTO' of a time list: the growth of the step after a success
 /// (1 + PCENT_AUGM/100 of the first ADAPTATION with MODE_CALCUL_TPLUS
-/// 'FIXE', 100 % by default), PAS_MAXI and NB_PAS_MAXI; None for
-/// METHODE='MANUEL'.
+/// 'FIXE', 100 % by default), PAS_MINI, PAS_MAXI and NB_PAS_MAXI; None for
+/// METHODE='MANUEL'. An occurrence with EVENEMENT='AUCUN' never adapts;
+/// when no occurrence may adapt, code_aster's nmadap keeps the last step
+/// ("DT-"), a factor 1.
 pub(crate) fn growth_of(list: &TimeList) -> Option<dyna::Growth> {
     list.auto.then(|| {
-        let pcent = list
+        let adapting: Vec<_> = list
             .adaptation
             .iter()
-            .find_map(|a| match a.mode {
-                TplusMode::Fixe { pcent_augm } => Some(pcent_augm),
-                _ => None,
-            })
-            .unwrap_or(100.0);
+            .filter(|a| a.event != AdaptEvent::Aucun)
+            .collect();
+        let pcent = if !list.adaptation.is_empty() && adapting.is_empty() {
+            0.0
+        } else {
+            adapting
+                .iter()
+                .find_map(|a| match a.mode {
+                    TplusMode::Fixe { pcent_augm } => Some(pcent_augm),
+                    _ => None,
+                })
+                .unwrap_or(100.0)
+        };
         dyna::Growth {
             factor: 1.0 + pcent / 100.0,
+            pas_mini: list.pas_mini,
             pas_maxi: list.pas_maxi,
             max_steps: list.nb_pas_maxi,
         }
     })
+}
+
+/// The MODE_CALCUL_TPLUS of the METHODE='AUTO' list that the run replaces
+/// by the FIXE growth (only FIXE is implemented), for the .mess.
+fn substituted_tplus(list: &TimeList) -> Vec<&'static str> {
+    let mut v: Vec<&'static str> = Vec::new();
+    for a in list
+        .adaptation
+        .iter()
+        .filter(|a| a.event != AdaptEvent::Aucun)
+    {
+        let name = match a.mode {
+            TplusMode::Fixe { .. } => continue,
+            TplusMode::DeltaGrandeur { .. } => "DELTA_GRANDEUR",
+            TplusMode::IterNewton { .. } => "ITER_NEWTON",
+            TplusMode::Implex => "IMPLEX",
+        };
+        if !v.contains(&name) {
+            v.push(name);
+        }
+    }
+    v
 }
 
 /// The time list and the instants [INST_INIT .. INST_FIN] to compute;
@@ -1613,13 +1646,20 @@ pub(crate) fn run(
     }
     let (list, instants) = time_range(study, args, init.t0)?;
     let on_error = list.on_error().clone();
-    if matches!(
-        on_error,
-        Action::IterSuppl { .. } | Action::AdaptCoefPena { .. }
-    ) {
+    if let Some(name) = match on_error {
+        Action::IterSuppl { .. } => Some("ITER_SUPPL"),
+        Action::AdaptCoefPena { .. } => Some("ADAPT_COEF_PENA"),
+        _ => None,
+    } {
+        let list_name = args
+            .fact("INCREMENT")
+            .and_then(|i| i.concept("LIST_INST"))
+            .unwrap_or("");
         return Err(args.not_implemented(
             "INCREMENT",
-            &format!("the ERREUR action {on_error:?} of the time list"),
+            &format!(
+                "DEFI_LIST_INST/ECHEC/ACTION='{name}' of the ERREUR event of the time list {list_name}; use ACTION='DECOUPE'"
+            ),
         ));
     }
     let mut events = dyna::ContactEvents::default();
@@ -1677,12 +1717,32 @@ pub(crate) fn run(
         ));
     }
     let growth = growth_of(&list);
-    if let Some(g) = &growth {
+    let substituted = substituted_tplus(&list);
+    if growth.is_some() && !substituted.is_empty() {
         notes.push(format!(
-            "METHODE='AUTO': after each successful step the next one is {} times longer, up to the next instant of the list{} (the ADAPTATION thresholds are not evaluated)",
-            g.factor,
-            g.pas_maxi.map_or(String::new(), |m| format!(" and PAS_MAXI = {m:e}"))
+            "not implemented: ADAPTATION/MODE_CALCUL_TPLUS='{}' is replaced by MODE_CALCUL_TPLUS='FIXE' (PCENT_AUGM = 100: the step is doubled after each success)",
+            substituted.join("', '")
         ));
+    }
+    if let Some(g) = &growth {
+        let bounds = format!(
+            "{}{}",
+            g.pas_maxi
+                .map_or(String::new(), |m| format!(" and PAS_MAXI = {m:e}")),
+            g.pas_mini.map_or(String::new(), |m| format!(
+                "; a step chosen below PAS_MINI = {m:e} stops the run"
+            ))
+        );
+        notes.push(if g.factor == 1.0 {
+            format!(
+                "METHODE='AUTO', no ADAPTATION lengthens the step (EVENEMENT='AUCUN'): each step is as long as the last one, up to the next instant of the list{bounds}"
+            )
+        } else {
+            format!(
+                "METHODE='AUTO': after each successful step the next one is {} times longer, up to the next instant of the list{bounds} (the ADAPTATION thresholds are not evaluated)",
+                g.factor
+            )
+        });
     }
     if args.has("SOLVEUR") {
         notes.push(super::blocks::SOLVEUR_NOTE.into());
@@ -1703,6 +1763,7 @@ pub(crate) fn run(
         deltas,
         event_actions,
         growth,
+        subd_niveau: list.max_subd_niveau(),
         hint,
     };
     let mut evol = result_to_fill(

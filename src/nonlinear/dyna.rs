@@ -242,6 +242,12 @@ pub struct Growth {
     pub factor: f64,
     /// PAS_MAXI, if given.
     pub pas_maxi: Option<f64>,
+    /// PAS_MINI, if given: a step chosen after a success that falls below
+    /// it stops the run (code_aster's ADAPTATION_11). It is the only limit
+    /// on repeated cuts besides SUBD_PAS_MINI, since METHODE='AUTO' has no
+    /// subdivision level; and a step that would end within PAS_MINI of the
+    /// next instant of the list goes to that instant (nmadap).
+    pub pas_mini: Option<f64>,
     /// NB_PAS_MAXI: the computation ends after this many computed steps,
     /// as at the list's last instant (code_aster's ADAPTATION_13, an
     /// information, not an error).
@@ -276,6 +282,12 @@ pub struct TimeLoop {
     pub event_actions: Vec<(&'static str, Action)>,
     /// None: METHODE='MANUEL', the list is followed as given.
     pub growth: Option<Growth>,
+    /// The subdivision level no cut may go beyond, whichever event cuts:
+    /// code_aster keeps one level per step and compares it with the largest
+    /// SUBD_NIVEAU of all the events (dfllec writes that maximum into every
+    /// event). None: no level limit (METHODE='AUTO', where the level notion
+    /// does not exist, or no MANUEL cutting rule).
+    pub subd_niveau: Option<usize>,
     /// A known weakness of the model, appended to the message of a step
     /// that fails numerically (STAT_NON_LINE: rigid-body modes that only
     /// the contact holds).
@@ -462,6 +474,9 @@ pub fn run(
     // node) link, and the end of the refinement window (the latest one).
     let mut collisions: HashMap<(usize, usize), f64> = HashMap::new();
     let mut refine_until: Option<f64> = None;
+    // METHODE='AUTO': the instant that the step chosen after the last
+    // success reaches (the one PAS_MINI applies to).
+    let mut adapted: Option<f64> = None;
     while let Some((t_end, level, list_end)) = pending.pop() {
         let t0 = engine.committed.t;
         if let Some(signal) = crate::interrupt::requested() {
@@ -503,6 +518,10 @@ pub fn run(
             }
         }
         let dt = t_end - t0;
+        let below_pas_mini = match (adapted.take(), tl.growth.and_then(|g| g.pas_mini)) {
+            (Some(t), Some(m)) if t == t_end && dt < m * (1.0 - 1e-9) => Some(m),
+            _ => None,
+        };
         let suivi = &tl.suivi;
         let table = tl.newton_table;
         let mut rows: Vec<String> = Vec::new();
@@ -533,7 +552,7 @@ pub fn run(
         // A step that does not advance the time (a PAS_MAXI below the
         // resolution of the instants) fails as what it is, not as the
         // non-finite residual a zero step gives.
-        let outcome = if t_end > t0 {
+        let outcome = if t_end > t0 && below_pas_mini.is_none() {
             engine.solve_step(dt, term, &mut record).map_err(Some)
         } else {
             Err(None)
@@ -541,10 +560,37 @@ pub fn run(
         for r in &rows {
             log(r);
         }
+        // ARRET='NON' forces the convergence of a step only when the ERREUR
+        // rule's action fails (code_aster's nmactn: the action first, the
+        // alarm MECANONLINE2_37 when it returns "failed"): a step that the
+        // rule can cut is cut, as if ARRET were 'OUI'.
+        let mut forced_why: Option<String> = None;
+        if let Ok(rep) = &outcome {
+            if rep.not_converged && tl.on_error != Action::Arret {
+                match cut_step(&tl.on_error, t0, t_end, level, list_end, tl.subd_niveau) {
+                    Ok(subs) => {
+                        log(&format!(
+                            "  step failure from t = {t0:e} to {t_end:e} (dt = {dt:.3e}, level {level}): not converged in ITER_GLOB_MAXI = {} iterations; ARRET='NON' applies only when the ERREUR action fails: the step is cut into {}",
+                            rep.iterations,
+                            sub_steps(subs.len(), dt, level)
+                        ));
+                        summary.cuts += 1;
+                        pending.extend(subs.into_iter().rev());
+                        continue;
+                    }
+                    Err(why) => forced_why = Some(why),
+                }
+            }
+        }
         let outcome = match outcome {
             Err(None) => Err((
-                "the step does not advance the time (PAS_MAXI below the resolution of the instants?)"
-                    .to_string(),
+                match below_pas_mini {
+                    Some(m) => format!(
+                        "METHODE='AUTO': the step chosen after the last success, {dt:.3e}, is below PAS_MINI = {m:e} (code_aster ADAPTATION_11); it is not computed"
+                    ),
+                    None => "the step does not advance the time (PAS_MAXI below the resolution of the instants?)"
+                        .to_string(),
+                },
                 true,
             )),
             Err(Some(StepFailure::Interrupted(signal))) => {
@@ -613,7 +659,7 @@ pub fn run(
                 );
                 let cut = match d.action {
                     Action::Arret => Err("its ACTION is ARRET".to_string()),
-                    _ => cut_step(&d.action, t0, t_end, level, list_end),
+                    _ => cut_step(&d.action, t0, t_end, level, list_end, tl.subd_niveau),
                 };
                 match cut {
                     Ok(subs) => {
@@ -654,8 +700,11 @@ pub fn run(
                 ));
                 if rep.not_converged {
                     log(&format!(
-                        "  alarm: the step to t = {t_end:e} did not converge in ITER_GLOB_MAXI = {} iterations and is accepted (ARRET='NON')",
-                        rep.iterations
+                        "  alarm: the step to t = {t_end:e} did not converge in ITER_GLOB_MAXI = {} iterations and is accepted (ARRET='NON'){}",
+                        rep.iterations,
+                        forced_why.as_deref().map_or(String::new(), |w| format!(
+                            " because the ERREUR action failed: {w}"
+                        ))
                     ));
                 }
                 if !pending.is_empty() && tl.growth.is_some_and(|g| summary.steps >= g.max_steps) {
@@ -690,7 +739,7 @@ pub fn run(
                     pb.set_message(format!("t = {t_end:.4e}"));
                 }
                 if let Some(g) = tl.growth {
-                    grow(&mut pending, t_end, dt, g);
+                    adapted = grow(&mut pending, t_end, dt, g);
                 }
             }
             Err((reason, fatal)) => {
@@ -703,7 +752,7 @@ pub fn run(
                 } else if action == Action::Arret && !matches!(tl.on_error, Action::Arret) {
                     Err("the event's ACTION is ARRET".to_string())
                 } else {
-                    cut_step(&action, t0, t_end, level, list_end)
+                    cut_step(&action, t0, t_end, level, list_end, tl.subd_niveau)
                 };
                 match cut {
                     Ok(subs) => {
@@ -919,11 +968,10 @@ fn equal_steps(
 /// the pending sub-steps before the next instant of the list are replaced
 /// by one step of `factor`·dt (at most PAS_MAXI), never beyond that
 /// instant: the list's instants are the upper bounds of the steps, and the
-/// step reaches them again after a cut.
-fn grow(pending: &mut Vec<(f64, usize, bool)>, t: f64, dt: f64, g: Growth) {
-    let Some(&(t_list, level, _)) = pending.iter().rev().find(|p| p.2) else {
-        return;
-    };
+/// step reaches them again after a cut. Returns the instant the chosen
+/// step reaches (None at the end of the list).
+fn grow(pending: &mut Vec<(f64, usize, bool)>, t: f64, dt: f64, g: Growth) -> Option<f64> {
+    let &(t_list, level, _) = pending.iter().rev().find(|p| p.2)?;
     while pending.last().is_some_and(|p| !p.2) {
         pending.pop();
     }
@@ -931,9 +979,14 @@ fn grow(pending: &mut Vec<(f64, usize, bool)>, t: f64, dt: f64, g: Growth) {
     if let Some(m) = g.pas_maxi {
         step = step.min(m);
     }
-    // A remainder shorter than a thousandth of the step is not a step.
-    if t + step < t_list - 1e-3 * step {
+    // A remainder shorter than a thousandth of the step, or than PAS_MINI,
+    // is not a step.
+    let gap = g.pas_mini.unwrap_or(0.0).max(1e-3 * step);
+    if t + step < t_list - gap {
         pending.push((t + step, level, false));
+        Some(t + step)
+    } else {
+        Some(t_list)
     }
 }
 
@@ -1034,12 +1087,15 @@ fn sub_steps(n: usize, dt: f64, level: usize) -> String {
 }
 
 /// The sub-steps replacing a failed step, or why it cannot be cut.
+/// `max_level` is the level limit shared by all the events
+/// ([`TimeLoop::subd_niveau`]), not the rule's own SUBD_NIVEAU.
 fn cut_step(
     action: &Action,
     t0: f64,
     t_end: f64,
     level: usize,
     list_end: bool,
+    max_level: Option<usize>,
 ) -> Result<Vec<(f64, usize, bool)>, String> {
     let dt = t_end - t0;
     let (n, max_level, mini) = match action {
@@ -1049,20 +1105,20 @@ fn cut_step(
         ),
         Action::Decoupe(Subdivision::Manuel {
             subd_pas,
-            subd_niveau,
             subd_pas_mini,
-        }) => (*subd_pas, *subd_niveau, *subd_pas_mini),
+            ..
+        }) => (*subd_pas, max_level.unwrap_or(usize::MAX), *subd_pas_mini),
         Action::Decoupe(Subdivision::AutoExtrapole { subd_pas_mini }) => {
             (4, usize::MAX, subd_pas_mini.max(1e-12))
         }
-        other => return Err(format!("the ERREUR action {other:?} is not implemented")),
+        other => return Err(format!("the ACTION {other} is not implemented")),
     };
     if n < 2 {
         return Err(format!("SUBD_PAS = {n} cannot cut a step"));
     }
     if level >= max_level {
         return Err(format!(
-            "the step is already at the maximum subdivision level SUBD_NIVEAU = {max_level}"
+            "the step is already at the maximum subdivision level SUBD_NIVEAU = {max_level} (the largest over the time list's events)"
         ));
     }
     let sub = dt / n as f64;

@@ -1,0 +1,109 @@
+//! Step control of DEFI_LIST_INST (semantics.md §7.2, §8.5; docs/dynamics.md
+//! §2): the subdivision level shared by all the events, no level under
+//! METHODE='AUTO' (PAS_MINI and SUBD_PAS_MINI bound the cuts instead),
+//! CONVERGENCE ARRET='NON' only after the ERREUR action failed, and
+//! ADAPTATION EVENEMENT='AUCUN'. The studies are in tests/verification/,
+//! each with its hand derivation in its header.
+
+mod common;
+
+/// The instant after "last instant " in the stop message.
+fn last_instant(term: &str) -> f64 {
+    term.split("last instant ")
+        .nth(1)
+        .and_then(|r| r.split(')').next())
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("no last instant in\n{term}"))
+}
+
+/// ERREUR SUBD_NIVEAU=2 beside a DELTA_GRANDEUR rule with SUBD_NIVEAU=4
+/// on a plastic collapse (limit at t = 2/3): the ERREUR cuts go to level 4
+/// and the run stops after 0.665625, counted by hand in the header (it
+/// stopped at 0.65, level 2, with each rule's own level).
+#[test]
+fn subd_niveau_is_the_largest_over_the_events() {
+    let run = common::run_study(
+        "tests/verification/step_subd_niveau_shared.comm",
+        "step_subd_niveau_shared",
+    );
+    assert_eq!(run.code, 1, "{}", run.term);
+    let mess = run.file("step_subd_niveau_shared.mess");
+    assert!(mess.contains("sub-steps of 1.563e-3 (level 4)"), "{mess}");
+    assert!(
+        run.term
+            .contains("maximum subdivision level SUBD_NIVEAU = 4 (the largest over"),
+        "{}",
+        run.term
+    );
+    let t = last_instant(&run.term);
+    assert!((t - 0.665625).abs() < 1e-12, "last instant {t}");
+}
+
+/// The reverse: DELTA_GRANDEUR SUBD_NIVEAU=2 beside ERREUR 6. The uniaxial
+/// hardening cube needs level 4 to keep dp under VALE_REF; it completes with
+/// the closed form (sigma = 280, p = 3.6e-3 at t = 1; it stopped at t = 0).
+#[test]
+fn delta_grandeur_cuts_to_the_shared_level() {
+    let run = common::run_study(
+        "tests/verification/step_subd_niveau_shared_dg.comm",
+        "step_subd_niveau_shared_dg",
+    );
+    common::assert_all_ok(&run, "step_subd_niveau_shared_dg.resu");
+    let mess = run.file("step_subd_niveau_shared_dg.mess");
+    assert!(mess.contains("(level 4)"), "{mess}");
+}
+
+/// METHODE='AUTO' has no subdivision level (code_aster's dinins returns 1):
+/// the collapse is cut past SUBD_NIVEAU = 3 until the step chosen after a
+/// success falls below PAS_MINI = 1e-4 (ADAPTATION_11), within 1e-4 of the
+/// limit instant 2/3 (it stopped on "SUBD_NIVEAU = 3").
+#[test]
+fn auto_list_has_no_level_and_stops_at_pas_mini() {
+    let run = common::run_study(
+        "tests/verification/step_auto_pas_mini.comm",
+        "step_auto_pas_mini",
+    );
+    assert_eq!(run.code, 1, "{}", run.term);
+    assert!(!run.term.contains("SUBD_NIVEAU"), "{}", run.term);
+    assert!(
+        run.term
+            .contains("is below PAS_MINI = 1e-4 (code_aster ADAPTATION_11)"),
+        "{}",
+        run.term
+    );
+    let mess = run.file("step_auto_pas_mini.mess");
+    assert!(mess.contains("(level 4)"), "{mess}");
+    let t = last_instant(&run.term);
+    assert!(t < 2.0 / 3.0 && 2.0 / 3.0 - t < 1e-4, "last instant {t}");
+}
+
+/// ARRET='NON' with ERREUR DECOUPE (SUBD_PAS 2, SUBD_NIVEAU 2): the step
+/// [0, 1] is cut first; [0, 0.5] is elastic and converges (DZ = -7.5e-4);
+/// [0.5, 1] at the last level is accepted unconverged, the Newton iterate
+/// of the header (it was accepted at once, with no instant 0.5).
+#[test]
+fn arret_non_accepts_only_when_the_cut_fails() {
+    let run = common::run_study(
+        "tests/verification/step_arret_non_cuts.comm",
+        "step_arret_non_cuts",
+    );
+    common::assert_all_ok(&run, "step_arret_non_cuts.resu");
+    let mess = run.file("step_arret_non_cuts.mess");
+    assert!(mess.contains("2 steps (1 cuts)"), "{mess}");
+    assert!(
+        mess.contains("accepted (ARRET='NON') because the ERREUR action failed"),
+        "{mess}"
+    );
+}
+
+/// ADAPTATION EVENEMENT='AUCUN' keeps the step: 10 steps of 0.01 on the
+/// one-dof bar, u(0.1) by the Newmark recurrence (the step was doubled,
+/// u(0.1) = -0.197).
+#[test]
+fn adaptation_aucun_keeps_the_step() {
+    let run = common::run_study("tests/verification/step_auto_aucun.comm", "step_auto_aucun");
+    common::assert_all_ok(&run, "step_auto_aucun.resu");
+    let mess = run.file("step_auto_aucun.mess");
+    assert!(mess.contains("  10 steps (0 cuts)"), "{mess}");
+    assert!(mess.contains("EVENEMENT='AUCUN'"), "{mess}");
+}
