@@ -107,3 +107,74 @@ fn adaptation_aucun_keeps_the_step() {
     assert!(mess.contains("  10 steps (0 cuts)"), "{mess}");
     assert!(mess.contains("EVENEMENT='AUCUN'"), "{mess}");
 }
+
+/// Runs tests/verification/<base>.comm with `edits` (from, to) applied,
+/// from a scratch copy whose .export names the mesh by its absolute path.
+fn variant(base: &str, tag: &str, edits: &[(&str, &str)]) -> common::Run {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
+    let tmp = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("step_control_variants");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut comm = std::fs::read_to_string(root.join(format!("{base}.comm"))).unwrap();
+    for (from, to) in edits {
+        assert!(comm.contains(from), "{tag}: {from}");
+        comm = comm.replacen(from, to, 1);
+    }
+    std::fs::write(tmp.join(format!("{tag}.comm")), comm).unwrap();
+    let export: String = std::fs::read_to_string(root.join(format!("{base}.export")))
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let mut w: Vec<String> = l.split_whitespace().map(String::from).collect();
+            if w.len() >= 3 {
+                w[2] = root.join(&w[2]).display().to_string();
+            }
+            w.join(" ") + "\n"
+        })
+        .collect();
+    std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
+    common::run_study(tmp.join(format!("{tag}.comm")).to_str().unwrap(), tag)
+}
+
+/// ERREUR ACTION='ITER_SUPPL' is refused by its keyword path and the list's
+/// name, located in the file (it printed `IterSuppl { pcent_iter_plus: ..`).
+#[test]
+fn iter_suppl_is_refused_by_its_keyword() {
+    let run = variant(
+        "step_subd_niveau_shared",
+        "step_iter_suppl",
+        &[(
+            "ACTION='DECOUPE', SUBD_METHODE='MANUEL', SUBD_PAS=4, SUBD_NIVEAU=2",
+            "ACTION='ITER_SUPPL', PCENT_ITER_PLUS=50, SUBD_METHODE='MANUEL', SUBD_PAS=4, SUBD_NIVEAU=2",
+        )],
+    );
+    assert_eq!(run.code, 1, "{}", run.term);
+    for want in [
+        "not implemented yet: STAT_NON_LINE/INCREMENT",
+        "DEFI_LIST_INST/ECHEC/ACTION='ITER_SUPPL' of the ERREUR event of the time list LI",
+        "step_iter_suppl.comm:",
+    ] {
+        assert!(run.term.contains(want), "{want}\n{}", run.term);
+    }
+    assert!(!run.term.contains("IterSuppl"), "{}", run.term);
+    assert!(!run.term.contains("panicked"), "{}", run.term);
+}
+
+/// MODE_CALCUL_TPLUS='DELTA_GRANDEUR' is not implemented: the doubling that
+/// replaces it is said in the .mess before the first step (it was silent).
+#[test]
+fn substituted_tplus_mode_is_said() {
+    let run = variant(
+        "step_auto_aucun",
+        "step_tplus_delta_grandeur",
+        &[(
+            "    ADAPTATION=_F(EVENEMENT='AUCUN')",
+            "    ADAPTATION=_F(EVENEMENT='TOUT_INST', MODE_CALCUL_TPLUS='DELTA_GRANDEUR', VALE_REF=0.05, NOM_CHAM='DEPL', NOM_CMP='DZ')",
+        )],
+    );
+    let mess = run.file("step_tplus_delta_grandeur.mess");
+    let note = mess
+        .find("not implemented: ADAPTATION/MODE_CALCUL_TPLUS='DELTA_GRANDEUR' is replaced by MODE_CALCUL_TPLUS='FIXE'")
+        .unwrap_or_else(|| panic!("no note in\n{mess}"));
+    let first_step = mess.find("RESI_GLOB_RELA").expect("a step table");
+    assert!(note < first_step, "{mess}");
+}
