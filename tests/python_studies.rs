@@ -458,3 +458,36 @@ L = DEFI_LIST_REEL(VALE=(float(len(P)), float(P[-1]), float(P[123456])))
         vec![vec![200000.0, (199999 % 7) as f64, (123456 % 7) as f64]]
     );
 }
+
+/// A FORMULE reading a command-file variable keeps the value it had then;
+/// rebinding the variable later is a warning (code_aster up to 13 would
+/// read the new value when evaluating the formula, 14+ only FORMULE's
+/// keywords), located at the rebinding, once per formula. Passing the
+/// value as a keyword, or defining the formula again in a loop over the
+/// variable, is not.
+#[test]
+fn formula_variables_rebound_later_are_warned() {
+    let text = "DEBUT()
+A0 = 3.
+F = FORMULE(VALE='A0*INST', NOM_PARA='INST')
+G = FORMULE(VALE='A0*INST', NOM_PARA='INST', A0=A0)
+A0 = 5.
+A0 = 7.
+for k in range(3):
+    H = FORMULE(VALE='k*INST', NOM_PARA='INST')
+FIN()
+";
+    let c = check(text).unwrap_or_else(|d| panic!("{d:?}"));
+    let w: Vec<&Diagnostic> = c.warnings.iter().collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(
+        w[0].message,
+        "A0 is bound again after the FORMULE F read it: F keeps the real 3.0"
+    );
+    let src = Source::new("t.comm", text);
+    assert!(
+        w[0].render(Some(&src)).contains("t.comm:5:1"),
+        "{}",
+        w[0].render(Some(&src))
+    );
+}

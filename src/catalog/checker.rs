@@ -82,6 +82,8 @@ pub fn check_program<D: AsRef<CommandSpec>>(
         seen_debut: false,
         fin_at: None,
         iterating: Vec::new(),
+        captured: Vec::new(),
+        current: Span::default(),
     };
     ck.stmts(&program.stmts);
     if !ck.seen_debut {
@@ -97,6 +99,9 @@ pub fn check_program<D: AsRef<CommandSpec>>(
             Diagnostic::warning("the study has no FIN(): it is closed at the end of the file")
                 .at(Span::new(end, end)),
         );
+    }
+    for (_, _, _, pending) in std::mem::take(&mut ck.captured) {
+        ck.warnings.extend(pending);
     }
     // A mistake inside a loop is found at every iteration: say it once.
     let dedup = |v: Vec<Diagnostic>| {
@@ -131,6 +136,14 @@ struct Checker<'a> {
     fin_at: Option<Span>,
     /// The identities of the lists the enclosing `for`s go through.
     iterating: Vec<u64>,
+    /// The command-file variables FORMULEs read without a keyword: (the
+    /// variable, the value the formula keeps, the formula's name), and
+    /// the warning of a later rebinding, given at the end unless the
+    /// formula is defined again first (a FORMULE in a loop over the
+    /// variable).
+    captured: Vec<(String, PyVal, String, Option<Diagnostic>)>,
+    /// The statement being checked (where a rebinding is reported).
+    current: Span,
 }
 
 /// The values present at one level, for conditions and rules.
@@ -148,13 +161,38 @@ impl Checker<'_> {
     }
 
     fn bind(&mut self, name: &str, v: PyVal) {
+        self.rebinding_captured(name, &v);
         if v == PyVal::None {
             self.env.names.shift_remove(name);
         }
         self.env.names.insert(name.to_string(), Binding::Var(v));
     }
 
+    /// A FORMULE that reads a command-file variable keeps the value it had
+    /// then; older code_aster read the variable when the formula was
+    /// evaluated, and 14+ gives VALE only FORMULE's keywords. A later
+    /// rebinding makes the versions disagree.
+    fn rebinding_captured(&mut self, name: &str, v: &PyVal) {
+        let current = self.current;
+        for (var, kept, formula, pending) in self.captured.iter_mut() {
+            if var != name || pending.is_some() || kept == v {
+                continue;
+            }
+            *pending = Some(
+                Diagnostic::warning(format!(
+                    "{name} is bound again after the FORMULE {formula} read it: {formula} keeps {}",
+                    kept.describe()
+                ))
+                .at(current)
+                .note(format!(
+                    "code_aster up to 13 reads {name} when {formula} is evaluated (the new value), 14 and later give VALE only FORMULE's keywords: write {name}={name} in FORMULE to pass the value explicitly"
+                )),
+            );
+        }
+    }
+
     fn stmt(&mut self, stmt: &Stmt) {
+        self.current = stmt.span;
         if let Some(fin) = self.fin_at {
             self.warnings.push(
                 Diagnostic::warning("statement after FIN() is ignored, as code_aster does")
@@ -244,6 +282,8 @@ impl Checker<'_> {
                 };
                 self.iterating.extend(id);
                 for item in items {
+                    // The loop variable is bound by the `for` itself.
+                    self.current = stmt.span;
                     if let Err(d) = self.env.step(iter.span) {
                         self.errors.push(d);
                         break;
@@ -578,7 +618,12 @@ impl Checker<'_> {
         }
         let target = alias_target.as_ref().or(target);
         if cmd == "FORMULE" {
-            formula_constants(&mut given, &self.env);
+            let formula = target.map_or("the formula".to_string(), |t| t.name.clone());
+            // The formula defined again: what the old one read is moot.
+            self.captured.retain(|c| c.2 != formula);
+            for (var, v) in formula_constants(&mut given, &self.env) {
+                self.captured.push((var, v, formula.clone(), None));
+            }
         }
         let mut top = Args::new(cmd, "", span);
         self.level(cmd, "", &spec.keywords, &spec.rules, given, &mut top);
@@ -1222,7 +1267,7 @@ impl Checker<'_> {
 /// hidden keywords CONST_NOMS/CONST_VALE (numbers), the functions it
 /// calls (`VALE='GAM(INST) * Z', GAM=GAM`) FONC_NOMS/FONC_VALE; anything
 /// else is left to be reported as an unknown keyword.
-fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
+fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) -> Vec<(String, PyVal)> {
     // The hidden keywords written by hand are checked as they are.
     if given.iter().any(|(k, _)| {
         matches!(
@@ -1230,8 +1275,9 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
             "CONST_NOMS" | "CONST_VALE" | "FONC_NOMS" | "FONC_VALE"
         )
     }) {
-        return;
+        return Vec::new();
     }
+    let mut captured: Vec<(String, PyVal)> = Vec::new();
     let is_function = |ty: &ConceptType| matches!(ty, ConceptType::Fonction | ConceptType::Formule);
     let mut names: Vec<String> = Vec::new();
     let mut values: Vec<f64> = Vec::new();
@@ -1294,8 +1340,14 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
                     continue;
                 }
                 let x = match env.names.get(&n) {
-                    Some(Binding::Var(PyVal::Int(i))) => *i as f64,
-                    Some(Binding::Var(PyVal::Real(r))) => *r,
+                    Some(Binding::Var(v @ PyVal::Int(i))) => {
+                        captured.push((n.clone(), v.clone()));
+                        *i as f64
+                    }
+                    Some(Binding::Var(v @ PyVal::Real(r))) => {
+                        captured.push((n.clone(), v.clone()));
+                        *r
+                    }
                     Some(Binding::Concept { ty, .. }) if is_function(ty) => {
                         if let Some(span) = span {
                             fvalues.push(SpVal {
@@ -1323,7 +1375,9 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
             }
         }
     }
-    let Some(span) = span else { return };
+    let Some(span) = span else {
+        return captured;
+    };
     let ident = |n: &str| Ident {
         name: n.to_string(),
         span,
@@ -1339,7 +1393,7 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
         given.push((ident("FONC_VALE"), sp(PyVal::Tuple(fvalues))));
     }
     if names.is_empty() {
-        return;
+        return captured;
     }
     given.push((
         ident("CONST_NOMS"),
@@ -1353,6 +1407,7 @@ fn formula_constants(given: &mut Vec<(Ident, SpVal)>, env: &Env) {
             values.into_iter().map(|x| sp(PyVal::Real(x))).collect(),
         )),
     ));
+    captured
 }
 
 fn collect_names(e: &crate::lang::ast::Expr, out: &mut Vec<String>) {
