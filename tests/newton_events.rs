@@ -12,27 +12,7 @@ use std::path::Path;
 /// mesh paths made absolute.
 fn variant(study: &str, tag: &str, edits: &[(&str, &str)]) -> common::Run {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("comm");
-    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("newton_events");
-    std::fs::create_dir_all(&tmp).unwrap();
-    let mut comm = std::fs::read_to_string(root.join(format!("{study}.comm"))).unwrap();
-    for (from, to) in edits {
-        assert!(comm.contains(from), "{tag}: {from}");
-        comm = comm.replacen(from, to, 1);
-    }
-    std::fs::write(tmp.join(format!("{tag}.comm")), comm).unwrap();
-    let export: String = std::fs::read_to_string(root.join(format!("{study}.export")))
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let mut w: Vec<String> = l.split_whitespace().map(String::from).collect();
-            if w.len() >= 3 {
-                w[2] = root.join(&w[2]).display().to_string();
-            }
-            w.join(" ") + "\n"
-        })
-        .collect();
-    std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
-    common::run_study(tmp.join(format!("{tag}.comm")).to_str().unwrap(), tag)
+    common::run_variant_edits(&root, "newton_events", study, tag, edits)
 }
 
 /// D with a time list whose RESI_MAXI event (ACTION='ARRET') is far below

@@ -112,27 +112,7 @@ fn adaptation_aucun_keeps_the_step() {
 /// from a scratch copy whose .export names the mesh by its absolute path.
 fn variant(base: &str, tag: &str, edits: &[(&str, &str)]) -> common::Run {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
-    let tmp = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("step_control_variants");
-    std::fs::create_dir_all(&tmp).unwrap();
-    let mut comm = std::fs::read_to_string(root.join(format!("{base}.comm"))).unwrap();
-    for (from, to) in edits {
-        assert!(comm.contains(from), "{tag}: {from}");
-        comm = comm.replacen(from, to, 1);
-    }
-    std::fs::write(tmp.join(format!("{tag}.comm")), comm).unwrap();
-    let export: String = std::fs::read_to_string(root.join(format!("{base}.export")))
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let mut w: Vec<String> = l.split_whitespace().map(String::from).collect();
-            if w.len() >= 3 {
-                w[2] = root.join(&w[2]).display().to_string();
-            }
-            w.join(" ") + "\n"
-        })
-        .collect();
-    std::fs::write(tmp.join(format!("{tag}.export")), export).unwrap();
-    common::run_study(tmp.join(format!("{tag}.comm")).to_str().unwrap(), tag)
+    common::run_variant_edits(&root, "step_control_variants", base, tag, edits)
 }
 
 /// ERREUR ACTION='ITER_SUPPL' is refused by its keyword path and the list's

@@ -1859,37 +1859,13 @@ fn observation_tables_hold_the_closed_forms() {
 /// and the computed ones give none.
 #[test]
 fn archive_instants_not_computed_are_named() {
-    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("archive_not_computed");
-    std::fs::create_dir_all(&tmp).unwrap();
-    let comm = std::fs::read_to_string(dir().join("observation.comm")).unwrap();
-    let text = comm.replace(
+    let run = common::run_variant(
+        &dir(),
+        "archive_not_computed",
+        "observation",
+        "arch",
         "ARCHIVAGE=_F(INST=10.),",
         "ARCHIVAGE=_F(INST=(2.5, 10., 12.)),",
-    );
-    assert_ne!(text, comm);
-    std::fs::write(tmp.join("arch.comm"), text).unwrap();
-    std::fs::write(
-        tmp.join("arch.export"),
-        std::fs::read_to_string(dir().join("observation.export"))
-            .unwrap()
-            .lines()
-            .map(|l| {
-                let f: Vec<&str> = l.split_whitespace().collect();
-                format!(
-                    "{} {} {} {} {}\n",
-                    f[0],
-                    f[1],
-                    dir().join(f[2]).display(),
-                    f[3],
-                    f[4]
-                )
-            })
-            .collect::<String>(),
-    )
-    .unwrap();
-    let run = common::run_study(
-        tmp.join("arch.comm").to_str().unwrap(),
-        "verif_archive_not_computed",
     );
     let mess = run.file("arch.mess");
     let alarm = "alarm: ARCHIVAGE: 1 instant(s) asked for within the run's span are not instants the run computed (2.5e0; CRITERE='RELATIF', PRECISION=1e-6)";

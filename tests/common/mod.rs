@@ -97,11 +97,26 @@ pub fn printed_table(resu: &str, name: &str) -> Vec<std::collections::HashMap<St
 /// the variant written to the scratch directory `scratch`: the bad-input
 /// tests change one line of a working study.
 pub fn run_variant(dir: &Path, scratch: &str, study: &str, tag: &str, from: &str, to: &str) -> Run {
+    run_variant_edits(dir, scratch, study, tag, &[(from, to)])
+}
+
+/// [`run_variant`] with several (from, to) edits, applied in order, each
+/// to its first occurrence.
+pub fn run_variant_edits(
+    dir: &Path,
+    scratch: &str,
+    study: &str,
+    tag: &str,
+    edits: &[(&str, &str)],
+) -> Run {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(scratch);
     std::fs::create_dir_all(&tmp).unwrap();
-    let comm = std::fs::read_to_string(dir.join(format!("{study}.comm"))).unwrap();
-    assert!(comm.contains(from), "{tag}: {from}");
-    std::fs::write(tmp.join(format!("{tag}.comm")), comm.replacen(from, to, 1)).unwrap();
+    let mut comm = std::fs::read_to_string(dir.join(format!("{study}.comm"))).unwrap();
+    for (from, to) in edits {
+        assert!(comm.contains(from), "{tag}: {from}");
+        comm = comm.replacen(from, to, 1);
+    }
+    std::fs::write(tmp.join(format!("{tag}.comm")), comm).unwrap();
     let export = std::fs::read_to_string(dir.join(format!("{study}.export"))).unwrap();
     let export: String = export
         .lines()
