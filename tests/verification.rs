@@ -2108,6 +2108,50 @@ fn function_valued_loads_follow_time() {
     run_study("char_f_ramp");
 }
 
+/// Bad calls in FORMULE and TEST_FONCTION of a formula: a function called
+/// with the wrong number of arguments, a function named without a call,
+/// VALE_PARA counts that do not match the formula's or the function's
+/// parameters: located errors naming the command and keyword.
+#[test]
+fn bad_formula_calls_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("formule_calls_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("formule_calls.comm")).unwrap();
+    let cases = [
+        (
+            "arity",
+            (
+                "VALE='2. * RP(INST) / 2. + 0. * sin(INST)'",
+                "VALE='2. * RP(INST, 1.) / 2.'",
+            ),
+            "FORMULE/VALE: wrong arguments for 'RP' in VALE '2. * RP(INST, 1.) / 2.' (RP takes 1)",
+        ),
+        (
+            "bare_name",
+            ("VALE='G(INST) + G(INST)'", "VALE='G + G(INST)'"),
+            "'G' in VALE 'G + G(INST)' is a function: call it with its parameter",
+        ),
+        (
+            "formula_count",
+            (
+                "_F(FONCTION=H, VALE_PARA=(4., 0.75),",
+                "_F(FONCTION=H, VALE_PARA=4.,",
+            ),
+            "TEST_FONCTION/VALEUR/VALE_PARA: 1 values for the parameters X, INST of H",
+        ),
+        (
+            "function_count",
+            (
+                "_F(FONCTION=F3, NOM_PARA='INST', VALE_PARA=1.,",
+                "_F(FONCTION=RAMPE, VALE_PARA=(1., 2.),",
+            ),
+            "RAMPE is a function of one parameter (INST): one VALE_PARA",
+        ),
+    ];
+    let export = format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_formule_bad");
+}
+
 /// Penalised DISCRETE contact between two deformable bodies, a matching
 /// 2 x 2 HEXA8 patch in STAT_NON_LINE (E_N 1e7 and 1e9): the uniform
 /// uniaxial stress within the penalty's bound f / (E_N D) (1e-2, 1e-4;
