@@ -158,6 +158,15 @@ impl UnilateralContact {
     }
 }
 
+/// The pseudo-gaps c − A u of `rows` at the full displacement `u`.
+fn gaps_of(rows: &[Row], nb: &DofNumbering, u: &[f64]) -> Vec<f64> {
+    let mut ueq = vec![0.0; nb.neq()];
+    for (e, &f) in nb.free.iter().enumerate() {
+        ueq[e] = u[f];
+    }
+    rows.iter().map(|r| r.c - r.dot(&ueq)).collect()
+}
+
 /// The DDL_IMPO value of a full dof, if it is imposed.
 pub fn imposed_value(numbering: &DofNumbering) -> impl Fn(usize) -> Option<f64> {
     let map: std::collections::HashMap<usize, f64> = numbering.imposed.iter().copied().collect();
@@ -212,19 +221,22 @@ impl ContactTerm for UnilateralContact {
                     self.force.clone_from(&self.committed_force);
                 } else {
                     let nb = it.numbering;
-                    let mut ueq = vec![0.0; nb.neq()];
-                    for (e, &f) in nb.free.iter().enumerate() {
-                        ueq[e] = it.u[f];
-                    }
+                    // Kept by `correct` after every solve; from u only if
+                    // no solve of the step came first.
+                    let fresh;
+                    let gaps: &[f64] = match &self.gaps {
+                        Some(g) => g,
+                        None => {
+                            fresh = gaps_of(&self.rows, nb, it.u);
+                            &fresh
+                        }
+                    };
                     let mut weights = Vec::new();
                     let mut matrix = it.matrix;
                     for (i, row) in self.rows.iter().enumerate() {
                         let z = self.def.links[i].zone;
                         let e = self.def.zones[z].coef_pena.unwrap_or(0.0);
-                        let gap = match &self.gaps {
-                            Some(g) => g[i],
-                            None => row.c - row.dot(&ueq),
-                        };
+                        let gap = gaps[i];
                         if let Some(lambda) = penalty(gap, e) {
                             weights.push((i, lambda));
                             if let Some(m) = matrix.as_deref_mut() {
@@ -257,13 +269,7 @@ impl ContactTerm for UnilateralContact {
     fn correct(&mut self, c: IncrementCorrection) -> Result<(), String> {
         let nb = c.numbering;
         let rows = &self.rows;
-        let gaps = self.gaps.get_or_insert_with(|| {
-            let mut ueq = vec![0.0; nb.neq()];
-            for (e, &f) in nb.free.iter().enumerate() {
-                ueq[e] = c.u[f];
-            }
-            rows.iter().map(|r| r.c - r.dot(&ueq)).collect()
-        });
+        let gaps = self.gaps.get_or_insert_with(|| gaps_of(rows, nb, c.u));
         if self.def.algo == UnilAlgo::Penalty {
             // The penalty reads the gap of the new iterate, c − A(u + δ)
             // (liaison-unil.md §5), kept here as the step's first gap
