@@ -27,6 +27,8 @@ use crate::time::Scheme;
 /// What the implicit and explicit paths share, built by `dyna_non_line`.
 pub(crate) struct Prepared {
     pub scheme: ExplicitScheme,
+    /// Rayleigh damping of the materials (AMOR_ALPHA, AMOR_BETA).
+    pub damping: Option<nonlinear::damping::Rayleigh>,
     pub md: ModelData,
     pub occs: Vec<Occurrence>,
     pub loads: Vec<MechLoad>,
@@ -50,6 +52,7 @@ pub(crate) fn exec(
 ) -> ExecResult {
     let Prepared {
         scheme,
+        damping,
         mut md,
         occs,
         loads,
@@ -240,6 +243,10 @@ pub(crate) fn exec(
     )?;
     let mut ex = Explicit::new(&mut engine.asm, &rho, scheme, lumped)
         .map_err(|m| args.error("MODELE", m))?;
+    // Set before `initialize`, which computes C v₀ for the initial
+    // acceleration with the mass of the run (the lumped one with MASS_DIAG).
+    engine.damping = damping;
+    ex.damping = damping;
     let clamped = ex.impose_initial(&mut engine);
     if clamped > 0 {
         notes.push(format!(
@@ -306,13 +313,20 @@ pub(crate) fn exec(
             )
         })?;
     notes.push(format!(
-        "{}: critical step {:.6e} s (element eigenvalue bound 2/w_max{}, largest w at cell {}){}",
+        "{}: critical step {:.6e} s (element eigenvalue bound 2/w_max{}{}, largest w at cell {}){}",
         scheme.name(),
         bound.dt,
         match scheme {
             ExplicitScheme::DiffCent => String::new(),
             ExplicitScheme::Tchamwa { phi } =>
                 format!(" times 1/sqrt(2 PHI - 1) = {:.4}, PHI = {phi}", scheme.stability_factor().unwrap_or(0.0)),
+        },
+        match damping {
+            Some(_) => format!(
+                " times sqrt(1 + xi^2) - xi = {:.4} for the Rayleigh damping ratio xi = (AMOR_ALPHA w + AMOR_BETA / w)/2 of w_max (code_aster does not reduce it)",
+                bound.damping_factor
+            ),
+            None => String::new(),
         },
         bound.cell + 1,
         if w2c > 0.0 {

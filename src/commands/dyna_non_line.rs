@@ -661,7 +661,6 @@ pub(crate) fn prepare_error(args: &Args, e: PrepareError) -> Diagnostic {
 fn rayleigh_of(
     args: &Args,
     md: &ModelData,
-    explicit: bool,
 ) -> Result<Option<nonlinear::damping::Rayleigh>, Diagnostic> {
     let pairs: Vec<(&str, f64, f64)> = md
         .materials
@@ -677,14 +676,6 @@ fn rayleigh_of(
     let Some(&(n0, a0, b0)) = pairs.iter().find(|p| p.1 != 0.0 || p.2 != 0.0) else {
         return Ok(None);
     };
-    if explicit {
-        return Err(args.not_implemented(
-            "SCHEMA_TEMPS",
-            &format!(
-                "Rayleigh damping with an explicit scheme: the material {n0} has AMOR_ALPHA={a0}, AMOR_BETA={b0}; use NEWMARK or HHT, or remove them"
-            ),
-        ));
-    }
     if let Some(&(n, a, b)) = pairs.iter().find(|p| (p.1, p.2) != (a0, b0)) {
         return Err(args.not_implemented(
             "CHAM_MATER",
@@ -1513,7 +1504,7 @@ pub(crate) fn run(
         ));
     }
     let damping = if inertia {
-        rayleigh_of(args, &md, matches!(choice, SchemeChoice::Explicit(_)))?
+        rayleigh_of(args, &md)?
     } else {
         // STAT_NON_LINE has no velocity: code_aster ignores the coefficients.
         None
@@ -1539,6 +1530,7 @@ pub(crate) fn run(
                 result,
                 super::dyna_explicit::Prepared {
                     scheme: es,
+                    damping,
                     md,
                     occs,
                     loads,

@@ -15,10 +15,15 @@
 //! the two choices and code_aster's coincide. The iteration matrix takes
 //! the current tangent for K (only the convergence rate depends on it).
 //!
-//! Limits (each refused where the study is read, not ignored): one pair
+//! In explicit dynamics (DIFF_CENT, TCHAMWA) the force is C·v* of the
+//! predicted velocity, on the right-hand side of M a = r (code_aster's
+//! explicit step, notes/explicit.md §2), with the mass of the run (the
+//! lumped one under MASS_DIAG='OUI') and K as above; it lowers the critical
+//! step by √(1 + ξ²) − ξ (`time::explicit::damped_step_factor`).
+//!
+//! Limit (refused where the study is read, not ignored): one pair
 //! (AMOR_ALPHA, AMOR_BETA) for the whole model (a per-material C needs the
-//! element mass matrices, which the assembler does not keep), implicit
-//! schemes only (the explicit step has no stiffness to apply).
+//! element mass matrices, which the assembler does not keep).
 
 use super::assembly::{Assembler, CellFailure};
 use crate::element::PointState;
@@ -37,6 +42,12 @@ pub struct Rayleigh {
 }
 
 impl Rayleigh {
+    /// The damping ratio ξ = (α ω + β/ω)/2 that C gives the mode ω of
+    /// K x = ω² M x.
+    pub fn ratio(&self, w: f64) -> f64 {
+        0.5 * (self.stiffness * w + self.mass / w)
+    }
+
     /// C·v into `out` (full, overwritten), K evaluated at the state
     /// (`u_n`, `states_n`) over a step `dt`.
     pub fn force(

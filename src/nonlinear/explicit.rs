@@ -41,6 +41,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::assembly::{Assembler, CellFailure, PARALLEL_MIN_ELEMENTS};
+use super::damping::Rayleigh;
 use super::dofs::{DofNumbering, NONE};
 use super::dyna::{archive, store_observations, Growth, RunSummary, Stopped, TimeLoop};
 use super::energy::EnergyBalance;
@@ -52,8 +53,8 @@ use crate::law::TangentKind;
 use crate::result::{ContactHistory, EvolNoli};
 use crate::solver::{DirectLu, LinearSolver, SparseMatrix};
 use crate::time::explicit::{
-    hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_warm, penalty_rebound_range,
-    scaled_lumped, top_eigenpair, ExplicitScheme,
+    damped_step_factor, hrz_lumped, max_eigenvalue_consistent, max_eigenvalue_warm,
+    penalty_rebound_range, scaled_lumped, top_eigenpair, ExplicitScheme,
 };
 
 /// What the explicit loop needs of a contact treatment: the discrete
@@ -143,6 +144,9 @@ pub struct StepBound {
     pub dt_elements: f64,
     /// The mesh cell (0-based) with the largest element ω.
     pub cell: usize,
+    /// The factor of Rayleigh damping in `dt` ([`damped_step_factor`]; 1
+    /// without damping).
+    pub damping_factor: f64,
 }
 
 /// The explicit integrator of one computation: the scheme, the mass and
@@ -175,6 +179,17 @@ pub struct Explicit {
     ma: Vec<f64>,
     /// Zero contact forces (a run without contact), allocated once.
     zero: Vec<f64>,
+    /// Rayleigh damping (AMOR_ALPHA, AMOR_BETA of the materials): the force
+    /// C·v* of the predicted velocity on the right-hand side, as code_aster's
+    /// explicit step (notes/explicit.md §2, §3.1).
+    pub damping: Option<Rayleigh>,
+    /// C·v* of the last step computed (the trial state's; after the
+    /// commit, the committed state's), and of the step's start for the
+    /// energy balance's trapezoid.
+    dforce: Vec<f64>,
+    prev_df: Vec<f64>,
+    /// The predicted velocity v* of the step.
+    vstar: Vec<f64>,
 }
 
 /// The explicit run's settings besides the time loop's.
@@ -273,6 +288,10 @@ impl Explicit {
             work: vec![0.0; nfull],
             ma: vec![0.0; nfull],
             zero: vec![0.0; nfull],
+            damping: None,
+            dforce: vec![0.0; nfull],
+            prev_df: vec![0.0; nfull],
+            vstar: Vec::new(),
         })
     }
 
@@ -355,17 +374,24 @@ impl Explicit {
         self.estimates += 1;
         self.estimate_seconds += started.elapsed().as_secs_f64();
         let f = self.scheme.stability_factor().unwrap_or(0.0);
+        let damping = self.damping;
         let dt_of = |w2: f64| {
             if w2 > 0.0 {
-                f * 2.0 / w2.sqrt()
+                let w = w2.sqrt();
+                f * 2.0 / w * damping.map_or(1.0, |d| damped_step_factor(d.ratio(w)))
             } else {
                 f64::INFINITY
             }
         };
+        let wt = (w2 + contact_omega2).sqrt();
         Ok(StepBound {
             dt: dt_of(w2 + contact_omega2),
             dt_elements: dt_of(w2),
             cell,
+            damping_factor: match damping {
+                Some(d) if wt > 0.0 => damped_step_factor(d.ratio(wt)),
+                _ => 1.0,
+            },
         })
     }
 
@@ -375,8 +401,10 @@ impl Explicit {
     pub fn initial_acceleration(&mut self, engine: &mut Engine, fc: &[f64]) -> Result<(), String> {
         let st = &engine.committed;
         let nb = &engine.asm.numbering;
+        // C v₀ (`Engine::initialize` computed it; zero without damping).
+        let d = engine.damping_force();
         for (e, &f) in nb.free.iter().enumerate() {
-            self.rhs[e] = engine.fext[f] - st.fint[f] - fc[f];
+            self.rhs[e] = engine.fext[f] - st.fint[f] - fc[f] - d[f];
         }
         self.solve_into(&mut engine.committed.motion.a, &engine.asm)
     }
@@ -451,6 +479,32 @@ impl Explicit {
         for &(f, val) in &nb.imposed {
             tr.motion.u[f] = val;
         }
+        // C·v*, with K of the step's start: computed before the step's
+        // element pass, whose buffers the internal forces are assembled
+        // from below.
+        if let Some(d) = self.damping {
+            let kv = match self.scheme {
+                ExplicitScheme::DiffCent => 0.5 * dt,
+                ExplicitScheme::Tchamwa { .. } => dt,
+            };
+            self.vstar.clear();
+            self.vstar.extend(
+                cm.motion
+                    .v
+                    .iter()
+                    .zip(&cm.motion.a)
+                    .map(|(v, a)| v + kv * a),
+            );
+            d.force(
+                asm,
+                &cm.motion.u,
+                &cm.points,
+                dt,
+                &self.vstar,
+                &mut self.dforce,
+            )
+            .map_err(|f| format!("cell {}: damping: {}", f.cell + 1, f.failure))?;
+        }
         asm.integrate_explicit(
             team,
             &cm.motion.u,
@@ -485,8 +539,14 @@ impl Explicit {
                     .zip(tr.motion.a.chunks_mut(DOF_PIECE))
                     .zip(tr.motion.v.chunks_mut(DOF_PIECE)),
             );
-            let (m, a_n, v_n, u, eq) =
-                (&self.mass, &cm.motion.a, &cm.motion.v, &tr.motion.u, &nb.eq);
+            let (m, a_n, v_n, u, eq, df) = (
+                &self.mass,
+                &cm.motion.a,
+                &cm.motion.v,
+                &tr.motion.u,
+                &nb.eq,
+                &self.dforce,
+            );
             let diff_cent = matches!(self.scheme, ExplicitScheme::DiffCent);
             let fext: &[f64] = fext;
             team.for_each(pieces.len(), &|i| {
@@ -500,7 +560,7 @@ impl Explicit {
                         *a = 0.0;
                         continue;
                     }
-                    let rhs = fext[f] - fint[k] - fc[f];
+                    let rhs = fext[f] - fint[k] - fc[f] - df[f];
                     *a = rhs / m[f];
                     *v = if diff_cent {
                         v_n[f] + 0.5 * dt * (a_n[f] + *a)
@@ -519,7 +579,7 @@ impl Explicit {
                 asm.assemble_forces(i * DOF_PIECE, pieces.take(i));
             });
             for (e, &f) in nb.free.iter().enumerate() {
-                self.rhs[e] = fext[f] - tr.fint[f] - fc[f];
+                self.rhs[e] = fext[f] - tr.fint[f] - fc[f] - self.dforce[f];
             }
             self.solve_into(&mut tr.motion.a, asm)?;
             match self.scheme {
@@ -612,6 +672,8 @@ impl Explicit {
     fn start_energy(&mut self, engine: &Engine, fc: &[f64]) -> EnergyBalance {
         let e = EnergyBalance::new(engine);
         self.prev_fc.copy_from_slice(fc);
+        self.dforce.copy_from_slice(engine.damping_force());
+        self.prev_df.copy_from_slice(engine.damping_force());
         self.external_of(engine, fc);
         self.prev_ext.copy_from_slice(&self.work);
         e
@@ -626,12 +688,12 @@ impl Explicit {
             // The assembled mass is this diagonal (`Explicit::new`): only
             // the imposed rows of M a are read, at their cost.
             for &(f, _) in &engine.asm.numbering.imposed {
-                self.work[f] = self.mass[f] * st.motion.a[f] + st.fint[f] + fc[f];
+                self.work[f] = self.mass[f] * st.motion.a[f] + st.fint[f] + fc[f] + self.dforce[f];
             }
         } else {
             engine.asm.mass_mul(&st.motion.a, &mut self.ma);
             for &(f, _) in &engine.asm.numbering.imposed {
-                self.work[f] = self.ma[f] + st.fint[f] + fc[f];
+                self.work[f] = self.ma[f] + st.fint[f] + fc[f] + self.dforce[f];
             }
         }
     }
@@ -645,7 +707,7 @@ impl Explicit {
         // before, u and F_int as they were (the contact correction
         // changes a and v only).
         let (st, prev) = (&engine.committed, &engine.trial);
-        let (mut wi, mut we, mut wc) = (0.0, 0.0, 0.0);
+        let (mut wi, mut we, mut wc, mut wd) = (0.0, 0.0, 0.0, 0.0);
         for f in 0..st.motion.u.len() {
             let du = st.motion.u[f] - prev.motion.u[f];
             if du == 0.0 {
@@ -654,11 +716,16 @@ impl Explicit {
             wi += 0.5 * du * (prev.fint[f] + st.fint[f]);
             we += 0.5 * du * (self.prev_ext[f] + self.work[f]);
             wc += 0.5 * du * (self.prev_fc[f] + fc[f]);
+            wd += 0.5 * du * (self.prev_df[f] + self.dforce[f]);
         }
         energy.internal += wi;
         energy.external += we;
         energy.contact += wc;
+        energy.damping += wd;
         self.prev_fc.copy_from_slice(fc);
+        if self.damping.is_some() {
+            self.prev_df.copy_from_slice(&self.dforce);
+        }
         // `work` is rewritten whole by the next `external_of`.
         std::mem::swap(&mut self.prev_ext, &mut self.work);
         energy.kinetic = 0.5 * self.kinetic_sum(engine);

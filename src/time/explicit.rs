@@ -68,6 +68,18 @@ impl ExplicitScheme {
     }
 }
 
+/// The factor √(1 + ξ²) − ξ by which a viscous damping ratio ξ of the
+/// mode ω lowers its critical step 2/ω (Belytschko, Liu and Moran, Box
+/// 6.1). Exact for DIFF_CENT with the damping force at the predicted
+/// v_{n+½} = v_n + ½Δt a_n, code_aster's v*; on the safe side for TCHAMWA
+/// with its factor 1/√(2φ−1) (`damped_critical_step_against_the_amplification_matrix`).
+/// For Rayleigh damping ξ = (α ω + β/ω)/2, and the step limit
+/// 2/(√(ω² + (ωξ)²) + ωξ) decreases with ω, so the elements' upper bound
+/// of ω keeps the bound a bound.
+pub fn damped_step_factor(xi: f64) -> f64 {
+    (1.0 + xi * xi).sqrt() - xi
+}
+
 /// The largest ω² of K x = ω² M x for a symmetric positive definite
 /// element mass `m` (consistent) and a stiffness `k` (symmetrised here:
 /// a finite-strain tangent may be slightly unsymmetric), by the
@@ -257,6 +269,55 @@ mod tests {
             );
         }
     }
+    /// The 1-dof step m a + c v* + k u = 0 of each scheme as the explicit
+    /// loop takes it (u predicted, a solved with the damping force of the
+    /// predicted velocity v*, then v), written out on (u, v, a): its
+    /// spectral radius is at most 1 at the damped bound (DIFF_CENT: and
+    /// above 1 just past it, the bound is the limit) for ξ from 0 to 2.
+    #[test]
+    fn damped_critical_step_against_the_amplification_matrix() {
+        let radius = |scheme: ExplicitScheme, xi: f64, h: f64| {
+            let (w, m) = (1.0, 1.0);
+            let (k, c) = (w * w * m, 2.0 * xi * w * m);
+            let mut a = nalgebra::Matrix3::<f64>::zeros();
+            for j in 0..3 {
+                let mut s = [0.0; 3];
+                s[j] = 1.0;
+                let [u0, v0, a0] = s;
+                let p = scheme.displacement_coefficient();
+                let u1 = u0 + h * v0 + p * h * h * a0;
+                let (vs, after) = match scheme {
+                    ExplicitScheme::DiffCent => (v0 + 0.5 * h * a0, 0.5 * h),
+                    ExplicitScheme::Tchamwa { .. } => (v0 + h * a0, 0.0),
+                };
+                let a1 = -(c * vs + k * u1) / m;
+                let col = [u1, vs + after * a1, a1];
+                for i in 0..3 {
+                    a[(i, j)] = col[i];
+                }
+            }
+            a.complex_eigenvalues()
+                .iter()
+                .map(|z| z.norm())
+                .fold(0.0, f64::max)
+        };
+        for xi in [0.0, 0.05, 0.2, 0.5, 1.0, 2.0] {
+            for scheme in [
+                ExplicitScheme::DiffCent,
+                ExplicitScheme::Tchamwa { phi: 1.05 },
+                ExplicitScheme::Tchamwa { phi: 1.3 },
+            ] {
+                let bound = scheme.stability_factor().unwrap() * 2.0 * damped_step_factor(xi);
+                let r = radius(scheme, xi, bound * (1.0 - 1e-7));
+                assert!(r <= 1.0 + 1e-9, "{scheme:?} xi {xi}: {r} at the bound");
+                if scheme == ExplicitScheme::DiffCent {
+                    let r = radius(scheme, xi, bound * (1.0 + 1e-4));
+                    assert!(r > 1.0 + 1e-6, "xi {xi}: {r} past the bound");
+                }
+            }
+        }
+    }
+
     use crate::element::mechanics::mass;
     use crate::mesh::CellType;
     use crate::model::spec::element_spec;
