@@ -2,7 +2,7 @@
 //! §2): the subdivision level shared by all the events, no level under
 //! METHODE='AUTO' (PAS_MINI and SUBD_PAS_MINI bound the cuts instead),
 //! CONVERGENCE ARRET='NON' only after the ERREUR action failed, and
-//! ADAPTATION EVENEMENT='AUCUN'. The studies are in tests/verification/,
+//! the ADAPTATION rules of METHODE='AUTO'. The studies are in tests/verification/,
 //! each with its hand derivation in its header.
 
 mod common;
@@ -139,22 +139,52 @@ fn iter_suppl_is_refused_by_its_keyword() {
     assert!(!run.term.contains("panicked"), "{}", run.term);
 }
 
-/// MODE_CALCUL_TPLUS='DELTA_GRANDEUR' is not implemented: the doubling that
-/// replaces it is said in the .mess before the first step (it was silent).
+/// METHODE='AUTO' follows code_aster's ADAPTATION rules (nmadat, diadap,
+/// nmcadt, nmevdt): the default SEUIL occurrence (the step doubles after
+/// every second convergence), ITER_NEWTON, the smallest of two proposals,
+/// DELTA_GRANDEUR and PAS_MAXI, with dt⁻ not taking the length of a step
+/// shortened to reach an instant of the list; every instant counted by
+/// hand in the study's header (DELTA_GRANDEUR was replaced by doubling,
+/// the thresholds ignored).
 #[test]
-fn substituted_tplus_mode_is_said() {
-    let run = variant(
-        "step_auto_aucun",
-        "step_tplus_delta_grandeur",
-        &[(
-            "    ADAPTATION=_F(EVENEMENT='AUCUN')",
-            "    ADAPTATION=_F(EVENEMENT='TOUT_INST', MODE_CALCUL_TPLUS='DELTA_GRANDEUR', VALE_REF=0.05, NOM_CHAM='DEPL', NOM_CMP='DZ')",
-        )],
+fn adaptation_rules_choose_the_instants_as_code_aster() {
+    let run = common::run_study(
+        "tests/verification/step_adapt_rules.comm",
+        "step_adapt_rules",
     );
-    let mess = run.file("step_tplus_delta_grandeur.mess");
-    let note = mess
-        .find("not implemented: ADAPTATION/MODE_CALCUL_TPLUS='DELTA_GRANDEUR' is replaced by MODE_CALCUL_TPLUS='FIXE'")
-        .unwrap_or_else(|| panic!("no note in\n{mess}"));
-    let first_step = mess.find("RESI_GLOB_RELA").expect("a step table");
-    assert!(note < first_step, "{mess}");
+    common::assert_all_ok(&run, "step_adapt_rules.resu");
+    let mess = run.file("step_adapt_rules.mess");
+    assert!(
+        mess.contains("2 times the last step (FIXE), each time 2 Newton convergences at an iteration <= 5 have been counted (SEUIL)"),
+        "{mess}"
+    );
+}
+
+/// MODE_CALCUL_TPLUS='IMPLEX' is refused where the list is used (code_aster
+/// allows it only with STAT_NON_LINE METHODE='IMPLEX'); a DELTA_GRANDEUR
+/// adaptation on a component the model lacks names it.
+#[test]
+fn adaptation_modes_aster_lacks_are_located_errors() {
+    for (tag, to, want) in [
+        (
+            "step_tplus_implex",
+            "    ADAPTATION=_F(EVENEMENT='TOUT_INST', MODE_CALCUL_TPLUS='IMPLEX')",
+            "MODE_CALCUL_TPLUS='IMPLEX'",
+        ),
+        (
+            "step_tplus_dg_cmp",
+            "    ADAPTATION=_F(EVENEMENT='TOUT_INST', MODE_CALCUL_TPLUS='DELTA_GRANDEUR', VALE_REF=0.05, NOM_CHAM='DEPL', NOM_CMP='DRZ')",
+            "ADAPTATION MODE_CALCUL_TPLUS='DELTA_GRANDEUR': the field DEPL has no component 'DRZ'",
+        ),
+    ] {
+        let run = variant(
+            "step_auto_aucun",
+            tag,
+            &[("    ADAPTATION=_F(EVENEMENT='AUCUN')", to)],
+        );
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(run.term.contains(want), "{tag}: {}", run.term);
+        assert!(run.term.contains(&format!("{tag}.comm:")), "{}", run.term);
+        assert!(!run.term.contains("panicked"), "{}", run.term);
+    }
 }

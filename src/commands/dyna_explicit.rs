@@ -201,6 +201,7 @@ pub(crate) fn exec(
         deltas: Vec::new(),
         event_actions: Vec::new(),
         growth: None,
+        adaptation: Vec::new(),
         subd_niveau: None,
         hint: None,
     };

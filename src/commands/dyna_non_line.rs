@@ -1035,12 +1035,26 @@ fn delta_grandeur(
     vale_ref: f64,
     action: &Action,
 ) -> Result<dyna::DeltaGrandeur, Diagnostic> {
-    let bad = |m: String| {
-        args.error(
-            "INCREMENT",
-            format!("LIST_INST, ECHEC EVENEMENT='DELTA_GRANDEUR': {m}"),
-        )
-    };
+    delta_measure(
+        args,
+        model,
+        (nom_cham, nom_cmp, vale_ref),
+        action,
+        "ECHEC EVENEMENT='DELTA_GRANDEUR'",
+    )
+}
+
+/// A component of DEPL, SIEF_ELGA or VARI_ELGA whose largest increment
+/// over a step is compared with VALE_REF, checked on the model; `what`
+/// names the keyword in the messages.
+fn delta_measure(
+    args: &Args,
+    model: &Model,
+    (nom_cham, nom_cmp, vale_ref): (&str, &str, f64),
+    action: &Action,
+    what: &str,
+) -> Result<dyna::DeltaGrandeur, Diagnostic> {
+    let bad = |m: String| args.error("INCREMENT", format!("LIST_INST, {what}: {m}"));
     let (field, component) = match nom_cham {
         "DEPL" => (
             SuiviField::Depl,
@@ -1118,26 +1132,122 @@ pub(crate) fn growth_of(list: &TimeList) -> Option<dyna::Growth> {
     })
 }
 
-/// The MODE_CALCUL_TPLUS of the METHODE='AUTO' list that the run replaces
-/// by the FIXE growth (only FIXE is implemented), for the .mess.
-fn substituted_tplus(list: &TimeList) -> Vec<&'static str> {
-    let mut v: Vec<&'static str> = Vec::new();
-    for a in list
-        .adaptation
-        .iter()
-        .filter(|a| a.event != AdaptEvent::Aucun)
-    {
-        let name = match a.mode {
-            TplusMode::Fixe { .. } => continue,
-            TplusMode::DeltaGrandeur { .. } => "DELTA_GRANDEUR",
-            TplusMode::IterNewton { .. } => "ITER_NEWTON",
-            TplusMode::Implex => "IMPLEX",
-        };
-        if !v.contains(&name) {
-            v.push(name);
+/// One ADAPTATION occurrence in words, for the .mess.
+fn describe_adaptation(a: &dyna::StepAdaptation) -> String {
+    let when = match &a.trigger {
+        dyna::AdaptTrigger::Never => return "EVENEMENT='AUCUN': never".into(),
+        dyna::AdaptTrigger::Always => "after every step".to_string(),
+        dyna::AdaptTrigger::Threshold {
+            count,
+            crit,
+            or_equal,
+            vale,
+        } => format!(
+            "each time {count} Newton convergences at an iteration {}{} {vale} have been counted (SEUIL)",
+            if *crit == std::cmp::Ordering::Less { "<" } else { ">" },
+            if *or_equal { "=" } else { "" }
+        ),
+    };
+    let how = match &a.rule {
+        dyna::StepRule::Fixe(f) => format!("{f} times the last step (FIXE)"),
+        dyna::StepRule::IterNewton(n) => {
+            format!("the last step times sqrt({n} / (iteration + 1)) (ITER_NEWTON)")
         }
+        dyna::StepRule::DeltaGrandeur(d) => format!(
+            "the last step times {:e} / the largest increment of {} over it (DELTA_GRANDEUR)",
+            d.vale_ref, d.label
+        ),
+    };
+    format!("{how}, {when}")
+}
+
+/// The ADAPTATION occurrences of a METHODE='AUTO' list as the implicit
+/// loop applies them (code_aster's `nmadat`, `diadap`, `nmcadt`): a list
+/// without one has the catalogue's default occurrence (SEUIL, FIXE 100 %);
+/// VALE_I absent or 0 is ITER_GLOB_MAXI/2 (`nmcrsu`). IMPLEX needs
+/// STAT_NON_LINE's METHODE='IMPLEX' (MECANONLINE6_4), which aster lacks.
+fn adaptation_of(
+    args: &Args,
+    model: &Model,
+    list: &TimeList,
+    iter_glob_maxi: usize,
+) -> Result<Vec<dyna::StepAdaptation>, Diagnostic> {
+    let default = [crate::time::list::Adaptation {
+        event: AdaptEvent::Seuil {
+            nb_incr_seuil: 2,
+            nom_para: "NB_ITER_NEWTON".into(),
+            crit_comp: "LE".into(),
+            vale_i: None,
+        },
+        mode: TplusMode::Fixe { pcent_augm: 100.0 },
+    }];
+    let occurrences = if list.adaptation.is_empty() {
+        &default[..]
+    } else {
+        &list.adaptation[..]
+    };
+    let mut out = Vec::new();
+    for a in occurrences {
+        let trigger = match &a.event {
+            AdaptEvent::Aucun => dyna::AdaptTrigger::Never,
+            AdaptEvent::ToutInst => dyna::AdaptTrigger::Always,
+            AdaptEvent::Seuil {
+                nb_incr_seuil,
+                crit_comp,
+                vale_i,
+                ..
+            } => {
+                use std::cmp::Ordering::{Greater, Less};
+                let (crit, or_equal) = match crit_comp.as_str() {
+                    "LT" => (Less, false),
+                    "GT" => (Greater, false),
+                    "GE" => (Greater, true),
+                    _ => (Less, true),
+                };
+                let vale = match vale_i {
+                    Some(v) if *v != 0 => (*v).max(0) as usize,
+                    _ => iter_glob_maxi / 2,
+                };
+                dyna::AdaptTrigger::Threshold {
+                    count: *nb_incr_seuil,
+                    crit,
+                    or_equal,
+                    vale,
+                }
+            }
+        };
+        let rule = match &a.mode {
+            TplusMode::Fixe { pcent_augm } => dyna::StepRule::Fixe(1.0 + pcent_augm / 100.0),
+            TplusMode::IterNewton { nb_iter_newton_ref } => {
+                if *nb_iter_newton_ref < 1 {
+                    return Err(args.error(
+                        "INCREMENT",
+                        format!("LIST_INST, ADAPTATION: NB_ITER_NEWTON_REF = {nb_iter_newton_ref} must be at least 1"),
+                    ));
+                }
+                dyna::StepRule::IterNewton(*nb_iter_newton_ref as usize)
+            }
+            TplusMode::DeltaGrandeur {
+                vale_ref,
+                nom_cham,
+                nom_cmp,
+            } => dyna::StepRule::DeltaGrandeur(delta_measure(
+                args,
+                model,
+                (nom_cham, nom_cmp, *vale_ref),
+                &Action::Arret,
+                "ADAPTATION MODE_CALCUL_TPLUS='DELTA_GRANDEUR'",
+            )?),
+            TplusMode::Implex => {
+                return Err(args.not_implemented(
+                    "INCREMENT",
+                    "DEFI_LIST_INST/ADAPTATION/MODE_CALCUL_TPLUS='IMPLEX' (code_aster allows it only with STAT_NON_LINE METHODE='IMPLEX', MECANONLINE6_4, which aster does not have)",
+                ));
+            }
+        };
+        out.push(dyna::StepAdaptation { trigger, rule });
     }
-    v
+    Ok(out)
 }
 
 /// The time list and the instants [INST_INIT .. INST_FIN] to compute;
@@ -1709,13 +1819,11 @@ pub(crate) fn run(
         ));
     }
     let growth = growth_of(&list);
-    let substituted = substituted_tplus(&list);
-    if growth.is_some() && !substituted.is_empty() {
-        notes.push(format!(
-            "not implemented: ADAPTATION/MODE_CALCUL_TPLUS='{}' is replaced by MODE_CALCUL_TPLUS='FIXE' (PCENT_AUGM = 100: the step is doubled after each success)",
-            substituted.join("', '")
-        ));
-    }
+    let adaptation = if growth.is_some() {
+        adaptation_of(args, &md.model, &list, conv.iter_glob_maxi)?
+    } else {
+        Vec::new()
+    };
     if let Some(g) = &growth {
         let bounds = format!(
             "{}{}",
@@ -1725,16 +1833,11 @@ pub(crate) fn run(
                 "; a step chosen below PAS_MINI = {m:e} stops the run"
             ))
         );
-        notes.push(if g.factor == 1.0 {
-            format!(
-                "METHODE='AUTO', no ADAPTATION lengthens the step (EVENEMENT='AUCUN'): each step is as long as the last one, up to the next instant of the list{bounds}"
-            )
-        } else {
-            format!(
-                "METHODE='AUTO': after each successful step the next one is {} times longer, up to the next instant of the list{bounds} (the ADAPTATION thresholds are not evaluated)",
-                g.factor
-            )
-        });
+        let rules: Vec<String> = adaptation.iter().map(describe_adaptation).collect();
+        notes.push(format!(
+            "METHODE='AUTO': after each successful step the next one is the smallest that the ADAPTATION occurrences propose ({}), the last step when none does, up to the next instant of the list{bounds}",
+            rules.join("; ")
+        ));
     }
     if args.has("SOLVEUR") {
         notes.push(super::blocks::SOLVEUR_NOTE.into());
@@ -1755,6 +1858,7 @@ pub(crate) fn run(
         deltas,
         event_actions,
         growth,
+        adaptation,
         subd_niveau: list.max_subd_niveau(),
         hint,
     };

@@ -254,6 +254,165 @@ pub struct Growth {
     pub max_steps: usize,
 }
 
+/// When an ADAPTATION occurrence proposes a next step (EVENEMENT).
+#[derive(Debug, Clone, PartialEq)]
+pub enum AdaptTrigger {
+    /// 'AUCUN'.
+    Never,
+    /// 'TOUT_INST'.
+    Always,
+    /// 'SEUIL': once `count` Newton convergences with an iteration index
+    /// (code_aster's, the prediction being 0) that compares to `vale` with
+    /// `crit` have been counted since the last adaptation (`diadap`, which
+    /// resets the count when it fires; `nmevdt` counts, and resets on a
+    /// Newton failure only, so the counted steps need not be consecutive).
+    Threshold {
+        count: usize,
+        crit: std::cmp::Ordering,
+        /// CRIT_COMP 'LE' / 'GE': equality counts too.
+        or_equal: bool,
+        vale: usize,
+    },
+}
+
+/// How an ADAPTATION occurrence computes the next step from the last one,
+/// dt⁻ (MODE_CALCUL_TPLUS, code_aster's `nmcadt`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum StepRule {
+    /// 'FIXE': dt⁻ (1 + PCENT_AUGM/100), the factor given.
+    Fixe(f64),
+    /// 'DELTA_GRANDEUR': dt⁻ · VALE_REF / max |Δ| of one component over
+    /// the step just done (no proposal when that is 0).
+    DeltaGrandeur(DeltaGrandeur),
+    /// 'ITER_NEWTON': dt⁻ · √(NB_ITER_NEWTON_REF / (iterations + 1)),
+    /// iterations the index of the converged Newton iteration.
+    IterNewton(usize),
+}
+
+/// One ADAPTATION occurrence of a METHODE='AUTO' list.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepAdaptation {
+    pub trigger: AdaptTrigger,
+    pub rule: StepRule,
+}
+
+/// The running state of METHODE='AUTO' (code_aster's `nmadat`): dt⁻, the
+/// last step that counts as "the step", and the convergences counted for
+/// each 'SEUIL' occurrence.
+#[derive(Debug, Clone)]
+struct Adapter {
+    dt_prev: f64,
+    counts: Vec<usize>,
+    /// The instant of the step last chosen when it was shortened to reach
+    /// an instant of the list: its length does not become dt⁻.
+    truncated: Option<f64>,
+}
+
+impl Adapter {
+    fn new(tl: &TimeLoop) -> Adapter {
+        Adapter {
+            dt_prev: tl.instants.get(1).map_or(0.0, |t| t - tl.instants[0]),
+            counts: vec![0; tl.adaptation.len()],
+            truncated: None,
+        }
+    }
+
+    /// After each Newton solve of a step: a convergence at iteration index
+    /// `index` counts for the thresholds it satisfies; a failure resets
+    /// every count.
+    fn newton(&mut self, tl: &TimeLoop, converged: Option<usize>) {
+        for (a, n) in tl.adaptation.iter().zip(self.counts.iter_mut()) {
+            let AdaptTrigger::Threshold {
+                crit,
+                or_equal,
+                vale,
+                ..
+            } = &a.trigger
+            else {
+                continue;
+            };
+            match converged {
+                Some(index) => {
+                    let o = index.cmp(vale);
+                    if o == *crit || (*or_equal && o == std::cmp::Ordering::Equal) {
+                        *n += 1;
+                    }
+                }
+                None => *n = 0,
+            }
+        }
+    }
+
+    /// The next step after a success `(t, dt, index)` that took `dt` to
+    /// `t` in Newton iteration index `index`, with `increment(d)` the
+    /// step's largest change of a DELTA_GRANDEUR component; `jalon` is the
+    /// next instant of the list.
+    fn next(
+        &mut self,
+        tl: &TimeLoop,
+        g: Growth,
+        (t, dt, index): (f64, f64, usize),
+        jalon: f64,
+        increment: &dyn Fn(&DeltaGrandeur) -> f64,
+    ) -> f64 {
+        if self.truncated != Some(t) {
+            self.dt_prev = dt;
+        }
+        let dtm = self.dt_prev;
+        let mut best: Option<f64> = None;
+        for (a, n) in tl.adaptation.iter().zip(self.counts.iter_mut()) {
+            let fire = match a.trigger {
+                AdaptTrigger::Never => false,
+                AdaptTrigger::Always => true,
+                AdaptTrigger::Threshold { count, .. } => {
+                    let fire = *n >= count;
+                    if fire {
+                        *n = 0;
+                    }
+                    fire
+                }
+            };
+            if !fire {
+                continue;
+            }
+            let proposal = match &a.rule {
+                StepRule::Fixe(f) => Some(dtm * f),
+                StepRule::IterNewton(nref) => {
+                    Some(dtm * (*nref as f64 / (index + 1) as f64).sqrt())
+                }
+                StepRule::DeltaGrandeur(d) => {
+                    let m = increment(d);
+                    (m != 0.0).then(|| dtm * d.vale_ref / m)
+                }
+            };
+            if let Some(p) = proposal {
+                best = Some(best.map_or(p, |b: f64| b.min(p)));
+            }
+        }
+        let mut step = best.unwrap_or(dtm);
+        if let Some(m) = g.pas_maxi {
+            step = step.min(m);
+        }
+        // Reaching the next instant of the list (code_aster's `compr8`
+        // with its precision 1e-12): a step past it is shortened and does
+        // not become dt⁻; one that would end within PAS_MINI of it goes to
+        // it and does.
+        let prec = 1e-12 * jalon.abs().max(1e-300);
+        let pas_mini = g.pas_mini.unwrap_or(0.0);
+        self.truncated = None;
+        if t + step > jalon + prec {
+            step = jalon - t;
+            self.truncated = Some(jalon);
+        } else if t + step > jalon - pas_mini + prec {
+            step = jalon - t;
+            self.dt_prev = step;
+        } else {
+            self.dt_prev = step;
+        }
+        step
+    }
+}
+
 /// What the time loop needs besides the engine.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TimeLoop {
@@ -282,6 +441,9 @@ pub struct TimeLoop {
     pub event_actions: Vec<(&'static str, Action)>,
     /// None: METHODE='MANUEL', the list is followed as given.
     pub growth: Option<Growth>,
+    /// METHODE='AUTO' of the implicit loop: the ADAPTATION occurrences
+    /// (the explicit loop uses `growth.factor` only).
+    pub adaptation: Vec<StepAdaptation>,
     /// The subdivision level no cut may go beyond, whichever event cuts:
     /// code_aster keeps one level per step and compares it with the largest
     /// SUBD_NIVEAU of all the events (dfllec writes that maximum into every
@@ -477,6 +639,7 @@ pub fn run(
     // METHODE='AUTO': the instant that the step chosen after the last
     // success reaches (the one PAS_MINI applies to).
     let mut adapted: Option<f64> = None;
+    let mut adapter = Adapter::new(tl);
     while let Some((t_end, level, list_end)) = pending.pop() {
         let t0 = engine.committed.t;
         if let Some(signal) = crate::interrupt::requested() {
@@ -559,6 +722,16 @@ pub fn run(
         };
         for r in &rows {
             log(r);
+        }
+        // The ADAPTATION thresholds count Newton convergences (iteration
+        // index: code_aster's, the prediction 0) and forget them at a
+        // Newton failure (nmevdt).
+        match &outcome {
+            Ok(rep) if !rep.not_converged => {
+                adapter.newton(tl, Some(rep.iterations.saturating_sub(1)))
+            }
+            Err(Some(StepFailure::Interrupted(_))) | Err(None) => {}
+            _ => adapter.newton(tl, None),
         }
         // ARRET='NON' forces the convergence of a step only when the ERREUR
         // rule's action fails (code_aster's nmactn: the action first, the
@@ -739,7 +912,13 @@ pub fn run(
                     pb.set_message(format!("t = {t_end:.4e}"));
                 }
                 if let Some(g) = tl.growth {
-                    adapted = grow(&mut pending, t_end, dt, g);
+                    let index = rep.iterations.saturating_sub(1);
+                    // After the commit the trial state is the step's start.
+                    let (from, to) = (&engine.trial, &engine.committed);
+                    let increment = |d: &DeltaGrandeur| d.max_increment(from, to, ndpn);
+                    adapted = grow(&mut pending, t_end, |jalon| {
+                        adapter.next(tl, g, (t_end, dt, index), jalon, &increment)
+                    });
                 }
             }
             Err((reason, fatal)) => {
@@ -964,25 +1143,25 @@ fn equal_steps(
         .collect()
 }
 
-/// METHODE='AUTO': after a successful step of length `dt` ending at `t`,
-/// the pending sub-steps before the next instant of the list are replaced
-/// by one step of `factor`·dt (at most PAS_MAXI), never beyond that
-/// instant: the list's instants are the upper bounds of the steps, and the
-/// step reaches them again after a cut. Returns the instant the chosen
-/// step reaches (None at the end of the list).
-fn grow(pending: &mut Vec<(f64, usize, bool)>, t: f64, dt: f64, g: Growth) -> Option<f64> {
+/// METHODE='AUTO': after a successful step ending at `t`, the pending
+/// sub-steps before the next instant of the list are replaced by one step,
+/// `choose(next list instant)` ([`Adapter::next`]: the ADAPTATION rules,
+/// PAS_MAXI, never beyond that instant: the list's instants are the upper
+/// bounds of the steps, and the step reaches them again after a cut).
+/// Returns the instant the chosen step reaches (None at the end of the
+/// list).
+fn grow(
+    pending: &mut Vec<(f64, usize, bool)>,
+    t: f64,
+    choose: impl FnOnce(f64) -> f64,
+) -> Option<f64> {
     let &(t_list, level, _) = pending.iter().rev().find(|p| p.2)?;
     while pending.last().is_some_and(|p| !p.2) {
         pending.pop();
     }
-    let mut step = dt * g.factor;
-    if let Some(m) = g.pas_maxi {
-        step = step.min(m);
-    }
-    // A remainder shorter than a thousandth of the step, or than PAS_MINI,
-    // is not a step.
-    let gap = g.pas_mini.unwrap_or(0.0).max(1e-3 * step);
-    if t + step < t_list - gap {
+    let step = choose(t_list);
+    // A remainder below the precision of the instants is not a step.
+    if t + step < t_list - 1e-9 * step {
         pending.push((t + step, level, false));
         Some(t + step)
     } else {
