@@ -1099,12 +1099,12 @@ fn delta_measure(
     })
 }
 
-/// METHODE='AUTO' of a time list: the growth of the step after a success
-/// (1 + PCENT_AUGM/100 of the first ADAPTATION with MODE_CALCUL_TPLUS
-/// 'FIXE', 100 % by default), PAS_MINI, PAS_MAXI and NB_PAS_MAXI; None for
-/// METHODE='MANUEL'. An occurrence with EVENEMENT='AUCUN' never adapts;
-/// when no occurrence may adapt, code_aster's nmadap keeps the last step
-/// ("DT-"), a factor 1.
+/// METHODE='AUTO' of a time list: PAS_MINI, PAS_MAXI and NB_PAS_MAXI, and
+/// for the explicit loop the growth factor of the step (1 + PCENT_AUGM/100
+/// of the first ADAPTATION with MODE_CALCUL_TPLUS 'FIXE', 100 % by
+/// default; 1 when every occurrence is EVENEMENT='AUCUN'); None for
+/// METHODE='MANUEL'. The implicit loop applies the occurrences themselves
+/// (`adaptation_of`).
 pub(crate) fn growth_of(list: &TimeList) -> Option<dyna::Growth> {
     list.auto.then(|| {
         let adapting: Vec<_> = list

@@ -237,8 +237,9 @@ impl DeltaGrandeur {
 /// METHODE='AUTO': how the step grows back after a success.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Growth {
-    /// The next step is `factor` times the last one (1 + PCENT_AUGM/100
-    /// of MODE_CALCUL_TPLUS='FIXE').
+    /// Explicit loop: the step grows by at most `factor` (1 + PCENT_AUGM/100
+    /// of MODE_CALCUL_TPLUS='FIXE'); the implicit loop applies
+    /// `TimeLoop::adaptation` instead.
     pub factor: f64,
     /// PAS_MAXI, if given.
     pub pas_maxi: Option<f64>,
