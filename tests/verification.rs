@@ -1956,6 +1956,9 @@ fn expect_located_errors(
         );
         assert_eq!(run.code, 1, "{tag}: {}", run.term);
         assert!(run.term.contains(what), "{tag}: {}", run.term);
+        // The .resu ends with the error too, as code_aster's.
+        let resu = run.file(&format!("{tag}.resu"));
+        assert!(resu.contains(what), "{tag}: .resu:\n{resu}");
         assert!(
             run.term.contains(&format!("{tag}.comm:")),
             "{tag}: {}",

@@ -219,7 +219,11 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
     study.mess.push_str(&messages);
     let mut completed = false;
     let code = match checked {
-        None => EXIT_STUDY,
+        None => {
+            // Nothing ran: the .resu says why, as the .mess does.
+            study.resu.push_str(&messages);
+            EXIT_STUDY
+        }
         Some(program) => {
             study.log(format!(
                 "aster {} — study {}",
@@ -261,7 +265,16 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
                             study.resu.push_str(&format!("\n{}\n{line}\n", d.message));
                             code
                         }
-                        None => EXIT_STUDY,
+                        None => {
+                            // As code_aster's .resu, which receives the
+                            // fatal error too: a .resu that ends without
+                            // it (or is empty) reads as a study that ran.
+                            study.resu.push_str(&format!(
+                                "\n{r}{}\n",
+                                if r.ends_with('\n') { "" } else { "\n" }
+                            ));
+                            EXIT_STUDY
+                        }
                     }
                 }
             }
