@@ -54,6 +54,11 @@ pub struct CheckedCommand {
 pub struct CheckedProgram {
     pub commands: Vec<CheckedCommand>,
     pub warnings: Vec<Diagnostic>,
+    /// What the file's `print(...)` calls write to the .mess, each with the
+    /// index of the command it comes before (`commands.len()`: after the
+    /// last one). Their text is known now: print() of a value known only
+    /// when the study runs is refused.
+    pub prints: Vec<(usize, String)>,
 }
 
 /// Checks a whole program. On failure, returns every error found (and the
@@ -84,6 +89,7 @@ pub fn check_program<D: AsRef<CommandSpec>>(
         iterating: Vec::new(),
         captured: Vec::new(),
         current: Span::default(),
+        prints: Vec::new(),
     };
     ck.stmts(&program.stmts);
     if !ck.seen_debut {
@@ -115,6 +121,7 @@ pub fn check_program<D: AsRef<CommandSpec>>(
         Ok(CheckedProgram {
             commands: ck.out,
             warnings,
+            prints: ck.prints,
         })
     } else {
         let mut all = dedup(ck.errors);
@@ -144,6 +151,8 @@ struct Checker<'a> {
     captured: Vec<(String, PyVal, String, Option<Diagnostic>)>,
     /// The statement being checked (where a rebinding is reported).
     current: Span,
+    /// See [`CheckedProgram::prints`].
+    prints: Vec<(usize, String)>,
 }
 
 /// The values present at one level, for conditions and rules.
@@ -232,6 +241,15 @@ impl Checker<'_> {
                             self.bind(&t.name, PyVal::Poison);
                         }
                     }
+                }
+            }
+            StmtKind::SetItem {
+                target,
+                index,
+                value,
+            } => {
+                if let Err(d) = self.set_item(target, index, value) {
+                    self.errors.push(d);
                 }
             }
             StmtKind::Pass => {}
@@ -384,6 +402,197 @@ impl Checker<'_> {
         Ok(())
     }
 
+    /// `L[i] = x` and `d['KEY'] = x` on a list or a dict held in a name.
+    /// As for append, aster's values are copies: the cases where Python's
+    /// shared object would make a difference are refused.
+    fn set_item(
+        &mut self,
+        target: &Ident,
+        index: &crate::lang::ast::Expr,
+        value: &crate::lang::ast::Expr,
+    ) -> Result<(), Diagnostic> {
+        let name = target.name.as_str();
+        if let ExprKind::Call { func, .. } = &value.kind {
+            if self.names.contains(&func.name.as_str()) {
+                return Err(Diagnostic::error(format!(
+                    "the result of {} cannot be stored in an item of {name}: aster knows concepts by their names",
+                    func.name
+                ))
+                .at(value.span)
+                .in_command(func.name.clone())
+                .note("name the result (RESU_1 = COMMAND(...)), one name per result, and use the names"));
+            }
+        }
+        let x = self.env.eval(value, &is_cmd(self.names))?;
+        let id = match self.env.names.get(name) {
+            Some(Binding::Var(PyVal::List(id, _) | PyVal::Fact(id, _))) => *id,
+            Some(Binding::Var(PyVal::Poison)) => return Ok(()),
+            Some(Binding::Var(v)) => return Err(Diagnostic::error(format!(
+                "{name} is {}, which does not support item assignment (only a list or a dict does)",
+                v.describe()
+            ))
+            .at(target.span)),
+            Some(Binding::Concept { .. }) => {
+                return Err(crate::catalog::eval::concept_unknown(
+                    name,
+                    "item assignment changes",
+                    target.span,
+                ))
+            }
+            None => {
+                // The message of an undefined name.
+                self.env.eval(
+                    &crate::lang::ast::Expr {
+                        kind: ExprKind::Name(name.to_string()),
+                        span: target.span,
+                    },
+                    &is_cmd(self.names),
+                )?;
+                return Ok(());
+            }
+        };
+        let i = self.env.eval(index, &is_cmd(self.names))?;
+        if i.v == PyVal::Poison {
+            return Ok(());
+        }
+        let shared = self
+            .env
+            .names
+            .iter()
+            .find(|(n, b)| *n != name && matches!(b, Binding::Var(v) if holds_list(v, id)));
+        if let Some((other, _)) = shared {
+            return Err(Diagnostic::error(format!(
+                "{name} is the same object as {other}: Python's item assignment would change both, aster's values are copies"
+            ))
+            .at(target.span)
+            .note(format!("build {other} after the assignments, or copy first: {name} = list({name}) or dict({name})")));
+        }
+        if holds_list(&x.v, id) || self.iterating.contains(&id) {
+            return Err(Diagnostic::error(format!(
+                "assigning an item of {name} while it is being looped over, or {name} into itself, is not supported"
+            ))
+            .at(target.span.to(value.span)));
+        }
+        let Some(Binding::Var(slot)) = self.env.names.get_mut(name) else {
+            unreachable!("checked above")
+        };
+        match slot {
+            PyVal::List(_, items) => {
+                let n = items.len();
+                let k = match i.v {
+                    PyVal::Int(k) => k,
+                    PyVal::Bool(b) => b as i64,
+                    ref v => {
+                        return Err(Diagnostic::error(format!(
+                            "list indices must be integers, not {}",
+                            v.describe()
+                        ))
+                        .at(i.span))
+                    }
+                };
+                let at = if k < 0 {
+                    k as i128 + n as i128
+                } else {
+                    k as i128
+                };
+                if !(0..n as i128).contains(&at) {
+                    return Err(Diagnostic::error(format!(
+                        "list assignment index {k} out of range: {name} has {n} item{}",
+                        if n == 1 { "" } else { "s" }
+                    ))
+                    .at(i.span)
+                    .note(
+                        "an item is added with append; [None] * n makes a list of n items to fill",
+                    ));
+                }
+                items[at as usize] = x;
+            }
+            PyVal::Fact(_, kv) => {
+                let PyVal::Str(key) = i.v else {
+                    return Err(crate::catalog::eval::dict_key_error(&i.v, i.span));
+                };
+                match kv.iter_mut().find(|(k, _)| k.name == key) {
+                    Some(slot) => slot.1 = x,
+                    None => kv.push((
+                        Ident {
+                            name: key,
+                            span: i.span,
+                        },
+                        x,
+                    )),
+                }
+            }
+            _ => unreachable!("a list or a dict"),
+        }
+        Ok(())
+    }
+
+    /// `print(...)` as a statement: its text is made now (Python's str of
+    /// each argument, `sep` between them, `end` after) and written to the
+    /// .mess when the study runs, in its place among the commands.
+    fn print(&mut self, args: &[crate::lang::ast::Arg], span: Span) -> Result<(), Diagnostic> {
+        let mut parts = Vec::new();
+        let mut sep = " ".to_string();
+        let mut end = "\n".to_string();
+        for a in args {
+            if a.unpack {
+                return Err(Diagnostic::error("print(**...) is not supported").at(a.span));
+            }
+            let v = self.env.eval(&a.value, &is_cmd(self.names))?;
+            if v.v == PyVal::Poison {
+                return Ok(());
+            }
+            let text = |v: &SpVal| -> Result<String, Diagnostic> {
+                match &v.v {
+                    PyVal::Concept { name, .. } => Err(crate::catalog::eval::concept_unknown(
+                        name,
+                        "print() writes",
+                        v.span,
+                    )),
+                    other => crate::catalog::eval::pyfmt::py_str(other)
+                        .map_err(|m| Diagnostic::error(m).at(v.span)),
+                }
+            };
+            match a.name.as_ref().map(|k| k.name.as_str()) {
+                None => parts.push(text(&v)?),
+                Some(k @ ("sep" | "end")) => {
+                    let s = match &v.v {
+                        PyVal::Str(s) => s.clone(),
+                        PyVal::None if k == "sep" => " ".into(),
+                        PyVal::None => "\n".into(),
+                        other => {
+                            return Err(Diagnostic::error(format!(
+                                "print(): {k} must be None or a text, not {}",
+                                other.describe()
+                            ))
+                            .at(v.span))
+                        }
+                    };
+                    if k == "sep" {
+                        sep = s;
+                    } else {
+                        end = s;
+                    }
+                }
+                Some("flush") => {}
+                Some(k) => {
+                    return Err(Diagnostic::error(format!(
+                        "print() keyword {k} is not supported (only sep, end and flush)"
+                    ))
+                    .at(a.span)
+                    .note("print() writes to the .mess file"))
+                }
+            }
+        }
+        let mut line = parts.join(&sep);
+        line.push_str(&end);
+        if line.len() > crate::catalog::eval::pyfmt::MAX_TEXT {
+            return Err(Diagnostic::error("print() of a text longer than 10^7 bytes").at(span));
+        }
+        self.prints.push((self.out.len(), line));
+        Ok(())
+    }
+
     fn import_names(&mut self, module: &Ident, names: Option<&[(Ident, Option<Ident>)]>) {
         if module.name == "code_aster.Commands" {
             // The commands are always there.
@@ -438,11 +647,22 @@ impl Checker<'_> {
             _ => None,
         };
         let Some((func, args)) = call else {
+            if let ExprKind::Call { func, args } = &expr.kind {
+                let shadowed = self.env.names.contains_key(func.name.as_str());
+                if func.name == "print" && target.is_none() && !shadowed {
+                    if let Err(d) = self.print(args, span) {
+                        self.errors.push(d);
+                    }
+                    return;
+                }
+            }
             // A plain Python statement: evaluate it now. A call of an
             // unknown name at statement level is most likely a misspelt
             // command.
             if let ExprKind::Call { func, .. } = &expr.kind {
                 let known = func.name == "_F"
+                    || func.name == "dict"
+                    || func.name == "print"
                     || crate::catalog::eval::is_builtin(&func.name)
                     || matches!(self.env.bound_value(&func.name), Some(PyVal::Func(_)));
                 if !known {
@@ -531,11 +751,39 @@ impl Checker<'_> {
         let cmd = spec.name;
         let nerr = self.errors.len();
 
-        // Evaluate the arguments; positional ones are errors.
+        // Evaluate the arguments; positional ones are errors. `**d` gives
+        // the dict's items as keywords, each keeping the span where the
+        // dict got it, so a wrong one is reported at the dict's entry
+        // (with a note naming the `**`).
         let mut given: Vec<(Ident, SpVal)> = Vec::new();
         let mut reuse: Option<(String, Span)> = None;
+        // (span of a keyword or value that came from a dict, the `**` argument)
+        let mut from_dict: Vec<(Span, Span)> = Vec::new();
         for a in args {
-            let Some(k) = &a.name else {
+            let items: Vec<(Ident, Result<SpVal, Diagnostic>, Option<Span>)> = if a.unpack {
+                let registry = self.registry;
+                let is_c = |n: &str| registry.iter().any(|d| d.name == n);
+                let v = match self.env.eval(&a.value, &is_c) {
+                    Ok(v) => v,
+                    Err(d) => {
+                        self.errors.push(d.in_command(cmd));
+                        continue;
+                    }
+                };
+                match crate::catalog::eval::unpack_keywords(v, cmd) {
+                    Ok(Some(kv)) => kv
+                        .into_iter()
+                        .map(|(k, v)| (k, Ok(v), Some(a.span)))
+                        .collect(),
+                    Ok(None) => continue,
+                    Err(d) => {
+                        self.errors.push(d.in_command(cmd));
+                        continue;
+                    }
+                }
+            } else if let Some(k) = &a.name {
+                vec![(k.clone(), Err(Diagnostic::error("")), None)]
+            } else {
                 let mut d =
                     Diagnostic::error(format!("{cmd} takes keyword arguments only (KEY=value)"))
                         .at(a.span)
@@ -548,57 +796,86 @@ impl Checker<'_> {
                 self.errors.push(d);
                 continue;
             };
-            if given.iter().any(|(p, _)| p.name == k.name) || (k.name == "reuse" && reuse.is_some())
-            {
-                self.errors.push(
-                    Diagnostic::error(format!("keyword {} is given twice", k.name))
-                        .at(k.span)
+            for (k, pre, star) in items {
+                if given.iter().any(|(p, _)| p.name == k.name)
+                    || (k.name == "reuse" && reuse.is_some())
+                {
+                    let mut d = Diagnostic::error(format!("keyword {} is given twice", k.name))
+                        .at(star.unwrap_or(k.span))
                         .in_command(cmd)
-                        .keyword(k.name.clone()),
-                );
-                continue;
-            }
-            if k.name == "reuse" {
-                match &a.value.kind {
-                    ExprKind::Name(n) => reuse = Some((n.clone(), a.value.span)),
-                    _ => self.errors.push(
-                        Diagnostic::error("reuse= takes the name of an existing concept")
-                            .at(a.value.span)
-                            .in_command(cmd),
-                    ),
-                }
-                continue;
-            }
-            let registry = self.registry;
-            match self
-                .env
-                .eval(&a.value, &|n| registry.iter().any(|d| d.name == n))
-            {
-                Ok(v) => {
-                    if let Some((name, at)) = find_stale(&v) {
-                        self.errors.push(
-                            Diagnostic::error(format!(
-                                "this value holds the concept {name} as it was before {name} was defined again"
-                            ))
-                            .at(at)
-                            .in_command(cmd)
-                            .keyword(k.name.clone())
-                            .note("aster knows concepts by their names: give each concept its own name"),
-                        );
+                        .keyword(k.name.clone());
+                    if star.is_some() {
+                        d = d.note(format!(
+                            "the dict that ** unpacks holds {} (at byte {}), already given to {cmd}",
+                            k.name, k.span.start
+                        ));
                     }
-                    given.push((k.clone(), for_keyword(v)))
+                    self.errors.push(d);
+                    continue;
                 }
-                Err(d) => {
-                    self.errors.push(with_ctx(d, cmd, &k.name));
-                    given.push((
-                        k.clone(),
-                        SpVal {
-                            v: PyVal::Poison,
-                            span: a.value.span,
-                        },
-                    ));
+                if let Some(star) = star {
+                    from_dict.push((k.span, star));
+                }
+                if k.name == "reuse" {
+                    match (&a.value.kind, &pre) {
+                        (ExprKind::Name(n), Err(_)) if star.is_none() => {
+                            reuse = Some((n.clone(), a.value.span))
+                        }
+                        (
+                            _,
+                            Ok(SpVal {
+                                v: PyVal::Concept { name, .. },
+                                span,
+                            }),
+                        ) => reuse = Some((name.clone(), *span)),
+                        _ => self.errors.push(
+                            Diagnostic::error("reuse= takes the name of an existing concept")
+                                .at(pre.as_ref().map_or(a.value.span, |v| v.span))
+                                .in_command(cmd),
+                        ),
+                    }
+                    continue;
+                }
+                let registry = self.registry;
+                let evaluated = match pre {
+                    Ok(v) => Ok(v),
+                    Err(_) => self
+                        .env
+                        .eval(&a.value, &|n| registry.iter().any(|d| d.name == n)),
+                };
+                match evaluated {
+                    Ok(v) => {
+                        if star.is_some() {
+                            from_dict.push((v.span, a.span));
+                        }
+                        if let Some((name, at)) = find_stale(&v) {
+                            self.errors.push(
+                                Diagnostic::error(format!(
+                                    "this value holds the concept {name} as it was before {name} was defined again"
+                                ))
+                                .at(at)
+                                .in_command(cmd)
+                                .keyword(k.name.clone())
+                                .note("aster knows concepts by their names: give each concept its own name"),
+                            );
+                        }
+                        given.push((k.clone(), for_keyword(v)))
+                    }
+                    Err(d) => {
+                        self.errors.push(with_ctx(d, cmd, &k.name));
+                        given.push((
+                            k.clone(),
+                            SpVal {
+                                v: PyVal::Poison,
+                                span: a.value.span,
+                            },
+                        ));
+                    }
                 }
             }
+        }
+        if let Some(compat) = spec.compat {
+            self.errors.extend(compat(&mut given));
         }
 
         // `for R in (RN, RL): R = CALC_CHAMP(reuse=R, RESULTAT=R, ...)`: R
@@ -626,7 +903,23 @@ impl Checker<'_> {
             }
         }
         let mut top = Args::new(cmd, "", span);
+        let before_level = self.errors.len();
         self.level(cmd, "", &spec.keywords, &spec.rules, given, &mut top);
+        if !from_dict.is_empty() {
+            for d in &mut self.errors[before_level..] {
+                let star = d.span.and_then(|s| {
+                    from_dict
+                        .iter()
+                        .find(|(inner, _)| inner.start <= s.start && s.end <= inner.end)
+                });
+                if let Some((_, star)) = star {
+                    d.notes.push(format!(
+                        "the keyword comes from the dict that ** unpacks in {cmd} (at byte {})",
+                        star.start
+                    ));
+                }
+            }
+        }
 
         // Result binding and reuse.
         let produces = match &spec.produces {
@@ -1180,7 +1473,7 @@ impl Checker<'_> {
         };
         if let Some(o) = occs
             .iter()
-            .find(|o| !matches!(o.v, PyVal::Fact(_) | PyVal::Poison))
+            .find(|o| !matches!(o.v, PyVal::Fact(..) | PyVal::Poison))
         {
             self.errors.push(
                 Diagnostic::error(format!(
@@ -1233,7 +1526,7 @@ impl Checker<'_> {
             if o.v == PyVal::Poison {
                 continue;
             }
-            let PyVal::Fact(items) = &o.v else {
+            let PyVal::Fact(_, items) = &o.v else {
                 self.errors.push(
                     Diagnostic::error(format!(
                         "{} is a factor keyword: expected _F(...) or a tuple of _F(...), found {}",

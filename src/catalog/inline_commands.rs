@@ -55,6 +55,17 @@ impl Hoister<'_> {
                     value: self.top(value, &mut before),
                 },
                 StmtKind::Expr(e) => StmtKind::Expr(self.top(e, &mut before)),
+                // A command's result stored in an item is refused by the
+                // checker (its concept would have no name): kept as written.
+                StmtKind::SetItem {
+                    target,
+                    index,
+                    value,
+                } => StmtKind::SetItem {
+                    target: target.clone(),
+                    index: self.inner(index, &mut before),
+                    value: self.top(value, &mut before),
+                },
                 StmtKind::Unpack { targets, value } => StmtKind::Unpack {
                     targets: targets.clone(),
                     value: self.inner(value, &mut before),
@@ -117,6 +128,7 @@ impl Hoister<'_> {
         args.iter()
             .map(|a| crate::lang::ast::Arg {
                 name: a.name.clone(),
+                unpack: a.unpack,
                 value: self.inner(&a.value, before),
                 span: a.span,
             })
@@ -157,6 +169,15 @@ impl Hoister<'_> {
             }
             ExprKind::Tuple(items) => ExprKind::Tuple(self.all(items, before)),
             ExprKind::List(items) => ExprKind::List(self.all(items, before)),
+            ExprKind::Dict(items) => ExprKind::Dict(
+                items
+                    .iter()
+                    .map(|(k, v)| {
+                        let k = k.as_ref().map(|k| self.inner(k, before));
+                        (k, self.inner(v, before))
+                    })
+                    .collect(),
+            ),
             ExprKind::MethodCall {
                 value,
                 method,
@@ -279,7 +300,7 @@ fn bound_names(stmts: &[Stmt], out: &mut HashSet<String>) {
                     out.insert(a.as_ref().unwrap_or(n).name.clone());
                 }
             }
-            StmtKind::Expr(_) | StmtKind::Pass => {}
+            StmtKind::Expr(_) | StmtKind::Pass | StmtKind::SetItem { .. } => {}
         }
     }
 }

@@ -181,7 +181,16 @@ pub struct CommandSpec {
     /// (DETRUIRE): the checker forgets them, so that a later use of the
     /// name is an error before anything runs.
     pub destroys: bool,
+    /// code_aster's `compat_syntax` hook: rewrites the keywords as given
+    /// (an older syntax into the current one) before they are checked, and
+    /// returns the errors of a malformed older form.
+    pub compat: Option<CompatFn>,
 }
+
+/// See [`CommandSpec::compat`].
+pub type CompatFn = fn(
+    &mut Vec<(crate::lang::ast::Ident, crate::catalog::eval::SpVal)>,
+) -> Vec<crate::diag::Diagnostic>;
 
 // ---------------------------------------------------------------------------
 // Builders: terse constructors so declarations read like the catalogue.
@@ -349,6 +358,7 @@ pub fn command(name: &'static str, produces: Produces, keywords: Vec<Keyword>) -
         keywords,
         rules: Vec::new(),
         destroys: false,
+        compat: None,
     }
 }
 
@@ -360,6 +370,10 @@ impl CommandSpec {
     }
     pub fn doc(mut self, d: &'static str) -> Self {
         self.doc = d;
+        self
+    }
+    pub fn compat(mut self, f: CompatFn) -> Self {
+        self.compat = Some(f);
         self
     }
     pub fn reentrant(mut self, r: Reentrant) -> Self {

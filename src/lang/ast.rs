@@ -54,6 +54,12 @@ pub enum StmtKind {
         targets: Vec<Ident>,
         value: Expr,
     },
+    /// `NAME[index] = value`: one item of a list or a dict.
+    SetItem {
+        target: Ident,
+        index: Expr,
+        value: Expr,
+    },
     /// A bare expression, in practice a command call such as `FIN()` or
     /// `L.append(x)`.
     Expr(Expr),
@@ -170,6 +176,8 @@ pub enum ExprKind {
     Tuple(Vec<Expr>),
     /// `[a, b]`
     List(Vec<Expr>),
+    /// `{key: value, **d, ...}`: a `None` key is a `**d` item.
+    Dict(Vec<(Option<Expr>, Expr)>),
     /// `[elt for x in L if c ...]`
     ListComp {
         elt: Box<Expr>,
@@ -244,6 +252,10 @@ impl Expr {
             | ExprKind::NoneLit
             | ExprKind::Name(_) => Vec::new(),
             ExprKind::Tuple(items) | ExprKind::List(items) => items.iter().collect(),
+            ExprKind::Dict(items) => items
+                .iter()
+                .flat_map(|(k, v)| k.iter().chain(std::iter::once(v)))
+                .collect(),
             ExprKind::ListComp { elt, generators } => {
                 let mut v = vec![elt.as_ref()];
                 for g in generators {
@@ -289,10 +301,12 @@ impl Expr {
     }
 }
 
-/// One argument of a call: `KEY=value` or a positional `value`.
+/// One argument of a call: `KEY=value`, a positional `value`, or
+/// `**value` (`unpack`, without a name): the items of a dict as keywords.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Arg {
     pub name: Option<Ident>,
+    pub unpack: bool,
     pub value: Expr,
     pub span: Span,
 }

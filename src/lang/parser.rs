@@ -481,6 +481,37 @@ fn lower_stmt(pair: Pair<'_, Rule>) -> Result<Stmt, Diagnostic> {
                 Target::Tuple(targets) => StmtKind::Unpack { targets, value },
             }
         }
+        Rule::setitem => {
+            let mut it = inner.into_inner();
+            let target = lower_ident(it.next().expect("setitem name"))?;
+            let sub = it.next().expect("setitem subscript");
+            let sub_span = span_of(&sub);
+            let slice = sub.into_inner().nth(1).expect("subscript has a slice");
+            let mut parts = slice.into_inner();
+            let index = match (parts.next(), parts.next()) {
+                (Some(e), None) if e.as_rule() != Rule::colon => lower_expr(e)?.expr,
+                (None, _) => {
+                    return Err(syntax_error(
+                        "expected an index or a slice between '[' and ']'",
+                        sub_span,
+                    ))
+                }
+                _ => {
+                    return Err(syntax_error(
+                        "assigning to a slice (L[a:b] = ...) is not supported",
+                        sub_span,
+                    )
+                    .note("assign one item at a time (L[i] = x), or build a new list"))
+                }
+            };
+            let _eq = it.next();
+            let value = lower_expr_list(it.next().expect("setitem value"))?.expr;
+            StmtKind::SetItem {
+                target,
+                index,
+                value,
+            }
+        }
         Rule::pass_stmt => StmtKind::Pass,
         Rule::import_stmt => {
             let mut items = Vec::new();
@@ -920,6 +951,7 @@ fn lower_primary(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
         Rule::call => lower_call(pair),
         Rule::paren => lower_sequence(pair, true),
         Rule::list => lower_sequence(pair, false),
+        Rule::dict => lower_dict(pair),
         r => unreachable!("unexpected primary rule {r:?}"),
     }
 }
@@ -1022,20 +1054,32 @@ fn lower_args<'a>(
             depth = depth.max(value.depth);
             Arg {
                 name: Some(name),
+                unpack: false,
+                value: value.expr,
+                span: arg_span,
+            }
+        } else if inner.as_rule() == Rule::star2_arg {
+            let value = lower_expr(inner.into_inner().nth(1).expect("** has a value"))?;
+            depth = depth.max(value.depth);
+            Arg {
+                name: None,
+                unpack: true,
                 value: value.expr,
                 span: arg_span,
             }
         } else {
-            if args.iter().any(|a| a.name.is_some()) {
+            if args.iter().any(|a| a.name.is_some() || a.unpack) {
                 return Err(
-                    syntax_error("positional argument after keyword arguments", arg_span)
-                        .note("give values without a keyword before the first KEYWORD=value"),
+                    syntax_error("positional argument after keyword arguments", arg_span).note(
+                        "give values without a keyword before the first KEYWORD=value or **dict",
+                    ),
                 );
             }
             let value = lower_expr(inner)?;
             depth = depth.max(value.depth);
             Arg {
                 name: None,
+                unpack: false,
                 value: value.expr,
                 span: arg_span,
             }
@@ -1099,6 +1143,32 @@ fn lower_sequence(pair: Pair<'_, Rule>, is_paren: bool) -> Result<Node, Diagnost
         ExprKind::List(items)
     };
     deeper(kind, span, depth)
+}
+
+/// `{key: value, **d}`.
+fn lower_dict(pair: Pair<'_, Rule>) -> Result<Node, Diagnostic> {
+    let span = span_of(&pair);
+    let mut items = Vec::new();
+    let mut depth = 0;
+    for p in pair.into_inner() {
+        if p.as_rule() != Rule::dict_item {
+            continue;
+        }
+        let mut it = p.into_inner();
+        let first = it.next().expect("dict item");
+        if first.as_rule() == Rule::pow_op {
+            let v = lower_expr(it.next().expect("** has a value"))?;
+            depth = depth.max(v.depth);
+            items.push((None, v.expr));
+        } else {
+            let k = lower_expr(first)?;
+            let _colon = it.next();
+            let v = lower_expr(it.next().expect("dict value"))?;
+            depth = depth.max(k.depth).max(v.depth);
+            items.push((Some(k.expr), v.expr));
+        }
+    }
+    deeper(ExprKind::Dict(items), span, depth)
 }
 
 /// Python's reserved words that command files use (in their Python
@@ -1178,13 +1248,13 @@ impl Scan {
                     }
                     continue;
                 }
-                c @ (b'(' | b'[') => {
+                c @ (b'(' | b'[' | b'{') => {
                     scan.open.push((i, c as char));
                     if scan.open.len() > MAX_BRACKET_DEPTH && scan.too_deep.is_none() {
                         scan.too_deep = Some(i);
                     }
                 }
-                b')' | b']' => {
+                b')' | b']' | b'}' => {
                     scan.open.pop();
                 }
                 _ => {}
@@ -1267,11 +1337,16 @@ fn explain(text: &str, scan: &Scan, err: &pest::error::Error<Rule>) -> Diagnosti
     if let Some(closer) = text[pos..]
         .chars()
         .next()
-        .filter(|c| matches!(c, ')' | ']'))
+        .filter(|c| matches!(c, ')' | ']' | '}'))
     {
+        let opener = match closer {
+            ')' => '(',
+            ']' => '[',
+            _ => '{',
+        };
         match open.last() {
             None => return syntax_error(format!("unmatched '{closer}'"), span),
-            Some(&(at, c)) if (c == '(') != (closer == ')') => {
+            Some(&(at, c)) if c != opener => {
                 let (line, col) = line_col(text, at);
                 return syntax_error(
                     format!(
@@ -1389,6 +1464,7 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
             Rule::comma => "','",
             Rule::rparen => "')'",
             Rule::rbrack => "']'",
+            Rule::rbrace => "'}'",
             Rule::eq => "'='",
             Rule::colon => "':'",
             Rule::kw_in => "'in'",
@@ -1457,13 +1533,14 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
     // A ',' could make a tuple of a statement's value (`A = 1, 2`), which
     // is never what a missing line break or ';' means.
     const END: &str = "end of statement (new line or ';')";
-    if out.contains(&END) && !out.contains(&"')'") && !out.contains(&"']'") {
+    if out.contains(&END) && !out.contains(&"')'") && !out.contains(&"']'") && !out.contains(&"'}'")
+    {
         out.retain(|w| *w != "','");
     }
     let rank = |w: &&str| match *w {
         "'='" => 0,
         "','" => 1,
-        "')'" | "']'" => 2,
+        "')'" | "']'" | "'}'" => 2,
         _ => 3,
     };
     out.sort_by_key(rank);
@@ -1624,7 +1701,7 @@ fn stray_character(text: &str, pos: usize) -> Option<Diagnostic> {
         );
     }
     let known =
-        is_ident_char(c) || " \t\x0C\r\n'\"()[],=+-*/.;#%<>!:".contains(c) || c == '\u{FEFF}';
+        is_ident_char(c) || " \t\x0C\r\n'\"()[]{},=+-*/.;#%<>!:".contains(c) || c == '\u{FEFF}';
     if known {
         return None;
     }
@@ -1635,9 +1712,6 @@ fn stray_character(text: &str, pos: usize) -> Option<Diagnostic> {
     };
     let d = syntax_error(format!("unexpected character {shown}"), span);
     Some(match c {
-        '{' | '}' => {
-            d.note("dictionaries are not supported; factor keywords are written _F(KEY=value, ...)")
-        }
         '&' | '|' | '^' | '~' => {
             d.note("bitwise operators are not supported; the logical operators are and, or, not")
         }

@@ -24,7 +24,11 @@ pub fn execute(
     registry: &[CommandDef],
     source: &crate::diag::Source,
 ) -> Result<(), Diagnostic> {
+    let mut prints = program.prints.iter().peekable();
     for (i, c) in program.commands.iter().enumerate() {
+        while let Some((_, text)) = prints.next_if(|(at, _)| *at <= i) {
+            study.print(text);
+        }
         let (line, _) = source.line_col(c.span.start);
         if let Some(signal) = interrupt::requested() {
             return Err(Diagnostic::error(format!(
@@ -51,6 +55,14 @@ pub fn execute(
                 d
             }
         })?;
+        if let Some(alarm) = study.raised_alarm.take() {
+            return Err(Diagnostic::error(format!(
+                "{} raised an alarm, an error under DEBUT(ERREUR=_F(ALARME='EXCEPTION')): {alarm}",
+                c.name
+            ))
+            .at(c.span)
+            .note("list its id in DEBUT(IGNORE_ALARM=...) to let it pass, or remove ERREUR=_F(ALARME='EXCEPTION'); code_aster stops at the alarm itself, aster at the end of the command that raised it"));
+        }
         study.log(format!(
             "#      {} done in {:.3} s",
             c.name,
@@ -67,6 +79,11 @@ pub fn execute(
         }
         if c.name == "FIN" {
             break;
+        }
+    }
+    for (at, text) in prints {
+        if *at >= program.commands.len() {
+            study.print(text);
         }
     }
     Ok(())

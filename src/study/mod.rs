@@ -40,6 +40,12 @@ pub struct Study {
     pub tests: TestCounts,
     /// Echo progress lines to the terminal.
     pub verbose: bool,
+    /// DEBUT(ERREUR=_F(ALARME='EXCEPTION')): alarms are errors, except
+    /// those whose id is listed (IGNORE_ALARM).
+    pub alarm_exception: Option<Vec<String>>,
+    /// The first alarm logged under `alarm_exception`, which the runner
+    /// turns into the error of the command that raised it.
+    pub raised_alarm: Option<String>,
 }
 
 impl Study {
@@ -51,6 +57,29 @@ impl Study {
         }
         self.mess.push_str(line);
         self.mess.push('\n');
+        // Every alarm goes through here as a line `<A> <COMMAND> [<ID>] text`,
+        // so this one place sees them all.
+        if let (Some(ignored), None) = (&self.alarm_exception, &self.raised_alarm) {
+            if let Some(rest) = line.strip_prefix("<A> ") {
+                let id = rest
+                    .split_once("> <")
+                    .and_then(|(_, r)| r.split_once('>'))
+                    .map(|(id, _)| id);
+                if !id.is_some_and(|id| ignored.iter().any(|i| i == id)) {
+                    self.raised_alarm = Some(line.to_string());
+                }
+            }
+        }
+    }
+
+    /// What a `print(...)` of the command file writes: its text as is
+    /// (Python's `end` included), in the .mess, which is code_aster's
+    /// standard output.
+    pub fn print(&mut self, text: &str) {
+        if self.verbose {
+            eprint!("{text}");
+        }
+        self.mess.push_str(text);
     }
 
     /// Appends text to a logical unit; unit 8 is the .resu file.

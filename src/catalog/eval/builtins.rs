@@ -146,7 +146,7 @@ impl Env {
     ) -> Result<Vec<SpVal>, Diagnostic> {
         let mut vals = Vec::new();
         for a in args {
-            if a.name.is_some() {
+            if a.name.is_some() || a.unpack {
                 return Err(
                     Diagnostic::error(format!("{f}() takes positional arguments only")).at(a.span),
                 );
@@ -358,7 +358,7 @@ impl Env {
                 let n = match &vals[0].v {
                     PyVal::Str(s) => s.chars().count(),
                     PyVal::Tuple(t) | PyVal::List(_, t) => t.len(),
-                    PyVal::Fact(kv) => kv.len(),
+                    PyVal::Fact(_, kv) => kv.len(),
                     r @ PyVal::Range(..) => range_len(r).min(i64::MAX as u128) as usize,
                     PyVal::Concept { name, .. } => {
                         return Err(super::concept_unknown(name, "len() reads", vals[0].span))

@@ -18,7 +18,7 @@ use indexmap::IndexMap;
 
 use crate::catalog::concept_type::ConceptType;
 use crate::diag::{closest, Diagnostic, Span};
-use crate::lang::ast::{Expr, ExprKind, Ident, LogicOp, Target};
+use crate::lang::ast::{Arg, Expr, ExprKind, Ident, LogicOp, Target};
 
 pub mod builtins;
 mod ops;
@@ -52,7 +52,7 @@ pub enum PyVal {
     /// `range(start, stop, step)`, kept lazy.
     Range(i64, i64, i64),
     /// `_F(KEY=value, ...)`: one occurrence of a factor keyword.
-    Fact(Vec<(Ident, SpVal)>),
+    Fact(u64, Vec<(Ident, SpVal)>),
     /// A name bound to a concept.
     Concept {
         name: String,
@@ -87,7 +87,7 @@ impl PyVal {
             PyVal::Tuple(_) => "a tuple".into(),
             PyVal::List(..) => "a list".into(),
             PyVal::Range(..) => "a range".into(),
-            PyVal::Fact(_) => "a factor keyword occurrence _F(...)".into(),
+            PyVal::Fact(..) => "a factor keyword occurrence _F(...)".into(),
             PyVal::Concept { name, ty } => format!("the concept {name} of type {ty}"),
             PyVal::Module(m) => format!("the module {m}"),
             PyVal::Func(f) => format!("the function {f}"),
@@ -116,7 +116,7 @@ pub fn make_stale(v: &mut PyVal, name: &str) {
         PyVal::List(_, items) | PyVal::Tuple(items) => {
             items.iter_mut().for_each(|x| make_stale(&mut x.v, name))
         }
-        PyVal::Fact(kv) => kv.iter_mut().for_each(|(_, x)| make_stale(&mut x.v, name)),
+        PyVal::Fact(_, kv) => kv.iter_mut().for_each(|(_, x)| make_stale(&mut x.v, name)),
         _ => {}
     }
 }
@@ -126,7 +126,7 @@ pub fn find_stale(v: &SpVal) -> Option<(&str, Span)> {
     match &v.v {
         PyVal::Stale(name) => Some((name, v.span)),
         PyVal::List(_, items) | PyVal::Tuple(items) => items.iter().find_map(find_stale),
-        PyVal::Fact(kv) => kv.iter().find_map(|(_, x)| find_stale(x)),
+        PyVal::Fact(_, kv) => kv.iter().find_map(|(_, x)| find_stale(x)),
         _ => None,
     }
 }
@@ -203,9 +203,95 @@ impl Env {
 
     /// A new list identity.
     pub fn new_list(&self, items: Vec<SpVal>) -> PyVal {
+        PyVal::List(self.new_id(), items)
+    }
+
+    /// A new identity for a list or a dict (they share the counter, so
+    /// that [`holds_list`] tells any two apart).
+    pub fn new_id(&self) -> u64 {
         let id = self.next_list.get();
         self.next_list.set(id + 1);
-        PyVal::List(id, items)
+        id
+    }
+
+    /// `_F(...)` and `dict(...)`: a dict of keywords. `KEY=value` and
+    /// `**d` items in order, a key given twice is Python's TypeError;
+    /// `dict(d)` copies a dict, `dict(pairs)` reads (key, value) pairs.
+    fn dict_call(
+        &self,
+        func: &Ident,
+        args: &[Arg],
+        is_command: &dyn Fn(&str) -> bool,
+    ) -> Result<PyVal, Diagnostic> {
+        let what = format!("{}(...)", func.name);
+        let mut out: Vec<(Ident, SpVal)> = Vec::new();
+        let mut positional = 0;
+        let mut from_positional = 0;
+        for a in args {
+            let v = self.eval(&a.value, is_command)?;
+            if v.v == PyVal::Poison {
+                return Ok(PyVal::Poison);
+            }
+            let items = match (&a.name, a.unpack) {
+                (Some(k), _) => vec![(k.clone(), v)],
+                (None, true) => match unpack_keywords(v, &what)? {
+                    Some(kv) => kv,
+                    None => return Ok(PyVal::Poison),
+                },
+                (None, false) if func.name == "_F" => {
+                    return Err(Diagnostic::error(
+                        "_F(...) takes keyword arguments only (KEY=value or **dict)",
+                    )
+                    .at(a.span))
+                }
+                (None, false) => {
+                    positional += 1;
+                    if positional > 1 {
+                        return Err(err("dict() takes at most 1 positional argument", a.span));
+                    }
+                    match v.v {
+                        PyVal::Fact(_, kv) => {
+                            out.extend(kv);
+                            from_positional = out.len();
+                            continue;
+                        }
+                        _ => {
+                            for pair in self.iterate(&v)? {
+                                let [k, x] = <[SpVal; 2]>::try_from(unpack(pair, 2)?)
+                                    .expect("unpack gives 2 items");
+                                match k.v {
+                                    PyVal::Str(name) => {
+                                        dict_set(&mut out, Ident { name, span: k.span }, x)
+                                    }
+                                    other => return Err(dict_key_error(&other, k.span)),
+                                }
+                            }
+                            from_positional = out.len();
+                            continue;
+                        }
+                    }
+                }
+            };
+            for (k, v) in items {
+                match out.iter().position(|(p, _)| p.name == k.name) {
+                    // dict(d, KEY=value): the keywords update the copy.
+                    Some(i) if i < from_positional => out[i].1 = v,
+                    Some(i) => {
+                        let at = if a.unpack { a.span } else { k.span };
+                        let mut d =
+                            Diagnostic::error(format!("keyword {} is repeated in {what}", k.name))
+                                .at(at)
+                                .note(format!("first given at byte {}", out[i].0.span.start));
+                        if a.unpack {
+                            d = d.note("the second time by the dict that ** unpacks");
+                        }
+                        return Err(d);
+                    }
+                    None => out.push((k, v)),
+                }
+            }
+        }
+        Ok(PyVal::Fact(self.new_id(), out))
     }
 
     /// Counts one loop iteration or comprehension item against
@@ -241,6 +327,33 @@ impl Env {
             ExprKind::List(items) => {
                 let items = self.eval_all(items, is_command)?;
                 self.new_list(items)
+            }
+            ExprKind::Dict(items) => {
+                let mut out: Vec<(Ident, SpVal)> = Vec::new();
+                for (k, v) in items {
+                    let val = self.eval(v, is_command)?;
+                    let Some(k) = k else {
+                        match unpack_keywords(val, "{**...}")? {
+                            Some(kv) => kv.into_iter().for_each(|(k, v)| dict_set(&mut out, k, v)),
+                            None => return Ok(sp(PyVal::Poison)),
+                        }
+                        continue;
+                    };
+                    let key = self.eval(k, is_command)?;
+                    match key.v {
+                        PyVal::Str(name) => dict_set(
+                            &mut out,
+                            Ident {
+                                name,
+                                span: key.span,
+                            },
+                            val,
+                        ),
+                        PyVal::Poison => return Ok(sp(PyVal::Poison)),
+                        other => return Err(dict_key_error(&other, key.span)),
+                    }
+                }
+                PyVal::Fact(self.new_id(), out)
             }
             ExprKind::ListComp { elt, generators } => {
                 let mut out = Vec::new();
@@ -397,29 +510,15 @@ impl Env {
                 }
             }
             ExprKind::Call { func, args } => {
-                if func.name == "_F" {
-                    let mut occ: Vec<(Ident, SpVal)> = Vec::new();
-                    for a in args {
-                        let Some(k) = &a.name else {
-                            return Err(Diagnostic::error(
-                                "_F(...) takes keyword arguments only (KEY=value)",
-                            )
-                            .at(a.span));
-                        };
-                        if let Some((prev, _)) = occ.iter().find(|(p, _)| p.name == k.name) {
-                            let (l, _) = (prev.span, ());
-                            return Err(Diagnostic::error(format!(
-                                "keyword {} is repeated in _F(...)",
-                                k.name
-                            ))
-                            .at(k.span)
-                            .note(format!("first given at byte {}", l.start)));
-                        }
-                        occ.push((k.clone(), self.eval(&a.value, is_command)?));
-                    }
-                    PyVal::Fact(occ)
+                if func.name == "_F" || func.name == "dict" {
+                    self.dict_call(func, args, is_command)?
                 } else if let Some(f @ PyVal::Func(_)) = self.bound_value(&func.name) {
                     self.call_value(&f, func, args, e.span, is_command)?
+                } else if func.name == "print" {
+                    return Err(err(
+                        "print() writes to the .mess and gives None: call it as a statement of its own",
+                        func.span,
+                    ));
                 } else if is_builtin(&func.name) {
                     self.builtin(func, args, e.span, is_command)?
                 } else if is_command(&func.name) {
@@ -570,12 +669,51 @@ pub fn unpack(item: SpVal, n: usize) -> Result<Vec<SpVal>, Diagnostic> {
     Ok(items)
 }
 
+/// The items a `**value` gives (a dict's keys and values, each key with
+/// the span where the dict got it); `None` for a value whose error is
+/// already reported.
+pub fn unpack_keywords(v: SpVal, what: &str) -> Result<Option<Vec<(Ident, SpVal)>>, Diagnostic> {
+    match v.v {
+        PyVal::Fact(_, kv) => Ok(Some(kv)),
+        PyVal::Poison => Ok(None),
+        PyVal::Concept { name, .. } => Err(concept_unknown(&name, "'**' unpacks", v.span)),
+        other => Err(err(
+            format!(
+                "the argument after ** in {what} must be a dict (dict(...), {{...}} or _F(...)), not {}",
+                other.describe()
+            ),
+            v.span,
+        )),
+    }
+}
+
+/// `d[k] = v` in a dict literal: a key given again keeps its place and
+/// takes the new value, as in Python.
+fn dict_set(out: &mut Vec<(Ident, SpVal)>, k: Ident, v: SpVal) {
+    match out.iter_mut().find(|(p, _)| p.name == k.name) {
+        Some(slot) => slot.1 = v,
+        None => out.push((k, v)),
+    }
+}
+
+/// Dicts of command files hold keywords: their keys are texts.
+pub fn dict_key_error(key: &PyVal, span: Span) -> Diagnostic {
+    err(
+        format!(
+            "a dict key must be a text (a keyword name), not {}",
+            key.describe()
+        ),
+        span,
+    )
+    .note("aster's dicts are the keyword sets of commands: {'MODELE': MO}, dict(MODELE=MO), _F(MODELE=MO)")
+}
+
 /// A list's identity everywhere inside a value.
 pub fn holds_list(v: &PyVal, id: u64) -> bool {
     match v {
         PyVal::List(i, items) => *i == id || items.iter().any(|x| holds_list(&x.v, id)),
         PyVal::Tuple(items) => items.iter().any(|x| holds_list(&x.v, id)),
-        PyVal::Fact(kv) => kv.iter().any(|(_, x)| holds_list(&x.v, id)),
+        PyVal::Fact(i, kv) => *i == id || kv.iter().any(|(_, x)| holds_list(&x.v, id)),
         _ => false,
     }
 }
@@ -592,7 +730,10 @@ pub fn for_keyword(v: SpVal) -> SpVal {
             Ok(items) => PyVal::Tuple(items),
             Err(_) => PyVal::Poison,
         },
-        PyVal::Fact(kv) => PyVal::Fact(kv.into_iter().map(|(k, x)| (k, for_keyword(x))).collect()),
+        PyVal::Fact(i, kv) => PyVal::Fact(
+            i,
+            kv.into_iter().map(|(k, x)| (k, for_keyword(x))).collect(),
+        ),
         v => v,
     };
     SpVal { v, span }

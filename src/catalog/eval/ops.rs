@@ -226,7 +226,7 @@ pub fn truth(v: &PyVal) -> Result<bool, Diagnostic> {
         PyVal::None => false,
         PyVal::Tuple(t) | PyVal::List(_, t) => !t.is_empty(),
         PyVal::Range(..) => range_len(v) > 0,
-        PyVal::Fact(kv) => !kv.is_empty(),
+        PyVal::Fact(_, kv) => !kv.is_empty(),
         PyVal::Module(_) | PyVal::Func(_) | PyVal::Iter(..) => true,
         PyVal::Concept { name, .. } | PyVal::Stale(name) => {
             return Err(
@@ -293,7 +293,7 @@ pub fn equal(a: &PyVal, b: &PyVal) -> Result<bool, String> {
         }
         (Module(x), Module(y)) => x == y,
         (Func(x), Func(y)) => x == y,
-        (Fact(x), Fact(y)) => {
+        (Fact(_, x), Fact(_, y)) => {
             x.len() == y.len()
                 && x.iter().all(|(k, v)| {
                     y.iter()
@@ -400,7 +400,7 @@ pub fn compare(op: CmpOp, a: &PyVal, b: &PyVal) -> Result<bool, String> {
                     }
                     _ => false,
                 },
-                PyVal::Fact(kv) => match a {
+                PyVal::Fact(_, kv) => match a {
                     PyVal::Str(x) => kv.iter().any(|(k, _)| &k.name == x),
                     _ => false,
                 },
@@ -499,7 +499,7 @@ pub fn index(a: &PyVal, i: &SpVal) -> Result<PyVal, Diagnostic> {
                 None => Err(out_of_range(n, "range")),
             }
         }
-        PyVal::Fact(kv) => match &i.v {
+        PyVal::Fact(_, kv) => match &i.v {
             PyVal::Str(key) => kv
                 .iter()
                 .find(|(k, _)| &k.name == key)

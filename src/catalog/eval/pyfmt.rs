@@ -122,7 +122,7 @@ pub fn py_repr(v: &PyVal) -> Result<String, String> {
             }
         }
         // code_aster's _F is a dict.
-        PyVal::Fact(kv) => {
+        PyVal::Fact(_, kv) => {
             let v: Vec<String> = kv
                 .iter()
                 .map(|(k, x)| Ok(format!("{}: {}", str_repr(&k.name), py_repr(&x.v)?)))
@@ -171,7 +171,7 @@ pub fn type_name(v: &PyVal) -> &'static str {
         PyVal::Tuple(_) => "tuple",
         PyVal::List(..) => "list",
         PyVal::Range(..) => "range",
-        PyVal::Fact(_) => "_F",
+        PyVal::Fact(..) => "dict",
         PyVal::Module(_) => "module",
         PyVal::Func(_) => "builtin_function",
         PyVal::Iter(kind, _) => kind,
