@@ -203,6 +203,15 @@ fn check_stmts(text: &str, stmts: &[Stmt], parent: Option<Span>) {
                 check_expr(text, value, stmt.span);
             }
             StmtKind::Unpack { value, .. } => check_expr(text, value, stmt.span),
+            StmtKind::SetItem {
+                target,
+                index,
+                value,
+            } => {
+                assert!(inside(target.span, stmt.span));
+                check_expr(text, index, stmt.span);
+                check_expr(text, value, stmt.span);
+            }
             StmtKind::Expr(e) => check_expr(text, e, stmt.span),
             StmtKind::If { branches, orelse } => {
                 for (c, b) in branches {
@@ -326,6 +335,7 @@ fn expr() -> impl Strategy<Value = Expr> {
         let arg = |named: bool, inner: BoxedStrategy<Expr>| {
             (ident(), inner).prop_map(move |(n, value)| Arg {
                 name: named.then_some(n),
+                unpack: false,
                 value,
                 span: Span::default(),
             })
@@ -335,6 +345,20 @@ fn expr() -> impl Strategy<Value = Expr> {
         prop_oneof![
             prop::collection::vec(inner.clone(), 0..4).prop_map(|v| e(ExprKind::Tuple(v))),
             prop::collection::vec(inner.clone(), 0..4).prop_map(|v| e(ExprKind::List(v))),
+            prop::collection::vec((prop::option::of(inner.clone()), inner.clone()), 0..3)
+                .prop_map(|v| e(ExprKind::Dict(v))),
+            (ident(), prop::collection::vec(inner.clone(), 1..3)).prop_map(|(func, v)| {
+                let args = v
+                    .into_iter()
+                    .map(|value| Arg {
+                        name: None,
+                        unpack: true,
+                        value,
+                        span: Span::default(),
+                    })
+                    .collect();
+                e(ExprKind::Call { func, args })
+            }),
             (
                 ident(),
                 prop::collection::vec(arg(false, inner.clone().boxed()), 0..3),
@@ -429,6 +453,8 @@ fn simple_stmt() -> impl Strategy<Value = StmtKind> {
     prop_oneof![
         6 => (ident(), expr()).prop_map(|(target, value)| StmtKind::Assign { target, value }),
         4 => expr().prop_map(StmtKind::Expr),
+        1 => (ident(), expr(), expr())
+            .prop_map(|(target, index, value)| StmtKind::SetItem { target, index, value }),
         1 => (prop::collection::vec(ident(), 2..4), expr())
             .prop_map(|(targets, value)| StmtKind::Unpack { targets, value }),
         1 => Just(StmtKind::Pass),
@@ -623,6 +649,9 @@ impl Printer<'_> {
                         self.gap_in();
                         self.out.push('=');
                         self.gap_in();
+                    } else if a.unpack {
+                        self.out.push_str("**");
+                        self.gap_in();
                     }
                     self.expr(&a.value, true);
                     if i + 1 < args.len() || self.pick(3) == 0 {
@@ -634,6 +663,32 @@ impl Printer<'_> {
             }
             ExprKind::Bool(b) => self.out.push_str(if *b { "True" } else { "False" }),
             ExprKind::List(items) => self.sequence(items, '[', ']', false),
+            ExprKind::Dict(items) => {
+                self.out.push('{');
+                for (i, (k, v)) in items.iter().enumerate() {
+                    self.gap_in();
+                    match k {
+                        Some(k) => {
+                            self.expr(k, true);
+                            self.gap_in();
+                            self.out.push(':');
+                            self.gap_in();
+                            self.expr(v, true);
+                        }
+                        None => {
+                            self.out.push_str("**");
+                            // `**` takes a sum: anything looser in brackets.
+                            self.wrapped(v, prec(v) < 5, true);
+                        }
+                    }
+                    self.gap_in();
+                    if i + 1 < items.len() || self.pick(3) == 0 {
+                        self.out.push(',');
+                    }
+                }
+                self.gap_in();
+                self.out.push('}');
+            }
             ExprKind::Unary {
                 op: UnOp::Not,
                 operand,
@@ -792,6 +847,18 @@ impl Printer<'_> {
                 self.expr(value, false);
             }
             StmtKind::Expr(e) => self.expr(e, false),
+            StmtKind::SetItem {
+                target,
+                index,
+                value,
+            } => {
+                self.out.push_str(&target.name);
+                self.out.push('[');
+                self.gap_in();
+                self.expr(index, true);
+                self.out.push_str("] = ");
+                self.expr(value, false);
+            }
             StmtKind::Pass => self.out.push_str("pass"),
             StmtKind::Import(items) => {
                 self.out.push_str("import ");
@@ -967,6 +1034,14 @@ fn strip_expr(e: &mut Expr) {
     e.span = Span::default();
     match &mut e.kind {
         ExprKind::Tuple(items) | ExprKind::List(items) => items.iter_mut().for_each(strip_expr),
+        ExprKind::Dict(items) => {
+            for (k, v) in items {
+                if let Some(k) = k {
+                    strip_expr(k);
+                }
+                strip_expr(v);
+            }
+        }
         ExprKind::Call { func, args } => {
             strip_ident(func);
             strip_args(args);
@@ -1038,6 +1113,15 @@ fn strip_stmts(stmts: &mut [Stmt]) {
                 strip_expr(value);
             }
             StmtKind::Expr(e) => strip_expr(e),
+            StmtKind::SetItem {
+                target,
+                index,
+                value,
+            } => {
+                strip_ident(target);
+                strip_expr(index);
+                strip_expr(value);
+            }
             StmtKind::Pass => {}
             StmtKind::Import(items) => {
                 for it in items {

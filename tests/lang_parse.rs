@@ -110,6 +110,21 @@ fn contract(src: &Source, stmts: &[Stmt], defined: &mut Vec<String>) {
                 defined.extend(targets.iter().map(|n| n.name.clone()));
             }
             StmtKind::Expr(e) => read(e, defined),
+            StmtKind::SetItem {
+                target,
+                index,
+                value,
+            } => {
+                read(value, defined);
+                read(
+                    &Expr {
+                        kind: ExprKind::Name(target.name.clone()),
+                        span: target.span,
+                    },
+                    defined,
+                );
+                read(index, defined);
+            }
             StmtKind::Pass => {}
             StmtKind::FromImport { names, .. } => defined.extend(
                 names
@@ -199,6 +214,7 @@ impl Dump<'_> {
                 for a in args {
                     let p = match &a.name {
                         Some(n) => format!("{} = ", n.name),
+                        None if a.unpack => "**".to_string(),
                         None => String::new(),
                     };
                     self.expr(a.span, depth + 1, &p, &a.value);
@@ -242,6 +258,16 @@ fn long(e: &Expr) -> String {
         ExprKind::List(items) => {
             let v: Vec<String> = items.iter().map(l).collect();
             format!("[{}]", v.join(", "))
+        }
+        ExprKind::Dict(items) => {
+            let v: Vec<String> = items
+                .iter()
+                .map(|(k, v)| match k {
+                    Some(k) => format!("{}: {}", l(k), l(v)),
+                    None => format!("**{}", l(v)),
+                })
+                .collect();
+            format!("{{{}}}", v.join(", "))
         }
         ExprKind::ListComp { elt, generators } => {
             let mut s = format!("[{}", l(elt));
@@ -301,6 +327,7 @@ fn arg_list(args: &[aster::lang::ast::Arg]) -> String {
         .iter()
         .map(|a| match &a.name {
             Some(n) => format!("{}={}", n.name, long(&a.value)),
+            None if a.unpack => format!("**{}", long(&a.value)),
             None => long(&a.value),
         })
         .collect();
@@ -337,7 +364,7 @@ fn inline(e: &Expr) -> Option<String> {
             }
         }
         ExprKind::Call { func, args } => {
-            if args.iter().any(|a| a.name.is_some()) {
+            if args.iter().any(|a| a.name.is_some() || a.unpack) {
                 return None;
             }
             let v: Option<Vec<String>> = args.iter().map(|a| inline(&a.value)).collect();
@@ -384,6 +411,16 @@ fn dump_block(d: &mut Dump<'_>, stmts: &[Stmt], depth: usize) {
                 d.expr(stmt.span, depth, &format!("{} = ", n.join(", ")), value)
             }
             StmtKind::Expr(e) => d.expr(stmt.span, depth, "", e),
+            StmtKind::SetItem {
+                target,
+                index,
+                value,
+            } => d.expr(
+                stmt.span,
+                depth,
+                &format!("{}[{}] = ", target.name, long(index)),
+                value,
+            ),
             StmtKind::Pass => d.line(at, depth, "pass"),
             StmtKind::Import(items) => {
                 let v: Vec<String> = items

@@ -1412,6 +1412,8 @@ fn hint(
             "augmented assignment (+=, -=, ...) is not supported; write A = A + ..."
         } else if wants_end && rest.starts_with('=') {
             "assign one name per statement (A = B = value is not supported)"
+        } else if open.last().is_some_and(|(_, c)| *c == '{') && rest.starts_with([',', '}']) {
+            "sets are not supported: braces make a dict, {'KEY': value, ...}"
         } else if rest.starts_with('(') && attached {
             "only a name can be called: NAME(...)"
         } else if rest.starts_with(['\'', '"'])
@@ -1768,10 +1770,21 @@ mod tests {
                     .iter()
                     .map(|a| match &a.name {
                         Some(n) => format!("{}={}", n.name, sx(&a.value)),
+                        None if a.unpack => format!("**{}", sx(&a.value)),
                         None => sx(&a.value),
                     })
                     .collect();
                 format!("({} {})", func.name, v.join(" "))
+            }
+            ExprKind::Dict(items) => {
+                let v: Vec<String> = items
+                    .iter()
+                    .map(|(k, v)| match k {
+                        Some(k) => format!("{}:{}", sx(k), sx(v)),
+                        None => format!("**{}", sx(v)),
+                    })
+                    .collect();
+                format!("(dict {})", v.join(" "))
             }
             ExprKind::Unary { op, operand } => {
                 let o = match op {
@@ -1863,6 +1876,11 @@ mod tests {
                     format!("{}={}", n.join(","), sx(value))
                 }
                 StmtKind::Expr(e) => sx(e),
+                StmtKind::SetItem {
+                    target,
+                    index,
+                    value,
+                } => format!("{}[{}]={}", target.name, sx(index), sx(value)),
                 StmtKind::Pass => "pass".into(),
                 StmtKind::Import(items) => {
                     let v: Vec<String> = items
@@ -2015,6 +2033,42 @@ mod tests {
     }
 
     #[test]
+    fn dicts_unpacking_and_item_assignment() {
+        assert_eq!(sv("{}"), "(dict )");
+        assert_eq!(
+            sv("{'A': 1, \"B\": (2,), **D,}"),
+            "(dict \"A\":1 \"B\":(tuple 2) **D)"
+        );
+        assert_eq!(
+            sv("{\n  'A': 1,  # c\n  'B': 2\n}"),
+            "(dict \"A\":1 \"B\":2)"
+        );
+        assert_eq!(
+            sv("CMD(**common, A=1, **other)"),
+            "(CMD **common A=1 **other)"
+        );
+        assert_eq!(sv("_F(**kw)"), "(_F **kw)");
+        let d = err("F(**kw, 2)\n");
+        assert!(d.message.contains("positional argument after keyword"));
+        let p = ok("L[0] = 1\nD['A'] = F(X=1)\nL[i + 1] = 2, 3\n");
+        assert_eq!(st(&p.stmts), "L[0]=1; D[\"A\"]=(F X=1); L[(+ i 1)]=(tuple 2 3)");
+        let d = err("L[1:2] = 3\n");
+        assert!(d.message.contains("assigning to a slice"), "{}", d.message);
+        let d = err("L[] = 3\n");
+        assert!(d.message.contains("expected an index"), "{}", d.message);
+        // Sets are not dicts: the ':' is what is missing.
+        let d = err("A = {1, 2}\n");
+        assert!(d.message.contains("':'"), "{}", d.message);
+        let d = err("A = {'a': 1]\n");
+        assert_eq!(
+            d.message,
+            "syntax error: ']' does not match the '{' opened at line 1, column 5"
+        );
+        let d = err("A = {'a': 1\nFIN()\n");
+        assert_eq!(d.message, "syntax error: '{' was never closed");
+    }
+
+    #[test]
     fn strings_and_escapes() {
         assert_eq!(value(r#"'a\'b'"#).kind, ExprKind::Str("a'b".into()));
         assert_eq!(
@@ -2123,6 +2177,7 @@ mod tests {
                 "syntax error: ']' does not match the '(' opened at line 1, column 5",
             ),
             ("A = 1 @ 2\n", "syntax error: unexpected character '@'"),
+            ("A = 1}\n", "syntax error: unmatched '}'"),
             (
                 "def f(x):\n    pass\n",
                 "syntax error: 'def' is Python syntax that command files do not support",
