@@ -427,11 +427,13 @@ impl Checker<'_> {
         let id = match self.env.names.get(name) {
             Some(Binding::Var(PyVal::List(id, _) | PyVal::Fact(id, _))) => *id,
             Some(Binding::Var(PyVal::Poison)) => return Ok(()),
-            Some(Binding::Var(v)) => return Err(Diagnostic::error(format!(
+            Some(Binding::Var(v)) => {
+                return Err(Diagnostic::error(format!(
                 "{name} is {}, which does not support item assignment (only a list or a dict does)",
                 v.describe()
             ))
-            .at(target.span)),
+                .at(target.span))
+            }
             Some(Binding::Concept { .. }) => {
                 return Err(crate::catalog::eval::concept_unknown(
                     name,

@@ -2051,7 +2051,10 @@ mod tests {
         let d = err("F(**kw, 2)\n");
         assert!(d.message.contains("positional argument after keyword"));
         let p = ok("L[0] = 1\nD['A'] = F(X=1)\nL[i + 1] = 2, 3\n");
-        assert_eq!(st(&p.stmts), "L[0]=1; D[\"A\"]=(F X=1); L[(+ i 1)]=(tuple 2 3)");
+        assert_eq!(
+            st(&p.stmts),
+            "L[0]=1; D[\"A\"]=(F X=1); L[(+ i 1)]=(tuple 2 3)"
+        );
         let d = err("L[1:2] = 3\n");
         assert!(d.message.contains("assigning to a slice"), "{}", d.message);
         let d = err("L[] = 3\n");

@@ -100,3 +100,29 @@ impl Study {
             .unwrap_or_else(|| self.out_dir.join(format!("fort.{unit}")))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn alarms_raise_under_alarme_exception_unless_ignored() {
+        let mut s = Study {
+            alarm_exception: Some(vec!["MODELE1_3".into()]),
+            ..Study::default()
+        };
+        s.log("<A> <AFFE_MODELE> <MODELE1_3> the mesh is not in z = 0");
+        s.log("a line that is not an alarm");
+        assert_eq!(s.raised_alarm, None);
+        s.log("<A> <DEFI_GROUP> the cell group G to delete does not exist");
+        s.log("<A> <AFFE_MODELE> <MODELE1_7> second");
+        assert_eq!(
+            s.raised_alarm.as_deref(),
+            Some("<A> <DEFI_GROUP> the cell group G to delete does not exist")
+        );
+        // Without ALARME='EXCEPTION' nothing is raised.
+        let mut s = Study::default();
+        s.log("<A> <DEFI_GROUP> the cell group G to delete does not exist");
+        assert_eq!(s.raised_alarm, None);
+    }
+}

@@ -225,7 +225,14 @@ impl Env {
     ) -> Result<PyVal, Diagnostic> {
         let what = format!("{}(...)", func.name);
         let mut out: Vec<(Ident, SpVal)> = Vec::new();
-        let mut positional = 0;
+        if let Some(second) = args.iter().filter(|a| a.name.is_none() && !a.unpack).nth(1) {
+            if func.name == "dict" {
+                return Err(err(
+                    "dict() takes at most 1 positional argument",
+                    second.span,
+                ));
+            }
+        }
         let mut from_positional = 0;
         for a in args {
             let v = self.eval(&a.value, is_command)?;
@@ -244,33 +251,27 @@ impl Env {
                     )
                     .at(a.span))
                 }
-                (None, false) => {
-                    positional += 1;
-                    if positional > 1 {
-                        return Err(err("dict() takes at most 1 positional argument", a.span));
+                (None, false) => match v.v {
+                    PyVal::Fact(_, kv) => {
+                        out.extend(kv);
+                        from_positional = out.len();
+                        continue;
                     }
-                    match v.v {
-                        PyVal::Fact(_, kv) => {
-                            out.extend(kv);
-                            from_positional = out.len();
-                            continue;
-                        }
-                        _ => {
-                            for pair in self.iterate(&v)? {
-                                let [k, x] = <[SpVal; 2]>::try_from(unpack(pair, 2)?)
-                                    .expect("unpack gives 2 items");
-                                match k.v {
-                                    PyVal::Str(name) => {
-                                        dict_set(&mut out, Ident { name, span: k.span }, x)
-                                    }
-                                    other => return Err(dict_key_error(&other, k.span)),
+                    _ => {
+                        for pair in self.iterate(&v)? {
+                            let [k, x] = <[SpVal; 2]>::try_from(unpack(pair, 2)?)
+                                .expect("unpack gives 2 items");
+                            match k.v {
+                                PyVal::Str(name) => {
+                                    dict_set(&mut out, Ident { name, span: k.span }, x)
                                 }
+                                other => return Err(dict_key_error(&other, k.span)),
                             }
-                            from_positional = out.len();
-                            continue;
                         }
+                        from_positional = out.len();
+                        continue;
                     }
-                }
+                },
             };
             for (k, v) in items {
                 match out.iter().position(|(p, _)| p.name == k.name) {

@@ -504,9 +504,9 @@ pub fn index(a: &PyVal, i: &SpVal) -> Result<PyVal, Diagnostic> {
                 .iter()
                 .find(|(k, _)| &k.name == key)
                 .map(|(_, v)| v.v.clone())
-                .ok_or_else(|| no_span(format!("_F(...) has no keyword {key}")).at(i.span)),
+                .ok_or_else(|| no_span(format!("the dict has no key '{key}'")).at(i.span)),
             v => Err(no_span(format!(
-                "a keyword of _F(...) is read with its name, not {}",
+                "a dict's item is read with its key, a text, not {}",
                 v.describe()
             ))
             .at(i.span)),
