@@ -171,6 +171,10 @@ impl Corpus {
                     value
                 }
                 StmtKind::Expr(e) | StmtKind::Unpack { value: e, .. } => e,
+                StmtKind::SetItem { index, value, .. } => {
+                    self.value(index, false);
+                    value
+                }
                 StmtKind::Pass | StmtKind::Import(_) | StmtKind::FromImport { .. } => continue,
                 StmtKind::If { branches, orelse } => {
                     for (c, b) in branches {
@@ -616,6 +620,10 @@ fn damaged_stmts(
             StmtKind::Assign { value, .. }
             | StmtKind::Expr(value)
             | StmtKind::Unpack { value, .. } => damage_expr(value, edits, pool, cut),
+            StmtKind::SetItem { index, value, .. } => {
+                damage_expr(index, edits, pool, cut);
+                damage_expr(value, edits, pool, cut);
+            }
             StmtKind::Pass | StmtKind::Import(_) | StmtKind::FromImport { .. } => {}
             StmtKind::If { branches, orelse } => {
                 for (c, b) in branches.iter_mut() {
@@ -736,6 +744,14 @@ fn damage_expr(e: &mut Expr, edits: &[Edit], pool: &mut Pool, cut: Option<usize>
                 for c in &mut g.ifs {
                     damage_expr(c, edits, pool, cut);
                 }
+            }
+        }
+        ExprKind::Dict(items) => {
+            for (k, v) in items {
+                if let Some(k) = k {
+                    damage_expr(k, edits, pool, cut);
+                }
+                damage_expr(v, edits, pool, cut);
             }
         }
         _ => {}

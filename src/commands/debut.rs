@@ -64,9 +64,11 @@ pub fn def() -> CommandDef {
 /// older factor form `CODE=_F(NIV_PUB_WEB=...)` as 'OUI'. The older form
 /// is still checked as its catalogue declared it, so a typo in it is not
 /// silently accepted.
+// The type of every compat hook (which may add or drop keywords).
+#[allow(clippy::ptr_arg)]
 fn compat_code(given: &mut Vec<(Ident, SpVal)>) -> Vec<Diagnostic> {
     let mut errors = Vec::new();
-    let Some((key, value)) = given.iter_mut().find(|(k, _)| k.name == "CODE") else {
+    let Some((_, value)) = given.iter_mut().find(|(k, _)| k.name == "CODE") else {
         return errors;
     };
     let PyVal::Fact(_, items) = &value.v else {
@@ -113,7 +115,6 @@ fn compat_code(given: &mut Vec<(Ident, SpVal)>) -> Vec<Diagnostic> {
         // Reported here: the checker must not report the factor again.
         value.v = PyVal::Poison;
     }
-    let _ = key;
     errors
 }
 
