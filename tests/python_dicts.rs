@@ -404,3 +404,54 @@ FIN()
     );
     assert!(mess.contains("\nafter DEFI_GROUP\n"), "{mess}");
 }
+
+#[test]
+fn code_aster_16_headers_are_accepted_or_refused_where_used() {
+    // The header lines of code_aster 16+ test files.
+    let c = check(
+        "from code_aster.Commands import *\nfrom code_aster import CA\n\nDEBUT(CODE='OUI')\nFIN()\n",
+    )
+    .unwrap_or_else(|ds| panic!("{ds:?}"));
+    assert_eq!(c.commands.len(), 2);
+    for (text, msg, note, line, col) in [
+        (
+            "from code_aster import CA\nCA.init('--test')\nDEBUT()\nFIN()\n",
+            "CA.init (code_aster's object interface) is not available",
+            "write DEBUT(...) instead",
+            2,
+            4,
+        ),
+        (
+            "from code_aster import CA\nDEBUT()\ntest = CA.TestCase()\nFIN()\n",
+            "CA.TestCase (code_aster's object interface) is not available",
+            "use TEST_RESU",
+            3,
+            11,
+        ),
+        (
+            "from code_aster import MPI\nDEBUT()\nFIN()\n",
+            "code_aster.MPI is not available in command files",
+            "from code_aster import CA",
+            1,
+            24,
+        ),
+        (
+            "POURSUITE(CODE='OUI')\nFIN()\n",
+            "unknown command POURSUITE",
+            "aster does not save",
+            1,
+            1,
+        ),
+    ] {
+        let ds = check(text).expect_err(text);
+        let src = Source::new("t.comm", text);
+        assert_eq!(ds.len(), 1, "{text}: {ds:?}");
+        assert!(ds[0].message.starts_with(msg), "{text}: {}", ds[0].message);
+        assert!(ds[0].notes.iter().any(|n| n.contains(note)), "{ds:?}");
+        assert_eq!(
+            src.line_col(ds[0].span.unwrap().start),
+            (line, col),
+            "{text}"
+        );
+    }
+}

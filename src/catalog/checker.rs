@@ -609,6 +609,33 @@ impl Checker<'_> {
             }
             return;
         }
+        if module.name == "code_aster" {
+            // code_aster 16+ headers: `from code_aster import CA` is
+            // accepted (CA is then refused where it is used, with the
+            // reason); other names are not there.
+            for (n, alias) in names.unwrap_or_default() {
+                if n.name == "CA" {
+                    self.bind(
+                        &alias.as_ref().unwrap_or(n).name,
+                        PyVal::Module(builtins::CODE_ASTER_CA),
+                    );
+                } else {
+                    self.errors.push(
+                        Diagnostic::error(format!("code_aster.{} is not available in command files", n.name))
+                            .at(n.span)
+                            .note("from code_aster import CA and from code_aster.Commands import * are accepted"),
+                    );
+                }
+            }
+            if names.is_none() {
+                self.errors.push(
+                    Diagnostic::error("'from code_aster import *' is not supported")
+                        .at(module.span)
+                        .note("write from code_aster.Commands import * (the commands are always there anyway)"),
+                );
+            }
+            return;
+        }
         let Some(m) = builtins::module(&module.name) else {
             return self.errors.push(unknown_module(module));
         };
@@ -737,7 +764,17 @@ impl Checker<'_> {
 
     fn unknown_call(&mut self, func: &Ident, names: &[&str]) {
         let mut d = Diagnostic::error(format!("unknown command {}", func.name)).at(func.span);
-        d.suggestion = closest(&func.name, names);
+        match func.name.as_str() {
+            "POURSUITE" => {
+                // It stands where DEBUT would: no second error for that.
+                self.seen_debut = true;
+                d = d.note("POURSUITE continues a study saved by an earlier run, which aster does not save: put the commands of both files in one, after DEBUT()");
+            }
+            "INCLUDE" => {
+                d = d.note("aster reads one command file: copy the included commands into it");
+            }
+            _ => d.suggestion = closest(&func.name, names),
+        }
         self.errors.push(d);
     }
 

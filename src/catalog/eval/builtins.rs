@@ -79,8 +79,24 @@ fn qualified(module: &'static str, name: &str) -> Option<&'static str> {
     all.iter().find(|s| **s == full).map(|s| s.as_str())
 }
 
+/// What `from code_aster import CA` binds: code_aster 16+'s object
+/// interface, none of whose parts aster has.
+pub const CODE_ASTER_CA: &str = "code_aster.CA";
+
 /// `module.name`: a constant or a function value.
 pub fn module_attr(module: &'static str, attr: &Ident) -> Result<PyVal, Diagnostic> {
+    if module == CODE_ASTER_CA {
+        let d = Diagnostic::error(format!(
+            "CA.{} (code_aster's object interface) is not available in command files",
+            attr.name
+        ))
+        .at(attr.span);
+        return Err(match attr.name.as_str() {
+            "init" => d.note("CA.init(...) starts a study in code_aster 17: write DEBUT(...) instead, e.g. DEBUT(CODE='OUI', ERREUR=_F(ALARME='EXCEPTION')) for a test"),
+            "TestCase" => d.note("CA.TestCase checks values that exist only when the study runs: use TEST_RESU, TEST_TABLE or TEST_FONCTION"),
+            _ => d.note("aster runs the commands of the file; code_aster's Python objects (CA.Mesh, CA.TestCase...) are not there"),
+        });
+    }
     match (attr.name.as_str(), qualified(module, &attr.name)) {
         ("pi", Some(_)) => Ok(PyVal::Real(std::f64::consts::PI)),
         ("e", Some(_)) => Ok(PyVal::Real(std::f64::consts::E)),
