@@ -154,7 +154,7 @@ fn to_int(f: &str, x: f64, span: Span) -> Result<PyVal, Diagnostic> {
 
 impl Env {
     /// Evaluates positional arguments (builtins take no keywords).
-    fn positional(
+    pub(super) fn positional(
         &self,
         f: &str,
         args: &[Arg],

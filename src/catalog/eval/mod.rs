@@ -87,7 +87,7 @@ impl PyVal {
             PyVal::Tuple(_) => "a tuple".into(),
             PyVal::List(..) => "a list".into(),
             PyVal::Range(..) => "a range".into(),
-            PyVal::Fact(..) => "a factor keyword occurrence _F(...)".into(),
+            PyVal::Fact(..) => "a dict (_F(...))".into(),
             PyVal::Concept { name, ty } => format!("the concept {name} of type {ty}"),
             PyVal::Module(m) => format!("the module {m}"),
             PyVal::Func(f) => format!("the function {f}"),
@@ -488,6 +488,36 @@ impl Env {
                         let f = builtins::module_attr(module, method)?;
                         self.call_value(&f, method, args, e.span, is_command)?
                     }
+                    PyVal::Fact(_, kv) if matches!(method.name.as_str(), "get" | "copy") => {
+                        let vals = self.positional(&method.name, args, is_command)?;
+                        match (method.name.as_str(), vals.as_slice()) {
+                            ("copy", []) => PyVal::Fact(self.new_id(), kv),
+                            ("get", [k] | [k, _]) => {
+                                let PyVal::Str(key) = &k.v else {
+                                    return Err(dict_key_error(&k.v, k.span));
+                                };
+                                match kv.into_iter().find(|(n, _)| &n.name == key) {
+                                    Some((_, v)) => v.v,
+                                    None => vals.get(1).map_or(PyVal::None, |d| d.v.clone()),
+                                }
+                            }
+                            _ => {
+                                return Err(err(
+                                    format!(
+                                        "{}() takes {} ({} given)",
+                                        method.name,
+                                        if method.name == "copy" {
+                                            "no argument"
+                                        } else {
+                                            "1 or 2 arguments"
+                                        },
+                                        vals.len()
+                                    ),
+                                    e.span,
+                                ))
+                            }
+                        }
+                    }
                     PyVal::List(..) if method.name == "append" => {
                         return Err(err(
                             "append changes its list and gives None: write it as a statement of its own (L.append(x))",
@@ -506,7 +536,7 @@ impl Env {
                             ),
                             method.span,
                         )
-                        .note("the methods are the functions of math and numpy (math.sqrt(x)) and L.append(x) on a list"))
+                        .note("the methods are the functions of math and numpy (math.sqrt(x)), L.append(x) on a list, d.get(key) and d.copy() on a dict"))
                     }
                 }
             }
@@ -857,6 +887,51 @@ mod tests {
         assert_eq!(ev("np.sqrt(4)"), Real(2.0));
         assert_eq!(ev("np.floor(2.5)"), Real(2.0));
         assert_eq!(ev("np.pi"), Real(std::f64::consts::PI));
+        // Dicts (code_aster's _F is one).
+        assert_eq!(
+            text("str({'A': 1, 'B': [2, 'x']})"),
+            "{'A': 1, 'B': [2, 'x']}"
+        );
+        assert_eq!(text("str({})"), "{}");
+        assert_eq!(ev("{'A': 1, 'A': 2}['A']"), Int(2));
+        assert_eq!(text("str({'A': 1, 'B': 2, 'A': 3})"), "{'A': 3, 'B': 2}");
+        assert_eq!(ev("len(dict(A=1, **{'B': 2}))"), Int(2));
+        assert_eq!(text("str(_F(**{'A': 1}, B=2))"), "{'A': 1, 'B': 2}");
+        assert_eq!(
+            text("str({**{'A': 1}, 'A': 0, **dict(C=3)})"),
+            "{'A': 0, 'C': 3}"
+        );
+        assert_eq!(text("str(dict({'A': 1}, A=2, B=3))"), "{'A': 2, 'B': 3}");
+        assert_eq!(ev("dict([('A', 1), ('B', 2)])['B']"), Int(2));
+        assert_eq!(ev("{'A': 1}.get('B', 5)"), Int(5));
+        assert_eq!(ev("{'A': 1}.get('A')"), Int(1));
+        assert_eq!(ev("{'A': 1}.get('B')"), None);
+        assert_eq!(ev("'A' in {'A': 1}"), Bool(true));
+        assert_eq!(ev("{'A': 1, 'B': 2} == dict(B=2, A=1)"), Bool(true));
+        assert_eq!(ev("bool({})"), Bool(false));
+    }
+
+    #[test]
+    fn dict_errors_are_messages() {
+        for (expr, msg) in [
+            ("{1: 2}", "a dict key must be a text"),
+            ("dict(**[1])", "must be a dict"),
+            ("_F(A=1, **{'A': 2})", "keyword A is repeated in _F(...)"),
+            ("dict(A=1, A=2)", "keyword A is repeated in dict(...)"),
+            ("_F(1)", "_F(...) takes keyword arguments only"),
+            ("{'A': 1}['B']", "the dict has no key 'B'"),
+            ("{'A': 1}[0]", "a dict's item is read with its key"),
+            (
+                "{'A': 1}.keys()",
+                "method 'keys' of a dict (_F(...)) is not supported",
+            ),
+            ("{'A': 1}.get()", "get() takes 1 or 2 arguments (0 given)"),
+            ("dict([1])", "cannot loop over the integer 1"),
+            ("print(1)", "call it as a statement of its own"),
+        ] {
+            let e = eval_in("", expr).expect_err(expr);
+            assert!(e.contains(msg), "{expr}: {e}");
+        }
     }
 
     #[test]
