@@ -25,7 +25,8 @@ fn impact_step_converges_quadratically() {
     let run = common::run_study(dir.join("f.comm").to_str().unwrap(), "contact_continuous_f");
     assert_eq!(run.code, 0, "{}", run.term);
     let mess = run.file("f.mess");
-    // Newton tables: rows "iter k RESI_GLOB_RELA x RESI_GLOB_MAXI y", one
+    // Newton tables: rows "iter k RESI_GLOB_RELA x RESI_GLOB_MAXI y" (k from
+    // 0, the prediction's residual, as code_aster numbers them), one
     // block per attempted step; the impact step is the first with 5 or
     // more iterations.
     let mut blocks: Vec<Vec<f64>> = Vec::new();
@@ -34,7 +35,7 @@ fn impact_step_converges_quadratically() {
         let t: Vec<&str> = line.split_whitespace().collect();
         if t.len() >= 6 && t[0] == "iter" && t[4] == "RESI_GLOB_MAXI" {
             let k: usize = t[1].parse().unwrap();
-            if k == 1 && !cur.is_empty() {
+            if k == 0 && !cur.is_empty() {
                 blocks.push(std::mem::take(&mut cur));
             }
             cur.push(t[5].parse().unwrap());

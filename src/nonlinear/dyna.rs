@@ -699,7 +699,9 @@ pub fn run(
             if table {
                 let mut line = format!(
                     "      iter {:>2}  RESI_GLOB_RELA {:>10.3e}{}  RESI_GLOB_MAXI {:>10.3e}{}",
-                    rec.iteration,
+                    // code_aster's iteration index: the residual after the
+                    // prediction is iteration 0.
+                    rec.iteration - 1,
                     rec.resi_rela,
                     if rec.swapped { "*" } else { " " },
                     rec.resi_maxi,

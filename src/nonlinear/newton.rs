@@ -249,16 +249,20 @@ impl std::fmt::Display for StepFailure {
                             write!(
                                 f,
                                 " [{} to {} omitted]",
-                                r.iteration,
-                                history[n - 6].iteration
+                                r.iteration - 1,
+                                history[n - 6].iteration - 1
                             )?;
                         }
                         continue;
                     }
+                    // Labelled by code_aster's iteration index, as the
+                    // Newton table (the prediction's residual is 0).
                     write!(
                         f,
                         " [{}] {:.3e} / {:.3e}",
-                        r.iteration, r.resi_rela, r.resi_maxi
+                        r.iteration - 1,
+                        r.resi_rela,
+                        r.resi_maxi
                     )?;
                 }
                 Ok(())
@@ -696,8 +700,9 @@ impl Engine {
                     return Err(StepFailure::Event(
                         "RESI_MAXI",
                         format!(
-                            "RESI_GLOB_MAXI = {:.3e} at iteration {it} exceeds the event's RESI_GLOB_MAXI = {v:e}",
-                            rec.resi_maxi
+                            "RESI_GLOB_MAXI = {:.3e} at iteration {} exceeds the event's RESI_GLOB_MAXI = {v:e}",
+                            rec.resi_maxi,
+                            it - 1
                         ),
                     ));
                 }
@@ -710,11 +715,12 @@ impl Engine {
                         return Err(StepFailure::Event(
                             "DIVE_RESI",
                             format!(
-                                "RESI_GLOB_MAXI {:.3e}, {:.3e}, {:.3e} at iterations {}..{it}: it decreased at neither of the last two",
+                                "RESI_GLOB_MAXI {:.3e}, {:.3e}, {:.3e} at iterations {}..{}: it decreased at neither of the last two",
                                 r[0],
                                 r[1],
                                 r[2],
-                                it - 2
+                                it - 3,
+                                it - 1
                             ),
                         ));
                     }
