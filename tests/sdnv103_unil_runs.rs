@@ -1,5 +1,6 @@
 //! Modellings E and K of SDNV103 (LIAISON_UNIL, active set and penalty),
-//! B run explicitly (comm/sdnv103b_explicit.comm and its 10 x 40 variant,
+//! A (its JEU of B1 NOOK against the analytic 0: docs/studies.md, "Why B1
+//! opens in A"), B run explicitly (comm/sdnv103b_explicit.comm and its 10 x 40 variant,
 //! B1 DX NOOK against the implicit answer) and A run explicitly to 80 us
 //! (comm/long/sdnv103a_explicit.comm, B1 DX NOOK), run to FIN; their POST_RELEVE_T tables and the verdict of every check
 //! are snapshotted. Not every check is OK: A1 DZ (both) and B1 VY (E)
@@ -42,6 +43,14 @@ fn sdnv103e_tables() {
 #[test]
 fn sdnv103k_tables() {
     insta::assert_snapshot!(run("k"));
+}
+
+/// A: the 3D quarter to 2.5e-7 (HEXS8 block, HHT, penalised contact with
+/// friction; a few seconds). It was run (tests/study_runs.rs) but its
+/// tables and verdicts were not snapshotted.
+#[test]
+fn sdnv103a_tables() {
+    insta::assert_snapshot!(run("a"));
 }
 
 /// About 7000 explicit steps on B's mesh (a few seconds).
