@@ -1669,7 +1669,8 @@ fn a_cycling_point_is_detected_and_reported() {
         "{}",
         terms[0]
     );
-    assert!(terms[0].contains("[27] 7.140e-5") && terms[0].contains("[29] 7.395e-1"));
+    // History rows labelled from 0, as the Newton table.
+    assert!(terms[0].contains("[26] 7.140e-5") && terms[0].contains("[28] 7.395e-1"));
     assert!(!terms[0].contains("contact cycling"));
     // CYCLAGE: detected and reported at iteration 10.
     let t = &terms[1];

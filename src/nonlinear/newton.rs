@@ -877,22 +877,23 @@ mod tests {
         }
         .to_string();
         assert!(long.starts_with("Newton did not converge in 30 iterations"));
+        // Rows labelled from 0 (the prediction's residual), as the table.
         for kept in [
-            "[1] 1.000e0",
-            "[3] 3.333e-1",
-            "[4 to 25 omitted]",
-            "[26] 3.846e-2",
-            "[30] 3.333e-2",
+            "[0] 1.000e0",
+            "[2] 3.333e-1",
+            "[3 to 24 omitted]",
+            "[25] 3.846e-2",
+            "[29] 3.333e-2",
         ] {
             assert!(long.contains(kept), "{kept}: {long}");
         }
-        assert!(!long.contains("[10]") && !long.contains("[25]"), "{long}");
+        assert!(!long.contains("[9]") && !long.contains("[24]"), "{long}");
         let short = StepFailure::NotConverged {
             history: history(10),
         }
         .to_string();
         assert!(
-            short.contains("[5] 2.000e-1") && !short.contains("omitted"),
+            short.contains("[4] 2.000e-1") && !short.contains("omitted"),
             "{short}"
         );
     }
