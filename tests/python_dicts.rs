@@ -455,3 +455,29 @@ fn code_aster_16_headers_are_accepted_or_refused_where_used() {
         );
     }
 }
+
+#[test]
+fn aster_own_limits_are_alarms_that_never_raise() {
+    // IMPR_RESU writes VARI_ELGA as cell means (a limit of aster's MED
+    // writer, which code_aster does not have): an alarm in the .mess, not
+    // an error under ALARME='EXCEPTION', which the study keeps.
+    let study = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/verification/python_dicts_free_flight.comm"
+    ))
+    .unwrap();
+    assert!(study.contains("ERREUR=_F(ALARME='EXCEPTION')"));
+    let study = study.replace(
+        "\nFIN()",
+        "\nIMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=RES, NOM_CHAM=('DEPL', 'VARI_ELGA')))\nFIN()",
+    );
+    let (code, term, mess) = run_text("alarme_limitation", &study);
+    assert_eq!(code, 0, "{term}");
+    assert!(
+        mess.contains(
+            "<A> <IMPR_RESU> RES_____VARI_ELGA: the MED writer cannot store Gauss points yet"
+        ),
+        "{mess}"
+    );
+    assert!(mess.contains("# ---- FIN"), "{mess}");
+}

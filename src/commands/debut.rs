@@ -41,7 +41,7 @@ pub fn def() -> CommandDef {
                         .kw(),
                     text("ALARME")
                         .into(&["ALARME", "EXCEPTION"])
-                        .doc("'EXCEPTION': an alarm (<A>) not listed in IGNORE_ALARM is an error that stops the study, at the end of the command that raised it")
+                        .doc("'EXCEPTION': an alarm (<A>) not listed in IGNORE_ALARM is an error that stops the study, at the end of the command that raised it (not the alarms about aster's own limits)")
                         .kw(),
                 ],
             )

@@ -2,8 +2,8 @@
 
 use super::blocks::*;
 use super::post_args::{
-    alarm, cell_name, cham_no_of, component_index, mesh_for_field, mesh_named, node_name, nodes_of,
-    pad8, result_of, select_steps,
+    alarm, cell_name, cham_no_of, component_index, limitation, mesh_for_field, mesh_named,
+    node_name, nodes_of, pad8, result_of, select_steps,
 };
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
@@ -175,6 +175,7 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
     let path = study.unit_path(unit);
     let mut out = MedContent::default();
     let mut notes: Vec<String> = Vec::new();
+    let mut limits: Vec<String> = Vec::new();
     for occ in args.facts("RESU") {
         for k in MED_UNSUPPORTED {
             if occ.has(k) {
@@ -199,7 +200,7 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
             })?;
             set_mesh(&mut out, occ, "RESULTAT", &res.mesh, mesh)?;
             let steps = select_steps(study, res, occ)?;
-            result_fields(occ, rname, &steps, mesh, &mut out, &mut notes)?;
+            result_fields(occ, rname, &steps, mesh, &mut out, &mut notes, &mut limits)?;
         } else if occ.has("CHAM_GD") {
             let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
             let mesh = mesh_for_field(study, occ, "CHAM_GD", fname, field, &[])?;
@@ -247,6 +248,9 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
         .map_err(|e| args.error("UNITE", e.to_string()))?;
     for n in notes {
         alarm(study, "IMPR_RESU", "", &n);
+    }
+    for n in limits {
+        limitation(study, "IMPR_RESU", &n);
     }
     study.log(marker);
     study.log(format!(
@@ -305,6 +309,7 @@ fn result_fields(
     mesh: &Mesh,
     out: &mut MedContent,
     notes: &mut Vec<String>,
+    limits: &mut Vec<String>,
 ) -> Result<(), Diagnostic> {
     let names: Vec<String> = if occ.has("NOM_CHAM") {
         occ.texts("NOM_CHAM")
@@ -407,7 +412,7 @@ fn result_fields(
                     values: cell_means(field, mesh.ncells()),
                 });
             }
-            notes.push(if at_nodes {
+            limits.push(if at_nodes {
                 format!(
                     "{med_name}: the MED writer cannot store fields by element at nodes yet; \
                      the mean over the nodes of each cell is written as a cell field"

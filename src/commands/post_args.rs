@@ -57,6 +57,11 @@ pub fn alarm(study: &mut Study, command: &str, id: &str, text: &str) {
     }
 }
 
+/// Logs an alarm about aster's own limits (see [`Study::log_limitation`]).
+pub fn limitation(study: &mut Study, command: &str, text: &str) {
+    study.log_limitation(format!("<A> <{command}> {text}"));
+}
+
 fn no_data(args: &Args, key: &str, name: &str, what: &str) -> Diagnostic {
     args.error(
         key,
