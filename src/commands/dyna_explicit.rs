@@ -251,7 +251,7 @@ pub(crate) fn exec(
     let clamped = ex.impose_initial(&mut engine);
     if clamped > 0 {
         notes.push(format!(
-            "{clamped} imposed dof(s) had an initial velocity: the imposed displacement holds them (v = 0 there from the start; code_aster imposes the acceleration and would let them drift)"
+            "{clamped} imposed dof(s) with a constant value had an initial velocity: the imposed displacement holds them (v = 0 there from the start; code_aster imposes the acceleration and would let them drift)"
         ));
     }
     engine
@@ -376,6 +376,17 @@ pub(crate) fn exec(
     if let Some((k, t, dt)) =
         explicit::first_step_above(&tl.instants, bound.dt).filter(|_| auto.is_none())
     {
+        // A list code_aster would accept can stop here because of the
+        // damping's reduction: the message says so.
+        let damped = if bound.damping_factor < 1.0 {
+            format!(
+                "; Rayleigh damping lowers the bound by sqrt(1 + xi^2) - xi = {:.4} (undamped {:.6e}; code_aster does not reduce it)",
+                bound.damping_factor,
+                bound.dt / bound.damping_factor
+            )
+        } else {
+            String::new()
+        };
         let m = if bound.dt < bound.dt_elements {
             format!(
                 "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} set by the contact penalty (the elements' alone: {:.6e} at cell {}) (DYNAMIQUE_2)",
@@ -389,7 +400,7 @@ pub(crate) fn exec(
                 bound.dt,
                 bound.cell + 1
             )
-        };
+        } + &damped;
         if stop_cfl {
             let inc = args.fact("INCREMENT").unwrap_or(args);
             return Err(inc

@@ -86,6 +86,9 @@ pub struct Assembler {
     /// One output buffer per element, reused by every evaluation.
     buffers: Vec<ElementBuffers>,
     results: Vec<Result<(), ElementFailure>>,
+    /// Which elements [`Assembler::tangent_action_on`] integrated (its
+    /// buffer, kept between calls).
+    tangent_done: Vec<Result<bool, CellFailure>>,
     /// For each full dof, the positions in `flat_forces` of the element
     /// terms that add to it, in element order (`gather_ptr` its CSR
     /// offsets): the forces are assembled dof by dof (`assemble_forces`),
@@ -199,6 +202,7 @@ impl Assembler {
             extra: Vec::new(),
             buffers,
             results: Vec::new(),
+            tangent_done: Vec::new(),
             gather_ptr: Vec::new(),
             gather_src: Vec::new(),
             flat_forces: Vec::new(),
@@ -564,10 +568,28 @@ impl Assembler {
         kind: TangentKind,
         out: &mut [f64],
     ) -> Result<(), CellFailure> {
+        self.tangent_action_on(None, u_n, states_n, dt, du, kind, out)
+    }
+
+    /// [`Self::tangent_action`], the elements' tangents computed by `team`
+    /// when given (the explicit loop's; each element into its own buffer,
+    /// then the products summed here in element order, so the result is
+    /// the same to the bit whatever the team).
+    #[allow(clippy::too_many_arguments)]
+    pub fn tangent_action_on(
+        &mut self,
+        team: Option<&Team>,
+        u_n: &[f64],
+        states_n: &[PointState],
+        dt: f64,
+        du: &[f64],
+        kind: TangentKind,
+        out: &mut [f64],
+    ) -> Result<(), CellFailure> {
         let laws = &self.laws;
-        for (e, buf) in self.elements.iter().zip(self.buffers.iter_mut()) {
+        let one = |e: &ElementData, buf: &mut ElementBuffers| -> Result<bool, CellFailure> {
             if e.full.iter().all(|&f| du[f] == 0.0) {
-                continue;
+                return Ok(false);
             }
             let mut chunk: Vec<PointState> =
                 states_n[e.state_offset..e.state_offset + e.npg].to_vec();
@@ -577,6 +599,37 @@ impl Assembler {
                     failure,
                 },
             )?;
+            Ok(true)
+        };
+        let done: Vec<Result<bool, CellFailure>> = match team {
+            Some(team) if self.elements.len() >= PARALLEL_MIN_ELEMENTS => {
+                self.tangent_done.clear();
+                self.tangent_done.resize(self.elements.len(), Ok(false));
+                let pieces = Parts::new(
+                    self.elements
+                        .chunks(PARALLEL_MIN_BLOCK)
+                        .zip(self.buffers.chunks_mut(PARALLEL_MIN_BLOCK))
+                        .zip(self.tangent_done.chunks_mut(PARALLEL_MIN_BLOCK)),
+                );
+                team.for_each(pieces.len(), &|i| {
+                    let ((els, bufs), res) = pieces.take(i);
+                    for ((e, buf), r) in els.iter().zip(bufs.iter_mut()).zip(res.iter_mut()) {
+                        *r = one(e, buf);
+                    }
+                });
+                std::mem::take(&mut self.tangent_done)
+            }
+            _ => self
+                .elements
+                .iter()
+                .zip(self.buffers.iter_mut())
+                .map(|(e, buf)| one(e, buf))
+                .collect(),
+        };
+        for ((e, buf), r) in self.elements.iter().zip(&self.buffers).zip(&done) {
+            if !r.clone()? {
+                continue;
+            }
             let n = e.full.len();
             for (a, &fa) in e.full.iter().enumerate() {
                 let row = &buf.stiffness[a * n..(a + 1) * n];
@@ -587,6 +640,7 @@ impl Assembler {
                     .sum::<f64>();
             }
         }
+        self.tangent_done = done;
         Ok(())
     }
 }

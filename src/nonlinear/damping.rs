@@ -26,6 +26,7 @@
 //! element mass matrices, which the assembler does not keep).
 
 use super::assembly::{Assembler, CellFailure};
+use super::team::Team;
 use crate::element::PointState;
 use crate::law::TangentKind;
 
@@ -61,9 +62,51 @@ impl Rayleigh {
     ) -> Result<(), CellFailure> {
         asm.mass_mul(v, out);
         out.iter_mut().for_each(|x| *x *= self.mass);
+        self.add_stiffness_part(asm, None, (u_n, states_n), dt, v, out)
+    }
+
+    /// The explicit step's C·v: the lumped mass `diag` (the assembled mass
+    /// is that diagonal; a product dof by dof gives the same numbers
+    /// without a pass over the sparse pattern) and the elements' tangents
+    /// on the explicit loop's `team`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn force_explicit(
+        &self,
+        asm: &mut Assembler,
+        team: &Team,
+        diag: Option<&[f64]>,
+        (u_n, states_n): (&[f64], &[PointState]),
+        dt: f64,
+        v: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), CellFailure> {
+        match diag {
+            Some(m) => {
+                for ((o, &x), &mf) in out.iter_mut().zip(v).zip(m) {
+                    *o = (mf * x) * self.mass;
+                }
+            }
+            None => {
+                asm.mass_mul(v, out);
+                out.iter_mut().for_each(|x| *x *= self.mass);
+            }
+        }
+        self.add_stiffness_part(asm, Some(team), (u_n, states_n), dt, v, out)
+    }
+
+    /// out += α K v, K the tangent or elastic stiffness at (u_n, states_n).
+    fn add_stiffness_part(
+        &self,
+        asm: &mut Assembler,
+        team: Option<&Team>,
+        (u_n, states_n): (&[f64], &[PointState]),
+        dt: f64,
+        v: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), CellFailure> {
         if self.stiffness != 0.0 {
             let scaled: Vec<f64> = v.iter().map(|x| x * self.stiffness).collect();
-            asm.tangent_action(u_n, states_n, dt, &scaled, self.kind, out)?;
+            asm.tangent_action_on(team, u_n, states_n, dt, &scaled, self.kind, out)?;
         }
         Ok(())
     }

@@ -428,18 +428,31 @@ impl Explicit {
         Ok(())
     }
 
-    /// Imposed dofs take their value with v = a = 0 (the clamp holds them);
-    /// returns how many had a nonzero velocity.
+    /// Imposed dofs take their value; a held one (a constant value) gets
+    /// v = a = 0 (the clamp holds it), a driven one (under a FONC_MULT or
+    /// a function of INST) keeps the initial velocity of the state, which
+    /// the step's first mean velocity Δu/Δt then follows (it was set to 0
+    /// as well: a support moving with the body at V lost V at t₀, and
+    /// Rayleigh damping braked the body; the kinetic energy at t₀ missed
+    /// its nodes). Returns how many held dofs had a nonzero velocity.
     pub fn impose_initial(&self, engine: &mut Engine) -> usize {
+        let n = engine.asm.numbering.imposed.len();
+        let driven = engine
+            .loads
+            .as_ref()
+            .map_or_else(|| vec![false; n], |h| h.driven(n));
         let st = &mut engine.committed;
         let mut moved = 0;
-        for &(f, val) in &engine.asm.numbering.imposed {
+        for (&(f, val), &driven) in engine.asm.numbering.imposed.iter().zip(&driven) {
+            st.motion.u[f] = val;
+            st.motion.a[f] = 0.0;
+            if driven {
+                continue;
+            }
             if st.motion.v[f] != 0.0 {
                 moved += 1;
             }
-            st.motion.u[f] = val;
             st.motion.v[f] = 0.0;
-            st.motion.a[f] = 0.0;
         }
         moved
     }
@@ -495,10 +508,11 @@ impl Explicit {
                     .zip(&cm.motion.a)
                     .map(|(v, a)| v + kv * a),
             );
-            d.force(
+            d.force_explicit(
                 asm,
-                &cm.motion.u,
-                &cm.points,
+                team,
+                self.lumped.then_some(&self.mass[..]),
+                (&cm.motion.u, &cm.points),
                 dt,
                 &self.vstar,
                 &mut self.dforce,

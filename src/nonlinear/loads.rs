@@ -225,6 +225,26 @@ impl LoadHistory {
             || !self.fields.is_empty()
     }
 
+    /// Which entries of the numbering's `imposed` list (of length `n`)
+    /// move with time: a DDL_IMPO value under a FONC_MULT (a zero value
+    /// stays 0) or given by a function (AFFE_CHAR_MECA_F).
+    pub fn driven(&self, n: usize) -> Vec<bool> {
+        let mut d = vec![false; n];
+        for (entries, _) in &self.imposed {
+            for &(k, v) in entries {
+                if v != 0.0 {
+                    d[k] = true;
+                }
+            }
+        }
+        for part in self.functions.iter().filter(|p| p.imposed) {
+            for &(k, _, _) in &part.entries {
+                d[k] = true;
+            }
+        }
+        d
+    }
+
     /// Writes the imposed values of instant `t` into the numbering's list
     /// `imposed` ((full dof, value) pairs); entries without a multiplier
     /// keep their constant value.
