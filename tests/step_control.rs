@@ -162,7 +162,8 @@ fn adaptation_rules_choose_the_instants_as_code_aster() {
 
 /// MODE_CALCUL_TPLUS='IMPLEX' is refused where the list is used (code_aster
 /// allows it only with STAT_NON_LINE METHODE='IMPLEX'); a DELTA_GRANDEUR
-/// adaptation on a component the model lacks names it.
+/// adaptation on a component the model lacks names it, an internal
+/// variable no behaviour has too (it never acted, silently).
 #[test]
 fn adaptation_modes_aster_lacks_are_located_errors() {
     for (tag, to, want) in [
@@ -175,6 +176,13 @@ fn adaptation_modes_aster_lacks_are_located_errors() {
             "step_tplus_dg_cmp",
             "    ADAPTATION=_F(EVENEMENT='TOUT_INST', MODE_CALCUL_TPLUS='DELTA_GRANDEUR', VALE_REF=0.05, NOM_CHAM='DEPL', NOM_CMP='DRZ')",
             "ADAPTATION MODE_CALCUL_TPLUS='DELTA_GRANDEUR': the field DEPL has no component 'DRZ'",
+        ),
+        // An internal variable no behaviour has (ELAS has one, V1, always
+        // 0): the rule would never act.
+        (
+            "step_tplus_dg_vari",
+            "    ADAPTATION=_F(EVENEMENT='TOUT_INST', MODE_CALCUL_TPLUS='DELTA_GRANDEUR', VALE_REF=0.05, NOM_CHAM='VARI_ELGA', NOM_CMP='V5')",
+            "VARI_ELGA 'V5': the behaviours of the model have at most 1 internal variable(s) (V1 to V1)",
         ),
     ] {
         let run = variant(

@@ -1990,6 +1990,15 @@ fn rayleigh_damping_follows_the_scheme_recurrence() {
             ),
             "Rayleigh damping with different coefficients on different materials",
         ),
+        // A Gauss-point test on a skin cell: it said "POINT must be in 1..0".
+        (
+            "skin_cell_point",
+            (
+                "RH = DYNA_NON_LINE(",
+                "TEST_RESU(RESU=_F(RESULTAT=RB, NUME_ORDRE=1, NOM_CHAM='SIEF_ELGA', NOM_CMP='SIZZ', GROUP_MA='HAUT', POINT=1, VALE_CALC=0.))\nRH = DYNA_NON_LINE(",
+            ),
+            "(GROUP_MA=HAUT) has no Gauss point in SIEF_ELGA: it carries no element of the model",
+        ),
     ];
     let export = format!("F mmed {}/sdof_bar.mmed D 20\n", dir().display());
     expect_located_errors(&comm, &cases, &tmp, &export, "rayleigh");

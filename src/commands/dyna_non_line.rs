@@ -1029,7 +1029,7 @@ fn monitored(
 /// component of it in this model.
 fn delta_grandeur(
     args: &Args,
-    model: &Model,
+    (model, vari): (&Model, usize),
     nom_cham: &str,
     nom_cmp: &str,
     vale_ref: f64,
@@ -1037,7 +1037,7 @@ fn delta_grandeur(
 ) -> Result<dyna::DeltaGrandeur, Diagnostic> {
     delta_measure(
         args,
-        model,
+        (model, vari),
         (nom_cham, nom_cmp, vale_ref),
         action,
         "ECHEC EVENEMENT='DELTA_GRANDEUR'",
@@ -1045,11 +1045,12 @@ fn delta_grandeur(
 }
 
 /// A component of DEPL, SIEF_ELGA or VARI_ELGA whose largest increment
-/// over a step is compared with VALE_REF, checked on the model; `what`
+/// over a step is compared with VALE_REF, checked on the model (`vari`:
+/// the largest number of internal variables of its behaviours); `what`
 /// names the keyword in the messages.
 fn delta_measure(
     args: &Args,
-    model: &Model,
+    (model, vari): (&Model, usize),
     (nom_cham, nom_cmp, vale_ref): (&str, &str, f64),
     action: &Action,
     what: &str,
@@ -1085,6 +1086,15 @@ fn delta_measure(
             "the field {nom_cham} has no component '{nom_cmp}' in this model"
         ))
     })?;
+    // An internal variable no behaviour has would never change: the rule
+    // would never act, silently.
+    if field == SuiviField::VariElga && component >= vari {
+        return Err(bad(if vari == 0 {
+            format!("VARI_ELGA '{nom_cmp}': no behaviour of the model has internal variables")
+        } else {
+            format!("VARI_ELGA '{nom_cmp}': the behaviours of the model have at most {vari} internal variable(s) (V1 to V{vari})")
+        }));
+    }
     if !(vale_ref.is_finite() && vale_ref > 0.0) {
         return Err(bad(format!(
             "VALE_REF = {vale_ref} must be a positive number"
@@ -1168,7 +1178,7 @@ fn describe_adaptation(a: &dyna::StepAdaptation) -> String {
 /// STAT_NON_LINE's METHODE='IMPLEX' (MECANONLINE6_4), which aster lacks.
 fn adaptation_of(
     args: &Args,
-    model: &Model,
+    model: (&Model, usize),
     list: &TimeList,
     iter_glob_maxi: usize,
 ) -> Result<Vec<dyna::StepAdaptation>, Diagnostic> {
@@ -1764,6 +1774,14 @@ pub(crate) fn run(
             ),
         ));
     }
+    // The largest number of internal variables of the model's behaviours
+    // (DELTA_GRANDEUR on VARI_ELGA).
+    let vari = asm
+        .laws
+        .iter()
+        .map(|l| l.law_ref().initial_internal().as_slice().len())
+        .max()
+        .unwrap_or(0);
     let mut events = dyna::ContactEvents::default();
     let mut ignored: Vec<String> = Vec::new();
     let mut deltas = Vec::new();
@@ -1778,7 +1796,12 @@ pub(crate) fn run(
                 },
                 Action::Decoupe(_) | Action::Arret,
             ) => deltas.push(delta_grandeur(
-                args, &md.model, nom_cham, nom_cmp, *vale_ref, &r.action,
+                args,
+                (&md.model, vari),
+                nom_cham,
+                nom_cmp,
+                *vale_ref,
+                &r.action,
             )?),
             (Event::ResiMaxi { resi_glob_maxi }, Action::Decoupe(_) | Action::Arret) => {
                 conv.events.resi_maxi = Some(*resi_glob_maxi);
@@ -1820,7 +1843,7 @@ pub(crate) fn run(
     }
     let growth = growth_of(&list);
     let adaptation = if growth.is_some() {
-        adaptation_of(args, &md.model, &list, conv.iter_glob_maxi)?
+        adaptation_of(args, (&md.model, vari), &list, conv.iter_glob_maxi)?
     } else {
         Vec::new()
     };

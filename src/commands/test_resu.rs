@@ -242,6 +242,18 @@ fn resu_value(study: &Study, occ: &Args) -> Result<(String, Header, f64), Diagno
             None => component_index(&f.components, cmp, occ, "NOM_CMP", nom_cham)?,
         };
         let npg = f.npg(cell);
+        if npg == 0 {
+            // A cell of the mesh without an element (a skin cell, or one
+            // outside AFFE_MODELE) has no Gauss points: "POINT must be in
+            // 1..0" said nothing of why.
+            return Err(occ.error(
+                ckey,
+                format!(
+                    "the cell {} ({ckey}={clabel}) has no Gauss point in {nom_cham}: it carries no element of the model (a skin cell, or a cell outside AFFE_MODELE)",
+                    super::post_args::cell_name(cell)
+                ),
+            ));
+        }
         if point < 1 || point as usize > npg {
             return Err(occ.error(
                 "POINT",
