@@ -488,6 +488,38 @@ impl Env {
                         let f = builtins::module_attr(module, method)?;
                         self.call_value(&f, method, args, e.span, is_command)?
                     }
+                    // keys(), values(), items(): lists (Python's views go
+                    // through the same items in a for, len() and list(); only
+                    // their print differs: dict_keys([...])).
+                    PyVal::Fact(_, kv)
+                        if matches!(method.name.as_str(), "keys" | "values" | "items") =>
+                    {
+                        let vals = self.positional(&method.name, args, is_command)?;
+                        if !vals.is_empty() {
+                            return Err(err(
+                                format!("{}() takes no argument ({} given)", method.name, vals.len()),
+                                e.span,
+                            ));
+                        }
+                        let items = kv
+                            .into_iter()
+                            .map(|(k, v)| {
+                                let key = SpVal {
+                                    v: PyVal::Str(k.name.clone()),
+                                    span: k.span,
+                                };
+                                match method.name.as_str() {
+                                    "keys" => key,
+                                    "values" => v,
+                                    _ => SpVal {
+                                        span: k.span,
+                                        v: PyVal::Tuple(vec![key, v]),
+                                    },
+                                }
+                            })
+                            .collect();
+                        self.new_list(items)
+                    }
                     PyVal::Fact(_, kv) if matches!(method.name.as_str(), "get" | "copy") => {
                         let vals = self.positional(&method.name, args, is_command)?;
                         match (method.name.as_str(), vals.as_slice()) {
@@ -536,7 +568,7 @@ impl Env {
                             ),
                             method.span,
                         )
-                        .note("the methods are the functions of math and numpy (math.sqrt(x)), L.append(x) on a list, d.get(key) and d.copy() on a dict"))
+                        .note("the methods are the functions of math and numpy (math.sqrt(x)), L.append(x) on a list, d.get(key), d.copy(), d.keys(), d.values() and d.items() on a dict"))
                     }
                 }
             }
@@ -909,6 +941,20 @@ mod tests {
         assert_eq!(ev("'A' in {'A': 1}"), Bool(true));
         assert_eq!(ev("{'A': 1, 'B': 2} == dict(B=2, A=1)"), Bool(true));
         assert_eq!(ev("bool({})"), Bool(false));
+        // keys(), values(), items() as lists (CPython's views give the same
+        // items through list(), len() and a for).
+        assert_eq!(text("str(list({'A': 1, 'B': 2}.keys()))"), "['A', 'B']");
+        assert_eq!(text("str(list({'A': 1, 'B': [2]}.values()))"), "[1, [2]]");
+        assert_eq!(
+            text("str(list(dict(A=1, B=2).items()))"),
+            "[('A', 1), ('B', 2)]"
+        );
+        assert_eq!(ev("len({'A': 1, 'B': 2}.items())"), Int(2));
+        assert_eq!(ev("sum([v for k, v in {'A': 1, 'B': 2}.items()])"), Int(3));
+        assert_eq!(
+            ev("[k for k in {'A': 1, 'B': 2}.keys()][1]"),
+            Str("B".into())
+        );
     }
 
     #[test]
@@ -922,9 +968,10 @@ mod tests {
             ("{'A': 1}['B']", "the dict has no key 'B'"),
             ("{'A': 1}[0]", "a dict's item is read with its key"),
             (
-                "{'A': 1}.keys()",
-                "method 'keys' of a dict (_F(...)) is not supported",
+                "{'A': 1}.update(B=2)",
+                "method 'update' of a dict (_F(...)) is not supported",
             ),
+            ("{'A': 1}.keys(1)", "keys() takes no argument (1 given)"),
             ("{'A': 1}.get()", "get() takes 1 or 2 arguments (0 given)"),
             ("dict([1])", "cannot loop over the integer 1"),
             ("print(1)", "call it as a statement of its own"),
