@@ -371,12 +371,7 @@ impl Checker<'_> {
             return Err(Diagnostic::error("append takes no keyword argument").at(arg.span));
         }
         let x = self.env.eval(&arg.value, &is_cmd(self.names))?;
-        let shared = self
-            .env
-            .names
-            .iter()
-            .find(|(n, b)| *n != name && matches!(b, Binding::Var(v) if holds_list(v, id)));
-        if let Some((other, _)) = shared {
+        if let Some(other) = self.other_holder(name, id) {
             return Err(Diagnostic::error(format!(
                 "{name} is the same list as {other}: Python's append would change both, aster's values are copies"
             ))
@@ -405,6 +400,16 @@ impl Checker<'_> {
     /// `L[i] = x` and `d['KEY'] = x` on a list or a dict held in a name.
     /// As for append, aster's values are copies: the cases where Python's
     /// shared object would make a difference are refused.
+    /// Another name whose value holds the list or dict `id` (Python's
+    /// in-place change would reach it too; aster's values are copies).
+    fn other_holder(&self, name: &str, id: u64) -> Option<String> {
+        self.env
+            .names
+            .iter()
+            .find(|(n, b)| *n != name && matches!(b, Binding::Var(v) if holds_list(v, id)))
+            .map(|(n, _)| n.clone())
+    }
+
     fn set_item(
         &mut self,
         target: &Ident,
@@ -457,12 +462,7 @@ impl Checker<'_> {
         if i.v == PyVal::Poison {
             return Ok(());
         }
-        let shared = self
-            .env
-            .names
-            .iter()
-            .find(|(n, b)| *n != name && matches!(b, Binding::Var(v) if holds_list(v, id)));
-        if let Some((other, _)) = shared {
+        if let Some(other) = self.other_holder(name, id) {
             return Err(Diagnostic::error(format!(
                 "{name} is the same object as {other}: Python's item assignment would change both, aster's values are copies"
             ))
