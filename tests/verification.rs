@@ -2151,6 +2151,44 @@ fn function_valued_loads_follow_time() {
     run_study("char_f_ramp");
 }
 
+/// EXCIT/FONC_MULT given as a FORMULE of INST with a conditional and
+/// comparisons (a trapezoid, a step, a ramp): STAT_NON_LINE (top DZ and
+/// the base reaction of CALC_CHAMP, which re-evaluates the formula, at
+/// 1e-9), MECA_STATIQUE (1e-9), DIFF_CENT (the driven top, 1e-12).
+#[test]
+fn formula_time_multipliers() {
+    run_study("formule_fonc_mult");
+}
+
+/// A FORMULE that cannot be a time multiplier is a located error on
+/// FONC_MULT: a formula of X, and one not finite at an instant of the list.
+#[test]
+fn bad_formula_multipliers_are_located_errors() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("formule_fonc_mult_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("formule_fonc_mult.comm")).unwrap();
+    let cases = [
+        (
+            "of_x",
+            (
+                "MARCHE = FORMULE(VALE='2. if INST >= 0.5 else 1.', NOM_PARA='INST')",
+                "MARCHE = FORMULE(VALE='2. if X >= 0.5 else 1.', NOM_PARA='X')",
+            ),
+            "MECA_STATIQUE/EXCIT/FONC_MULT: FONC_MULT multiplies the load by a function of time: MARCHE is a formula of X, not of INST alone",
+        ),
+        (
+            "not_finite",
+            (
+                "VALE='min(INST / T1, 1.) if INST <= T2 else 0.'",
+                "VALE='sqrt(INST - T1) if INST <= T2 else 0.'",
+            ),
+            "STAT_NON_LINE/EXCIT/FONC_MULT: TRAPEZE cannot be evaluated at INST = 0e0, an instant of the time list: the formula 'sqrt(INST - T1) if INST <= T2 else 0.' is not finite at INST = 0e0",
+        ),
+    ];
+    let export = format!("F mmed {} D 20\n", dir().join("rod_wedge.mmed").display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "verif_fonc_mult_bad");
+}
+
 /// Bad calls in FORMULE and TEST_FONCTION of a formula: a function called
 /// with the wrong number of arguments, a function named without a call,
 /// VALE_PARA counts that do not match the formula's or the function's

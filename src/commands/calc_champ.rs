@@ -30,7 +30,7 @@ pub fn def() -> CommandDef {
                 concept("CHARGE", &[C::CharMeca, C::CharCineMeca])
                     .required()
                     .kw(),
-                concept("FONC_MULT", &[C::Fonction]).kw(),
+                concept("FONC_MULT", &[C::Fonction, C::Formule]).kw(),
                 text("TYPE_CHARGE")
                     .into(&["FIXE_CSTE", "SUIV", "DIDI"])
                     .default(t("FIXE_CSTE"))
@@ -237,15 +237,10 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             .map_err(|m| args.error("RESULTAT", m))?;
         let f = match mult {
             None => None,
-            Some(m) => match study.concepts.data(m) {
-                Some(ConceptData::Function(f)) => Some((**f).clone()),
-                _ => {
-                    return Err(args.error(
-                        "EXCIT",
-                        format!("the FONC_MULT {m} of the loads holds no function"),
-                    ))
-                }
-            },
+            Some(m) => Some(
+                super::dyna_non_line::multiplier(study, m)
+                    .map_err(|e| args.error("EXCIT", format!("FONC_MULT of the loads: {e}")))?,
+            ),
         };
         parts.push((forces, f));
     }

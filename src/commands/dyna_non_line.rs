@@ -44,8 +44,8 @@ pub fn def() -> CommandDef {
                         .doc("dead load, follower load, or differential imposed displacement")
                         .kw(),
                     concept("CHARGE", &[C::CharMeca, C::CharCineMeca]).required().kw(),
-                    concept("FONC_MULT", &[C::Fonction])
-                        .doc("time multiplier of the load")
+                    concept("FONC_MULT", &[C::Fonction, C::Formule])
+                        .doc("time multiplier of the load: a function of INST, a constant, or a FORMULE of INST")
                         .kw(),
                 ],
             )
@@ -356,7 +356,7 @@ pub(crate) fn load_history(
 pub(crate) fn field_parts(
     md: &ModelData,
     loads: &[MechLoad],
-    mults: &[Option<crate::post::function::Function>],
+    mults: &[Option<crate::post::formula::Coef>],
 ) -> Vec<crate::nonlinear::loads::FieldPart> {
     loads
         .iter()
@@ -381,7 +381,7 @@ pub(crate) fn field_parts(
 pub(crate) fn function_parts(
     md: &ModelData,
     loads: &[MechLoad],
-    mults: &[Option<crate::post::function::Function>],
+    mults: &[Option<crate::post::formula::Coef>],
     nb: &crate::nonlinear::dofs::DofNumbering,
 ) -> Result<Vec<crate::nonlinear::loads::FunctionPart>, (usize, String)> {
     use crate::model::FunctionTarget;
@@ -454,7 +454,7 @@ pub(crate) fn function_parts(
 
 /// (index in the numbering's imposed list, value at multiplier 1) of a
 /// load's moving dofs, and its multiplier.
-type ImposedUnderMult = (Vec<(usize, f64)>, crate::post::function::Function);
+type ImposedUnderMult = (Vec<(usize, f64)>, crate::post::formula::Coef);
 
 /// The non-zero DDL_IMPO values of the loads with a FONC_MULT, as
 /// (index in the numbering's imposed list, value) per load with its
@@ -513,28 +513,15 @@ fn imposed_under_mult(
     Ok(out)
 }
 
-/// The FONC_MULT function `name` of one EXCIT occurrence, checked.
+/// The FONC_MULT `name` of one EXCIT occurrence, checked at every
+/// instant of the time list.
 fn fonc_mult(
     study: &Study,
     ex: &Args,
     name: &str,
     instants: &[f64],
-) -> Result<crate::post::function::Function, Diagnostic> {
-    let Some(ConceptData::Function(f)) = study.concepts.data(name) else {
-        return Err(ex.error(
-            "FONC_MULT",
-            format!("{name} holds no function (its command did not run)"),
-        ));
-    };
-    if !f.is_constant() && f.para != "INST" {
-        return Err(ex.error(
-            "FONC_MULT",
-            format!(
-                "FONC_MULT multiplies the load by a function of time: {name} is a function of {}, not of INST",
-                f.para
-            ),
-        ));
-    }
+) -> Result<crate::post::formula::Coef, Diagnostic> {
+    let f = multiplier(study, name).map_err(|m| ex.error("FONC_MULT", m))?;
     for &t in instants {
         f.eval(t).map_err(|e| {
             ex.error(
@@ -545,7 +532,31 @@ fn fonc_mult(
             )
         })?;
     }
-    Ok((**f).clone())
+    Ok(f)
+}
+
+/// The time multiplier held by the concept `name`: a function of INST or
+/// a constant (DEFI_FONCTION, DEFI_CONSTANTE...) or a FORMULE of INST
+/// alone, as code_aster's EXCIT/FONC_MULT takes (fonction_sdaster,
+/// formule).
+pub(crate) fn multiplier(study: &Study, name: &str) -> Result<crate::post::formula::Coef, String> {
+    use crate::post::formula::Coef;
+    let f = match study.concepts.data(name) {
+        Some(ConceptData::Function(f)) => Coef::Function((**f).clone()),
+        Some(ConceptData::Formula(g)) => Coef::Formula((**g).clone()),
+        _ => {
+            return Err(format!(
+                "{name} holds no function (its command did not run)"
+            ))
+        }
+    };
+    match f.unknown_param(&["INST"]) {
+        Some(p) => Err(format!(
+            "FONC_MULT multiplies the load by a function of time: {name} is a {} of {p}, not of INST alone",
+            f.type_name()
+        )),
+        None => Ok(f),
+    }
 }
 
 /// The mechanical loads named in `names`.

@@ -1,7 +1,10 @@
 //! FORMULE: a function given by an expression of its parameters, in the
-//! command file's (Python) syntax: arithmetic on reals (+ - * / **, unary
-//! minus), the math functions and constants code_aster puts in a
-//! formula's namespace, NOM_PARA, and numbers given as extra keywords
+//! command file's (Python) syntax: arithmetic on reals (+ - * / // % **,
+//! unary signs), comparisons, `and`/`or`/`not` and `x if c else y` with
+//! Python's booleans as 1 and 0 (Heaviside steps are written
+//! `(INST > T1) * F`), the real functions of reals and the constants of
+//! code_aster's formula namespace (every name of `math`, and the
+//! builtins abs, min, max, float, int, round, pow), NOM_PARA, and numbers given as extra keywords
 //! (`H=H`) or defined earlier in the command file (the checker gathers
 //! them into CONST_NOMS/CONST_VALE), and functions called by name,
 //! DEFI_FONCTION/DEFI_CONSTANTE/RECU_FONCTION results or other formulas
@@ -17,8 +20,8 @@ use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::{ConceptData, ConceptType as C};
 use crate::diag::Source;
-use crate::lang::ast::{BinOp, Expr, ExprKind, StmtKind, UnOp};
-use crate::post::formula::{Coef, Formula, Func, Node, Op, CONSTANTS};
+use crate::lang::ast::{BinOp, CmpOp, Expr, ExprKind, LogicOp, StmtKind, UnOp};
+use crate::post::formula::{Cmp, Coef, Formula, Func, Node, Op, CONSTANTS};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -162,11 +165,7 @@ impl Names<'_> {
                 match op {
                     UnOp::Neg => Node::Neg(Box::new(a)),
                     UnOp::Pos => a,
-                    UnOp::Not => {
-                        return Err(format!(
-                            "'not' in VALE '{text}': a FORMULE computes a real from reals"
-                        ))
-                    }
+                    UnOp::Not => Node::Not(Box::new(a)),
                 }
             }
             ExprKind::Binary { op, lhs, rhs } => {
@@ -176,12 +175,8 @@ impl Names<'_> {
                     BinOp::Mul => Op::Mul,
                     BinOp::Div => Op::Div,
                     BinOp::Pow => Op::Pow,
-                    BinOp::FloorDiv | BinOp::Mod => {
-                        return Err(format!(
-                        "operator '{}' in VALE '{text}' is not available in a FORMULE (+ - * / **)",
-                        op.symbol()
-                    ))
-                    }
+                    BinOp::Mod => Op::Mod,
+                    BinOp::FloorDiv => Op::FloorDiv,
                 };
                 Node::Bin(op, Box::new(self.tree(lhs)?), Box::new(self.tree(rhs)?))
             }
@@ -191,9 +186,12 @@ impl Names<'_> {
                 // the same name, as a Python keyword argument would.
                 let callee = self.callees.iter().position(|c| c.0 == n);
                 let arity = match callee {
-                    Some(i) => Some(self.callees[i].1.arity()),
+                    Some(i) => {
+                        let k = self.callees[i].1.arity();
+                        (k, Some(k))
+                    }
                     None => match Func::of_name(n) {
-                        Some((_, arity)) => arity,
+                        Some((_, least, most)) => (least, most),
                         None => {
                             return Err(format!(
                                 "function '{n}' in VALE '{text}' is not available in a FORMULE (math functions: {}; a DEFI_FONCTION or FORMULE is called by the name of the keyword that passes it, as {n}={n})",
@@ -202,14 +200,12 @@ impl Names<'_> {
                         }
                     },
                 };
-                let ok = match arity {
-                    Some(k) => args.len() == k,
-                    None => !args.is_empty(),
-                };
-                if !ok || args.iter().any(|a| a.name.is_some()) {
-                    let expected = match (callee, arity) {
-                        (Some(_), Some(k)) => format!(" ({n} takes {k})"),
-                        _ => String::new(),
+                let ok = args.len() >= arity.0 && arity.1.is_none_or(|most| args.len() <= most);
+                if !ok || args.iter().any(|a| a.name.is_some() || a.unpack) {
+                    let expected = match arity {
+                        (least, Some(most)) if least == most => format!(" ({n} takes {least})"),
+                        (least, Some(most)) => format!(" ({n} takes {least} to {most})"),
+                        (least, None) => format!(" ({n} takes at least {least})"),
                     };
                     return Err(format!(
                         "wrong arguments for '{n}' in VALE '{text}'{expected}"
@@ -224,7 +220,41 @@ impl Names<'_> {
                     None => Node::Call(Func::of_name(n).expect("checked above").0, xs),
                 }
             }
-            _ => return Err(format!("VALE '{text}' must compute a real from reals")),
+            ExprKind::Bool(b) => Node::Num(f64::from(u8::from(*b))),
+            ExprKind::Compare { first, rest } => {
+                let mut links = Vec::with_capacity(rest.len());
+                for (op, operand) in rest {
+                    let cmp = match op {
+                        CmpOp::Eq => Cmp::Eq,
+                        CmpOp::Ne => Cmp::Ne,
+                        CmpOp::Lt => Cmp::Lt,
+                        CmpOp::Le => Cmp::Le,
+                        CmpOp::Gt => Cmp::Gt,
+                        CmpOp::Ge => Cmp::Ge,
+                        CmpOp::In | CmpOp::NotIn => {
+                            return Err(format!(
+                                "'{}' in VALE '{text}': a FORMULE computes a real from reals (comparisons < <= > >= == != are available)",
+                                op.symbol()
+                            ))
+                        }
+                    };
+                    links.push((cmp, self.tree(operand)?));
+                }
+                Node::Compare(Box::new(self.tree(first)?), links)
+            }
+            ExprKind::Logic { op, lhs, rhs } => {
+                let (a, b) = (Box::new(self.tree(lhs)?), Box::new(self.tree(rhs)?));
+                match op {
+                    LogicOp::And => Node::And(a, b),
+                    LogicOp::Or => Node::Or(a, b),
+                }
+            }
+            ExprKind::IfElse { cond, then, orelse } => Node::IfElse(
+                Box::new(self.tree(cond)?),
+                Box::new(self.tree(then)?),
+                Box::new(self.tree(orelse)?),
+            ),
+            _ => return Err(format!("VALE '{text}' must compute a real from reals (numbers, the parameters, + - * / // % **, comparisons, and/or/not, x if c else y, and the functions {})", Func::NAMES)),
         })
     }
 }
@@ -307,5 +337,85 @@ mod tests {
             e.starts_with("RP, called by the formula 'RP(INST) * 3'"),
             "{e}"
         );
+    }
+
+    /// Each formula against the value CPython 3 gives for the same text
+    /// (printed with repr, the values written here as Python printed them).
+    #[test]
+    fn python_operators_comparisons_and_conditionals() {
+        let p = ["INST", "X"];
+        let at = |text: &str, inst: f64, x: f64| -> f64 {
+            f(text, &p)
+                .unwrap_or_else(|e| panic!("{text}: {e}"))
+                .eval(&[("INST", inst), ("X", x)])
+                .unwrap_or_else(|e| panic!("{text}: {e}"))
+        };
+        // Heaviside steps, as load ramps are written.
+        assert_eq!(at("(INST > 0.5) * 2.", 0.75, 0.0), 2.0);
+        assert_eq!(at("(INST > 0.5) * 2.", 0.5, 0.0), 0.0);
+        assert_eq!(at("INST if INST < 1. else 1.", 0.25, 0.0), 0.25);
+        assert_eq!(at("INST if INST < 1. else 1.", 3.0, 0.0), 1.0);
+        // Chained, stopping at the first false link; a bare comparison.
+        assert_eq!(at("0. <= X < 1.", 0.0, 1.0), 0.0);
+        assert_eq!(at("0. <= X < 1.", 0.0, 0.5), 1.0);
+        assert_eq!(at("X == 2", 0.0, 2.0), 1.0);
+        assert_eq!(at("(X != 2) + (X >= 2) + (X <= 2)", 0.0, 2.0), 2.0);
+        // and / or give an operand; not gives a boolean.
+        assert_eq!(at("X and 3.", 0.0, 0.0), 0.0);
+        assert_eq!(at("X and 3.", 0.0, 2.0), 3.0);
+        assert_eq!(at("X or 3.", 0.0, 2.0), 2.0);
+        assert_eq!(at("not X", 0.0, 0.0), 1.0);
+        assert_eq!(at("True + False * 2", 0.0, 0.0), 1.0);
+        // Only the branch taken is evaluated: no division by zero here.
+        assert_eq!(at("1. / X if X != 0. else 0.", 0.0, 0.0), 0.0);
+        assert_eq!(at("sqrt(X) if X > 0 else -1.", 0.0, -4.0), -1.0);
+        // % and // of reals: the divisor's sign, divmod's floor.
+        assert_eq!(at("X % 3", 0.0, -7.0), 2.0);
+        assert_eq!(at("X % -3", 0.0, 7.0), -2.0);
+        assert_eq!(at("X // 0.1", 0.0, 7.0), 69.0);
+        assert_eq!(at("X // 2", 0.0, -7.0), -4.0);
+        assert_eq!(at("INST % 1.E-5", 2.5e-5, 0.0), 4.9999999999999996e-06);
+        // The rest of math and the builtins.
+        assert_eq!(
+            at("floor(X) + ceil(X) + trunc(-X) + int(-X)", 0.0, 2.5),
+            1.0
+        );
+        assert_eq!(at("round(X) + round(-X)", 0.0, 2.5), 0.0);
+        assert_eq!(at("round(X, 2)", 0.0, 2.675), 2.67);
+        assert_eq!(at("round(X, -2)", 0.0, 1250.0), 1200.0);
+        assert_eq!(at("fabs(X) + pow(X, 2) + hypot(3, 4)", 0.0, -2.0), 11.0);
+        assert_eq!(at("fmod(X, 3)", 0.0, -7.0), -1.0);
+        assert_eq!(at("copysign(2., X)", 0.0, -0.0), -2.0);
+        assert_eq!(
+            at(
+                "log(X, 2) + log2(X) + degrees(pi) - radians(180.)",
+                0.0,
+                8.0
+            ),
+            6.0 + 180.0 - std::f64::consts::PI
+        );
+        assert!(
+            (at("tau - 2 * pi + cbrt(X) + expm1(0.) + log1p(0.)", 0.0, 27.0) - 3.0).abs() < 1e-15
+        );
+        // What stays refused says what is available.
+        let e = f("X in (1, 2)", &p).unwrap_err();
+        assert!(e.contains("'in'") && e.contains("comparisons"), "{e}");
+        let e = f("'a' + X", &p).unwrap_err();
+        assert!(
+            e.contains("must compute a real") && e.contains("floor"),
+            "{e}"
+        );
+        let e = f("round(X, 1, 2)", &p).unwrap_err();
+        assert!(e.contains("round takes 1 to 2"), "{e}");
+        let g = f("X % 0.", &p).unwrap();
+        assert!(g
+            .eval(&[("INST", 0.0), ("X", 1.0)])
+            .unwrap_err()
+            .contains("division by zero"));
+        let g = f("fmod(X, 0.)", &p).unwrap();
+        assert!(g
+            .eval(&[("INST", 0.0), ("X", 1.0)])
+            .unwrap_err()
+            .contains("not finite"));
     }
 }

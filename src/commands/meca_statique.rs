@@ -50,8 +50,8 @@ pub fn def() -> CommandDef {
                 "EXCIT",
                 vec![
                     concept("CHARGE", &[C::CharMeca, C::CharCineMeca]).required().kw(),
-                    concept("FONC_MULT", &[C::Fonction])
-                        .doc("multiplier of the load, a function of INST evaluated at each instant")
+                    concept("FONC_MULT", &[C::Fonction, C::Formule])
+                        .doc("multiplier of the load, a function (or FORMULE) of INST evaluated at each instant")
                         .kw(),
                     text("TYPE_CHARGE")
                         .into(&["FIXE_CSTE"])

@@ -33,8 +33,8 @@ pub fn def() -> CommandDef {
                         .doc("dead load (FIXE_CSTE); the others are not implemented yet")
                         .kw(),
                     concept("CHARGE", &[C::CharMeca, C::CharCineMeca]).required().kw(),
-                    concept("FONC_MULT", &[C::Fonction])
-                        .doc("multiplier of the load, a function of INST (pseudo-time)")
+                    concept("FONC_MULT", &[C::Fonction, C::Formule])
+                        .doc("multiplier of the load, a function (or FORMULE) of INST (pseudo-time)")
                         .kw(),
                 ],
             )

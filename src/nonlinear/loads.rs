@@ -22,7 +22,6 @@ use crate::mesh::{CellType, Mesh};
 use crate::model::spec::Formulation;
 use crate::model::{CellRole, FieldDensity, FieldFunction, Model};
 use crate::post::formula::{eval_inst_xyz, Coef};
-use crate::post::function::Function;
 
 /// One AFFE_CHAR_MECA_F distributed load (PRES_REP, FORCE_FACE,
 /// FORCE_ARETE, FORCE_CONTOUR, FORCE_INTERNE) with what its element
@@ -35,7 +34,7 @@ pub struct FieldPart {
     pub label: String,
     pub density: FieldDensity,
     /// The EXCIT FONC_MULT of the load (`None`: 1).
-    pub mult: Option<Function>,
+    pub mult: Option<Coef>,
     formulation: Formulation,
     ndpn: usize,
     cells: Vec<FieldCell>,
@@ -53,7 +52,7 @@ struct FieldCell {
 }
 
 impl FieldPart {
-    pub fn new(mesh: &Mesh, model: &Model, f: &FieldFunction, mult: Option<Function>) -> FieldPart {
+    pub fn new(mesh: &Mesh, model: &Model, f: &FieldFunction, mult: Option<Coef>) -> FieldPart {
         let cells = f
             .cells
             .iter()
@@ -137,7 +136,7 @@ pub struct FunctionPart {
     pub label: String,
     pub coef: Coef,
     /// The EXCIT FONC_MULT of the load (`None`: 1).
-    pub mult: Option<Function>,
+    pub mult: Option<Coef>,
     /// DDL_IMPO (the entries index the numbering's `imposed` list) or
     /// FORCE_NODALE (the entries are full dofs).
     pub imposed: bool,
@@ -176,16 +175,16 @@ impl FunctionPart {
 /// The loads of a run as (forces, multiplier): a `None` multiplier is 1.
 #[derive(Debug, Clone, Default)]
 pub struct LoadHistory {
-    parts: Vec<(Vec<f64>, Option<Function>)>,
+    parts: Vec<(Vec<f64>, Option<Coef>)>,
     /// Imposed values under a multiplier: (index in the numbering's
     /// `imposed` list, value at multiplier 1) and the multiplier.
-    imposed: Vec<(Vec<(usize, f64)>, Function)>,
+    imposed: Vec<(Vec<(usize, f64)>, Coef)>,
     functions: Vec<FunctionPart>,
     fields: Vec<FieldPart>,
 }
 
 impl LoadHistory {
-    pub fn new(parts: Vec<(Vec<f64>, Option<Function>)>) -> LoadHistory {
+    pub fn new(parts: Vec<(Vec<f64>, Option<Coef>)>) -> LoadHistory {
         LoadHistory {
             parts,
             imposed: Vec::new(),
@@ -209,7 +208,7 @@ impl LoadHistory {
     }
 
     /// Adds imposed values scaled by `mult` (see [`LoadHistory::set_imposed`]).
-    pub fn with_imposed(mut self, entries: Vec<(usize, f64)>, mult: Function) -> LoadHistory {
+    pub fn with_imposed(mut self, entries: Vec<(usize, f64)>, mult: Coef) -> LoadHistory {
         if !entries.is_empty() {
             self.imposed.push((entries, mult));
         }
@@ -299,11 +298,15 @@ impl LoadHistory {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::post::function::Function;
 
     #[test]
     fn forces_are_scaled_by_their_multiplier_and_summed() {
         let ramp = Function::new("INST", "TOUTRESU", vec![0.0, 2.0], vec![0.0, 4.0]).unwrap();
-        let h = LoadHistory::new(vec![(vec![1.0, 0.0], Some(ramp)), (vec![0.0, 3.0], None)]);
+        let h = LoadHistory::new(vec![
+            (vec![1.0, 0.0], Some(ramp.into())),
+            (vec![0.0, 3.0], None),
+        ]);
         assert!(h.varies());
         let mut out = vec![9.0; 2];
         h.at(0.5, &mut out).unwrap();
@@ -316,7 +319,7 @@ mod tests {
     #[test]
     fn imposed_values_follow_their_multiplier() {
         let ramp = Function::new("INST", "TOUTRESU", vec![0.0, 2.0], vec![0.0, 4.0]).unwrap();
-        let h = LoadHistory::new(vec![]).with_imposed(vec![(1, -0.5)], ramp);
+        let h = LoadHistory::new(vec![]).with_imposed(vec![(1, -0.5)], ramp.into());
         assert!(h.varies());
         let mut imposed = vec![(3, 7.0), (8, 0.0)];
         h.set_imposed(1.5, &mut imposed).unwrap();
@@ -339,7 +342,7 @@ mod tests {
         let part = |imposed| FunctionPart {
             label: "DDL_IMPO DX = F".into(),
             coef: Coef::Formula(g.clone()),
-            mult: Some(two.clone()),
+            mult: Some(two.clone().into()),
             imposed,
             entries: vec![(1, 0, [3.0, 0.0, 0.0]), (0, 4, [-1.0, 0.0, 0.0])],
         };
