@@ -119,6 +119,86 @@ FIN()
     assert_eq!(l.args.reals("VALE"), vec![3.0, 5.0, 6.0, 4.0, 2.0]);
 }
 
+/// Augmented assignment of a name: numbers, texts and tuples as
+/// `A = A op x`, a list extended in place by `+=` (any iterable, as
+/// list.extend) and repeated by `*=`; values as CPython 3 gives them.
+#[test]
+fn augmented_assignment_has_python_values() {
+    let text = format!(
+        "{HEAD}\
+N = 7
+N += 2
+N -= 1
+N *= 3
+N //= 5
+X = 7.
+X /= 2
+X **= 2
+X %= 5
+S = 'DEPL'
+S += '_A1'
+T = (1,)
+T += (2,)
+L = [1.]
+L += (2., 3.)
+L += [N]
+L *= 2
+for k in range(3):
+    N += k
+A = DEFI_LIST_REEL(VALE=L)
+B = DEFI_LIST_REEL(VALE=(N, X, len(S), len(T)))
+FIN()
+"
+    );
+    let c = check(&text).unwrap_or_else(|ds| panic!("{}", ds[0].message));
+    // CPython 3: N = ((7 + 2 - 1) * 3) // 5 = 4, then + 0 + 1 + 2 = 7;
+    // X = (3.5 ** 2) % 5 = 2.25; S = 'DEPL_A1'; T = (1, 2);
+    // L = [1., 2., 3., 4] * 2.
+    let n = c.commands.len();
+    assert_eq!(
+        c.commands[n - 3].args.reals("VALE"),
+        vec![1.0, 2.0, 3.0, 4.0, 1.0, 2.0, 3.0, 4.0]
+    );
+    assert_eq!(
+        c.commands[n - 2].args.reals("VALE"),
+        vec![7.0, 2.25, 7.0, 2.0]
+    );
+}
+
+/// What Python's in-place `+=` on a list would do differently from
+/// aster's copies is refused, located.
+#[test]
+fn augmented_assignment_mistakes_are_located() {
+    for (text, msg, line, col) in [
+        (
+            "L = [1]\nM = L\nL += [2]",
+            "L is the same list as M: Python's += would change both",
+            3,
+            1,
+        ),
+        ("L = [1]\nM = [L]\nL *= 2", "L is the same list as M", 3, 1),
+        (
+            "L = [1]\nfor x in L:\n    L += [2]",
+            "while it is being looped over",
+            3,
+            5,
+        ),
+        ("L = [1]\nL += 2", "cannot loop over the integer 2", 2, 6),
+        ("T = (1,)\nT += [2]", "tuple", 2, 1),
+        ("Z += 1", "name 'Z' is not defined", 1, 1),
+        (
+            "S = 'A'\nS -= 'B'",
+            "operator '-' cannot combine the text 'A' and the text 'B'",
+            2,
+            1,
+        ),
+    ] {
+        let (m, l, c) = first_error(text);
+        assert!(m.contains(msg), "{text:?}: {m}");
+        assert_eq!((l, c), (line, col), "{text:?}: {m}");
+    }
+}
+
 #[test]
 fn keywords_from_a_dict_are_checked_against_the_catalogue() {
     let run = "\

@@ -252,6 +252,11 @@ impl Checker<'_> {
                     self.errors.push(d);
                 }
             }
+            StmtKind::AugAssign { target, op, value } => {
+                if let Err(d) = self.aug_assign(target, *op, value, stmt.span) {
+                    self.errors.push(d);
+                }
+            }
             StmtKind::Pass => {}
             StmtKind::Import(items) => {
                 for it in items {
@@ -394,6 +399,73 @@ impl Checker<'_> {
             }
             items.push(x);
         }
+        Ok(())
+    }
+
+    /// `A op= x`. On a list, Python's `+=` extends the list in place (by
+    /// any iterable) and `*=` repeats it in place, so another name holding
+    /// the same list would change too: refused, as for append, since
+    /// aster's values are copies. Everything else is `A = A op x`.
+    fn aug_assign(
+        &mut self,
+        target: &Ident,
+        op: crate::lang::ast::BinOp,
+        value: &crate::lang::ast::Expr,
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        use crate::lang::ast::{BinOp, Expr};
+        let name = target.name.as_str();
+        if let Some(Binding::Var(PyVal::List(id, _))) = self.env.names.get(name) {
+            let id = *id;
+            if matches!(op, BinOp::Add | BinOp::Mul) {
+                if let Some(other) = self.other_holder(name, id) {
+                    return Err(Diagnostic::error(format!(
+                        "{name} is the same list as {other}: Python's {}= would change both, aster's values are copies",
+                        op.symbol()
+                    ))
+                    .at(target.span)
+                    .note(format!("build {other} after this, or copy the list first: {name} = list({name})")));
+                }
+                if self.iterating.contains(&id) {
+                    return Err(Diagnostic::error(format!(
+                        "changing {name} with {}= while it is being looped over is not supported",
+                        op.symbol()
+                    ))
+                    .at(span));
+                }
+            }
+            if op == BinOp::Add {
+                let x = self.env.eval(value, &is_cmd(self.names))?;
+                if x.v == PyVal::Poison {
+                    self.bind(name, PyVal::Poison);
+                    return Ok(());
+                }
+                let more = self.env.iterate(&x)?;
+                if let Some(Binding::Var(PyVal::List(_, items))) = self.env.names.get_mut(name) {
+                    if items.len() + more.len() > crate::catalog::eval::MAX_ITEMS {
+                        return Err(Diagnostic::error(format!(
+                            "the list {name} would have more than {} items",
+                            crate::catalog::eval::MAX_ITEMS
+                        ))
+                        .at(span));
+                    }
+                    items.extend(more);
+                }
+                return Ok(());
+            }
+        }
+        let expr = Expr {
+            kind: ExprKind::Binary {
+                op,
+                lhs: Box::new(Expr {
+                    kind: ExprKind::Name(name.to_string()),
+                    span: target.span,
+                }),
+                rhs: Box::new(value.clone()),
+            },
+            span: target.span.to(value.span),
+        };
+        self.statement(Some(target), &expr, span);
         Ok(())
     }
 

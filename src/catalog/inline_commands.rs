@@ -70,6 +70,11 @@ impl Hoister<'_> {
                     targets: targets.clone(),
                     value: self.inner(value, &mut before),
                 },
+                StmtKind::AugAssign { target, op, value } => StmtKind::AugAssign {
+                    target: target.clone(),
+                    op: *op,
+                    value: self.inner(value, &mut before),
+                },
                 StmtKind::If { branches, orelse } => {
                     // Only the first condition is always evaluated; later
                     // ones keep their calls (refused if they are commands).
@@ -267,7 +272,7 @@ impl Hoister<'_> {
 fn bound_names(stmts: &[Stmt], out: &mut HashSet<String>) {
     for s in stmts {
         match &s.kind {
-            StmtKind::Assign { target, .. } => {
+            StmtKind::Assign { target, .. } | StmtKind::AugAssign { target, .. } => {
                 out.insert(target.name.clone());
             }
             StmtKind::Unpack { targets, .. } => {

@@ -54,6 +54,14 @@ pub enum StmtKind {
         targets: Vec<Ident>,
         value: Expr,
     },
+    /// `NAME op= value` (`+=`, `-=`, `*=`, `/=`, `//=`, `%=`, `**=`):
+    /// `NAME = NAME op value`, except that a list is changed in place by
+    /// `+=` (extended by any iterable) and `*=`, as Python does.
+    AugAssign {
+        target: Ident,
+        op: BinOp,
+        value: Expr,
+    },
     /// `NAME[index] = value`: one item of a list or a dict.
     SetItem {
         target: Ident,

@@ -481,6 +481,21 @@ fn lower_stmt(pair: Pair<'_, Rule>) -> Result<Stmt, Diagnostic> {
                 Target::Tuple(targets) => StmtKind::Unpack { targets, value },
             }
         }
+        Rule::augassign => {
+            let mut it = inner.into_inner();
+            let target = lower_ident(it.next().expect("augassign name"))?;
+            let op = match it.next().expect("augassign operator").as_str() {
+                "+=" => BinOp::Add,
+                "-=" => BinOp::Sub,
+                "*=" => BinOp::Mul,
+                "/=" => BinOp::Div,
+                "//=" => BinOp::FloorDiv,
+                "%=" => BinOp::Mod,
+                _ => BinOp::Pow,
+            };
+            let value = lower_expr_list(it.next().expect("augassign value"))?.expr;
+            StmtKind::AugAssign { target, op, value }
+        }
         Rule::setitem => {
             let mut it = inner.into_inner();
             let target = lower_ident(it.next().expect("setitem name"))?;
@@ -1409,7 +1424,7 @@ fn hint(
     let word_start = rest.starts_with(|c: char| is_ident_char(c) || c == '\'' || c == '"');
     Some(
         if rest.starts_with('=') && before.ends_with(['+', '-', '*', '/', '%']) {
-            "augmented assignment (+=, -=, ...) is not supported; write A = A + ..."
+            "augmented assignment (+=, -=, ...) is supported on a name only; write L[i] = L[i] + ..."
         } else if wants_end && rest.starts_with('=') {
             "assign one name per statement (A = B = value is not supported)"
         } else if open.last().is_some_and(|(_, c)| *c == '{') && rest.starts_with([',', '}']) {
@@ -1504,6 +1519,7 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
             Rule::program
             | Rule::stmt
             | Rule::assign
+            | Rule::augassign
             | Rule::compound
             | Rule::if_head
             | Rule::elif_head
@@ -1881,6 +1897,9 @@ mod tests {
                     index,
                     value,
                 } => format!("{}[{}]={}", target.name, sx(index), sx(value)),
+                StmtKind::AugAssign { target, op, value } => {
+                    format!("{}{}={}", target.name, op.symbol(), sx(value))
+                }
                 StmtKind::Pass => "pass".into(),
                 StmtKind::Import(items) => {
                     let v: Vec<String> = items
@@ -2207,8 +2226,8 @@ mod tests {
     #[test]
     fn hints_for_python_that_is_not_supported() {
         let cases = [
-            ("A += 1\n", "augmented assignment"),
-            ("A %= 1\n", "augmented assignment"),
+            ("L[0] += 1\n", "augmented assignment"),
+            ("D['A'] %= 1\n", "augmented assignment"),
             ("A = r'x'\n", "string prefixes"),
             ("A = f(x)(y)\n", "only a name can be called"),
             ("A = 1 & 2\n", "bitwise"),
