@@ -203,6 +203,10 @@ fn check_stmts(text: &str, stmts: &[Stmt], parent: Option<Span>) {
                 check_expr(text, value, stmt.span);
             }
             StmtKind::Unpack { value, .. } => check_expr(text, value, stmt.span),
+            StmtKind::AugAssign { target, value, .. } => {
+                assert!(inside(target.span, stmt.span));
+                check_expr(text, value, stmt.span);
+            }
             StmtKind::SetItem {
                 target,
                 index,
@@ -846,6 +850,14 @@ impl Printer<'_> {
                 self.out.push_str(" = ");
                 self.expr(value, false);
             }
+            StmtKind::AugAssign { target, op, value } => {
+                self.out.push_str(&target.name);
+                self.gap_out(false);
+                self.out.push_str(op.symbol());
+                self.out.push('=');
+                self.gap_out(false);
+                self.expr(value, false);
+            }
             StmtKind::Expr(e) => self.expr(e, false),
             StmtKind::SetItem {
                 target,
@@ -1110,6 +1122,10 @@ fn strip_stmts(stmts: &mut [Stmt]) {
             }
             StmtKind::Unpack { targets, value } => {
                 targets.iter_mut().for_each(strip_ident);
+                strip_expr(value);
+            }
+            StmtKind::AugAssign { target, value, .. } => {
+                strip_ident(target);
                 strip_expr(value);
             }
             StmtKind::Expr(e) => strip_expr(e),

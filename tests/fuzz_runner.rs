@@ -170,7 +170,9 @@ impl Corpus {
                     }
                     value
                 }
-                StmtKind::Expr(e) | StmtKind::Unpack { value: e, .. } => e,
+                StmtKind::Expr(e)
+                | StmtKind::Unpack { value: e, .. }
+                | StmtKind::AugAssign { value: e, .. } => e,
                 StmtKind::SetItem { index, value, .. } => {
                     self.value(index, false);
                     value
@@ -619,6 +621,7 @@ fn damaged_stmts(
         match &mut st.kind {
             StmtKind::Assign { value, .. }
             | StmtKind::Expr(value)
+            | StmtKind::AugAssign { value, .. }
             | StmtKind::Unpack { value, .. } => damage_expr(value, edits, pool, cut),
             StmtKind::SetItem { index, value, .. } => {
                 damage_expr(index, edits, pool, cut);

@@ -109,6 +109,16 @@ fn contract(src: &Source, stmts: &[Stmt], defined: &mut Vec<String>) {
                 read(value, defined);
                 defined.extend(targets.iter().map(|n| n.name.clone()));
             }
+            StmtKind::AugAssign { target, value, .. } => {
+                read(value, defined);
+                read(
+                    &Expr {
+                        kind: ExprKind::Name(target.name.clone()),
+                        span: target.span,
+                    },
+                    defined,
+                );
+            }
             StmtKind::Expr(e) => read(e, defined),
             StmtKind::SetItem {
                 target,
@@ -410,6 +420,12 @@ fn dump_block(d: &mut Dump<'_>, stmts: &[Stmt], depth: usize) {
                 let n: Vec<&str> = targets.iter().map(|t| t.name.as_str()).collect();
                 d.expr(stmt.span, depth, &format!("{} = ", n.join(", ")), value)
             }
+            StmtKind::AugAssign { target, op, value } => d.expr(
+                stmt.span,
+                depth,
+                &format!("{} {}= ", target.name, op.symbol()),
+                value,
+            ),
             StmtKind::Expr(e) => d.expr(stmt.span, depth, "", e),
             StmtKind::SetItem {
                 target,
