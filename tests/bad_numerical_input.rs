@@ -379,3 +379,145 @@ fn a_contact_surface_with_inward_normals_is_refused() {
         "ZONE=_F",
     );
 }
+
+/// The modelling D bar held on its face SZZ (DY) and axis (DX), pulled at
+/// its top node A2 by `load` (an AFFE_CHAR_MECA line defining TR), in
+/// `command` (STAT_NON_LINE, DYNA_NON_LINE or MECA_STATIQUE) with `excit`
+/// for TR.
+fn pulled_bar(load: &str, command: &str, excit: &str) -> String {
+    let steps = match command {
+        "STAT_NON_LINE" => {
+            "COMPORTEMENT=_F(RELATION='ELAS', GROUP_MA='VOL'), INCREMENT=_F(LIST_INST=L_INST)"
+        }
+        "DYNA_NON_LINE" => {
+            "COMPORTEMENT=_F(RELATION='ELAS', GROUP_MA='VOL'), INCREMENT=_F(LIST_INST=L_INST), \
+             SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT')"
+        }
+        _ => "LIST_INST=L_INST",
+    };
+    format!(
+        "DEBUT()\n\
+         MAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+         MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, CREA_GROUP_NO=_F(TOUT_GROUP_MA='OUI'))\n\
+         MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(GROUP_MA='VOL', PHENOMENE='MECANIQUE', MODELISATION='AXIS'))\n\
+         {CUIVRE}\n\
+         CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=_F(GROUP_MA='VOL', MATER=CUIVRE))\n\
+         BC = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=(_F(GROUP_NO='SZZ', DY=0.), _F(GROUP_NO='AXE', DX=0.)))\n\
+         {load}\n\
+         RAMPE = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 1.))\n\
+         L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1., NOMBRE=10))\n\
+         RES = {command}(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=(_F(CHARGE=BC), _F(CHARGE=TR{excit})),\n\
+         {steps})\n\
+         FIN()\n"
+    )
+}
+
+/// A load of 1e308 is finite, but the stiffness times it (or the mass
+/// over it) is not: the stop says that the numbers left the range of
+/// doubles and names the load, its node and the instant, instead of
+/// "singular matrix ... add the missing DDL_IMPO" (probe s7b D3: the
+/// matrix is regular, as the same runs with 1 instead of 1e308 show).
+#[test]
+fn a_load_too_large_for_doubles_is_named_not_called_singular() {
+    // The control: the same bar with a load of 1 runs.
+    for (load, excit) in [
+        ("TR = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='A2', DY=1.))", ", FONC_MULT=RAMPE"),
+        ("TR = AFFE_CHAR_MECA(MODELE=MO, FORCE_NODALE=_F(GROUP_NO='A2', FY=1.))", ""),
+    ] {
+        let comm = pulled_bar(load, "STAT_NON_LINE", excit);
+        let (_, err) = run(&root_mesh("sdnv103d"), &comm, "load_control");
+        assert!(err.is_none(), "{err:?}");
+    }
+    // DDL_IMPO 1e308 under a ramp: at INST 0.1 the imposed value is
+    // 1e307, and the stiffness (E = 117e3) times it overflows.
+    let comm = pulled_bar(
+        "TR = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='A2', DY=1.E308))",
+        "STAT_NON_LINE",
+        ", FONC_MULT=RAMPE",
+    );
+    let (_, err) = run(&root_mesh("sdnv103d"), &comm, "load_ddl_impo");
+    assert_error(
+        &comm,
+        &err,
+        "STAT_NON_LINE",
+        &[
+            "stopped at the step from t = 0e0 to t = 1e-1",
+            "beyond the range of doubles (1.8e308)",
+            "the largest load value at INST = 1e-1 is DDL_IMPO DY at node N",
+            "of load TR (EXCIT 2) = 1e308 times FONC_MULT RAMPE = 1e-1",
+            "check the load's value and its units",
+        ],
+        "RES = STAT_NON_LINE",
+    );
+    let e = err.unwrap();
+    assert!(!e.contains("add the missing DDL_IMPO"), "{e}");
+    assert!(!e.contains("singular"), "{e}");
+
+    // FORCE_NODALE 1e308, constant: the solve's values overflow.
+    let comm = pulled_bar(
+        "TR = AFFE_CHAR_MECA(MODELE=MO, FORCE_NODALE=_F(GROUP_NO='A2', FY=1.E308))",
+        "STAT_NON_LINE",
+        "",
+    );
+    let (_, err) = run(&root_mesh("sdnv103d"), &comm, "load_force");
+    assert_error(
+        &comm,
+        &err,
+        "STAT_NON_LINE",
+        &[
+            "beyond the range of doubles (1.8e308)",
+            "the largest load value at INST = 1e-1 is FORCE_NODALE FY at node N",
+            "of load TR (EXCIT 2) = 1e308:",
+        ],
+        "RES = STAT_NON_LINE",
+    );
+    assert!(!err.unwrap().contains("singular"));
+
+    // DYNA_NON_LINE: the initial acceleration M a0 = F overflows (an
+    // alarm, a0 = 0 as code_aster), then the first step.
+    let comm = pulled_bar(
+        "TR = AFFE_CHAR_MECA(MODELE=MO, FORCE_NODALE=_F(GROUP_NO='A2', FY=1.E308))",
+        "DYNA_NON_LINE",
+        "",
+    );
+    let (study, err) = run(&root_mesh("sdnv103d"), &comm, "load_dyna");
+    assert_error(
+        &comm,
+        &err,
+        "DYNA_NON_LINE",
+        &[
+            "beyond the range of doubles (1.8e308)",
+            "the largest load value at INST = 1e-1 is FORCE_NODALE FY at node N",
+        ],
+        "RES = DYNA_NON_LINE",
+    );
+    assert!(!err.unwrap().contains("singular"));
+    let alarm = study
+        .mess
+        .lines()
+        .find(|l| l.contains("the initial acceleration could not be solved"))
+        .unwrap_or_else(|| panic!("no alarm on a0:\n{}", study.mess));
+    for part in [
+        "beyond the range of doubles (1.8e308)",
+        "the largest load value at INST = 0e0 is FORCE_NODALE FY",
+    ] {
+        assert!(alarm.contains(part), "{part} in {alarm}");
+    }
+    assert!(!alarm.contains("singular"), "{alarm}");
+
+    // MECA_STATIQUE: the same solve, no "singular stiffness".
+    let comm = pulled_bar(
+        "TR = AFFE_CHAR_MECA(MODELE=MO, FORCE_NODALE=_F(GROUP_NO='A2', FY=1.E308))",
+        "MECA_STATIQUE",
+        "",
+    );
+    let (_, err) = run(&root_mesh("sdnv103d"), &comm, "load_meca");
+    assert_error(
+        &comm,
+        &err,
+        "MECA_STATIQUE",
+        &["beyond the range of doubles (1.8e308)"],
+        "RES = MECA_STATIQUE",
+    );
+    assert!(!err.unwrap().contains("singular"));
+}

@@ -204,6 +204,8 @@ pub(crate) fn exec(
         adaptation: Vec::new(),
         subd_niveau: None,
         hint: None,
+        // The explicit loop finds a non-finite motion itself (no solve).
+        load_peaks: Vec::new(),
     };
     let mut evol = result_to_fill(
         study,

@@ -13,6 +13,7 @@ use crate::diag::Diagnostic;
 use crate::law::TangentKind;
 use crate::mesh::Mesh;
 use crate::model::{Material, MaterialField, MechLoad, Model};
+use crate::nonlinear::loads::{largest_load, LoadPeak};
 use crate::nonlinear::observation::Observation;
 use crate::nonlinear::{
     self, dyna, fields, ArchivePolicy, Assembler, Controls, ConvergenceSettings, Engine,
@@ -511,6 +512,81 @@ fn imposed_under_mult(
         }
     }
     Ok(out)
+}
+
+/// The largest values of each EXCIT load (DDL_IMPO, FORCE_NODALE, the
+/// other dead loads' nodal forces), for the message of a solve whose
+/// right-hand side or solution left the range of doubles: such a failure
+/// is no singular matrix, and the user must be told which load is too
+/// large (a value of 1e308, a unit slip), not to add supports.
+pub(crate) fn load_peaks(
+    study: &Study,
+    md: &ModelData,
+    loads: &[MechLoad],
+    names: &[String],
+    mults: &[Option<String>],
+) -> Vec<LoadPeak> {
+    let ndpn = md.model.ndof_per_node();
+    let mut out = Vec::new();
+    for (k, load) in loads.iter().enumerate() {
+        let mult = mults
+            .get(k)
+            .and_then(|m| m.as_deref())
+            .and_then(|name| Some((name.to_string(), multiplier(study, name).ok()?)));
+        let name = names.get(k).map_or("?", String::as_str);
+        let mut push = |what: String, value: f64| {
+            out.push(LoadPeak {
+                what: format!("{what} of load {name} (EXCIT {})", k + 1),
+                value,
+                mult: mult.clone(),
+            })
+        };
+        if let Some(imp) = load
+            .imposed
+            .iter()
+            .rev()
+            .max_by(|a, b| a.value.abs().total_cmp(&b.value.abs()))
+        {
+            push(
+                format!("DDL_IMPO {} at node N{}", imp.dof.name(), imp.node + 1),
+                imp.value,
+            );
+        }
+        if let Some(&(node, dof, f)) = load
+            .nodal_forces
+            .iter()
+            .rev()
+            .max_by(|a, b| a.2.abs().total_cmp(&b.2.abs()))
+        {
+            push(
+                format!("FORCE_NODALE F{} at node N{}", &dof.name()[1..], node + 1),
+                f,
+            );
+        }
+        if load.gravity.is_some() || !load.pressures.is_empty() || !load.distributed.is_empty() {
+            let Ok(forces) = md.load_forces(&MechLoad {
+                nodal_forces: Vec::new(),
+                ..load.clone()
+            }) else {
+                continue;
+            };
+            if let Some((f, v)) = forces
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+            {
+                push(
+                    format!(
+                        "the nodal force F{} at node N{} of its PESANTEUR, PRES_REP or FORCE_*",
+                        ["X", "Y", "Z"].get(f % ndpn).unwrap_or(&"?"),
+                        f / ndpn + 1
+                    ),
+                    *v,
+                );
+            }
+        }
+    }
+    out
 }
 
 /// The FONC_MULT `name` of one EXCIT occurrence, checked at every
@@ -1895,6 +1971,7 @@ pub(crate) fn run(
         adaptation,
         subd_niveau: list.max_subd_niveau(),
         hint,
+        load_peaks: load_peaks(study, &md, &loads, &load_names, &load_mults),
     };
     let mut evol = result_to_fill(
         study,
@@ -1943,6 +2020,13 @@ pub(crate) fn run(
         tl.instants[tl.instants.len() - 1]
     ));
     match engine.initialize(inertia && !has_acce) {
+        Ok(Some(alarm)) if alarm.contains(crate::solver::OVERFLOW) => {
+            let why = largest_load(&tl.load_peaks, engine.committed.t);
+            study.log(format!(
+                "  {alarm}{}",
+                why.map_or(String::new(), |w| format!("; {w}"))
+            ))
+        }
         Ok(Some(alarm)) => study.log(format!("  {alarm}")),
         Ok(None) => {
             if inertia && !has_acce {

@@ -11,7 +11,7 @@
 
 use crate::mesh::Mesh;
 use crate::model::{MechLoad, Model};
-use crate::solver::{fmt_decimals, SolverError};
+use crate::solver::{fmt_decimals, SolverError, OVERFLOW};
 
 /// Marker of "no equation".
 pub const NONE: usize = usize::MAX;
@@ -87,6 +87,18 @@ impl DofNumbering {
                  or a penalty (E_N, COEF_PENA) so much stiffer than its neighbours that they vanish \
                  against it at that pivot",
                 fmt_decimals(*decimals),
+                self.equation_name(*unknown)
+            ),
+            SolverError::NonFiniteRhs { unknown, value } => format!(
+                "the right-hand side of the linear system is not finite at {} ({value}) before the solve: \
+                 the external forces, or the stiffness times the imposed values, are {OVERFLOW}; \
+                 the matrix is not at fault",
+                self.equation_name(*unknown)
+            ),
+            SolverError::Overflow { unknown, log10 } => format!(
+                "the solve overflows at {}: the matrix is regular (the same system scaled down \
+                 solves, to about 1e{log10:.0} there once scaled back), but the values of this \
+                 solve are {OVERFLOW}",
                 self.equation_name(*unknown)
             ),
             e => e.to_string(),

@@ -455,6 +455,9 @@ pub struct TimeLoop {
     /// that fails numerically (STAT_NON_LINE: rigid-body modes that only
     /// the contact holds).
     pub hint: Option<String>,
+    /// The largest value of each load, named in the message of a step
+    /// whose numbers left the range of doubles (a load of 1e308).
+    pub load_peaks: Vec<super::loads::LoadPeak>,
 }
 
 /// Totals of a run.
@@ -545,10 +548,24 @@ pub fn archive(
 fn describe(engine: &Engine, tl: &TimeLoop, failure: &StepFailure) -> String {
     let text = match failure {
         // The lost-decimals message names its dof and causes already.
-        StepFailure::Singular(m) if !engine.scheme.inertia && !m.contains("NPREC") => format!(
+        StepFailure::Singular(m)
+            if !engine.scheme.inertia
+                && !m.contains("NPREC")
+                && !m.contains(crate::solver::OVERFLOW) =>
+        {
+            format!(
             "{m}: the stiffness of STAT_NON_LINE is singular, a rigid-body mode (or a mechanism) of the structure is not held; \
              add the missing DDL_IMPO (or a contact that holds it)"
-        ),
+            )
+        }
+        StepFailure::Singular(m) | StepFailure::NonFinite(m)
+            if m.contains(crate::solver::OVERFLOW) =>
+        {
+            match super::loads::largest_load(&tl.load_peaks, engine.trial.t) {
+                Some(w) => format!("{m}; {w}"),
+                None => m.clone(),
+            }
+        }
         f => f.to_string(),
     };
     match (&tl.hint, failure) {

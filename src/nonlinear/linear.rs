@@ -255,13 +255,29 @@ impl LinearStatics {
         if !free.is_empty() {
             self.factorize()?
                 .solve(&mut x)
-                .map_err(|e| LinearError::Singular(format!("the linear solve failed: {e}")))?;
+                .map_err(|e| {
+                    LinearError::Singular(match e {
+                        SolverError::NonFiniteRhs { .. } | SolverError::Overflow { .. } => {
+                            self.asm.numbering.solver_failure(&e)
+                        }
+                        e => format!("the linear solve failed: {e}"),
+                    })
+                })?;
         }
         for (&f, &v) in free.iter().zip(&x) {
             u[f] = v;
         }
         linear_forces(&self.asm, &self.ks, &u, &mut fint);
-        let norm = |v: &mut dyn Iterator<Item = f64>| v.map(|a| a * a).sum::<f64>().sqrt();
+        // Scaled by the largest entry: the squares of forces near 1e200
+        // overflow where the forces themselves do not.
+        let norm = |v: &mut dyn Iterator<Item = f64>| {
+            let v: Vec<f64> = v.collect();
+            let big = v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+            if big == 0.0 || !big.is_finite() {
+                return big;
+            }
+            big * v.iter().map(|a| (a / big) * (a / big)).sum::<f64>().sqrt()
+        };
         let res = norm(&mut free.iter().map(|&f| fint[f] - fext[f]));
         let active = |f: &usize| self.asm.numbering.is_active(*f);
         let scale = norm(&mut (0..nfull).filter(active).map(|f| fext[f]))

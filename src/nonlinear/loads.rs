@@ -295,6 +295,45 @@ impl LoadHistory {
     }
 }
 
+/// The largest value of one kind (DDL_IMPO, FORCE_NODALE, the other dead
+/// loads) of one EXCIT load, before its FONC_MULT: a solve whose numbers
+/// left the range of doubles names the largest of these at its instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadPeak {
+    /// "DDL_IMPO DZ at node N5 of load TR (EXCIT 2)".
+    pub what: String,
+    pub value: f64,
+    /// The FONC_MULT's name and function.
+    pub mult: Option<(String, Coef)>,
+}
+
+/// The message naming the load value of largest magnitude at `t`, its
+/// FONC_MULT included (None without loads).
+pub fn largest_load(peaks: &[LoadPeak], t: f64) -> Option<String> {
+    let scaled = |p: &LoadPeak| match &p.mult {
+        None => Some(p.value),
+        Some((_, f)) => f.eval(t).ok().map(|m| m * p.value),
+    };
+    let (peak, v) = peaks
+        .iter()
+        .filter_map(|p| Some((p, scaled(p)?)))
+        .filter(|(_, v)| v.is_finite())
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
+    let text = match &peak.mult {
+        None => format!("{} = {:e}", peak.what, peak.value),
+        Some((name, _)) => format!(
+            "{} = {:e} times FONC_MULT {name} = {:e}",
+            peak.what,
+            peak.value,
+            v / peak.value
+        ),
+    };
+    Some(format!(
+        "the largest load value at INST = {t:e} is {text}: values of this size times the stiffness \
+         (or over the mass) leave the range of doubles; check the load's value and its units"
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -222,6 +222,16 @@ pub enum SolverError {
         decimals: f64,
         nprec: i64,
     },
+    /// The right-hand side handed to the solve is not finite at `unknown`:
+    /// what overflowed is the load (or the product of the matrix with the
+    /// imposed values), not the matrix, so "singular" would send the user
+    /// looking for a missing support.
+    NonFiniteRhs { unknown: usize, value: f64 },
+    /// The matrix is regular (the same solve of the right-hand side scaled
+    /// down by 2^-600 is finite) but the solve left the range of doubles
+    /// at `unknown`, where the solution is about 10^`log10` (a solution
+    /// near 1e306 overflows in the solve's own products).
+    Overflow { unknown: usize, log10: f64 },
 }
 
 impl std::fmt::Display for SolverError {
@@ -238,11 +248,24 @@ impl std::fmt::Display for SolverError {
                 "singular matrix: {} decimals lost at the pivot of unknown {unknown} (NPREC = {nprec})",
                 fmt_decimals(*decimals)
             ),
+            SolverError::NonFiniteRhs { unknown, value } => write!(
+                f,
+                "the right-hand side is not finite at unknown {unknown} ({value}): a load, or the matrix times the imposed values, is {OVERFLOW}"
+            ),
+            SolverError::Overflow { unknown, log10 } => write!(
+                f,
+                "the solve overflows at unknown {unknown}: the matrix is regular (the system scaled down solves, to about 1e{log10:.0} there once scaled back), but the values of this solve are {OVERFLOW}"
+            ),
         }
     }
 }
 
 impl std::error::Error for SolverError {}
+
+/// The words of a failure caused by values too large for doubles, not by
+/// a singular matrix: the time loop and the commands look for them to
+/// name the load instead of advising supports.
+pub const OVERFLOW: &str = "beyond the range of doubles (1.8e308)";
 
 /// "12.3", or "all" for a zero pivot.
 pub fn fmt_decimals(d: f64) -> String {
@@ -929,6 +952,42 @@ impl LinearSolver for DirectLu {
                 b.len()
             )));
         }
+        if let Some(i) = b.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFiniteRhs {
+                unknown: i,
+                value: b[i],
+            });
+        }
+        let input = b.to_vec();
+        self.solve_with(kind, b);
+        // A zero pivot does not stop faer: it shows up as inf/NaN here
+        // (and NaN compares false, so check explicitly).
+        if let Some(i) = b.iter().position(|v| !v.is_finite()) {
+            // By linearity the solution of b·2^-600 is x·2^-600: finite
+            // there, the matrix is regular and x only exceeds the range
+            // of doubles (a load of 1e308), which is no singularity.
+            const DOWN: i32 = -600;
+            let mut scaled: Vec<f64> = input.iter().map(|v| v * 2f64.powi(DOWN)).collect();
+            self.solve_with(kind, &mut scaled);
+            if scaled.iter().all(|v| v.is_finite()) {
+                return Err(SolverError::Overflow {
+                    unknown: i,
+                    log10: scaled[i].abs().log10() - f64::from(DOWN) * std::f64::consts::LOG10_2,
+                });
+            }
+            return Err(SolverError::Singular(format!(
+                "the solution is not finite at unknown {i}"
+            )));
+        }
+        Ok(())
+    }
+}
+
+impl DirectLu {
+    /// The solve of the current factorization (`kind`) in place, without
+    /// checks: `b` has the matrix's order.
+    fn solve_with(&self, kind: Kind, b: &mut [f64]) {
+        let n = b.len();
         // `solve` takes &self, so its (small, O(n)) work buffer is local.
         // The right-hand side, kept for the refinement of a Cholesky solve.
         let b0 = (kind == Kind::Llt).then(|| b.to_vec());
@@ -966,14 +1025,6 @@ impl LinearSolver for DirectLu {
                 lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
             }
         }
-        // A zero pivot does not stop faer: it shows up as inf/NaN here
-        // (and NaN compares false, so check explicitly).
-        if let Some(i) = b.iter().position(|v| !v.is_finite()) {
-            return Err(SolverError::Singular(format!(
-                "the solution is not finite at unknown {i}"
-            )));
-        }
-        Ok(())
     }
 }
 
@@ -1084,6 +1135,39 @@ mod tests {
             matches!(r, Err(SolverError::LostDecimals { nprec: 8, .. })),
             "{r:?}"
         );
+    }
+
+    /// A regular matrix with a solution too large for doubles is no
+    /// singular matrix: 1e-10 x = 1e308 gives x = 1e318, an overflow whose
+    /// magnitude the scaled solve recovers; an infinite entry of b is the
+    /// right-hand side's fault, and the same factor still solves a
+    /// finite b ([[2, -1], [-1, 2]] x = (1, 0): x = (2/3, 1/3)).
+    #[test]
+    fn overflow_and_non_finite_right_hand_side_are_not_singular() {
+        let mut s = DirectLu::new();
+        s.factorize(&build(&[vec![1e-10]])).unwrap();
+        let r = s.solve(&mut [1e308]);
+        let Err(SolverError::Overflow { unknown: 0, log10 }) = r else {
+            panic!("{r:?}");
+        };
+        // 1e308 / 1e-10 = 1e318, to the rounding of the scaling.
+        assert!((log10 - 318.0).abs() < 1e-9, "{log10}");
+        let mut s = DirectLu::new();
+        s.factorize(&build(&[vec![2.0, -1.0], vec![-1.0, 2.0]])).unwrap();
+        let r = s.solve(&mut [f64::INFINITY, 0.0]);
+        assert!(
+            matches!(r, Err(SolverError::NonFiniteRhs { unknown: 0, value }) if value == f64::INFINITY),
+            "{r:?}"
+        );
+        let mut x = [1.0, 0.0];
+        s.solve(&mut x).unwrap();
+        assert!((x[0] - 2.0 / 3.0).abs() < 1e-15 && (x[1] - 1.0 / 3.0).abs() < 1e-15);
+        let text = SolverError::Overflow {
+            unknown: 0,
+            log10: 318.0,
+        }
+        .to_string();
+        assert!(text.contains(OVERFLOW) && !text.contains("singular"), "{text}");
     }
 
     /// The pivot ratio against a hand LDLᵀ: in [[4, 2, 0], [2, 3, 0], [0,
