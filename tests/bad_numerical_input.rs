@@ -269,6 +269,37 @@ fn nu_at_its_limits_or_beyond_is_refused() {
     }
 }
 
+/// Steps of 1e-16 s and below are fine when written with VALE (the
+/// snap to 0 is DEFI_LIST_REEL's INTERVALLE rule only): the free flight
+/// over 2 steps of 1e-30 s moves the bar by v·t = 227000 × 2e-30 (no
+/// force acts on it), and steps of 1e-15 from 0 by INTERVALLE still run.
+#[test]
+fn tiny_steps_run_when_the_list_holds_them() {
+    let base = free_flight(CUIVRE);
+    let list = "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1.E-6, NOMBRE=2))";
+    for (line, tag) in [
+        ("L_INST = DEFI_LIST_REEL(VALE=(0., 1.E-30, 2.E-30))", "tiny_vale"),
+        (
+            "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=2.E-15, NOMBRE=2))",
+            "tiny_nombre",
+        ),
+    ] {
+        let comm = base.replace(list, line);
+        let (study, err) = run(&root_mesh("sdnv103d"), &comm, tag);
+        assert!(err.is_none(), "{tag}: {err:?}");
+        let Some(aster::concepts::ConceptData::Result(r)) = study.concepts.data("RES") else {
+            panic!("{tag}: no result");
+        };
+        assert_eq!(r.steps.len(), 3, "{tag}");
+        let t = r.steps[2].inst;
+        let dy = r.steps[2].nodal["DEPL"].get(0, "DY").expect("DY of N1");
+        assert!(
+            ((dy - (-227000.0 * t)) / (227000.0 * t)).abs() < 1e-9,
+            "{tag}: DY {dy:e} at t {t:e}"
+        );
+    }
+}
+
 #[test]
 fn a_time_list_that_does_not_increase_is_refused() {
     let base = free_flight(CUIVRE);
@@ -282,6 +313,20 @@ fn a_time_list_that_does_not_increase_is_refused() {
             "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=-1.E-6, NOMBRE=2))",
             "DEFI_LIST_REEL/INTERVALLE/JUSQU_A",
             "",
+        ),
+        // Steps of 1e-30 s from 0 (probe s7b D5): code_aster's snap of
+        // |v| <= 2.2e-16 to 0 puts every value back on 0. It said "the
+        // list must hold at least 2 strictly increasing instants" at
+        // DYNA_NON_LINE, of a list written as 11 increasing instants.
+        (
+            "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1.E-29, NOMBRE=10))",
+            "DEFI_LIST_REEL/INTERVALLE/NOMBRE",
+            "from 0e0 is not above the machine precision 2.220446049250313e-16",
+        ),
+        (
+            "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1.E-15, PAS=1.E-16))",
+            "DEFI_LIST_REEL/INTERVALLE/PAS",
+            "give such instants with VALE=(...)",
         ),
     ];
     for (line, path, word) in cases {

@@ -176,10 +176,27 @@ pub fn by_intervals(
             ));
         }
         let mut v = prev;
-        for _ in 1..steps {
+        for k in 1..steps {
             v += step;
             if v.abs() <= f64::EPSILON {
                 v = 0.0;
+                // code_aster's snap to 0 (op0024: |v| <= r8prem) undoes a
+                // step this small: the next value lands on 0 again and the
+                // list stops increasing.
+                if values.last().is_some_and(|&last| v <= last) {
+                    return Err(occ.error(
+                        if occ.has("NOMBRE") { "NOMBRE" } else { "PAS" },
+                        format!(
+                            "the step {step:e} from {prev:e} is not above the machine precision {:e}: \
+                             code_aster's DEFI_LIST_REEL sets every accumulated value within {:e} of 0 \
+                             to exactly 0 (so that a list through t = 0 holds 0), so the value after \
+                             {k} step(s) of this interval would be 0 again and the list would not \
+                             increase; give such instants with VALE=(...), which keeps them as written",
+                            f64::EPSILON,
+                            f64::EPSILON,
+                        ),
+                    ));
+                }
             }
             values.push(v);
         }

@@ -1364,10 +1364,24 @@ pub(crate) fn time_range(
         _ => return Err(inc.error("LIST_INST", format!("the list {name} holds no data"))),
     };
     let ins = &list.instants;
-    if ins.len() < 2 || ins.windows(2).any(|w| w[1] <= w[0]) {
+    if ins.len() < 2 {
         return Err(inc.error(
             "LIST_INST",
-            format!("the list {name} must hold at least 2 strictly increasing instants"),
+            format!(
+                "the list {name} holds {} instant(s): a computation needs at least 2",
+                ins.len()
+            ),
+        ));
+    }
+    if let Some(k) = ins.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(inc.error(
+            "LIST_INST",
+            format!(
+                "the list {name} must be strictly increasing: instant {} ({:e}) follows {:e}",
+                k + 2,
+                ins[k + 1],
+                ins[k]
+            ),
         ));
     }
     let min_step = ins
