@@ -146,7 +146,7 @@ fn an_inverted_cell_is_refused_before_the_first_step() {
     // AFFE_MODELE's VERI_JACOBIEN already warned, naming the group and
     // the cell.
     for alarm in [
-        "1 element(s) have a non-positive Jacobian determinant (inverted or degenerate cells) in group(s) VOL".to_string(),
+        "1 element(s) have a non-positive or vanishing Jacobian determinant (inverted or degenerate cells) in group(s) VOL".to_string(),
         format!("(first: cell M{}, smallest det J -", cell + 1),
     ] {
         assert!(study.mess.contains(&alarm), "{alarm} in:\n{}", study.mess);
@@ -565,4 +565,120 @@ fn a_load_too_large_for_doubles_is_named_not_called_singular() {
         "RES = MECA_STATIQUE",
     );
     assert!(!err.unwrap().contains("singular"));
+}
+
+/// A column of unit HEXA8 (x, y in [0, 1]) with its levels at `zs`, as
+/// probe s7b built it: groups VOL, node groups NBAS (z = zs[0]), NHAUT
+/// (top), NX0 and NY0 (the symmetry planes).
+fn hexa_column(zs: &[f64]) -> Mesh {
+    use aster::mesh::{Cell, CellType};
+    let mut mesh = Mesh {
+        name: "COLUMN".into(),
+        dim: 3,
+        ..Mesh::default()
+    };
+    for &z in zs {
+        for (x, y) in [(0.0, 0.0), (0.0, 1.0), (1.0, 1.0), (1.0, 0.0)] {
+            mesh.coords.push([x, y, z]);
+        }
+    }
+    for k in 0..zs.len() - 1 {
+        mesh.cells.push(Cell {
+            kind: CellType::Hexa8,
+            nodes: (4 * k..4 * k + 8).collect(),
+        });
+    }
+    mesh.cell_groups
+        .insert("VOL".into(), (0..zs.len() - 1).collect());
+    let n = mesh.coords.len();
+    let top = 4 * (zs.len() - 1);
+    mesh.node_groups.insert("NBAS".into(), (0..4).collect());
+    mesh.node_groups.insert("NHAUT".into(), (top..top + 4).collect());
+    let on = |k: usize| (0..n).filter(|&i| mesh.coords[i][k] == 0.0).collect::<Vec<_>>();
+    let (nx0, ny0) = (on(0), on(1));
+    mesh.node_groups.insert("NX0".into(), nx0);
+    mesh.node_groups.insert("NY0".into(), ny0);
+    mesh
+}
+
+const COLUMN: &str = "DEBUT()\n\
+    MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+    MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\n\
+    MAT = DEFI_MATERIAU(ELAS=_F(E=2.E5, NU=0.3, RHO=7.8E-9))\n\
+    CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=MAT))\n\
+    BC = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=(_F(GROUP_NO='NX0', DX=0.), _F(GROUP_NO='NY0', DY=0.), _F(GROUP_NO='NBAS', DZ=0.)))\n\
+    RAMPE = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 1.))\n\
+    TR = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='NHAUT', DZ=0.01))\n\
+    LI = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1., NOMBRE=2))\n\
+    R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=(_F(CHARGE=BC), _F(CHARGE=TR, FONC_MULT=RAMPE)),\n\
+    COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), INCREMENT=_F(LIST_INST=LI))\n\
+    FIN()\n";
+
+/// A HEXA8 of zero height is refused before the first step like an
+/// inverted one, naming the cell (probe s7b D4: its det J, a hair above
+/// 0 through rounding or exactly 0 at the Gauss points, passed the sign
+/// test and the run ended on "the matrix is singular ... node N8 DZ").
+/// The threshold (|det J|·V_ref/h³ < 1e-12, `mesh::ops::DEGENERATE_RATIO`)
+/// refuses a height of 1e-13 and lets 1e-6 through, which then runs with
+/// the uniaxial answer σ_zz = E·ε_zz of the stack (checked).
+#[test]
+fn a_cell_of_no_volume_is_refused_like_an_inverted_one() {
+    for (tag, zs) in [
+        ("flat", [0.0, 1.0, 1.0, 2.0]),
+        ("flat_1e-13", [0.0, 1.0, 1.0 + 1e-13, 2.0]),
+    ] {
+        let path = scratch_mesh(&hexa_column(&zs), &format!("column_{tag}.mmed"));
+        // The cell to name, found on the mesh as LIRE_MAILLAGE reads it:
+        // the HEXA8 whose nodes all lie within 1e-12 of z = 1.
+        let mesh = read_mesh(&path, None).expect("column mesh");
+        let flat = (0..mesh.ncells())
+            .find(|&c| {
+                mesh.cells[c].kind.dim() == 3
+                    && mesh.cells[c]
+                        .nodes
+                        .iter()
+                        .all(|&n| (mesh.coords[n][2] - 1.0).abs() < 1e-12)
+            })
+            .expect("the flat cell");
+        let (study, err) = run(&path, COLUMN, tag);
+        assert_error(
+            COLUMN,
+            &err,
+            "STAT_NON_LINE/MODELE",
+            &[
+                &format!("cell M{} (MECA_HEXA8 HEXA8, group(s) VOL)", flat + 1),
+                "degenerate on the initial mesh",
+                "below 1e-12",
+                "correct the mesh before the first step",
+            ],
+            "R = STAT_NON_LINE",
+        );
+        assert_no_step(&study, "R");
+        // AFFE_MODELE's VERI_JACOBIEN warned of it, as of an inverted one.
+        assert!(
+            study.mess.contains(
+                "1 element(s) have a non-positive or vanishing Jacobian determinant (inverted or degenerate cells) in group(s) VOL"
+            ),
+            "{}",
+            study.mess
+        );
+    }
+    // A thin cell, 1e-6 high: not degenerate, and exact. Each cell of the
+    // stack, NU = 0.3 free to contract, carries σ_zz = E·ε with ε = 0.01
+    // over the height 2 + 1e-6.
+    let path = scratch_mesh(&hexa_column(&[0.0, 1.0, 1.0 + 1e-6, 2.0 + 1e-6]), "column_thin.mmed");
+    let (study, err) = run(&path, COLUMN, "thin");
+    assert!(err.is_none(), "{err:?}");
+    let Some(aster::concepts::ConceptData::Result(r)) = study.concepts.data("R") else {
+        panic!("no result");
+    };
+    let sig = &r.steps[2].gauss["SIEF_ELGA"];
+    let k = sig.components.iter().position(|c| c == "SIZZ").expect("SIZZ");
+    let expected = 2e5 * 0.01 / (2.0 + 1e-6);
+    for c in 0..3 {
+        for p in 0..sig.npg(c) {
+            let v = sig.cell(c)[p * sig.ncmp() + k];
+            assert!(((v - expected) / expected).abs() < 1e-6, "cell {c} point {p}: {v}");
+        }
+    }
 }

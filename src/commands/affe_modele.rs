@@ -284,7 +284,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             .enumerate()
             .filter(|(_, r)| matches!(r, CellRole::Element(_)))
             .filter(|(c, _)| {
-                jacobian_dets(&mesh, &mesh.cells[*c]).is_some_and(|d| d.iter().any(|&j| j <= 0.0))
+                let cell = &mesh.cells[*c];
+                jacobian_dets(&mesh, cell).is_some_and(|d| d.iter().any(|&j| j <= 0.0))
+                    // A cell of (almost) no volume, which the run refuses.
+                    || crate::mesh::ops::degeneracy(&mesh, cell)
+                        .is_some_and(|(_, r, _)| r < crate::mesh::ops::DEGENERATE_RATIO)
             })
             .map(|(c, _)| c)
             .collect();
@@ -296,7 +300,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 .into_iter()
                 .fold(f64::INFINITY, f64::min);
             alarms.push(format!(
-                "<A> <AFFE_MODELE> {} element(s) have a non-positive Jacobian determinant \
+                "<A> <AFFE_MODELE> {} element(s) have a non-positive or vanishing Jacobian determinant \
                  (inverted or degenerate cells) in group(s) {} (first: cell M{}, smallest det J \
                  {smallest:e} at its vertices and check points)",
                 bad.len(),

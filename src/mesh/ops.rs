@@ -927,6 +927,11 @@ fn check_rule(kind: CellType) -> QuadRule {
     quadrature::rule(kind, fpg).expect("every cell type has its check family")
 }
 
+/// The number of points of the check rule of `kind` (for messages).
+pub fn check_point_count(kind: CellType) -> usize {
+    check_rule(kind).points.len()
+}
+
 /// Integration points of the check rule with their weights.
 fn check_points(kind: CellType) -> impl Iterator<Item = ([f64; 3], f64)> {
     let r = check_rule(kind);
@@ -979,6 +984,78 @@ pub fn jacobian_dets(mesh: &Mesh, cell: &Cell) -> Option<Vec<f64>> {
             })
             .collect(),
     )
+}
+
+/// The relative volume below which a cell counts as degenerate (see
+/// [`degeneracy`]).
+///
+/// Why 1e-12: det J is computed from coordinate differences whose
+/// rounding is about 1e-16 of the cell's size (coordinates are taken from
+/// the cell's first node), so a cell of zero volume comes out at
+/// |det J|·V_ref/h^d of 1e-16 to 1e-14, not 0 (probe s7b 05b: a flat
+/// HEXA8 passed the sign check that way). A valid but thin cell with a
+/// ratio of 1e-12 (a sliver 1e-12 as high as it is wide) would make a
+/// stiffness that loses 12 decimals, beyond SOLVEUR's NPREC = 8 refusal,
+/// and a stable explicit step 1e-12 of its neighbours': nothing a
+/// computation can use, where slivers of 1e-6 (and of 1e-9, refused by
+/// NPREC only) keep their own messages.
+pub const DEGENERATE_RATIO: f64 = 1e-12;
+
+/// How far a volume cell (or a 2D cell, by its area) is from having no
+/// volume: the smallest |det J| over the quadrature points of its check
+/// rule, times the reference element's measure, over h^d with h the
+/// largest extent of its bounding box and d its dimension (1 for a
+/// rectangular box with equal sides, e.g. a cube, and for a 2 x 1 x 1
+/// box 2/8). Returns (point index, that ratio, h); None for points and
+/// segments.
+pub fn degeneracy(mesh: &Mesh, cell: &Cell) -> Option<(usize, f64, f64)> {
+    let kind = cell.kind;
+    let d = kind.dim();
+    if d < 2 {
+        return None;
+    }
+    let origin = mesh.coords[*cell.nodes.first()?];
+    let local: Vec<[f64; 3]> = cell
+        .nodes
+        .iter()
+        .map(|&n| sub(mesh.coords[n], origin))
+        .collect();
+    let mut h = 0.0f64;
+    for k in 0..3 {
+        let (lo, hi) = local
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p[k]), hi.max(p[k]))
+            });
+        h = h.max(hi - lo);
+    }
+    let rule = check_rule(kind);
+    let reference: f64 = rule.weights.iter().sum();
+    let scale = h.powi(d as i32);
+    let mut worst: Option<(usize, f64)> = None;
+    for (p, xi) in rule.points.iter().enumerate() {
+        let ev = shape::eval(kind, *xi);
+        let mut col = [[0.0; 3]; 3];
+        for (x, dn) in local.iter().zip(ev.dn()) {
+            for (a, c) in col.iter_mut().enumerate().take(d) {
+                for k in 0..3 {
+                    c[k] += x[k] * dn[a];
+                }
+            }
+        }
+        let det = if d == 3 {
+            dot(col[0], cross(col[1], col[2])).abs()
+        } else {
+            let n = cross(col[0], col[1]);
+            dot(n, n).sqrt()
+        };
+        let ratio = det * reference / scale;
+        let ratio = if ratio.is_nan() { 0.0 } else { ratio };
+        if worst.is_none_or(|(_, w)| ratio < w) {
+            worst = Some((p, ratio));
+        }
+    }
+    worst.map(|(p, r)| (p, r, h))
 }
 
 /// Length, area or volume of a cell by quadrature of |det J| (or of the

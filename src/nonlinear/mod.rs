@@ -136,6 +136,31 @@ fn check_geometry(mesh: &Mesh, model: &Model) -> Result<(), PrepareError> {
                 bad.family.name()
             )));
         }
+        // A cell of (almost) no volume passes the sign test when rounding
+        // leaves its det J a hair above 0: refused as well, named alike.
+        let c = &mesh.cells[cell];
+        if let Some((point, ratio, h)) = crate::mesh::ops::degeneracy(mesh, c) {
+            if ratio < crate::mesh::ops::DEGENERATE_RATIO {
+                let d = c.kind.dim();
+                return Err(PrepareError::Mesh(format!(
+                    "cell M{} ({} {}, group(s) {}): degenerate on the initial mesh: its Jacobian determinant \
+                     at point {} of its {}-point check rule, times the reference element's {what} and over \
+                     h{} (h = {h:e}, its largest extent), is {ratio:.1e} (1 for a cube), below {:e}: the \
+                     cell has (almost) no {what} (a flat cell, or merged nodes), so a stiffness, a mass or \
+                     a stable step computed on it means nothing; correct the mesh before the first step \
+                     (AFFE_MODELE VERI_JACOBIEN='OUI' lists such cells)",
+                    cell + 1,
+                    spec.name,
+                    c.kind.aster_name(),
+                    group_list(mesh, cell),
+                    point + 1,
+                    crate::mesh::ops::check_point_count(c.kind),
+                    if d == 3 { "³" } else { "²" },
+                    crate::mesh::ops::DEGENERATE_RATIO,
+                    what = if d == 3 { "volume" } else { "area" },
+                )));
+            }
+        }
     }
     Ok(())
 }
