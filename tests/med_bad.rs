@@ -264,3 +264,65 @@ fn corrupted_bytes_never_panic() {
     assert!(outcomes.0 + outcomes.1 > 100);
     assert!(outcomes.1 > 0, "no corruption was detected at all");
 }
+
+/// A cell whose family number /FAS does not describe (probe s7b D7:
+/// family -99) was dropped from its groups without a word. The reader
+/// reports it (family, count, first cell) and LIRE_MAILLAGE turns that
+/// into an alarm; the cell stays in the mesh, in no group.
+#[test]
+fn undescribed_family_is_an_alarm_of_lire_maillage() {
+    // The fixture's 4 QUAD8 are in VOL; the first gets family -99.
+    let fam: Vec<i64> = {
+        let f = hdf5::File::open(MESH2D).unwrap();
+        f.dataset(&format!("{STEP}/MAI/QU8/FAM"))
+            .unwrap()
+            .read_raw::<i64>()
+            .unwrap()
+    };
+    let good = read_mesh(Path::new(MESH2D), None).unwrap();
+    assert_eq!(good.cell_groups["VOL"].len(), 4);
+    let mut bad = fam.clone();
+    bad[0] = -99;
+    let p = with_dataset("fam_unknown.med", &format!("{STEP}/MAI/QU8"), "FAM", &bad);
+    let (mesh, notes) = aster::medio::read_mesh_with_notes(&p, None).unwrap();
+    // The SEG3 come first (type order): the first QUAD8 is cell 7 (M7).
+    let first_quad = good
+        .cells
+        .iter()
+        .position(|c| c.kind == aster::mesh::CellType::Quad8)
+        .unwrap();
+    assert_eq!(
+        notes,
+        vec![aster::medio::UndescribedFamily {
+            cells: true,
+            family: -99,
+            count: 1,
+            first: first_quad,
+        }]
+    );
+    assert_eq!(mesh.ncells(), good.ncells());
+    assert_eq!(mesh.cell_groups["VOL"].len(), 3);
+    assert!(!mesh.cell_groups["VOL"].contains(&first_quad));
+    // The fixture itself has no such family.
+    let (_, none) = aster::medio::read_mesh_with_notes(Path::new(MESH2D), None).unwrap();
+    assert!(none.is_empty(), "{none:?}");
+
+    // LIRE_MAILLAGE: an alarm naming the family, the count, the first
+    // cell and the file; the run goes on.
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\nFIN()\n";
+    let src = aster::diag::Source::new("fam.comm", text);
+    let reg = aster::commands::all();
+    let mut msgs = String::new();
+    let prog = aster::run::driver::parse_and_check(&src, &reg, &mut msgs).expect(&msgs);
+    let mut study = aster::study::Study::default();
+    study.units.map.insert(20, p.clone());
+    aster::run::execute(&mut study, &prog, &reg, &src)
+        .unwrap_or_else(|d| panic!("{}", d.render(Some(&src))));
+    let alarm = format!(
+        "<A> <LIRE_MAILLAGE> 1 cell(s) of mesh 'MAIL2D' (first: M{}) refer to the family -99, \
+         which the file's /FAS/MAIL2D/ELEME does not describe: they belong to no group",
+        first_quad + 1
+    );
+    assert!(study.mess.contains(&alarm), "{alarm}\nin:\n{}", study.mess);
+    assert!(study.mess.contains("fam_unknown.med"), "{}", study.mess);
+}

@@ -85,7 +85,7 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         }
         return Err(d);
     }
-    let mesh = crate::medio::read_mesh(&path, args.text("NOM_MED")).map_err(|e| {
+    let (mesh, undescribed) = crate::medio::read_mesh_with_notes(&path, args.text("NOM_MED")).map_err(|e| {
         args.error(
             if args.given("NOM_MED") {
                 "NOM_MED"
@@ -104,6 +104,25 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     ));
     for (t, n) in mesh.count_by_type() {
         study.log(format!("      {:<8} {n}", t.aster_name()));
+    }
+    // A family number /FAS does not describe is a writer's bug: the
+    // entities stay in the mesh, but whatever groups they were meant to
+    // be in do not hold them (code_aster 13 dropped them as silently;
+    // its later readers stop on an internal assertion).
+    for u in &undescribed {
+        let (what, prefix) = if u.cells { ("cell", 'M') } else { ("node", 'N') };
+        study.log(format!(
+            "<A> <LIRE_MAILLAGE> {} {what}(s) of mesh '{}' (first: {prefix}{}) refer to the family {}, \
+             which the file's /FAS/{}/{} does not describe: they belong to no group, and a group \
+             they were meant to be in lacks them; check the program that wrote {}",
+            u.count,
+            mesh.name,
+            u.first + 1,
+            u.family,
+            mesh.name,
+            if u.cells { "ELEME" } else { "NOEUD" },
+            path.display()
+        ));
     }
     Ok(Some(ConceptData::Mesh(Box::new(mesh))))
 }

@@ -25,7 +25,7 @@ pub use field::{
     ElemField, FieldStep, NodalField,
 };
 pub use info::mesh_info;
-pub use read::{mesh_names, read_mesh};
+pub use read::{mesh_names, read_mesh, read_mesh_with_notes, UndescribedFamily};
 pub use vtk::{vtk_cell_type, vtk_permutation};
 pub use write::write_mesh;
 

@@ -32,8 +32,30 @@ pub fn mesh_names(path: &Path) -> Result<Vec<String>, MedError> {
 /// alphabetical order, their members in increasing index order; a group
 /// carried only by families without members is kept, empty.
 pub fn read_mesh(path: &Path, name: Option<&str>) -> Result<Mesh, MedError> {
+    read_mesh_with_notes(path, name).map(|(mesh, _)| mesh)
+}
+
+/// [`read_mesh`] with what the file holds that the mesh cannot show: node
+/// and cell family numbers that /FAS does not describe (each put its
+/// entities in no group). LIRE_MAILLAGE turns these into alarms.
+pub fn read_mesh_with_notes(
+    path: &Path,
+    name: Option<&str>,
+) -> Result<(Mesh, Vec<UndescribedFamily>), MedError> {
     let file = h5util::open_read(path)?;
-    read_mesh_from(Ctx { path }, &file, name)
+    read_mesh_notes_from(Ctx { path }, &file, name)
+}
+
+/// Entities whose family number /FAS/<mesh> does not describe: libmed
+/// reads them, their group membership is lost (they belong to no group).
+#[derive(Debug, Clone, PartialEq)]
+pub struct UndescribedFamily {
+    /// Cells (true) or nodes.
+    pub cells: bool,
+    pub family: i64,
+    pub count: usize,
+    /// The first such entity, 0-based (code_aster's M or N + 1).
+    pub first: usize,
 }
 
 pub(crate) fn check_version(ctx: Ctx, file: &File) -> Result<(), MedError> {
@@ -136,6 +158,14 @@ fn space_dim(ctx: Ctx, mg: &Group, mesh: &str) -> Result<usize, MedError> {
 }
 
 pub(crate) fn read_mesh_from(ctx: Ctx, file: &File, name: Option<&str>) -> Result<Mesh, MedError> {
+    read_mesh_notes_from(ctx, file, name).map(|(mesh, _)| mesh)
+}
+
+fn read_mesh_notes_from(
+    ctx: Ctx,
+    file: &File,
+    name: Option<&str>,
+) -> Result<(Mesh, Vec<UndescribedFamily>), MedError> {
     check_version(ctx, file)?;
     let mname = pick_mesh(ctx, file, name)?;
     let what = format!("mesh '{mname}'");
@@ -260,15 +290,40 @@ pub(crate) fn read_mesh_from(ctx: Ctx, file: &File, name: Option<&str>) -> Resul
     let (node_fams, cell_fams) = read_families(ctx, file, &mname)?;
     let node_groups = groups_from_families(&node_fam, &node_fams);
     let cell_groups = groups_from_families(&cell_fam, &cell_fams);
+    let mut notes = undescribed(&node_fam, &node_fams, false);
+    notes.extend(undescribed(&cell_fam, &cell_fams, true));
 
-    Ok(Mesh {
-        name: mname,
-        dim: esp,
-        coords,
-        cells,
-        cell_groups,
-        node_groups,
-    })
+    Ok((
+        Mesh {
+            name: mname,
+            dim: esp,
+            coords,
+            cells,
+            cell_groups,
+            node_groups,
+        },
+        notes,
+    ))
+}
+
+/// The nonzero family numbers of `fam` absent from `fams`, with how many
+/// entities carry each and the first one, by family number.
+fn undescribed(fam: &[i64], fams: &Families, cells: bool) -> Vec<UndescribedFamily> {
+    let mut out: BTreeMap<i64, UndescribedFamily> = BTreeMap::new();
+    for (i, &f) in fam.iter().enumerate() {
+        if f == 0 || fams.contains_key(&f) {
+            continue;
+        }
+        out.entry(f)
+            .or_insert(UndescribedFamily {
+                cells,
+                family: f,
+                count: 0,
+                first: i,
+            })
+            .count += 1;
+    }
+    out.into_values().collect()
 }
 
 /// Family numbers of `n` entities; absent dataset = all in family 0.
@@ -303,6 +358,8 @@ fn read_families(ctx: Ctx, file: &File, mesh: &str) -> Result<(Families, Familie
             let fw = format!("{kw}/{fname}");
             let fg = kg.group(&fname).map_err(|e| ctx.h5(&fw, e))?;
             let num = h5util::int_attr(ctx, &fg, "NUM", &fw)?;
+            // Described, even without groups.
+            map.entry(num).or_default();
             // A family without GRO is legal (medcoupling writes such).
             let Ok(gro) = fg.group("GRO") else { continue };
             let Ok(nom) = gro.dataset("NOM") else {
