@@ -278,6 +278,78 @@ fn initial_penetration_is_an_alarm() {
         .contains("penetrate the master at the initial state"));
 }
 
+/// The implicit run gives the explicit one's alarm (one shared check,
+/// `contact::penetrations`): contact_landing.comm (NEWMARK, penalised
+/// discrete contact) started from a displacement DY = -2.28 of the bar,
+/// whose face is 2.27 above the plane, so the five slave nodes of SZZ are
+/// 0.01 deep; with ALGO_CONT='CONTRAINTE' the alarm says the active set
+/// puts them back. It gave none (probe s7b D6), and the run's stop then
+/// blamed the step size. The landing study itself has none.
+#[test]
+fn implicit_initial_penetration_is_the_same_alarm() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = root.join("tests/verification");
+    let tmp =
+        std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("implicit_initial_penetration_src");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir.join("contact_landing.comm")).unwrap();
+    let depl = "DEPINI = CREA_CHAMP(TYPE_CHAM='NOEU_DEPL_R', OPERATION='AFFE', MODELE=MO,\n\
+                AFFE=_F(GROUP_MA='VOL', NOM_CMP=('DX', 'DY'), VALE=(0., -2.28)))\n\
+                RESU = DYNA_NON_LINE(";
+    let deep = comm
+        .replacen("RESU = DYNA_NON_LINE(", depl, 1)
+        .replacen("ETAT_INIT=_F(VITE=VITINI)", "ETAT_INIT=_F(VITE=VITINI, DEPL=DEPINI)", 1)
+        .replacen(
+            "INCREMENT=_F(LIST_INST=L_INST)",
+            "INCREMENT=_F(LIST_INST=L_INST, INST_FIN=-2.E-7)",
+            1,
+        );
+    for (tag, text) in [
+        ("penalty", deep.clone()),
+        (
+            "contrainte",
+            deep.replacen("ALGO_CONT='PENALISATION', E_N=1.E7", "ALGO_CONT='CONTRAINTE'", 1),
+        ),
+    ] {
+        assert!(text.contains("DEPL=DEPINI") && text.contains("INST_FIN"), "{tag}");
+        std::fs::write(tmp.join(format!("{tag}.comm")), &text).unwrap();
+        std::fs::write(
+            tmp.join(format!("{tag}.export")),
+            format!("F mmed {} D 20\n", dir.join("bar_2x8.mmed").display()),
+        )
+        .unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+            &format!("implicit_initial_penetration_{tag}"),
+        );
+        let mess = run.file(&format!("{tag}.mess"));
+        let alarms: Vec<&str> = mess
+            .lines()
+            .filter(|l| l.contains("penetrate the master at the initial state"))
+            .collect();
+        assert_eq!(alarms.len(), 1, "{tag}: {mess}");
+        let a = alarms[0];
+        assert!(a.contains("alarm: 5 slave node(s)"), "{a}");
+        assert!(a.contains("(deepest 1.0000e-2)"), "{a}");
+        let how = if tag == "penalty" {
+            "(penalty: a force E_N times the depth)"
+        } else {
+            "(ALGO_CONT='CONTRAINTE': the active set puts them back on the surface)"
+        };
+        assert!(a.contains(how), "{a}");
+        // Said before the first step.
+        let first_step = mess.find("RESI_GLOB_RELA").expect("a step table");
+        assert!(mess.find(a).unwrap() < first_step, "{mess}");
+    }
+    let run = common::run_study(
+        "tests/verification/contact_landing.comm",
+        "implicit_landing_no_penetration",
+    );
+    assert!(!run
+        .file("contact_landing.mess")
+        .contains("penetrate the master at the initial state"));
+}
+
 /// Two D_PLAN strips of 1 x 20 QUAD4 (width 0.5 along x, length 10 along
 /// y) one above the other with a gap of 0.01: bar A in y in [0, 10], bar B
 /// in [10.01, 20.01]. Cell groups VOL_A, VOL_B, VOL (both), TOP_A (A's top

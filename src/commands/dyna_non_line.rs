@@ -2075,6 +2075,9 @@ pub(crate) fn run(
             .map_err(|m| args.error("CONTACT", m))?,
         ),
     };
+    if let Some(a) = contact.as_ref().and_then(|c| c.initial_penetration_alarm()) {
+        log(&format!("  {a}"));
+    }
     let mut unil = match unil_def {
         Some(def) => {
             let term = nonlinear::UnilateralContact::new(def, &engine.asm.numbering);

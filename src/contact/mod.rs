@@ -29,7 +29,10 @@ pub mod pairing;
 pub mod unilateral;
 
 pub use cont_noeu::{collision_started, ContactState, LinkState, LinkStatus, CONT_NOEU_COMPONENTS};
-pub use discrete::{evaluate, Contribution, IterationInput, RESI_COEF_MATR_FROT};
+pub use discrete::{
+    evaluate, initial_penetration_alarm, penetrations, Contribution, IterationInput,
+    RESI_COEF_MATR_FROT,
+};
 pub use pairing::{pair, project, Link, Pairing, Projection};
 
 /// The geometric update (`REAC_GEOM`), i.e. when pairing is redone.

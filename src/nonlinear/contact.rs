@@ -133,6 +133,22 @@ impl DiscreteContact {
         })
     }
 
+    /// The alarm of slave nodes that penetrate their master at the state
+    /// the term was built on (its first pairing), as the explicit run
+    /// gives it; None when none does, or for the continuous formulation
+    /// (no discrete links).
+    pub fn initial_penetration_alarm(&self) -> Option<String> {
+        let p = self.pairing.as_ref()?;
+        let (n, depth) = crate::contact::penetrations(p, |k| self.u_start[k]);
+        let how = match self.def.algo {
+            crate::contact::DiscreteAlgo::ActiveSet => {
+                "ALGO_CONT='CONTRAINTE': the active set puts them back on the surface"
+            }
+            crate::contact::DiscreteAlgo::Penalty => "penalty: a force E_N times the depth",
+        };
+        (n > 0).then(|| crate::contact::initial_penetration_alarm(n, depth, how))
+    }
+
     /// Adds the contact multipliers (LAGS_C, LAGS_F1) of the committed
     /// step to a DEPL field (continuous formulation only).
     pub fn extend_depl(&self, depl: &mut NodalField) {

@@ -264,24 +264,7 @@ impl ExplicitContact {
     /// The paired slave nodes that penetrate their master at the state `u`
     /// (the last pairing's links): how many, and the deepest penetration.
     pub fn penetrations(&self, u: &[f64]) -> (usize, f64) {
-        let mut count = 0;
-        let mut deepest: f64 = 0.0;
-        for l in &self.pairing.links {
-            let us = self.node_u(u, l.slave);
-            let mut um = [0.0; 3];
-            for (j, &mn) in l.master_nodes.iter().enumerate() {
-                let a = self.node_u(u, mn);
-                for c in 0..3 {
-                    um[c] += l.shape[j] * a[c];
-                }
-            }
-            let g = l.gap_ref + (0..3).map(|c| l.normal[c] * (um[c] - us[c])).sum::<f64>();
-            if g < 0.0 {
-                count += 1;
-                deepest = deepest.max(-g);
-            }
-        }
-        (count, deepest)
+        crate::contact::penetrations(&self.pairing, |n| self.node_u(u, n))
     }
 
     /// The largest ω² of the penalty springs (0 for the kinematic
@@ -838,14 +821,12 @@ impl ExplicitConstraint for ExplicitContact {
     }
 
     fn initial_alarm(&self, n: usize, depth: f64) -> String {
-        format!(
-            "  alarm: {n} slave node(s) penetrate the master at the initial state (deepest {depth:.4e}): the contact pushes them out in the first step{}, an impulse of the initial state, not of the motion",
-            if self.kinematic() {
-                " (kinematic: onto the surface within one step)"
-            } else {
-                " (penalty: a force E_N times the depth)"
-            }
-        )
+        let how = if self.kinematic() {
+            "kinematic: onto the surface within one step"
+        } else {
+            "penalty: a force E_N times the depth"
+        };
+        format!("  {}", crate::contact::initial_penetration_alarm(n, depth, how))
     }
 
     fn penalty(
