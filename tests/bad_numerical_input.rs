@@ -278,7 +278,10 @@ fn tiny_steps_run_when_the_list_holds_them() {
     let base = free_flight(CUIVRE);
     let list = "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1.E-6, NOMBRE=2))";
     for (line, tag) in [
-        ("L_INST = DEFI_LIST_REEL(VALE=(0., 1.E-30, 2.E-30))", "tiny_vale"),
+        (
+            "L_INST = DEFI_LIST_REEL(VALE=(0., 1.E-30, 2.E-30))",
+            "tiny_vale",
+        ),
         (
             "L_INST = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=2.E-15, NOMBRE=2))",
             "tiny_nombre",
@@ -466,8 +469,14 @@ fn pulled_bar(load: &str, command: &str, excit: &str) -> String {
 fn a_load_too_large_for_doubles_is_named_not_called_singular() {
     // The control: the same bar with a load of 1 runs.
     for (load, excit) in [
-        ("TR = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='A2', DY=1.))", ", FONC_MULT=RAMPE"),
-        ("TR = AFFE_CHAR_MECA(MODELE=MO, FORCE_NODALE=_F(GROUP_NO='A2', FY=1.))", ""),
+        (
+            "TR = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='A2', DY=1.))",
+            ", FONC_MULT=RAMPE",
+        ),
+        (
+            "TR = AFFE_CHAR_MECA(MODELE=MO, FORCE_NODALE=_F(GROUP_NO='A2', FY=1.))",
+            "",
+        ),
     ] {
         let comm = pulled_bar(load, "STAT_NON_LINE", excit);
         let (_, err) = run(&root_mesh("sdnv103d"), &comm, "load_control");
@@ -593,8 +602,13 @@ fn hexa_column(zs: &[f64]) -> Mesh {
     let n = mesh.coords.len();
     let top = 4 * (zs.len() - 1);
     mesh.node_groups.insert("NBAS".into(), (0..4).collect());
-    mesh.node_groups.insert("NHAUT".into(), (top..top + 4).collect());
-    let on = |k: usize| (0..n).filter(|&i| mesh.coords[i][k] == 0.0).collect::<Vec<_>>();
+    mesh.node_groups
+        .insert("NHAUT".into(), (top..top + 4).collect());
+    let on = |k: usize| {
+        (0..n)
+            .filter(|&i| mesh.coords[i][k] == 0.0)
+            .collect::<Vec<_>>()
+    };
     let (nx0, ny0) = (on(0), on(1));
     mesh.node_groups.insert("NX0".into(), nx0);
     mesh.node_groups.insert("NY0".into(), ny0);
@@ -666,19 +680,29 @@ fn a_cell_of_no_volume_is_refused_like_an_inverted_one() {
     // A thin cell, 1e-6 high: not degenerate, and exact. Each cell of the
     // stack, NU = 0.3 free to contract, carries σ_zz = E·ε with ε = 0.01
     // over the height 2 + 1e-6.
-    let path = scratch_mesh(&hexa_column(&[0.0, 1.0, 1.0 + 1e-6, 2.0 + 1e-6]), "column_thin.mmed");
+    let path = scratch_mesh(
+        &hexa_column(&[0.0, 1.0, 1.0 + 1e-6, 2.0 + 1e-6]),
+        "column_thin.mmed",
+    );
     let (study, err) = run(&path, COLUMN, "thin");
     assert!(err.is_none(), "{err:?}");
     let Some(aster::concepts::ConceptData::Result(r)) = study.concepts.data("R") else {
         panic!("no result");
     };
     let sig = &r.steps[2].gauss["SIEF_ELGA"];
-    let k = sig.components.iter().position(|c| c == "SIZZ").expect("SIZZ");
+    let k = sig
+        .components
+        .iter()
+        .position(|c| c == "SIZZ")
+        .expect("SIZZ");
     let expected = 2e5 * 0.01 / (2.0 + 1e-6);
     for c in 0..3 {
         for p in 0..sig.npg(c) {
             let v = sig.cell(c)[p * sig.ncmp() + k];
-            assert!(((v - expected) / expected).abs() < 1e-6, "cell {c} point {p}: {v}");
+            assert!(
+                ((v - expected) / expected).abs() < 1e-6,
+                "cell {c} point {p}: {v}"
+            );
         }
     }
 }

@@ -298,7 +298,11 @@ fn implicit_initial_penetration_is_the_same_alarm() {
                 RESU = DYNA_NON_LINE(";
     let deep = comm
         .replacen("RESU = DYNA_NON_LINE(", depl, 1)
-        .replacen("ETAT_INIT=_F(VITE=VITINI)", "ETAT_INIT=_F(VITE=VITINI, DEPL=DEPINI)", 1)
+        .replacen(
+            "ETAT_INIT=_F(VITE=VITINI)",
+            "ETAT_INIT=_F(VITE=VITINI, DEPL=DEPINI)",
+            1,
+        )
         .replacen(
             "INCREMENT=_F(LIST_INST=L_INST)",
             "INCREMENT=_F(LIST_INST=L_INST, INST_FIN=-2.E-7)",
@@ -308,10 +312,17 @@ fn implicit_initial_penetration_is_the_same_alarm() {
         ("penalty", deep.clone()),
         (
             "contrainte",
-            deep.replacen("ALGO_CONT='PENALISATION', E_N=1.E7", "ALGO_CONT='CONTRAINTE'", 1),
+            deep.replacen(
+                "ALGO_CONT='PENALISATION', E_N=1.E7",
+                "ALGO_CONT='CONTRAINTE'",
+                1,
+            ),
         ),
     ] {
-        assert!(text.contains("DEPL=DEPINI") && text.contains("INST_FIN"), "{tag}");
+        assert!(
+            text.contains("DEPL=DEPINI") && text.contains("INST_FIN"),
+            "{tag}"
+        );
         std::fs::write(tmp.join(format!("{tag}.comm")), &text).unwrap();
         std::fs::write(
             tmp.join(format!("{tag}.export")),

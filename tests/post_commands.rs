@@ -736,18 +736,49 @@ fn post_releve_t_refuses_other_operations() {
         ) && e.contains("t.comm:"),
         "{e}"
     );
-    // Extraction on cells is valid code_aster, not built here: said so,
-    // not "GROUP_NO or NOEUD must be given".
-    let e = run_err(
-        "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,
-                NOM_CHAM='SIEF_ELGA', GROUP_MA='C1', NOM_CMP='SIYY'))\n",
+    // EXTRACTION by GROUP_MA alone: code_aster's catalogue refuses it
+    // (AU_MOINS_UN('GROUP_NO', 'NOEUD'), in its 2012 and its current
+    // post_releve_t.py alike), for nodal fields (DEPL, REAC_NODA,
+    // CONT_NOEU: probe s7a d06) as for Gauss-point ones. The error says
+    // so at GROUP_MA and gives the DEFI_GROUP that makes the node group
+    // of the cells' nodes; it said "not implemented yet" and advised
+    // extracting "a nodal field on the cells' nodes" of a nodal field.
+    for (field, cmp) in [
+        ("DEPL", "NOM_CMP='DY'"),
+        ("DEPL", "RESULTANTE='DY'"),
+        ("SIEF_ELGA", "NOM_CMP='SIYY'"),
+    ] {
+        let e = run_err(&format!(
+            "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,\n\
+             NOM_CHAM='{field}', GROUP_MA='C1', {cmp}))\n"
+        ));
+        assert!(
+            e.contains("POST_RELEVE_T/ACTION/GROUP_MA")
+                && e.contains("AU_MOINS_UN('GROUP_NO', 'NOEUD') refuses GROUP_MA alone")
+                && e.contains("CREA_GROUP_NO=_F(GROUP_MA='C1')")
+                && e.contains("GROUP_NO='C1'")
+                && !e.contains("not implemented")
+                && e.contains("t.comm:6:"),
+            "{field} {cmp}: {e}"
+        );
+    }
+    // The advised way runs: the nodes of C1 as a node group.
+    let s = run(
+        "relevet_cells_nodes",
+        "MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(GROUP_MA='C1'))\n\
+         T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,\n\
+         NOM_CHAM='DEPL', GROUP_NO='C1', NOM_CMP='DY', NUME_ORDRE=0))\n",
     );
-    assert!(
-        e.contains("not implemented yet: POST_RELEVE_T/ACTION/GROUP_MA")
-            && e.contains("extraction on cells")
-            && e.contains("t.comm:"),
-        "{e}"
-    );
+    let Some(ConceptData::Mesh(m)) = s.concepts.data("MA") else {
+        panic!("no mesh");
+    };
+    let mut nodes: Vec<usize> = m.cell_groups["C1"]
+        .iter()
+        .flat_map(|&c| m.cells[c].nodes.clone())
+        .collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    assert_eq!(table(&s, "T").n_rows(), nodes.len());
 }
 
 /// EXTREMA and MOYENNE_ARITH: a cell group the mesh lacks is named with

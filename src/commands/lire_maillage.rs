@@ -85,16 +85,17 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         }
         return Err(d);
     }
-    let (mesh, undescribed) = crate::medio::read_mesh_with_notes(&path, args.text("NOM_MED")).map_err(|e| {
-        args.error(
-            if args.given("NOM_MED") {
-                "NOM_MED"
-            } else {
-                "UNITE"
-            },
-            e.to_string(),
-        )
-    })?;
+    let (mesh, undescribed) = crate::medio::read_mesh_with_notes(&path, args.text("NOM_MED"))
+        .map_err(|e| {
+            args.error(
+                if args.given("NOM_MED") {
+                    "NOM_MED"
+                } else {
+                    "UNITE"
+                },
+                e.to_string(),
+            )
+        })?;
     study.log(format!(
         "    mesh '{}' read from {}: {} nodes, {} cells",
         mesh.name,
@@ -110,7 +111,11 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     // be in do not hold them (code_aster 13 dropped them as silently;
     // its later readers stop on an internal assertion).
     for u in &undescribed {
-        let (what, prefix) = if u.cells { ("cell", 'M') } else { ("node", 'N') };
+        let (what, prefix) = if u.cells {
+            ("cell", 'M')
+        } else {
+            ("node", 'N')
+        };
         study.log(format!(
             "<A> <LIRE_MAILLAGE> {} {what}(s) of mesh '{}' (first: {prefix}{}) refer to the family {}, \
              which the file's /FAS/{}/{} does not describe: they belong to no group, and a group \

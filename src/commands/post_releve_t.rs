@@ -85,9 +85,10 @@ pub fn def() -> CommandDef {
                         .kw(),
                     block("b_autre", not(is_in("OPERATION", &other)), vec![])
                         .rules(vec![
-                            // code_aster's rule; cells and TOUT are
-                            // refused when run, as not built, rather than
-                            // read as a missing node selection.
+                            // code_aster's rule is AU_MOINS_UN('GROUP_NO',
+                            // 'NOEUD'); cells and TOUT alone pass here to
+                            // be refused when run with that rule and the
+                            // way to the nodes of cells (DEFI_GROUP).
                             au_moins_un(&["TOUT", "GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"]),
                             un_parmi(&[
                                 "TOUT_CMP",
@@ -239,12 +240,39 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
     if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
         return Err(occ.not_implemented("REPERE", "only the global frame is built"));
     }
+    // code_aster's EXTRACTION takes its nodes from GROUP_NO/NOEUD only:
+    // its catalogue's rule is AU_MOINS_UN('GROUP_NO', 'NOEUD'), and a
+    // GROUP_MA (or MAILLE, TOUT) alone is refused there. aster's
+    // catalogue lets them through to say so here, with the way to the
+    // nodes of cells (it advised extracting "a nodal field on the cells'
+    // nodes" of fields that were nodal already, probe s7a M1).
+    if op == Operation::Extraction && !occ.has("GROUP_NO") && !occ.has("NOEUD") {
+        if let Some(k) = ["GROUP_MA", "MAILLE", "TOUT"]
+            .into_iter()
+            .find(|k| occ.has(k))
+        {
+            let cells = occ.texts(k).join("', '");
+            let remedy = if k == "GROUP_MA" {
+                format!(
+                    "DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(GROUP_MA='{cells}')) makes the node group of its cells' nodes, to give as GROUP_NO='{cells}'"
+                )
+            } else {
+                "DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(...)) makes a node group of the nodes wanted, to give as GROUP_NO".to_string()
+            };
+            return Err(occ.error(
+                k,
+                format!(
+                    "OPERATION='EXTRACTION' takes its nodes from GROUP_NO or NOEUD: code_aster's catalogue rule AU_MOINS_UN('GROUP_NO', 'NOEUD') refuses {k} alone; {remedy} (EXTREMA and MOYENNE_ARITH take GROUP_MA directly)"
+                ),
+            ));
+        }
+    }
     for k in UNSUPPORTED {
         // EXTREMA and MOYENNE_ARITH select nodes by cells too.
         let selection = matches!(k, "TOUT" | "GROUP_MA" | "MAILLE");
         if occ.has(k) && !(selection && op != Operation::Extraction) {
             let why = if selection {
-                "EXTRACTION reads nodal fields at the nodes of GROUP_NO/NOEUD; extraction on cells (Gauss-point fields by GROUP_MA/MAILLE, TOUT) is not built: extract a nodal field (CALC_CHAMP SIGM_NOEU, VARI_NOEU...) on the cells' nodes, or use EXTREMA / MOYENNE_ARITH"
+                "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION is not built: the nodes are those of GROUP_NO/NOEUD, give them alone"
             } else {
                 "only nodal extraction on GROUP_NO/NOEUD is built"
             };

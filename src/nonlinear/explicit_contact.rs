@@ -826,7 +826,10 @@ impl ExplicitConstraint for ExplicitContact {
         } else {
             "penalty: a force E_N times the depth"
         };
-        format!("  {}", crate::contact::initial_penetration_alarm(n, depth, how))
+        format!(
+            "  {}",
+            crate::contact::initial_penetration_alarm(n, depth, how)
+        )
     }
 
     fn penalty(

@@ -253,16 +253,14 @@ impl LinearStatics {
         let mut x: Vec<f64> = nb.free.iter().map(|&f| fext[f] - fint[f]).collect();
         let free = nb.free.clone();
         if !free.is_empty() {
-            self.factorize()?
-                .solve(&mut x)
-                .map_err(|e| {
-                    LinearError::Singular(match e {
-                        SolverError::NonFiniteRhs { .. } | SolverError::Overflow { .. } => {
-                            self.asm.numbering.solver_failure(&e)
-                        }
-                        e => format!("the linear solve failed: {e}"),
-                    })
-                })?;
+            self.factorize()?.solve(&mut x).map_err(|e| {
+                LinearError::Singular(match e {
+                    SolverError::NonFiniteRhs { .. } | SolverError::Overflow { .. } => {
+                        self.asm.numbering.solver_failure(&e)
+                    }
+                    e => format!("the linear solve failed: {e}"),
+                })
+            })?;
         }
         for (&f, &v) in free.iter().zip(&x) {
             u[f] = v;

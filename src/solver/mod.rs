@@ -1153,7 +1153,8 @@ mod tests {
         // 1e308 / 1e-10 = 1e318, to the rounding of the scaling.
         assert!((log10 - 318.0).abs() < 1e-9, "{log10}");
         let mut s = DirectLu::new();
-        s.factorize(&build(&[vec![2.0, -1.0], vec![-1.0, 2.0]])).unwrap();
+        s.factorize(&build(&[vec![2.0, -1.0], vec![-1.0, 2.0]]))
+            .unwrap();
         let r = s.solve(&mut [f64::INFINITY, 0.0]);
         assert!(
             matches!(r, Err(SolverError::NonFiniteRhs { unknown: 0, value }) if value == f64::INFINITY),
@@ -1167,7 +1168,10 @@ mod tests {
             log10: 318.0,
         }
         .to_string();
-        assert!(text.contains(OVERFLOW) && !text.contains("singular"), "{text}");
+        assert!(
+            text.contains(OVERFLOW) && !text.contains("singular"),
+            "{text}"
+        );
     }
 
     /// The pivot ratio against a hand LDLᵀ: in [[4, 2, 0], [2, 3, 0], [0,
