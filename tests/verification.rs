@@ -2041,6 +2041,21 @@ fn explicit_driven_support_keeps_its_velocity() {
     run_study("explicit_driven_support");
 }
 
+/// CALC_CHAMP REAC_NODA on results chained with reuse= (probe s7a, D2 and
+/// D3; reuse_reac_noda.comm): each step is the residual of the call that
+/// computed it, with that call's mass (NEWMARK then DIFF_CENT MASS_DIAG
+/// and the reverse: REAC_NODA 0 at the free top to 1e-9 N in both legs,
+/// the base reaction of the first leg the closed forms -1.5 k u and -k u
+/// of the one-element bar to 1e-9) and loads (gravity and a nodal force
+/// times FONC_MULT 1, then 0.5, then none: 0 at the top in each leg, the
+/// base W + 4 at rest); CALC_CHAMP's EXCIT replaces every step's loads.
+/// Before the fix the last call's mass and loads were used everywhere
+/// (22 of the 40 checks NOOK).
+#[test]
+fn reac_noda_of_chained_calls_uses_each_steps_mass_and_loads() {
+    run_study("reuse_reac_noda");
+}
+
 /// Mistakes a user's study makes that used to pass or to be misread: an
 /// initial field built on another mesh (read by node index on the model's
 /// mesh, silently; now refused), and a modelisation with no element on the

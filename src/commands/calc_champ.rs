@@ -1,7 +1,7 @@
 //! CALC_CHAMP: derived fields of a result (stresses at nodes, nodal forces...).
 
 use super::blocks::*;
-use super::dyna_non_line::{loads_of, model_data, prepare_error};
+use super::dyna_non_line::{loads_of, model_data, prepare_error, ModelData};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
@@ -11,7 +11,7 @@ use crate::model::CellRole;
 use crate::model::MechLoad;
 use crate::nonlinear::{self, fields, Occurrence};
 use crate::result::energy::CellEnergy;
-use crate::result::{Access, GaussField, NodalField};
+use crate::result::{Access, GaussField, NodalField, RunData};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -38,7 +38,7 @@ pub fn def() -> CommandDef {
             ],
         )
         .many()
-        .doc("loads for REAC_NODA; absent: those stored in the result")
+        .doc("loads for REAC_NODA, replacing those of every step; absent: each step's own (those of the call that computed it)")
         .kw(),
         text("TOUT_ORDRE").into(&["OUI"]).kw(),
         int("NUME_ORDRE").many().kw(),
@@ -106,9 +106,11 @@ pub fn def() -> CommandDef {
 /// and the stored DEPL, which returns the stored stress and integrates it
 /// on the element's own configuration (current geometry for PETIT_REAC,
 /// P = τF⁻ᵀ on the initial one for SIMO_MIEHE). REAC_NODA = FORC_NODA −
-/// F_ext + M·ACCE, F_ext being the PESANTEUR of the result's loads (the
-/// only load with an F_ext), so at free nodes it is the dynamic residual
-/// (≈ 0, without contact forces) and at supports the support reaction.
+/// F_ext + M·ACCE with the loads (and their FONC_MULT) and the mass of
+/// the call that computed each step, so at free nodes it is that step's
+/// dynamic residual (≈ 0, without contact forces) and at supports the
+/// support reaction, also in a result chained through calls (reuse=)
+/// with other loads or another mass.
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let name = args.concept("RESULTAT").unwrap_or("").to_string();
     let mut evol = match study.concepts.data(&name) {
@@ -154,29 +156,28 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         ("MODELE", &model_name),
         ("CHAM_MATER", &mat_name),
     )?;
-    // The run's PESANTEUR: the lumped mass times g with MASS_DIAG='OUI'.
-    md.lumped_gravity = evol.mass_diag;
-    let (load_names, load_mults): (Vec<String>, Vec<Option<String>>) = if args.has("EXCIT") {
+    // CALC_CHAMP's own EXCIT replaces the loads of every step, as in
+    // code_aster; the mass stays each step's.
+    let given: Option<(Vec<String>, Vec<Option<String>>)> = if args.has("EXCIT") {
         for ex in args.facts("EXCIT") {
             if ex.text("TYPE_CHARGE").unwrap_or("FIXE_CSTE") != "FIXE_CSTE" {
                 return Err(ex.not_implemented("TYPE_CHARGE", "only FIXE_CSTE loads"));
             }
         }
-        args.facts("EXCIT")
-            .iter()
-            .map(|e| {
-                (
-                    e.concept("CHARGE").unwrap_or("").to_string(),
-                    e.concept("FONC_MULT").map(str::to_string),
-                )
-            })
-            .unzip()
+        Some(
+            args.facts("EXCIT")
+                .iter()
+                .map(|e| {
+                    (
+                        e.concept("CHARGE").unwrap_or("").to_string(),
+                        e.concept("FONC_MULT").map(str::to_string),
+                    )
+                })
+                .unzip(),
+        )
     } else {
-        let mut mults = evol.load_mults.clone();
-        mults.resize(evol.loads.len(), None);
-        (evol.loads.clone(), mults)
+        None
     };
-    let loads = loads_of(study, args, "EXCIT", &load_names)?;
     // The behaviour the result was computed with, one occurrence per
     // (RELATION, DEFORMATION) pair.
     let mut occs: Vec<Occurrence> = Vec::new();
@@ -196,16 +197,105 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
             }
         }
     }
+    // The selected steps grouped by what they were computed with (the
+    // calls of a chained result differ in loads and mass), in order.
+    let mut groups: Vec<(RunData, Vec<usize>)> = Vec::new();
+    for step in evol
+        .steps
+        .iter()
+        .filter(|s| selected.contains(&s.nume_ordre))
+    {
+        let mut run = evol.run_of(step).cloned().unwrap_or_default();
+        run.load_mults.resize(run.loads.len(), None);
+        if let Some((loads, mults)) = &given {
+            run.loads.clone_from(loads);
+            run.load_mults.clone_from(mults);
+        }
+        match groups.iter_mut().find(|(r, _)| *r == run) {
+            Some((_, orders)) => orders.push(step.nume_ordre),
+            None => groups.push((run, vec![step.nume_ordre])),
+        }
+    }
+    if groups.len() > 1 {
+        for (run, orders) in &groups {
+            study.log(format!(
+                "  {}: NUME_ORDRE {} with the loads {} and the {} mass of the call that computed them",
+                options.join(", "),
+                describe_orders(orders),
+                describe_loads(run),
+                if run.mass_diag { "lumped (MASS_DIAG='OUI')" } else { "consistent" }
+            ));
+        }
+    }
+    let is_elas = matches!(study.concepts.get(&name).map(|c| c.ty), Some(C::EvolElas));
+    for (run, orders) in &groups {
+        forces_of_run(
+            study, args, &name, &mut md, &occs, run, is_elas, &options, &mut evol, orders,
+        )?;
+    }
+    Ok(Some(ConceptData::Result(Box::new(evol))))
+}
+
+/// "0 to 20" for a contiguous run of orders, else the list.
+fn describe_orders(orders: &[usize]) -> String {
+    match (orders.first(), orders.last()) {
+        (Some(a), Some(b)) if b - a + 1 == orders.len() && a != b => format!("{a} to {b}"),
+        _ => orders
+            .iter()
+            .map(|n| n.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+    }
+}
+
+/// The loads of a run as the .mess names them ("BC, PES (FONC_MULT F)").
+fn describe_loads(run: &RunData) -> String {
+    if run.loads.is_empty() {
+        return "(none)".into();
+    }
+    run.loads
+        .iter()
+        .zip(&run.load_mults)
+        .map(|(l, m)| match m {
+            Some(f) => format!("{l} (FONC_MULT {f})"),
+            None => l.clone(),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// FORC_NODA and REAC_NODA of the steps `orders`, computed with the loads
+/// and the mass of `run`.
+#[allow(clippy::too_many_arguments)]
+fn forces_of_run(
+    study: &Study,
+    args: &Args,
+    name: &str,
+    md: &mut ModelData,
+    occs: &[Occurrence],
+    run: &RunData,
+    is_elas: bool,
+    options: &[&str],
+    evol: &mut crate::result::EvolNoli,
+    orders: &[usize],
+) -> Result<(), crate::diag::Diagnostic> {
+    // The run's PESANTEUR: the lumped mass times g with MASS_DIAG='OUI'.
+    md.lumped_gravity = run.mass_diag;
+    let loads = loads_of(study, args, "EXCIT", &run.loads)?;
     let refs: Vec<&MechLoad> = loads.iter().collect();
     // A STAT_NON_LINE result has no ACCE: no M.a term, and no density is
     // needed (REAC_NODA = FORC_NODA - F_ext).
-    let inertia = evol.steps.iter().any(|s| s.nodal.contains_key("ACCE"));
+    let inertia = evol
+        .steps
+        .iter()
+        .filter(|s| orders.contains(&s.nume_ordre))
+        .any(|s| s.nodal.contains_key("ACCE"));
     let (mut asm, _) = nonlinear::discretize_for(
         &md.mesh,
         &md.model,
         &md.matfield,
         &md.materials,
-        &occs,
+        occs,
         &refs,
         inertia,
     )
@@ -214,10 +304,9 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     // lumped (HRZ) mass, so that REAC_NODA is that run's residual (zero at
     // free nodes, the support and contact forces elsewhere) and not the
     // consistent mass's, which would leave spurious forces at free nodes.
-    if evol.mass_diag {
-        let rho =
-            nonlinear::explicit::cell_densities(&md.model, &md.matfield, &md.materials, &occs)
-                .map_err(|e| prepare_error(args, nonlinear::PrepareError::Behaviour(e)))?;
+    if run.mass_diag && inertia {
+        let rho = nonlinear::explicit::cell_densities(&md.model, &md.matfield, &md.materials, occs)
+            .map_err(|e| prepare_error(args, nonlinear::PrepareError::Behaviour(e)))?;
         nonlinear::explicit::Explicit::new(
             &mut asm,
             &rho,
@@ -231,7 +320,7 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     let nfull = asm.numbering.nfull();
     // F_ext of each load and its FONC_MULT, evaluated at each step below.
     let mut parts = Vec::new();
-    for (load, mult) in loads.iter().zip(&load_mults) {
+    for (load, mult) in loads.iter().zip(&run.load_mults) {
         let forces = md
             .load_forces(load)
             .map_err(|m| args.error("RESULTAT", m))?;
@@ -245,11 +334,11 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         parts.push((forces, f));
     }
     let mults: Vec<_> = parts.iter().map(|p| p.1.clone()).collect();
-    let functions = super::dyna_non_line::function_parts(&md, &loads, &mults, &asm.numbering)
+    let functions = super::dyna_non_line::function_parts(md, &loads, &mults, &asm.numbering)
         .map_err(|(_, m)| args.error("EXCIT", m))?;
     let history = crate::nonlinear::loads::LoadHistory::new(parts)
         .with_functions(functions)
-        .with_fields(super::dyna_non_line::field_parts(&md, &loads, &mults));
+        .with_fields(super::dyna_non_line::field_parts(md, &loads, &mults));
     let mut fext = vec![0.0; asm.numbering.nfull()];
     let mut fint = vec![0.0; nfull];
     let mut ma = vec![0.0; nfull];
@@ -258,8 +347,8 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
     // the element matrices it was solved with (for MECA_HEXS8 te0392's,
     // whose hourglass forces SIEF_ELGA does not hold), so that REAC_NODA
     // is zero at free nodes and the supports' reaction elsewhere.
-    let linear = match study.concepts.get(&name).map(|c| c.ty) {
-        Some(C::EvolElas) => Some(
+    let linear = if is_elas {
+        Some(
             nonlinear::linear::element_stiffnesses(&asm, crate::element::hexs8::Variant::current())
                 .map_err(|f| {
                     args.error(
@@ -271,11 +360,12 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
                         ),
                     )
                 })?,
-        ),
-        _ => None,
+        )
+    } else {
+        None
     };
     for step in evol.steps.iter_mut() {
-        if !selected.contains(&step.nume_ordre) {
+        if !orders.contains(&step.nume_ordre) {
             continue;
         }
         let missing = |f: &str| {
@@ -344,7 +434,7 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
                 .insert("REAC_NODA".into(), fields::nodal(&asm, &dofs, &reac));
         }
     }
-    Ok(Some(ConceptData::Result(Box::new(evol))))
+    Ok(())
 }
 
 /// The NUME_ORDRE of the steps the command's access keywords select

@@ -213,11 +213,13 @@ pub(crate) fn exec(
         &md.model,
         &model_name,
         &mat_name,
-        &load_names,
+        crate::result::RunData {
+            loads: load_names.clone(),
+            load_mults: load_mults.clone(),
+            mass_diag: lumped,
+        },
         &occs,
     );
-    evol.load_mults = load_mults.clone();
-    evol.mass_diag = lumped;
 
     let has_acce = init.a.is_some();
     let mut state = nonlinear::initial_state(&asm, tl.instants[0], init.u, init.v, init.a);

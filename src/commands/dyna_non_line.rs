@@ -19,7 +19,7 @@ use crate::nonlinear::{
     self, dyna, fields, ArchivePolicy, Assembler, Controls, ConvergenceSettings, Engine,
     NewtonSettings, Occurrence, PrepareError, Reduce, Suivi, SuiviField, TimeLoop,
 };
-use crate::result::{Access, EvolNoli};
+use crate::result::{Access, EvolNoli, RunData};
 use crate::study::Study;
 use crate::time::explicit::ExplicitScheme;
 use crate::time::list::{Action, AdaptEvent, Event, Subdivision, TimeList, TplusMode};
@@ -1993,11 +1993,13 @@ pub(crate) fn run(
         &md.model,
         &model_name,
         &mat_name,
-        &load_names,
+        RunData {
+            loads: load_names.clone(),
+            load_mults: load_mults.clone(),
+            mass_diag: false,
+        },
         &occs,
     );
-    evol.load_mults = load_mults.clone();
-    evol.mass_diag = false;
 
     let t_start = tl.instants[0];
     let has_acce = init.a.is_some();
@@ -2243,14 +2245,16 @@ pub(crate) fn result_of_run<T>(
 /// its last one are not stored again); otherwise a new one, even when the
 /// name is already bound (`R = DYNA_NON_LINE(...)` twice without reuse=
 /// makes a new R, as Python rebinds the name). Either way it takes the
-/// run's model, material field, loads and behaviours.
+/// run's model, material field and behaviours, and records the run's
+/// loads and mass for the steps it will archive (those already stored
+/// keep their own).
 pub(crate) fn result_to_fill(
     study: &Study,
     reuse: Option<&str>,
     model: &Model,
     model_name: &str,
     mat_name: &str,
-    load_names: &[String],
+    run: RunData,
     occs: &[Occurrence],
 ) -> EvolNoli {
     let mut evol = match reuse.and_then(|r| study.concepts.data(r)) {
@@ -2260,7 +2264,7 @@ pub(crate) fn result_to_fill(
     evol.mesh = model.mesh.clone();
     evol.model = model_name.to_string();
     evol.cham_mater = mat_name.to_string();
-    evol.loads = load_names.to_vec();
+    evol.start_run(run);
     evol.comportement = cell_comportement(model, occs);
     evol
 }

@@ -164,9 +164,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     evol.mesh = md.model.mesh.clone();
     evol.model = model_name;
     evol.cham_mater = mat_name;
-    evol.loads = load_names;
-    evol.load_mults = load_mults;
-    evol.mass_diag = false;
+    evol.start_run(crate::result::RunData {
+        loads: load_names,
+        load_mults,
+        mass_diag: false,
+    });
     evol.comportement = cell_comportement(&md.model, &occs);
 
     let engine_error = |e: LinearError| match e {
@@ -228,6 +230,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         let mut step = Step {
             nume_ordre: nume,
             inst: t,
+            run: evol.current_run(),
             ..Step::default()
         };
         step.nodal

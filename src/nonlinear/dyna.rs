@@ -511,6 +511,7 @@ pub fn archive(
     let mut step = Step {
         nume_ordre: nume,
         inst: state.t,
+        run: result.current_run(),
         ..Step::default()
     };
     step.nodal.insert(

@@ -129,6 +129,31 @@ pub struct Step {
     /// (None without explicit contact): what a continuation needs to
     /// restart from here as the run in one call would go on.
     pub contact_history: Option<ContactHistory>,
+    /// Index in [`EvolNoli::runs`] of the call that computed this step:
+    /// a result filled by calls chained with reuse= holds steps computed
+    /// with different loads and masses, and CALC_CHAMP's REAC_NODA must
+    /// take each step's own (code_aster keeps them per NUME_ORDRE).
+    pub run: usize,
+}
+
+/// What one call (DYNA_NON_LINE, STAT_NON_LINE, MECA_STATIQUE) computed
+/// its steps with beyond the model and material: code_aster's per-order
+/// parameters (EXCIT) and, an aster addition, the kind of mass. CALC_CHAMP
+/// rebuilds each step's F_ext and M·a from the run of that step, so that
+/// REAC_NODA stays that step's residual in a result chained through calls
+/// with other loads or another mass (both were taken from the last call:
+/// spurious forces of (M_other − M_last)·a and of the missing loads at
+/// free nodes).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RunData {
+    /// The loads (EXCIT/CHARGE) of the call.
+    pub loads: Vec<String>,
+    /// Their EXCIT/FONC_MULT function concepts (parallel to `loads`),
+    /// which CALC_CHAMP applies again when it rebuilds F_ext.
+    pub load_mults: Vec<Option<String>>,
+    /// The call used the lumped (HRZ) mass of MASS_DIAG='OUI' (its M·a,
+    /// and its PESANTEUR, the lumped mass times g).
+    pub mass_diag: bool,
 }
 
 /// What an explicit contact treatment (discrete contact or LIAISON_UNIL,
@@ -195,14 +220,9 @@ pub struct EvolNoli {
     /// re-derives nodal forces from it, as code_aster keeps it in the
     /// result).
     pub cham_mater: String,
-    /// The loads (EXCIT/CHARGE) of the computation.
-    pub loads: Vec<String>,
-    /// Their EXCIT/FONC_MULT function concepts (parallel to `loads`),
-    /// which CALC_CHAMP applies again when it rebuilds F_ext.
-    pub load_mults: Vec<Option<String>>,
-    /// The last run that filled the result used the lumped (HRZ) mass of
-    /// MASS_DIAG='OUI': CALC_CHAMP's M·a uses it too.
-    pub mass_diag: bool,
+    /// The calls that filled the result, in order; each step names its
+    /// own ([`Step::run`]).
+    pub runs: Vec<RunData>,
     /// (RELATION, DEFORMATION) of each mesh cell with an element.
     pub comportement: Vec<Option<(String, String)>>,
     pub steps: Vec<Step>,
@@ -225,6 +245,23 @@ pub enum Access {
 }
 
 impl EvolNoli {
+    /// Records a new call filling the result; the steps it archives take
+    /// its index ([`EvolNoli::current_run`]).
+    pub fn start_run(&mut self, run: RunData) {
+        self.runs.push(run);
+    }
+
+    /// The index the steps archived now take: the last call's.
+    pub fn current_run(&self) -> usize {
+        self.runs.len().saturating_sub(1)
+    }
+
+    /// The call that computed a step; None for a result built without
+    /// any (no loads, the consistent mass).
+    pub fn run_of(&self, step: &Step) -> Option<&RunData> {
+        self.runs.get(step.run)
+    }
+
     /// Finds the step an access designates. Several matches or none are
     /// errors, as in code_aster (the message lists the nearest instants).
     pub fn find(&self, access: Access) -> Result<&Step, String> {
