@@ -2056,6 +2056,16 @@ fn reac_noda_of_chained_calls_uses_each_steps_mass_and_loads() {
     run_study("reuse_reac_noda");
 }
 
+/// The energy table of three calls chained with reuse= (NEWMARK, DIFF_CENT
+/// MASS_DIAG, NEWMARK; reuse_energy_table.comm): the rows of every call,
+/// NUME_REUSE 0, 1, 2, each call's works from its own start (free fall,
+/// 1e-9). Before the fix the continuation replaced the table and it had no
+/// NUME_REUSE column.
+#[test]
+fn energy_table_keeps_the_rows_of_every_chained_call() {
+    run_study("reuse_energy_table");
+}
+
 /// Mistakes a user's study makes that used to pass or to be misread: an
 /// initial field built on another mesh (read by node index on the model's
 /// mesh, silently; now refused), and a modelisation with no element on the

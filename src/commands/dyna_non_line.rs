@@ -2308,29 +2308,43 @@ fn split_internal_energy(study: &mut Study, args: &Args, name: &str, evol: &mut 
     let Some(table) = evol.tables.get_mut(table_name) else {
         return;
     };
-    let (Some(nume), Some(tot)) = (
+    let (Some(nume), Some(tot), Some(reuse)) = (
         table.column_index("NUME_ORDRE"),
         table.column_index("ENER_TOT"),
+        table.column_index(crate::nonlinear::result_table::NUME_REUSE),
     ) else {
         return;
     };
-    let (Ok(elas), Ok(plas)) = (
-        table.add_column("ENER_ELAS", ColumnType::Real),
-        table.add_column("TRAV_PLAS", ColumnType::Real),
-    ) else {
+    // A continuation finds the columns in the table (its previous calls
+    // had them), or adds them (the earlier rows stay without).
+    let column = |table: &mut crate::post::table::Table, name: &str| match table.column_index(name)
+    {
+        Some(i) => Some(i),
+        None => table.add_column(name, ColumnType::Real).ok(),
+    };
+    let (Some(elas), Some(plas)) = (column(table, "ENER_ELAS"), column(table, "TRAV_PLAS")) else {
         return;
     };
+    // This call's rows: those of the largest NUME_REUSE (the earlier
+    // calls' rows were split by their own call, from their own start).
+    let int = |c: &Option<Cell>| match c {
+        Some(Cell::Int(n)) => Some(*n),
+        _ => None,
+    };
+    let this_call = table.rows.iter().filter_map(|r| int(&r[reuse])).max();
+    let ours = |row: &Vec<Option<Cell>>| int(&row[reuse]) == this_call;
     // ENER_TOT is cumulated from the initial state, whose stresses may
     // already hold elastic energy (a continuation, or an ELAS initial DEPL
     // of type COMP_ELAS): TRAV_PLAS is the internal work not stored since
     // then, ENER_TOT - (ENER_ELAS - ENER_ELAS of the initial state). A
-    // fresh run's table starts at its initial state, NUME_ORDRE 0; a
-    // continuation's starts at its first new step, right after the stored
+    // fresh run's rows start at its initial state, NUME_ORDRE 0; a
+    // continuation's start at its first new step, right after the stored
     // step it continues from.
-    let first = table.rows.iter().find_map(|row| match &row[nume] {
-        Some(Cell::Int(n)) => Some(*n as usize),
-        _ => None,
-    });
+    let first = table
+        .rows
+        .iter()
+        .filter(|r| ours(r))
+        .find_map(|row| int(&row[nume]).map(|n| n as usize));
     let initial = first.and_then(|f| {
         if f == 0 {
             values.get(&0).copied()
@@ -2344,7 +2358,7 @@ fn split_internal_energy(study: &mut Study, args: &Args, name: &str, evol: &mut 
     });
     let w0 = initial.unwrap_or(0.0);
     let mut last = None;
-    for row in table.rows.iter_mut() {
+    for row in table.rows.iter_mut().filter(|r| ours(r)) {
         let n = match &row[nume] {
             Some(Cell::Int(n)) => *n as usize,
             _ => continue,

@@ -614,7 +614,7 @@ pub fn run(
     let mut summary = RunSummary::default();
     let ndpn = engine.asm.numbering.ndpn;
     let offsets = engine.asm.cell_state_offsets.clone();
-    let mut energy = EnergyBalance::new(engine);
+    let mut energy = EnergyBalance::new(engine, result.tables.get(super::energy::TABLE_NAME));
     let mut observer = (!tl.observations.is_empty()).then(|| {
         let mut o = Observer::new(result.tables.get(super::observation::TABLE_NAME));
         o.observe(&tl.observations, &engine.committed, None, ndpn, &offsets);
@@ -1107,7 +1107,8 @@ fn log_energy(energy: &mut EnergyBalance, result: &EvolNoli, log: &mut dyn FnMut
 
 /// The balance as the result's PARA_CALC table (RECU_TABLE). A
 /// continuation (reuse=) restarts the balance from its initial state and
-/// replaces the table.
+/// appends its rows, NUME_REUSE one more, to the table (code_aster's
+/// nmarpc, nmarnr).
 fn store_energy(engine: &Engine, energy: &EnergyBalance, result: &mut EvolNoli) {
     result.tables.insert(
         super::energy::TABLE_NAME.to_string(),

@@ -40,13 +40,14 @@ use std::collections::HashMap;
 
 use super::contact::DiscreteContact;
 use super::newton::Engine;
+use super::result_table::ContinuedTable;
 use crate::post::table::{Cell, ColumnType, Table};
 
 /// Name of the table in the result, as code_aster's RECU_TABLE(NOM_TABLE=).
 pub const TABLE_NAME: &str = "PARA_CALC";
 
-/// Column names of the table (code_aster's PARA_CALC energy columns, plus
-/// DISS_FROT).
+/// Column names of the values of [`EnergyBalance::values`], in its order
+/// (code_aster's PARA_CALC energy columns, plus DISS_FROT).
 pub const COLUMNS: [&str; 7] = [
     "TRAV_EXT",
     "ENER_CIN",
@@ -55,6 +56,24 @@ pub const COLUMNS: [&str; 7] = [
     "TRAV_LIAI",
     "DISS_FROT",
     "DISS_SCH",
+];
+
+/// The table's columns in its order: code_aster's (`nonlinDSEnergyCreate`:
+/// NUME_REUSE, INST, TRAV_EXT, ENER_CIN, ENER_TOT, TRAV_AMOR, TRAV_LIAI,
+/// DISS_SCH), then aster's: NUME_ORDRE, the archived step of the row (a
+/// call's rows are found by NUME_REUSE, a step's by NUME_ORDRE or INST),
+/// and DISS_FROT (ENER_ELAS and TRAV_PLAS are added after the run).
+const TABLE_COLUMNS: [(&str, ColumnType); 10] = [
+    (super::result_table::NUME_REUSE, ColumnType::Int),
+    ("INST", ColumnType::Real),
+    ("TRAV_EXT", ColumnType::Real),
+    ("ENER_CIN", ColumnType::Real),
+    ("ENER_TOT", ColumnType::Real),
+    ("TRAV_AMOR", ColumnType::Real),
+    ("TRAV_LIAI", ColumnType::Real),
+    ("DISS_SCH", ColumnType::Real),
+    ("NUME_ORDRE", ColumnType::Int),
+    ("DISS_FROT", ColumnType::Real),
 ];
 
 /// Running totals and the forces of the last committed step.
@@ -78,14 +97,19 @@ pub struct EnergyBalance {
     /// Friction force on the slave node of each (zone, slave) link at the
     /// end of the last step.
     friction_prev: HashMap<(usize, usize), [f64; 3]>,
-    /// Archived rows (NUME_ORDRE, INST, the seven values).
+    /// Archived rows of this call (NUME_ORDRE, INST, the seven values).
     pub rows: Vec<(usize, f64, [f64; 7])>,
+    /// The result's table as this call found it (the rows of the calls
+    /// it continues), which its rows are appended to.
+    previous: ContinuedTable,
 }
 
 impl EnergyBalance {
     /// The balance at the engine's committed (initial, initialized) state:
-    /// every work is zero there.
-    pub fn new(engine: &Engine) -> EnergyBalance {
+    /// every work is zero there (a continuation counts its energies from
+    /// its own start, as code_aster's). `previous` is the result's
+    /// PARA_CALC table, if it has one: this call's rows go after its rows.
+    pub fn new(engine: &Engine, previous: Option<&Table>) -> EnergyBalance {
         let n = engine.committed.motion.u.len();
         let mut e = EnergyBalance {
             kinetic0: 0.0,
@@ -103,6 +127,7 @@ impl EnergyBalance {
             work: vec![0.0; n],
             friction_prev: HashMap::new(),
             rows: Vec::new(),
+            previous: ContinuedTable::new(previous, "energy balance", &TABLE_COLUMNS),
         };
         e.kinetic = e.kinetic_of(engine);
         e.kinetic0 = e.kinetic;
@@ -230,20 +255,30 @@ impl EnergyBalance {
         )
     }
 
-    /// The rows as a table (NUME_ORDRE, INST, then [`COLUMNS`]).
+    /// The result's table: the previous calls' rows (kept, code_aster's
+    /// `nmarpc` appends) then this call's, tagged with its NUME_REUSE. A
+    /// new table is titled `title`.
     pub fn table(&self, title: &str) -> Table {
-        let mut t = Table::new();
-        t.title = vec![title.to_string()];
-        let _ = t.add_column("NUME_ORDRE", ColumnType::Int);
-        let _ = t.add_column("INST", ColumnType::Real);
-        for c in COLUMNS {
-            let _ = t.add_column(c, ColumnType::Real);
+        let mut t = self.previous.table.clone();
+        if t.n_rows() == 0 {
+            t.title = vec![title.to_string()];
         }
+        let reuse = self.previous.nume_reuse;
         for (n, inst, v) in &self.rows {
-            let mut cells = vec![Some(Cell::Int(*n as i64)), Some(Cell::Real(*inst))];
-            cells.extend(v.iter().map(|&x| Some(Cell::Real(x))));
-            let _ = t.push_row(cells);
+            let mut cells = vec![
+                (super::result_table::NUME_REUSE, Cell::Int(reuse)),
+                ("INST", Cell::Real(*inst)),
+                ("NUME_ORDRE", Cell::Int(*n as i64)),
+            ];
+            cells.extend(COLUMNS.iter().zip(v).map(|(&c, &x)| (c, Cell::Real(x))));
+            // Every column exists with the type of its value.
+            let _ = t.add_row(&cells);
         }
         t
+    }
+
+    /// This call's NUME_REUSE in the table.
+    pub fn nume_reuse(&self) -> i64 {
+        self.previous.nume_reuse
     }
 }

@@ -683,8 +683,13 @@ impl Explicit {
 
     /// Starts the energy balance at the committed state (after the initial
     /// acceleration and correction): the trapezoid's state n.
-    fn start_energy(&mut self, engine: &Engine, fc: &[f64]) -> EnergyBalance {
-        let e = EnergyBalance::new(engine);
+    fn start_energy(
+        &mut self,
+        engine: &Engine,
+        fc: &[f64],
+        previous: Option<&crate::post::table::Table>,
+    ) -> EnergyBalance {
+        let e = EnergyBalance::new(engine, previous);
         self.prev_fc.copy_from_slice(fc);
         self.dforce.copy_from_slice(engine.damping_force());
         self.prev_df.copy_from_slice(engine.damping_force());
@@ -1019,7 +1024,7 @@ fn run_on(
     let fc0 = contact
         .as_deref()
         .map_or(zero.clone(), |c| c.force_on_fint_side().to_vec());
-    let mut energy = ex.start_energy(engine, &fc0);
+    let mut energy = ex.start_energy(engine, &fc0, result.tables.get(super::energy::TABLE_NAME));
     if archive_with_contact(engine, tl, result, contact.as_deref(), None) {
         summary.archived += 1;
         archive_line(&mut energy, result, &summary, first_dt, log);

@@ -27,6 +27,7 @@ pub mod linear;
 pub mod loads;
 pub mod newton;
 pub mod observation;
+pub mod result_table;
 pub mod rigid;
 pub mod team;
 pub mod unilateral;

@@ -9,6 +9,7 @@
 
 use super::dyna::{ArchivePolicy, Reduce, Suivi, SuiviField};
 use super::newton::State;
+use super::result_table::ContinuedTable;
 use crate::post::table::{Cell, ColumnType, Table};
 
 /// The result table's name (RECU_TABLE NOM_TABLE).
@@ -58,7 +59,7 @@ pub struct Observer {
 const COLUMNS: [(&str, ColumnType); 16] = [
     ("NOM_OBSERVATION", ColumnType::Text(16)),
     ("TYPE_OBJET", ColumnType::Text(16)),
-    ("NUME_REUSE", ColumnType::Int),
+    (super::result_table::NUME_REUSE, ColumnType::Int),
     ("NUME_OBSE", ColumnType::Int),
     ("INST", ColumnType::Real),
     ("NOM_CHAM", ColumnType::Text(16)),
@@ -78,31 +79,11 @@ impl Observer {
     /// A new table, or the continuation of `previous` (NUME_REUSE + 1,
     /// NUME_OBSE going on).
     pub fn new(previous: Option<&Table>) -> Observer {
-        if let Some(t) = previous.filter(|t| t.column_index("NUME_OBSE").is_some()) {
-            let max = |name: &str| {
-                t.column(name)
-                    .ok()
-                    .into_iter()
-                    .flatten()
-                    .filter_map(|c| c.and_then(|c| c.as_f64()))
-                    .fold(-1.0f64, f64::max) as i64
-            };
-            return Observer {
-                table: t.clone(),
-                next: max("NUME_OBSE") + 1,
-                reuse: max("NUME_REUSE") + 1,
-            };
-        }
-        let mut table = Table::new();
-        table.title = vec!["observations of the computation".into()];
-        for (name, ty) in COLUMNS {
-            // The names are distinct: adding cannot fail.
-            let _ = table.add_column(name, ty);
-        }
+        let c = ContinuedTable::new(previous, "observations of the computation", &COLUMNS);
         Observer {
-            table,
-            next: 1,
-            reuse: 0,
+            next: c.largest("NUME_OBSE").map_or(1, |n| n + 1),
+            reuse: c.nume_reuse,
+            table: c.table,
         }
     }
 
