@@ -241,9 +241,9 @@ fn run_with(dt: f64, steps: usize, stop_cfl: &str, schema: &str) -> Result<f64, 
 /// The element bound lies below the true limit of the assembled system
 /// (the element eigenvalue inequality), the loop is stable at the bound
 /// and just below the true limit (total energy kept to a few percent over
-/// many steps), and unstable just above it (energy grows without bound,
-/// the run stops on non-finite values or ends with an energy many times
-/// the initial one).
+/// many steps), and unstable just above it (energy grows without bound:
+/// the run stops once the scheme has created a hundred times the energy
+/// it was given).
 #[test]
 fn measured_stability_limit_lies_above_the_element_bound() {
     let (mesh, mo, imp, _) = setup();
@@ -255,14 +255,12 @@ fn measured_stability_limit_lies_above_the_element_bound() {
     assert!(drift < 0.05, "at the bound: energy drift {drift}");
     let drift = run_with(0.98 * exact, 5_000, "NON", "DIFF_CENT").unwrap();
     assert!(drift < 0.2, "just below the limit: energy drift {drift}");
-    match run_with(1.02 * exact, 5_000, "NON", "DIFF_CENT") {
-        Err(m) => assert!(m.contains("not finite"), "{m}"),
-        Ok(drift) => assert!(drift > 1e3, "above the limit: energy drift {drift}"),
-    }
+    let m = run_with(1.02 * exact, 5_000, "NON", "DIFF_CENT").unwrap_err();
+    assert!(m.contains("the explicit scheme is unstable"), "{m}");
 }
 
-/// A run far above the stability limit (STOP_CFL='NON') stops on
-/// non-finite values with the last converged state archived, and its
+/// A run far above the stability limit (STOP_CFL='NON') stops as unstable
+/// (long before any value overflows) with the last state archived, and its
 /// message counts the steps the result really keeps and names the last
 /// instant stored.
 #[test]
@@ -279,8 +277,11 @@ fn unstable_run_stops_and_says_what_the_result_keeps() {
     SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION', STOP_CFL='NON'))";
     let args = args_of(text, "DYNA_NON_LINE", 0);
     let m = exec(&mut st, "DYNA_NON_LINE", &args, "RESU").unwrap_err();
-    assert!(m.contains("not finite"), "{m}");
+    assert!(m.contains("the explicit scheme is unstable"), "{m}");
     let r = result(&st, "RESU");
+    // Stopped within a few tens of steps of a growth of about 3 per step
+    // (3 times the limit), every stored value finite and far from 1e300.
+    assert!(r.steps.iter().all(|s| s.inst < 100.0 * dt), "{m}");
     let last = r.steps.last().unwrap().inst;
     assert!(last > 0.0, "the last converged state is archived: {last}");
     let said = format!(

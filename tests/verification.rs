@@ -2214,6 +2214,81 @@ fn bad_formula_multipliers_are_located_errors() {
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_fonc_mult_bad");
 }
 
+/// A cell folded at a node while its Gauss points stay positive (a radial
+/// stretch plus the QUAD8's 2 x 2 spurious mode driven by DDL_IMPO,
+/// tests/verification/fold_hourglass.comm): the mid-side node (11, 0) has
+/// det F = (1 + 1.25 t)(1 - 1.5 t) by hand, -0.74375 at t = 0.9 and
+/// -1.125 at t = 1. The run goes on (imposed values exact) with an alarm
+/// at the first fold (t = 0.9, node N6) and a closing alarm with the
+/// deepest (t = 1, -1.125), under AXIS_SI, under AXIS (whose 3 x 3 points
+/// do not see it either) and in DIFF_CENT; before t = 2/3 there is none.
+#[test]
+fn a_cell_folded_between_its_gauss_points_is_an_alarm() {
+    let comm = std::fs::read_to_string(dir().join("fold_hourglass.comm")).unwrap();
+    let full = comm.replacen("MODELISATION='AXIS_SI'", "MODELISATION='AXIS'", 1);
+    // DIFF_CENT with a density that puts the critical step above the
+    // list's: the explicit loop checks at every list instant.
+    let explicit = comm.replacen("RHO=1.E-9", "RHO=1.E4", 1).replacen(
+        "R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=MODE, FONC_MULT=RAMPE),",
+        "R = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=MODE, FONC_MULT=RAMPE), MASS_DIAG='OUI',\n SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION'),",
+        1,
+    );
+    assert!(explicit.contains("R = DYNA_NON_LINE(") && explicit.contains("RHO=1.E4"));
+    let early = comm.replacen(
+        "LI = DEFI_LIST_REEL(VALE=(0., 0.5, 0.9, 1.))",
+        "LI = DEFI_LIST_REEL(VALE=(0., 0.5, 0.6))",
+        1,
+    );
+    let early = early
+        .replacen(
+            "INST=0.9, NOM_CHAM='DEPL', NOM_CMP='DX'",
+            "INST=0.6, NOM_CHAM='DEPL', NOM_CMP='DX'",
+            1,
+        )
+        .replacen("VALE_REFE=0.9 * 1.25", "VALE_REFE=0.6 * 1.25", 1)
+        .replacen(
+            "INST=0.9, NOM_CHAM='DEPL', NOM_CMP='DY'",
+            "INST=0.6, NOM_CHAM='DEPL', NOM_CMP='DY'",
+            1,
+        )
+        .replacen("VALE_REFE=0.9 * 1.5", "VALE_REFE=0.6 * 1.5", 1)
+        .replace("VALE_CALC=1.125", "VALE_CALC=0.75")
+        .replace("VALE_CALC=1.35", "VALE_CALC=0.9");
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("fold_hourglass_src");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let export = format!("F mmed {} D 20\n", dir().join("quad8_one.mmed").display());
+    for (tag, text, folds) in [
+        ("reduced", &comm, true),
+        ("full", &full, true),
+        ("explicit", &explicit, true),
+        ("early", &early, false),
+    ] {
+        std::fs::write(tmp.join(format!("{tag}.comm")), text).unwrap();
+        std::fs::write(tmp.join(format!("{tag}.export")), &export).unwrap();
+        let run = common::run_study(
+            tmp.join(format!("{tag}.comm")).to_str().unwrap(),
+            &format!("verif_fold_{tag}"),
+        );
+        common::assert_all_ok(&run, &format!("{tag}.resu"));
+        let mess = run.file(&format!("{tag}.mess"));
+        let first = "alarm: at t = 9e-1 cell 1 folds at its node N6: det F = -7.43";
+        let deepest = "checked states had a folded cell; the deepest fold: det F = -1.125e0 at node N6 of cell 1 at t = 1e0";
+        if folds {
+            assert!(
+                mess.contains(first)
+                    && mess.contains(deepest)
+                    && mess.matches("folds at its node").count() == 1,
+                "{tag}: {mess}"
+            );
+        } else {
+            assert!(
+                !mess.contains("folds at its node") && !mess.contains("folded cell"),
+                "{tag}: {mess}"
+            );
+        }
+    }
+}
+
 /// Bad calls in FORMULE and TEST_FONCTION of a formula: a function called
 /// with the wrong number of arguments, a function named without a call,
 /// VALE_PARA counts that do not match the formula's or the function's

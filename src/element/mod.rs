@@ -10,6 +10,7 @@
 pub mod axis;
 pub mod body_force;
 pub mod distributed;
+pub mod fold;
 pub mod hexs8;
 pub mod mechanics;
 pub mod pressure;

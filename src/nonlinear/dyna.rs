@@ -615,6 +615,7 @@ pub fn run(
     let ndpn = engine.asm.numbering.ndpn;
     let offsets = engine.asm.cell_state_offsets.clone();
     let mut energy = EnergyBalance::new(engine, result.tables.get(super::energy::TABLE_NAME));
+    let mut folds = super::assembly::FoldWatch::default();
     let mut observer = (!tl.observations.is_empty()).then(|| {
         let mut o = Observer::new(result.tables.get(super::observation::TABLE_NAME));
         o.observe(&tl.observations, &engine.committed, None, ndpn, &offsets);
@@ -892,6 +893,7 @@ pub fn run(
                     ndpn,
                     &offsets,
                 ));
+                folds.see(t_end, rep.fold, log);
                 if rep.not_converged {
                     log(&format!(
                         "  alarm: the step to t = {t_end:e} did not converge in ITER_GLOB_MAXI = {} iterations and is accepted (ARRET='NON'){}",
@@ -978,6 +980,9 @@ pub fn run(
                         }
                         store_energy(engine, &energy, result);
                         store_observations(observer.take(), result);
+                        if let Some(m) = folds.summary() {
+                            log(&m);
+                        }
                         if let Some(pb) = &bar {
                             pb.abandon();
                         }
@@ -1005,6 +1010,9 @@ pub fn run(
     }
     store_energy(engine, &energy, result);
     store_observations(observer, result);
+    if let Some(m) = folds.summary() {
+        log(&m);
+    }
     summary.seconds = started.elapsed().as_secs_f64();
     log(&format!(
         "  {} steps ({} cuts), {} Newton iterations, {} archived, {:.3} s ({:.3e} s per step)",

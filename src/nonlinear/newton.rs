@@ -197,6 +197,9 @@ pub struct StepReport {
     /// ARRET='NON' accepted a step that did not converge.
     pub not_converged: bool,
     pub history: Vec<IterationRecord>,
+    /// The deepest cell folded at a node of the converged state (cell,
+    /// mesh node, det F): the alarm's matter.
+    pub fold: Option<(usize, usize, f64)>,
 }
 
 /// Why a step failed: the time-step controller may cut it.
@@ -680,6 +683,9 @@ impl Engine {
                     }
                 }
                 if converged || (it == self.conv.iter_glob_maxi && !self.conv.arret) {
+                    // A cell folded between its Gauss points: the alarm's
+                    // matter (nonlinear::assembly::FoldWatch).
+                    let fold = self.asm.deepest_fold(&self.trial.motion.u);
                     self.min_denominator = Some(
                         self.min_denominator
                             .map_or(rec.denominator, |m| m.min(rec.denominator)),
@@ -694,6 +700,7 @@ impl Engine {
                         swapped: rec.swapped,
                         not_converged: !converged,
                         history,
+                        fold,
                     });
                 }
                 if let Some(v) = self.conv.events.resi_maxi.filter(|v| rec.resi_maxi > *v) {
