@@ -38,7 +38,7 @@ fn resi_maxi_stops_the_run_with_arret() {
         "exceeds the event's RESI_GLOB_MAXI = 1e-3",
         "the event's ACTION is ARRET",
         "resi_maxi_arret.comm:",
-        "steps of RESU computed before the error are saved",
+        "steps of RESU are saved in",
     ] {
         assert!(run.term.contains(want), "{want}\n{}", run.term);
     }

@@ -59,7 +59,8 @@ fn b_and_d_without_contact_run_to_the_end() {
 }
 
 /// A run that stops on a failed step reports the instant and the rule, and
-/// saves what it computed before in a MED file next to the .mess.
+/// saves what it computed before in a MED file next to the .mess, the
+/// Gauss-point fields included.
 #[test]
 fn a_stopped_run_keeps_its_results_on_disk() {
     let run = common::run_study("tests/studies/stop_plain_list.comm", "stop_plain_list");
@@ -78,6 +79,23 @@ fn a_stopped_run_keeps_its_results_on_disk() {
         .find(|f| f.name == "RESU____DEPL")
         .expect("DEPL saved");
     assert!(!depl.steps.is_empty());
+    // The stresses and internal variables too, as IMPR_RESU writes them
+    // (the mean per cell), at the same steps: a restart or a look at the
+    // state where it failed needs them.
+    let cells = aster::medio::read_elem_fields(&file, None).unwrap();
+    for name in ["RESU____SIEF_ELGA", "RESU____VARI_ELGA"] {
+        let f = cells.iter().find(|f| f.name == name).unwrap_or_else(|| {
+            panic!(
+                "{name} saved: {:?}",
+                cells.iter().map(|f| &f.name).collect::<Vec<_>>()
+            )
+        });
+        assert_eq!(f.steps.len(), depl.steps.len(), "{name}");
+    }
+    assert!(
+        term.contains("(SIEF_ELGA, VARI_ELGA as their mean per cell)"),
+        "{term}"
+    );
 }
 
 /// SDNV103 F with the penalised discrete contact of D instead of the

@@ -302,6 +302,27 @@ fn face_force_pulls_the_rod_uniformly() {
 #[test]
 fn uniform_stress_is_extrapolated_to_every_node() {
     run_study("stress_nodes");
+    // IMPR_RESU without NOM_CHAM writes the nodal and Gauss fields and
+    // says which fields by element at nodes it left out.
+    let run = common::run_variant(
+        &dir(),
+        "stress_nodes_impr_src",
+        "stress_nodes",
+        "stress_nodes_impr",
+        "FIN()",
+        "IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=RES_F))\nFIN()",
+    );
+    let mess = run.file("stress_nodes_impr.mess");
+    assert!(
+        mess.contains("the fields by element at nodes of result RES_F (SIEF_ELNO, SIGM_ELNO) are not written without NOM_CHAM"),
+        "{mess}"
+    );
+    let nodal = aster::medio::read_nodal_fields(&run.out.join("resu.rmed"), None).unwrap();
+    assert!(
+        nodal.iter().any(|f| f.name == "RES_F___SIGM_NOEU"),
+        "{:?}",
+        nodal.iter().map(|f| &f.name).collect::<Vec<_>>()
+    );
 }
 
 /// CALC_CHAMP CONTRAINTE in 3D on the STAT_NON_LINE patch of distorted

@@ -318,12 +318,26 @@ fn result_fields(
             .collect()
     } else {
         let mut all: Vec<String> = Vec::new();
+        let mut elno: Vec<&str> = Vec::new();
         for s in steps {
             for n in s.nodal.keys().chain(s.gauss.keys()) {
                 if !all.contains(n) {
                     all.push(n.clone());
                 }
             }
+            for n in s.elno.keys() {
+                if !elno.contains(&n.as_str()) {
+                    elno.push(n);
+                }
+            }
+        }
+        // Fields by element at nodes would be written as cell means (the
+        // writer has no ELNO support): only when asked by name, and said.
+        if !elno.is_empty() {
+            notes.push(format!(
+                "the fields by element at nodes of result {rname} ({}) are not written without NOM_CHAM: name them in NOM_CHAM to write their mean per cell",
+                elno.join(", ")
+            ));
         }
         all
     };
@@ -409,7 +423,7 @@ fn result_fields(
                 f.steps.push(FieldStep {
                     numdt: s.nume_ordre as i32,
                     time: s.inst,
-                    values: cell_means(field, mesh.ncells()),
+                    values: field.cell_means(mesh.ncells()),
                 });
             }
             limits.push(if at_nodes {
@@ -431,30 +445,6 @@ fn result_fields(
         }
     }
     Ok(())
-}
-
-/// The mean over the Gauss points of each cell, per component (NaN for
-/// cells without points, and for components absent at every point).
-fn cell_means(f: &GaussField, ncells: usize) -> Vec<f64> {
-    let nc = f.ncmp();
-    let mut out = vec![f64::NAN; ncells * nc];
-    for c in 0..ncells {
-        let npg = f.npg(c);
-        if npg == 0 {
-            continue;
-        }
-        let vals = f.cell(c);
-        for k in 0..nc {
-            let (sum, n) = (0..npg)
-                .map(|p| vals[p * nc + k])
-                .filter(|v| !v.is_nan())
-                .fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
-            if n > 0 {
-                out[c * nc + k] = sum / n as f64;
-            }
-        }
-    }
-    out
 }
 
 /// The components asked (NOM_CMP, or all) and the values node-major.

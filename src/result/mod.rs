@@ -112,6 +112,30 @@ impl GaussField {
             .checked_div(self.ncmp())
             .unwrap_or(0)
     }
+    /// The mean over the Gauss points of each of `ncells` cells, per
+    /// component (NaN for cells without points, and for components absent
+    /// at every point): what the MED writer stores of a Gauss field.
+    pub fn cell_means(&self, ncells: usize) -> Vec<f64> {
+        let nc = self.ncmp();
+        let mut out = vec![f64::NAN; ncells * nc];
+        for c in 0..ncells.min(self.offsets.len().saturating_sub(1)) {
+            let npg = self.npg(c);
+            if npg == 0 {
+                continue;
+            }
+            let vals = self.cell(c);
+            for k in 0..nc {
+                let (sum, n) = (0..npg)
+                    .map(|p| vals[p * nc + k])
+                    .filter(|v| !v.is_nan())
+                    .fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
+                if n > 0 {
+                    out[c * nc + k] = sum / n as f64;
+                }
+            }
+        }
+        out
+    }
 }
 
 /// One archived step of a transient result.

@@ -308,9 +308,11 @@ pub fn run_file_outcome(opts: &RunOptions, out: &mut dyn Write) -> RunOutcome {
 }
 
 /// After a failure or a stop by `signal`, writes every transient result
-/// computed so far (its nodal fields at every archived step) to
-/// `<study>_<RESULT>.rmed`, so that nothing computed is lost; returns the
-/// lines to report.
+/// computed so far (its nodal fields, and its Gauss-point fields as cell
+/// means as IMPR_RESU writes them, at every archived step) to
+/// `<study>_<RESULT>.rmed`, so that nothing computed is lost (the stresses
+/// and internal variables at the failure included); returns the lines to
+/// report.
 fn save_results(study: &Study, signal: Option<i32>) -> Vec<String> {
     let cause = match signal {
         Some(s) => format!("the stop by {}", crate::interrupt::name(s)),
@@ -326,7 +328,13 @@ fn save_results(study: &Study, signal: Option<i32>) -> Vec<String> {
             continue;
         };
         let mut fields: Vec<crate::medio::NodalField> = Vec::new();
+        let mut cells: Vec<crate::medio::ElemField> = Vec::new();
         for step in &res.steps {
+            let at = |values| crate::medio::FieldStep {
+                numdt: step.nume_ordre as i32,
+                time: step.inst,
+                values,
+            };
             for (name, f) in &step.nodal {
                 let full = format!("{:_<8}{name}", c.name);
                 let idx = match fields.iter().position(|x| x.name == full) {
@@ -340,23 +348,51 @@ fn save_results(study: &Study, signal: Option<i32>) -> Vec<String> {
                         fields.len() - 1
                     }
                 };
-                fields[idx].steps.push(crate::medio::FieldStep {
-                    numdt: step.nume_ordre as i32,
-                    time: step.inst,
-                    values: f.values.clone(),
-                });
+                fields[idx].steps.push(at(f.values.clone()));
+            }
+            for (name, f) in &step.gauss {
+                // A field on another mesh or whose components changed
+                // between steps has no place in one MED field: left out.
+                if f.offsets.len() != mesh.ncells() + 1 {
+                    continue;
+                }
+                let full = format!("{:_<8}{name}", c.name);
+                let idx = match cells.iter().position(|x| x.name == full) {
+                    Some(i) if cells[i].components == f.components => i,
+                    Some(_) => continue,
+                    None => {
+                        cells.push(crate::medio::ElemField {
+                            name: full,
+                            components: f.components.clone(),
+                            steps: Vec::new(),
+                        });
+                        cells.len() - 1
+                    }
+                };
+                cells[idx].steps.push(at(f.cell_means(mesh.ncells())));
             }
         }
         let path = study
             .out_dir
             .join(format!("{}_{}.rmed", study.stem, c.name));
-        match crate::medio::write_result(&path, mesh, &fields) {
-            Ok(()) => lines.push(format!(
-                "the {} archived steps of {} computed before {cause} are saved in {}",
-                res.steps.len(),
-                c.name,
-                path.display()
-            )),
+        match crate::medio::write_result_fields(&path, mesh, &fields, &cells) {
+            Ok(()) => {
+                let gauss: Vec<&str> = cells
+                    .iter()
+                    .map(|f| f.name[8.min(f.name.len())..].trim_start_matches('_'))
+                    .collect();
+                lines.push(format!(
+                    "the {} archived steps of {} are saved in {}{}",
+                    res.steps.len(),
+                    c.name,
+                    path.display(),
+                    if gauss.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" ({} as their mean per cell)", gauss.join(", "))
+                    }
+                ))
+            }
             Err(e) => lines.push(format!("could not save the result {}: {e}", c.name)),
         }
     }
