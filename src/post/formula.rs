@@ -371,8 +371,9 @@ impl Formula {
 
 /// Python's divmod of reals (CPython's float_divmod): the remainder has
 /// the divisor's sign and the quotient is the floor the remainder implies,
-/// so that `7. // 0.1` is 69 (not the floor of 7/0.1 = 70).
-fn py_divmod(a: f64, b: f64) -> (f64, f64) {
+/// so that `7. // 0.1` is 69 (not the floor of 7/0.1 = 70), to the last
+/// bit and the signs of zeros; the command file's `//` and `%` use it too.
+pub fn py_divmod(a: f64, b: f64) -> (f64, f64) {
     let mut rem = a % b;
     let mut div = (a - rem) / b;
     if rem != 0.0 {

@@ -45,31 +45,6 @@ pub fn unary(op: UnOp, x: PyVal) -> Result<PyVal, String> {
     })
 }
 
-/// Python's float `//` and `%` (CPython's float_divmod), so that the
-/// results match to the last bit, signs of zeros included.
-fn float_divmod(x: f64, y: f64) -> (f64, f64) {
-    let mut m = x % y;
-    let mut div = (x - m) / y;
-    if m != 0.0 {
-        if (y < 0.0) != (m < 0.0) {
-            m += y;
-            div -= 1.0;
-        }
-    } else {
-        m = 0.0f64.copysign(y);
-    }
-    let floordiv = if div != 0.0 {
-        let mut f = div.floor();
-        if div - f > 0.5 {
-            f += 1.0;
-        }
-        f
-    } else {
-        0.0f64.copysign(x / y)
-    };
-    (floordiv, m)
-}
-
 fn repeat(items: &[SpVal], n: i64) -> Result<Vec<SpVal>, String> {
     let n = n.max(0) as usize;
     if items.len().saturating_mul(n) > MAX_ITEMS {
@@ -153,7 +128,7 @@ pub fn binary(op: BinOp, a: PyVal, b: PyVal) -> Result<PyVal, String> {
                             "float floor division by zero".into()
                         });
                     }
-                    let (q, m) = float_divmod(x, y);
+                    let (q, m) = crate::post::formula::py_divmod(x, y);
                     if op == BinOp::Mod {
                         m
                     } else {
