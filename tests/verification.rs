@@ -2310,6 +2310,52 @@ fn a_cell_folded_between_its_gauss_points_is_an_alarm() {
     }
 }
 
+/// Energy created by a kinematic contact under NEWMARK 1/4, 1/2 (a bar
+/// landing on a block, tests/verification/contact_energy_gain.comm,
+/// ENER_CIN at t = 0 = 15 by hand): the alarm is given once, at the first
+/// instant where TRAV_LIAI falls below -1 % of the energy given (here
+/// ENER_CIN at the start is smaller than |TRAV_EXT| there), with the
+/// table's values of that instant; before it, TRAV_LIAI stays above.
+#[test]
+fn energy_created_by_the_contact_is_an_alarm() {
+    let resu = run_study("contact_energy_gain");
+    let mess = std::fs::read_to_string(
+        Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join("verif_contact_energy_gain")
+            .join("contact_energy_gain.mess"),
+    )
+    .unwrap();
+    let alarms: Vec<&str> = mess
+        .lines()
+        .filter(|l| l.contains("the contact has returned"))
+        .collect();
+    assert_eq!(alarms.len(), 1, "{mess}");
+    let rows = printed_table(&resu, "TE");
+    let at = |row: &std::collections::HashMap<String, String>| num(row, "INST");
+    let k = rows
+        .iter()
+        .position(|r| {
+            let given = num(&rows[0], "ENER_CIN").max(num(r, "TRAV_EXT").abs());
+            num(r, "TRAV_LIAI") < -0.01 * given
+        })
+        .expect("TRAV_LIAI below zero");
+    let row = &rows[k];
+    let t: f64 = alarms[0]
+        .split("alarm: at t = ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|x| x.parse().ok())
+        .expect("the alarm's instant");
+    assert!(
+        (t - at(row)).abs() < 1e-9 * at(row),
+        "{t} against {}",
+        at(row)
+    );
+    let liai = format!("(TRAV_LIAI = {:.4e}", num(row, "TRAV_LIAI"));
+    assert!(alarms[0].contains(&liai), "{liai}\n{}", alarms[0]);
+    assert!(k > 1, "the landing takes a few steps: {k}");
+}
+
 /// Bad calls in FORMULE and TEST_FONCTION of a formula: a function called
 /// with the wrong number of arguments, a function named without a call,
 /// VALE_PARA counts that do not match the formula's or the function's
