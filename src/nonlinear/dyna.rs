@@ -1123,10 +1123,10 @@ pub(crate) fn store_observations(observer: Option<Observer>, result: &mut EvolNo
 /// against 15 of initial kinetic energy, without a word). The explicit
 /// loop has its own alarm for the penalty (nonlinear::explicit).
 fn contact_energy_alarm(energy: &EnergyBalance, t: f64) -> Option<String> {
-    let given = energy.kinetic0.max(energy.external.abs());
-    if given <= 0.0 || energy.contact >= -0.01 * given {
+    if !energy.contact_created_energy() {
         return None;
     }
+    let given = energy.given();
     Some(format!(
         "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of ENER_CIN at the start and |TRAV_EXT|): a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and ENER_CIN keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it, smaller steps reduce it; this alarm is given once",
         -energy.contact,

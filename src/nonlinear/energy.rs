@@ -212,6 +212,20 @@ impl EnergyBalance {
     }
 
     /// TRAV_EXT, ENER_CIN, ENER_TOT, TRAV_AMOR, TRAV_LIAI, DISS_FROT, DISS_SCH.
+    /// The energy given to the model, the scale of the balance's alarms:
+    /// the larger of ENER_CIN at the start and |TRAV_EXT|.
+    pub fn given(&self) -> f64 {
+        self.kinetic0.max(self.external.abs())
+    }
+
+    /// The contact (or the unilateral links) has returned more energy than
+    /// it absorbed by more than 1 % of [`EnergyBalance::given`]: TRAV_LIAI
+    /// below zero is energy the contact created.
+    pub fn contact_created_energy(&self) -> bool {
+        let given = self.given();
+        given > 0.0 && self.contact < -0.01 * given
+    }
+
     pub fn values(&self) -> [f64; 7] {
         let error = self.external
             - (self.kinetic - self.kinetic0)

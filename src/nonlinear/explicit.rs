@@ -839,10 +839,10 @@ fn contact_steps(wdt: f64) -> String {
 /// the archived instant `t`, with the last step `dt` and ω_pen² `w2c`.
 /// None while the balance holds, or without penalty or energy given.
 pub fn contact_energy_alarm(energy: &EnergyBalance, t: f64, dt: f64, w2c: f64) -> Option<String> {
-    let given = energy.kinetic0.max(energy.external.abs());
-    if w2c <= 0.0 || given <= 0.0 || energy.contact >= -0.01 * given {
+    if w2c <= 0.0 || !energy.contact_created_energy() {
         return None;
     }
+    let given = energy.given();
     let w = w2c.sqrt();
     let wdt = w * dt;
     Some(format!(
@@ -873,7 +873,7 @@ const RUNAWAY: f64 = 100.0;
 fn runaway(energy: &EnergyBalance) -> Option<String> {
     let v = energy.values();
     let created = -v[6];
-    let given = energy.kinetic0.max(energy.external.abs());
+    let given = energy.given();
     (given > 0.0 && created > RUNAWAY * given).then(|| {
         format!(
             "the explicit scheme is unstable: it has created {created:.4e} of energy (DISS_SCH = {:.4e}, ENER_CIN = {:.4e}), more than {RUNAWAY} times the energy given to the model ({given:.4e}, the larger of ENER_CIN at the start and |TRAV_EXT|); the step is above the stable one (STOP_CFL='NON' lets such a step run) or a cell has degenerated",
