@@ -576,6 +576,70 @@ fn a_load_too_large_for_doubles_is_named_not_called_singular() {
     assert!(!err.unwrap().contains("singular"));
 }
 
+/// A load far too large for the model but short of overflowing the
+/// equilibrium: the motion stays finite while its energies (½ v·M v,
+/// F·Δu) overflow. Implicit: one alarm naming the columns, the run goes
+/// on; explicit: a stop naming the balance (before, the run ended "done"
+/// with ENER_CIN inf and DISS_SCH NaN in every row). A force whose
+/// acceleration overflows at once stops the explicit run naming the node
+/// and component and the forces, not "the step exceeds the stability
+/// limit".
+#[test]
+fn energies_that_overflow_are_named_in_both_schemes() {
+    let mesh = root_mesh("sdnv103d");
+    let implicit = pulled_bar(
+        "TR = AFFE_CHAR_MECA(MODELE=MO, FORCE_NODALE=_F(GROUP_NO='A2', FY=1.E160))",
+        "DYNA_NON_LINE",
+        "",
+    );
+    let (study, err) = run(&mesh, &implicit, "energy_overflow_implicit");
+    assert!(err.is_none(), "{err:?}");
+    let alarms: Vec<&str> = study
+        .mess
+        .lines()
+        .filter(|l| l.contains("the energy balance is not finite ("))
+        .collect();
+    assert_eq!(alarms.len(), 1, "{}", study.mess);
+    assert!(alarms[0].contains("TRAV_EXT = inf"), "{}", alarms[0]);
+
+    let explicit = |force: &str| {
+        implicit
+            .replace("FY=1.E160", force)
+            .replace(
+                "SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT')",
+                "MASS_DIAG='OUI', SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT', FORMULATION='ACCELERATION')",
+            )
+            .replace("JUSQU_A=1., NOMBRE=10", "JUSQU_A=1.E-8, NOMBRE=10")
+    };
+    let comm = explicit("FY=1.E290");
+    let (_, err) = run(&mesh, &comm, "energy_overflow_explicit");
+    assert_error(
+        &comm,
+        &err,
+        "DYNA_NON_LINE",
+        &[
+            "stopped at the step from t = 0e0 to t = 1e-9",
+            "the energy balance is not finite (",
+            "ENER_CIN = inf",
+            "the loads are far too large for the masses",
+        ],
+        "RES = DYNA_NON_LINE",
+    );
+    let comm = explicit("FY=1.E305");
+    let (_, err) = run(&mesh, &comm, "motion_overflow_explicit");
+    assert_error(
+        &comm,
+        &err,
+        "DYNA_NON_LINE",
+        &[
+            "the acceleration is not finite at node N",
+            "component DY",
+            "a force there is too large for the node's mass",
+        ],
+        "RES = DYNA_NON_LINE",
+    );
+}
+
 /// A column of unit HEXA8 (x, y in [0, 1]) with its levels at `zs`, as
 /// probe s7b built it: groups VOL, node groups NBAS (z = zs[0]), NHAUT
 /// (top), NX0 and NY0 (the symmetry planes).

@@ -57,16 +57,22 @@ impl DofNumbering {
     /// contact added (CONTINUE's multipliers).
     pub fn equation_name(&self, e: usize) -> String {
         match self.free.get(e) {
-            Some(&f) => format!(
-                "node N{} component {}",
-                f / self.ndpn + 1,
-                ["DX", "DY", "DZ"].get(f % self.ndpn).unwrap_or(&"?")
-            ),
+            Some(&f) => self.dof_name(f),
             None => format!(
                 "the contact unknown {} (after the displacements)",
                 e - self.neq() + 1
             ),
         }
+    }
+
+    /// Full dof `f` for a message: its node (code_aster's default name)
+    /// and component.
+    pub fn dof_name(&self, f: usize) -> String {
+        format!(
+            "node N{} component {}",
+            f / self.ndpn + 1,
+            ["DX", "DY", "DZ"].get(f % self.ndpn).unwrap_or(&"?")
+        )
     }
 
     /// A failed factorization or solve of a system on these equations,

@@ -617,6 +617,7 @@ pub fn run(
     let mut energy = EnergyBalance::new(engine, result.tables.get(super::energy::TABLE_NAME));
     let mut folds = super::assembly::FoldWatch::default();
     let mut contact_energy_alarmed = false;
+    let mut energy_overflow_alarmed = false;
     let mut observer = (!tl.observations.is_empty()).then(|| {
         let mut o = Observer::new(result.tables.get(super::observation::TABLE_NAME));
         o.observe(&tl.observations, &engine.committed, None, ndpn, &offsets);
@@ -881,8 +882,16 @@ pub fn run(
                     u.commit();
                 }
                 energy.step(engine, contact.as_deref(), has_term);
+                if !energy_overflow_alarmed {
+                    if let Some(bad) = energy.not_finite() {
+                        log(&format!(
+                            "  alarm: at t = {t_end:e} the energy balance is not finite ({bad}): the motion has grown beyond what double precision can square (½ v·M v, F·Δu) although the equilibrium still solves; the loads are far too large for the model (look at their values and FONC_MULT); this alarm is given once"
+                        ));
+                        energy_overflow_alarmed = true;
+                    }
+                }
                 if !contact_energy_alarmed && command(engine) == "DYNA_NON_LINE" {
-                    if let Some(m) = contact_energy_alarm(&energy, t_end) {
+                    if let Some(m) = contact_energy_alarm(&energy, t_end, engine.scheme.gamma) {
                         log(&m);
                         contact_energy_alarmed = true;
                     }
@@ -1113,25 +1122,35 @@ pub(crate) fn store_observations(observer: Option<Observer>, result: &mut EvolNo
     }
 }
 
-/// The alarm once the contact (or the unilateral links) has returned more
-/// energy than it absorbed by more than 1 % of the energy given to the
-/// model (the larger of ENER_CIN at the start and |TRAV_EXT|): in an
-/// implicit run the trapezoidal rule (NEWMARK 1/4, 1/2) with a stop that
-/// holds a node from within a step creates energy at every impact
-/// (tests/unilateral.rs: a mass stopped at +V leaves the floor at 3V),
-/// and a bar that lands and rebounds keeps it (probe s7a: TRAV_LIAI -39
-/// against 15 of initial kinetic energy, without a word). The explicit
-/// loop has its own alarm for the penalty (nonlinear::explicit).
-fn contact_energy_alarm(energy: &EnergyBalance, t: f64) -> Option<String> {
+/// The alarm once the contact (or the unilateral links) has created
+/// energy ([`EnergyBalance::contact_created_energy`]): in an implicit run
+/// a link that closes or opens within a step does work the time scheme
+/// does not balance; the trapezoidal rule (NEWMARK 1/4, 1/2) has no
+/// dissipation to take it out (tests/unilateral.rs: a mass stopped at +V
+/// leaves the floor at 3V), and a bar that lands and rebounds keeps it
+/// (probe s7a: TRAV_LIAI -39 against 15 of initial kinetic energy,
+/// without a word). The advice depends on whether the scheme dissipates
+/// (GAMMA > 1/2, which HHT implies). The explicit loop has its own alarm
+/// for the penalty (nonlinear::explicit).
+fn contact_energy_alarm(energy: &EnergyBalance, t: f64, gamma: f64) -> Option<String> {
     if !energy.contact_created_energy() {
         return None;
     }
     let given = energy.given();
+    let surplus = energy.surplus();
+    let why = if gamma > 0.5 + 1e-12 {
+        format!(
+            "links that close or open within a step did more work on the model than the numerical dissipation of the scheme (GAMMA = {gamma}) took out; smaller steps reduce it"
+        )
+    } else {
+        "a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and ENER_CIN keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it, smaller steps reduce it".to_string()
+    };
     Some(format!(
-        "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of ENER_CIN at the start and |TRAV_EXT|): a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and ENER_CIN keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it, smaller steps reduce it; this alarm is given once",
+        "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of ENER_CIN at the start and |TRAV_EXT|) and the model holds {surplus:.4e} more than it was given ({:.2} %: ENER_CIN - ENER_CIN at the start + ENER_TOT + TRAV_AMOR - TRAV_EXT): {why}; this alarm is given once",
         -energy.contact,
         energy.contact,
         -100.0 * energy.contact / given,
+        100.0 * surplus / given,
     ))
 }
 

@@ -425,7 +425,18 @@ impl Explicit {
                 a[f] = self.rhs[e] / self.mass[f];
             }
         }
-        Ok(())
+        // A force too large for its node's mass (the rhs itself finite:
+        // the loads are checked): named here, before the predictor turns
+        // it into a non-finite displacement an element would report.
+        match nb.free.iter().find(|&&f| !a[f].is_finite()) {
+            Some(&f) => Err(format!(
+                "the acceleration is not finite at {} (a = {}, lumped mass {:e}): a force there is too large for the node's mass (F/M overflows): look at the loads and their FONC_MULT at that node",
+                nb.dof_name(f),
+                a[f],
+                self.mass[f]
+            )),
+            None => Ok(()),
+        }
     }
 
     /// Imposed dofs take their value; a held one (a constant value) gets
@@ -636,10 +647,18 @@ impl Explicit {
             .map(|&f| (f, tr.motion.u[f] + tr.motion.a[f]))
             .find(|(_, x)| !x.is_finite())
         {
+            // A force too large for its node's mass overflows at once; a
+            // step above the stable one grows over many steps (and is
+            // usually stopped earlier by the runaway test of the balance).
+            let (fe, fi) = (fext[f], tr.fint[f]);
+            let cause = if !(fe / self.mass[f]).is_finite() || !(fi / self.mass[f]).is_finite() {
+                "a force there is too large for the node's mass (F/M overflows): look at the loads and their FONC_MULT at that node"
+            } else {
+                "the step exceeds the stability limit (STOP_CFL='NON' lets such a step run) or a cell has degenerated"
+            };
             return Err(format!(
-                "the motion is not finite at dof {} of node {} ({x}): the step exceeds the stability limit",
-                f % nb.ndpn + 1,
-                f / nb.ndpn + 1
+                "the motion is not finite at {} (u + a = {x}; F_ext = {fe:e}, F_int = {fi:e} there): {cause}",
+                nb.dof_name(f)
             ));
         }
         Ok(())
@@ -871,6 +890,11 @@ const RUNAWAY: f64 = 100.0;
 /// energy (a release from a prestressed state with neither velocity nor
 /// load: its stored energy is not in the balance).
 fn runaway(energy: &EnergyBalance) -> Option<String> {
+    if let Some(bad) = energy.not_finite() {
+        return Some(format!(
+            "the energy balance is not finite ({bad}): the motion has grown beyond what double precision can hold; the loads are far too large for the masses (look at their values and FONC_MULT), or the step is above the stable one (STOP_CFL='NON' lets such a step run)"
+        ));
+    }
     let v = energy.values();
     let created = -v[6];
     let given = energy.given();

@@ -647,9 +647,8 @@ impl Engine {
             }
             if let Some(f) = self.resid.iter().position(|v| !v.is_finite()) {
                 return Err(StepFailure::NonFinite(format!(
-                    "the residual is not finite at node {} ({})",
-                    f / nb.ndpn + 1,
-                    f % nb.ndpn
+                    "the residual is not finite at {}",
+                    nb.dof_name(f)
                 )));
             }
             if it > 0 {

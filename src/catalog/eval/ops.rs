@@ -1,7 +1,7 @@
 //! Python 3's operators on the values of a command file: arithmetic,
 //! comparisons, truth, indexing, slicing and iteration.
 
-use super::pyfmt::{percent_format, type_name, MAX_TEXT};
+use super::pyfmt::{float_repr, percent_format, type_name, MAX_TEXT};
 use super::{concept_unknown, PyVal, SpVal, MAX_ITEMS};
 use crate::diag::{Diagnostic, Span};
 use crate::lang::ast::{BinOp, CmpOp, UnOp};
@@ -138,7 +138,9 @@ pub fn binary(op: BinOp, a: PyVal, b: PyVal) -> Result<PyVal, String> {
                 BinOp::Pow => {
                     if x < 0.0 && y.fract() != 0.0 {
                         return Err(format!(
-                            "{x} ** {y}: a negative number to a fractional power is complex"
+                            "{} ** {}: a negative number to a fractional power is complex",
+                            float_repr(x),
+                            float_repr(y)
                         ));
                     }
                     if x == 0.0 && y < 0.0 {
@@ -148,7 +150,12 @@ pub fn binary(op: BinOp, a: PyVal, b: PyVal) -> Result<PyVal, String> {
                 }
             };
             if !r.is_finite() {
-                return Err(format!("the result of {x} {} {y} overflows", op.symbol()));
+                return Err(format!(
+                    "the result of {} {} {} overflows",
+                    float_repr(x),
+                    op.symbol(),
+                    float_repr(y)
+                ));
             }
             Ok(Real(r))
         }
@@ -611,6 +618,11 @@ mod tests {
         );
         assert!(binary(BinOp::Div, PyVal::Real(1.0), PyVal::Int(0)).is_err());
         assert!(binary(BinOp::Mul, PyVal::Int(i64::MAX), PyVal::Int(2)).is_err());
+        // Large reals are named as Python writes them, not in 300 digits.
+        assert_eq!(
+            binary(BinOp::Mul, PyVal::Real(1e305), PyVal::Real(1e305)),
+            Err("the result of 1e+305 * 1e+305 overflows".to_string())
+        );
         assert!(binary(BinOp::Add, PyVal::Str("a".into()), PyVal::Int(1)).is_err());
     }
 
