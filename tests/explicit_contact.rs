@@ -828,7 +828,7 @@ fn penalised_contact_resolved_by_too_few_steps_is_alarmed() {
                 dt * w / 2.0,
                 2.0 / w
             ),
-            "below the elements' 9.9952e-8 s: the penalty governs the stable step".to_string(),
+            "below the elements' 9.9953e-8 s: the penalty governs the stable step".to_string(),
             format!("w_pen dt = {:.3}", w * dt),
             "not energy-conserving".to_string(),
             format!("a step of at most {:.4e} s", 0.5 / w),

@@ -1027,6 +1027,29 @@ fn plane_strain_explicit_wave_speed() {
     run_study("dplan_wave_explicit");
 }
 
+/// A foundation cell whose every node is held is left out of the explicit
+/// critical step (probe s8x: it set 3.95e-7 s where the moving block
+/// allows 1.97e-6 s, so STOP_CFL refused a list of 1e-6 s): the list runs,
+/// the free flight is exact, and the .mess names the governing cell as
+/// code_aster would (M4, its element, cell type and group) and the cell
+/// left out.
+#[test]
+fn held_cells_are_left_out_of_the_critical_step() {
+    run_study("explicit_held_foundation");
+    let mess = std::fs::read_to_string(
+        Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join("verif_explicit_held_foundation")
+            .join("explicit_held_foundation.mess"),
+    )
+    .unwrap();
+    assert!(
+        mess.contains(
+            "DIFF_CENT: critical step 1.973989e-6 s (element eigenvalue bound 2/w_max, largest w at cell M4 (MECA_HEXA8 HEXA8, group(s) BLOC); 1 cell(s) whose every dof is imposed left out"
+        ),
+        "{mess}"
+    );
+}
+
 /// A 2 x 2 QUAD8 patch of [1, 3] x [0, 2] in the (r, z) plane whose centre
 /// vertex is moved off the grid; mid-edge nodes at the middle of straight
 /// edges. Groups: PATCH (the cells), M1 (the first cell), BAS (z = 0), HAUT
@@ -2045,7 +2068,7 @@ fn rayleigh_damping_in_explicit_dynamics() {
             "XA = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CK, EXCIT=_F(CHARGE=BC), MASS_DIAG='OUI',\n                   COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),\n                   INCREMENT=_F(LIST_INST=LI)",
             "LJ = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=0.1, NOMBRE=250))\nXA = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CK, EXCIT=_F(CHARGE=BC), MASS_DIAG='OUI',\n                   COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), ETAT_INIT=_F(VITE=V0),\n                   INCREMENT=_F(LIST_INST=LJ)",
         ),
-        "exceeds the critical step 2.414485e-4 of cell 3 (DYNAMIQUE_2); Rayleigh damping lowers the bound by sqrt(1 + xi^2) - xi = 0.4410 (undamped 5.474905e-4",
+        "exceeds the critical step 2.414485e-4 of cell M3 (MECA_HEXA8 HEXA8, group(s) VOL) (DYNAMIQUE_2); Rayleigh damping lowers the bound by sqrt(1 + xi^2) - xi = 0.4410 (undamped 5.474905e-4",
     )];
     let export = format!("F mmed {}/sdof_bar.mmed D 20\n", dir().display());
     expect_located_errors(&comm, &cases, &tmp, &export, "rayleigh_explicit");
@@ -2385,6 +2408,70 @@ fn energy_created_under_a_dissipative_scheme_is_an_alarm_with_its_gamma() {
         "{}",
         alarms[0]
     );
+}
+
+/// A LIAISON_UNIL stop that carries the whole load (probe s8u): with
+/// RESI_GLOB_MAXI the study converges to the exact stop force; with the
+/// default RESI_GLOB_RELA the first step cannot converge (code_aster's
+/// rule: no swap to RESI_GLOB_MAXI before a first converged step), and
+/// the failure says why, with the denominator against the forces and the
+/// keyword to give, instead of a bare "did not converge".
+#[test]
+fn a_stop_carrying_the_whole_load_converges_on_resi_glob_maxi_and_says_so() {
+    run_study("unil_stop_whole_load");
+    let run = common::run_variant(
+        &dir(),
+        "unil_stop_rela_src",
+        "unil_stop_whole_load",
+        "unil_stop_rela",
+        ",\n                   CONVERGENCE=_F(RESI_GLOB_MAXI=1.E-6))",
+        ")",
+    );
+    assert_ne!(run.code, 0);
+    let mess = run.file("unil_stop_rela.mess");
+    let err = mess
+        .lines()
+        .find(|l| l.starts_with("error: STAT_NON_LINE"))
+        .unwrap_or_else(|| panic!("{mess}"));
+    for part in [
+        "Newton did not converge in 10 iterations",
+        "RESI_GLOB_RELA's denominator, max |reactions + contact forces - F_ext| = ",
+        "is round-off of the forces it balances (up to 6.250e1)",
+        "with CONVERGENCE=_F(RESI_GLOB_MAXI=...)",
+    ] {
+        assert!(err.contains(part), "{part} in {err}");
+    }
+}
+
+/// RECU_TABLE's wrong calls name the result's tables: NOM_PARA (a table
+/// of the result's parameters, not built: probe s8x read the energy this
+/// way and got a bare "not implemented"), a missing NOM_TABLE, a table the
+/// result does not hold.
+#[test]
+fn recu_table_errors_name_the_tables_of_the_result() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("recu_table_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("contact_energy_gain.comm")).unwrap();
+    let call = "TE = RECU_TABLE(CO=R, NOM_TABLE='PARA_CALC')";
+    let cases = [
+        (
+            "nom_para",
+            (call, "TE = RECU_TABLE(CO=R, NOM_PARA='PARA_CALC')"),
+            "not implemented yet: RECU_TABLE/NOM_PARA (a table of the result's parameters; R's own tables are read with NOM_TABLE: PARA_CALC)",
+        ),
+        (
+            "no_nom_table",
+            (call, "TE = RECU_TABLE(CO=R)"),
+            "NOM_TABLE is required; R holds the tables: PARA_CALC",
+        ),
+        (
+            "unknown_table",
+            (call, "TE = RECU_TABLE(CO=R, NOM_TABLE='OBSERVATION')"),
+            "R holds no table 'OBSERVATION'; its tables: PARA_CALC",
+        ),
+    ];
+    let export = format!("F mmed {}/drop4.mmed D 20\n", dir().display());
+    expect_located_errors(&comm, &cases, &tmp, &export, "recu_table_bad");
 }
 
 /// Bad calls in FORMULE and TEST_FONCTION of a formula: a function called

@@ -314,11 +314,15 @@ pub(crate) fn exec(
         .map_err(|f| {
             args.error(
                 "",
-                format!("critical step: cell {}: {}", f.cell + 1, f.failure),
+                format!(
+                    "critical step: cell {}: {}",
+                    crate::nonlinear::cell_label(&md.mesh, &md.model, f.cell),
+                    f.failure
+                ),
             )
         })?;
     notes.push(format!(
-        "{}: critical step {:.6e} s (element eigenvalue bound 2/w_max{}{}, largest w at cell {}){}",
+        "{}: critical step {:.6e} s (element eigenvalue bound 2/w_max{}{}, largest w at cell {}{}){}",
         scheme.name(),
         bound.dt,
         match scheme {
@@ -333,7 +337,13 @@ pub(crate) fn exec(
             ),
             None => String::new(),
         },
-        bound.cell + 1,
+        crate::nonlinear::cell_label(&md.mesh, &md.model, bound.cell),
+        match bound.held_cells {
+            0 => String::new(),
+            n => format!(
+                "; {n} cell(s) whose every dof is imposed left out: they carry no free motion to be unstable"
+            ),
+        },
         if w2c > 0.0 {
             format!(
                 "; without the contact penalty {:.6e} s: the penalty stiffness on the lightest slave node lowers it by a factor {:.3}",
@@ -396,13 +406,13 @@ pub(crate) fn exec(
                 "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} set by the contact penalty (the elements' alone: {:.6e} at cell {}) (DYNAMIQUE_2)",
                 bound.dt,
                 bound.dt_elements,
-                bound.cell + 1
+                crate::nonlinear::cell_label(&md.mesh, &md.model, bound.cell)
             )
         } else {
             format!(
                 "step {k} of the time list (from t = {t:e}, dt = {dt:.6e}) exceeds the critical step {:.6e} of cell {} (DYNAMIQUE_2)",
                 bound.dt,
-                bound.cell + 1
+                crate::nonlinear::cell_label(&md.mesh, &md.model, bound.cell)
             )
         } + &damped;
         if stop_cfl {

@@ -34,10 +34,18 @@ pub fn def() -> CommandDef {
 }
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
-    if args.given("NOM_PARA") {
-        return Err(args.not_implemented("NOM_PARA", ""));
-    }
     let (name, evol) = result_of(study, args, "CO")?;
+    if args.given("NOM_PARA") {
+        // The result's parameters as a table are not built; the tables it
+        // holds are what a user of these studies usually wants.
+        return Err(args.not_implemented(
+            "NOM_PARA",
+            &format!(
+                "a table of the result's parameters; {name}'s own tables are read with NOM_TABLE: {}",
+                table_names(evol)
+            ),
+        ));
+    }
     let Some(nom) = args.text("NOM_TABLE") else {
         return Err(args.error(
             "NOM_TABLE",

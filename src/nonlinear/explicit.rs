@@ -144,6 +144,11 @@ pub struct StepBound {
     pub dt_elements: f64,
     /// The mesh cell (0-based) with the largest element ω.
     pub cell: usize,
+    /// Cells left out because every dof of theirs is imposed: with no free
+    /// dof they carry no motion the scheme integrates (code_aster's
+    /// `pascou` counts them; a held foundation finer than the body then
+    /// set the step).
+    pub held_cells: usize,
     /// The factor of Rayleigh damping in `dt` ([`damped_step_factor`]; 1
     /// without damping).
     pub damping_factor: f64,
@@ -309,12 +314,17 @@ impl Explicit {
         let started = std::time::Instant::now();
         let laws = &asm.laws;
         let first = self.estimates == 0;
+        let eq = &asm.numbering.eq;
+        let held = |e: &super::assembly::ElementData| e.full.iter().all(|&f| eq[f] == NONE);
         let per: Vec<Result<f64, CellFailure>> = asm
             .elements
             .par_iter()
             .zip(&self.elem_mass)
             .zip(self.eigvecs.par_iter_mut())
             .map(|((e, m), x)| {
+                if held(e) {
+                    return Ok(0.0);
+                }
                 let n = e.full.len();
                 let mut lu = [0.0; MAX_DOFS];
                 for k in 0..n {
@@ -388,6 +398,7 @@ impl Explicit {
             dt: dt_of(w2 + contact_omega2),
             dt_elements: dt_of(w2),
             cell,
+            held_cells: asm.elements.iter().filter(|e| held(e)).count(),
             damping_factor: match damping {
                 Some(d) if wt > 0.0 => damped_step_factor(d.ratio(wt)),
                 _ => 1.0,

@@ -207,6 +207,22 @@ fn check_density(
 }
 
 /// The groups of a cell for a message ("none" when it is in no group).
+/// A mesh cell of the model for a message, as code_aster names it (M +
+/// its number), with its element and cell type and its groups:
+/// `M3 (MECA_HEXA8 HEXA8, group(s) FOND)`.
+pub fn cell_label(mesh: &Mesh, model: &Model, cell: usize) -> String {
+    let element = match model.cells.get(cell) {
+        Some(crate::model::CellRole::Element(spec)) => format!("{} ", spec.name),
+        _ => String::new(),
+    };
+    format!(
+        "M{} ({element}{}, group(s) {})",
+        cell + 1,
+        mesh.cells[cell].kind.aster_name(),
+        group_list(mesh, cell)
+    )
+}
+
 fn group_list(mesh: &Mesh, cell: usize) -> String {
     let g = mesh.groups_containing(&[cell]);
     if g.is_empty() {

@@ -171,6 +171,11 @@ pub trait ContactTerm {
     }
 }
 
+/// A RESI_GLOB_RELA denominator below this fraction of the forces it is
+/// the difference of is their round-off (a load carried whole by the
+/// supports or stops).
+const CANCELLED: f64 = 1e-9;
+
 /// One row of the Newton table.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct IterationRecord {
@@ -180,6 +185,11 @@ pub struct IterationRecord {
     pub resi_maxi: f64,
     /// The denominator of RESI_GLOB_RELA.
     pub denominator: f64,
+    /// The largest of the terms the denominator is the difference of
+    /// (|F_ext|, |reactions|, |contact forces|; the inertia term counts
+    /// whole): a denominator at round-off of it means the supports carry
+    /// the whole load, and RESI_GLOB_RELA cannot fall.
+    pub denominator_scale: f64,
     /// RESI_GLOB_RELA replaced by RESI_GLOB_MAXI for this step.
     pub swapped: bool,
     /// The matrix was reassembled for the correction that follows.
@@ -266,6 +276,16 @@ impl std::fmt::Display for StepFailure {
                         r.iteration - 1,
                         r.resi_rela,
                         r.resi_maxi
+                    )?;
+                }
+                if let Some(r) = history
+                    .last()
+                    .filter(|r| !r.swapped && r.denominator < CANCELLED * r.denominator_scale)
+                {
+                    write!(
+                        f,
+                        "; RESI_GLOB_RELA's denominator, max |reactions + contact forces - F_ext| = {:.3e}, is round-off of the forces it balances (up to {:.3e}): the supports or the stops carry the whole load, so RESI_GLOB_RELA stays at round-off over round-off; judge the step by RESI_GLOB_MAXI (here {:.3e}) with CONVERGENCE=_F(RESI_GLOB_MAXI=...) (code_aster's rule: RESI_GLOB_RELA gives way to RESI_GLOB_MAXI by itself only after a first converged step)",
+                        r.denominator, r.denominator_scale, r.resi_maxi
                     )?;
                 }
                 Ok(())
@@ -785,13 +805,19 @@ impl Engine {
             maxi = maxi.max(self.resid[f].abs());
         }
         let mut denom: f64 = 0.0;
+        let mut scale: f64 = 0.0;
         // λ_i + c_i − F_ext,i, with λ = −R at imposed dofs (R holds the
         // contact forces c) and λ = 0 at free ones.
         for &f in &nb.free {
             denom = denom.max((self.cforce[f] - self.fext[f]).abs());
+            scale = scale.max(self.cforce[f].abs()).max(self.fext[f].abs());
         }
         for &(f, _) in &nb.imposed {
             denom = denom.max((-self.resid[f] + self.cforce[f] - self.fext[f]).abs());
+            scale = scale
+                .max(self.resid[f].abs())
+                .max(self.cforce[f].abs())
+                .max(self.fext[f].abs());
         }
         // Quasi-static (STAT_NON_LINE): no inertia term, code_aster's
         // denominator is the reactions and loads alone.
@@ -801,6 +827,7 @@ impl Engine {
             for f in 0..self.work.len() {
                 denom = denom.max(self.work[f].abs() * inv);
             }
+            scale = scale.max(denom);
         }
         let swapped = swap_allowed
             && self.conv.resi_glob_rela.is_some()
@@ -810,6 +837,7 @@ impl Engine {
             resi_rela: if denom > 0.0 { maxi / denom } else { -1.0 },
             resi_maxi: maxi,
             denominator: denom,
+            denominator_scale: scale,
             swapped,
             matrix_updated: updated,
         }
@@ -868,6 +896,7 @@ mod tests {
                 resi_rela: 1.0 / i as f64,
                 resi_maxi: 2.0,
                 denominator: 1.0,
+                denominator_scale: 1.0,
                 swapped: false,
                 matrix_updated: true,
             })
