@@ -2166,6 +2166,67 @@ fn kinematic_loads_hold_and_pull_the_bar() {
     run_study("char_cine");
 }
 
+/// Two ways code_aster writes a call that modifies a result in place,
+/// which aster refused or dropped (probe s8c): `CALC_CHAMP(reuse=RS,
+/// ...)` not assigned to a name still enriches RS (code_aster's ssnp170a
+/// reads the field it adds; here the REAC_NODA the study's POST_RELEVE_T
+/// needs), and `R = DYNA_NON_LINE(reuse=R, RESULTAT=R, ...)` (code_aster
+/// 15's reentrance keyword) continues R as without RESULTAT. Both
+/// variants pass every check of their study.
+#[test]
+fn in_place_calls_written_as_code_aster_15_does() {
+    let run = common::run_variant(
+        &dir(),
+        "reuse_unassigned_src",
+        "char_cine",
+        "reuse_unassigned",
+        "RS = CALC_CHAMP(reuse=RS,",
+        "CALC_CHAMP(reuse=RS,",
+    );
+    common::assert_all_ok(&run, "reuse_unassigned.resu");
+    assert!(
+        !run.file("reuse_unassigned.mess").contains("will be lost"),
+        "{}",
+        run.file("reuse_unassigned.mess")
+    );
+    let run = common::run_variant(
+        &dir(),
+        "reuse_resultat_src",
+        "free_flight",
+        "reuse_resultat",
+        "RES_C = DYNA_NON_LINE(reuse=RES_C,",
+        "RES_C = DYNA_NON_LINE(reuse=RES_C, RESULTAT=RES_C,",
+    );
+    common::assert_all_ok(&run, "reuse_resultat.resu");
+}
+
+/// RESULTAT in STAT_NON_LINE / DYNA_NON_LINE names the result continued in
+/// place: another concept than reuse=, or RESULTAT without reuse=, is a
+/// located error saying how to write it.
+#[test]
+fn resultat_of_a_nonlinear_call_must_be_its_reuse() {
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("reuse_resultat_bad");
+    std::fs::create_dir_all(&tmp).unwrap();
+    let comm = std::fs::read_to_string(dir().join("free_flight.comm")).unwrap();
+    let call = "RES_C = DYNA_NON_LINE(reuse=RES_C,";
+    let cases = [
+        (
+            "other",
+            (call, "RES_C = DYNA_NON_LINE(reuse=RES_C, RESULTAT=RES_NM,"),
+            "reuse=RES_C but RESULTAT=RES_NM: RESULTAT names the result continued in place, the one of reuse=",
+        ),
+        (
+            "no_reuse",
+            (call, "RES_D = DYNA_NON_LINE(RESULTAT=RES_C,"),
+            "RESULTAT=RES_C names the result DYNA_NON_LINE continues in place: write RES_C = DYNA_NON_LINE(reuse=RES_C, RESULTAT=RES_C, ...), or leave RESULTAT out for a new result",
+        ),
+    ];
+    let export = std::fs::read_to_string(dir().join("free_flight.export"))
+        .unwrap()
+        .replace("F mmed ", &format!("F mmed {}/", dir().display()));
+    expect_located_errors(&comm, &cases, &tmp, &export, "reuse_resultat_bad");
+}
+
 /// MODI_MAILLAGE ROTATION: the column turned by 40 degrees about (1,1,1)
 /// passes the linear patch test written in the turned axes (HEXS8,
 /// STAT_NON_LINE and MECA_STATIQUE, 1e-7), and an axis that is missing or

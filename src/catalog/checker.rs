@@ -845,7 +845,10 @@ impl Checker<'_> {
             "INCLUDE" => {
                 d = d.note("aster reads one command file: copy the included commands into it");
             }
-            _ => d.suggestion = closest(&func.name, names),
+            other => match super::absent::describe(other) {
+                Some(what) => d = d.note(what),
+                None => d.suggestion = closest(&func.name, names),
+            },
         }
         self.errors.push(d);
     }
@@ -1004,7 +1007,17 @@ impl Checker<'_> {
                 reuse = Some((real, sp));
             }
         }
-        let target = alias_target.as_ref().or(target);
+        // `CMD(reuse=X, ...)` without `X =`: code_aster modifies X in place
+        // all the same (ssnp170a's CALC_CHAMP, sdnl112a's MODI_MAILLAGE):
+        // the result goes to X, as `X = CMD(reuse=X, ...)`.
+        let implied_target = match (alias_target.as_ref().or(target), &reuse) {
+            (None, Some((n, sp))) => Some(Ident {
+                name: n.clone(),
+                span: *sp,
+            }),
+            _ => None,
+        };
+        let target = alias_target.as_ref().or(target).or(implied_target.as_ref());
         if cmd == "FORMULE" {
             let formula = target.map_or("the formula".to_string(), |t| t.name.clone());
             // The formula defined again: what the old one read is moot.
@@ -1147,7 +1160,26 @@ impl Checker<'_> {
             }
             Reentrant::Optional(k) | Reentrant::Required(k) => *k,
         };
+        // A reentrant command whose reentrance is not RESULTAT but which
+        // has RESULTAT at its top (STAT_NON_LINE, DYNA_NON_LINE): there
+        // code_aster ≥ 15 names the result continued in place.
+        let resultat = (key != "RESULTAT")
+            .then(|| {
+                top.concept("RESULTAT")
+                    .map(|g| (g.to_string(), top.span_of("RESULTAT")))
+            })
+            .flatten();
         let Some((name, sp)) = reuse else {
+            if let Some((given, at)) = &resultat {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "RESULTAT={given} names the result {cmd} continues in place: write {given} = {cmd}(reuse={given}, RESULTAT={given}, ...), or leave RESULTAT out for a new result"
+                    ))
+                    .at(*at)
+                    .in_command(cmd)
+                    .keyword("RESULTAT"),
+                );
+            }
             if let (Reentrant::Required(_), Some(t)) = (reentrant, target) {
                 self.errors.push(
                     Diagnostic::error(format!(
@@ -1211,6 +1243,16 @@ impl Checker<'_> {
                     .keyword("reuse"),
                 );
             }
+        }
+        if let Some((given, at)) = resultat.filter(|(g, _)| *g != name) {
+            self.errors.push(
+                Diagnostic::error(format!(
+                    "reuse={name} but RESULTAT={given}: RESULTAT names the result continued in place, the one of reuse="
+                ))
+                .at(at)
+                .in_command(cmd)
+                .keyword("RESULTAT"),
+            );
         }
         // The reused concept must be the one passed in the reentrance keyword
         // (e.g. MAILLAGE for DEFI_GROUP, ETAT_INIT/EVOL_NOLI for DYNA_NON_LINE).
@@ -1295,6 +1337,7 @@ impl Checker<'_> {
         }
 
         // Unknown keywords.
+        let mut unknown_given = false;
         for (k, _) in &given {
             if active.iter().any(|a| a.name() == k.name) {
                 continue;
@@ -1328,6 +1371,7 @@ impl Checker<'_> {
                 d.suggestion = closest(&k.name, &valid);
                 d.choices = valid.iter().map(|s| s.to_string()).collect();
                 self.errors.push(d);
+                unknown_given = true;
             }
         }
 
@@ -1351,6 +1395,17 @@ impl Checker<'_> {
             }
         }
         for r in rules.iter().chain(block_rules.iter().copied()) {
+            // "At least one of ... must be given" after an unknown keyword
+            // is the same mistake again (LIAISON_DDL in AFFE_CHAR_MECA,
+            // which the user meant as the load): reported once.
+            let none_of = |ks: &[&str]| !ks.iter().any(|k| present.contains(k));
+            let nothing_given = match r {
+                Rule::AtLeastOne(ks) | Rule::ExactlyOne(ks) => none_of(ks),
+                _ => false,
+            };
+            if unknown_given && nothing_given {
+                continue;
+            }
             if let Some(msg) = rule_violation(r, &present) {
                 let mut d = Diagnostic::error(msg).at(out.span).in_command(cmd);
                 if !path.is_empty() {

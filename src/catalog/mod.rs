@@ -1,5 +1,6 @@
 //! The catalogue language (schema), checked arguments and the checker.
 
+pub mod absent;
 pub mod args;
 pub mod checker;
 pub mod concept_type;

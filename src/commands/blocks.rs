@@ -584,6 +584,16 @@ pub fn c_rech_lineaire() -> Keyword {
     .kw()
 }
 
+/// `RESULTAT` of STAT_NON_LINE and DYNA_NON_LINE: code_aster ≥ 15 names
+/// the result a call continues in place there (`reentrant="f:RESULTAT"`:
+/// `R = DYNA_NON_LINE(reuse=R, RESULTAT=R, ...)`); the checker requires it
+/// to be the reused concept.
+pub fn c_resultat_reuse() -> Keyword {
+    concept("RESULTAT", &[C::EvolNoli])
+        .doc("the result continued in place, the same as reuse= (code_aster 15 and later write reuse=R, RESULTAT=R); the initial state is still ETAT_INIT's")
+        .kw()
+}
+
 /// `ETAT_INIT` (`C_ETAT_INIT` for DYNA_NON_LINE).
 pub fn c_etat_init() -> Keyword {
     etat_init_with(true)

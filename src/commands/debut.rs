@@ -52,6 +52,10 @@ pub fn def() -> CommandDef {
                 .doc("alarm ids not to turn into errors under ERREUR=_F(ALARME='EXCEPTION')")
                 .kw(),
             text("LANG").doc("language of the messages").kw(),
+            text("PAR_LOT")
+                .into(&["OUI", "NON"])
+                .doc("code_aster 14 and before: 'NON' ran the file's Python between the commands, so that it could read their results; accepted and without effect: aster evaluates the Python first, as with 'OUI', and the .mess says so for 'NON'")
+                .kw(),
             info(),
         ],
     )
@@ -120,6 +124,9 @@ fn compat_code(given: &mut Vec<(Ident, SpVal)>) -> Vec<Diagnostic> {
 
 /// Records how alarms are treated; the runner opened the study already.
 fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
+    if args.text("PAR_LOT") == Some("NON") {
+        study.log("  PAR_LOT='NON' (code_aster 14 and before) has no effect: aster evaluates the file's Python before running any command, so the Python cannot read a command's result (EXTR_TABLE, getValues...), as under PAR_LOT='OUI'");
+    }
     let exception = args
         .fact("ERREUR")
         .and_then(|e| e.text("ALARME"))

@@ -63,6 +63,7 @@ pub fn def() -> CommandDef {
                 .kw(),
             c_comportement(),
             c_etat_init(),
+            c_resultat_reuse(),
             c_increment(),
             schema_temps(),
             text("METHODE")

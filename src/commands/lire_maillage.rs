@@ -53,8 +53,37 @@ pub fn def() -> CommandDef {
             info(),
         ],
     )
+    .compat(other_formats)
     .doc("Reads a mesh; MED cell groups become GROUP_MA, node groups GROUP_NO.");
     CommandDef { spec, exec }
+}
+
+/// FORMAT other than 'MED' is code_aster's but not read here: said when
+/// the file is checked (`aster check`, and before a run starts), not when
+/// the command runs (probe s8c: `check` passed files whose run then
+/// stopped at their first command).
+// The type of every compat hook (which may add or drop keywords).
+#[allow(clippy::ptr_arg)]
+fn other_formats(
+    given: &mut Vec<(crate::lang::ast::Ident, crate::catalog::eval::SpVal)>,
+) -> Vec<crate::diag::Diagnostic> {
+    use crate::catalog::eval::PyVal;
+    given
+        .iter()
+        .filter(|(k, _)| k.name == "FORMAT")
+        .filter_map(|(_, v)| match &v.v {
+            PyVal::Str(f) if f != "MED" && ["ASTER", "GIBI", "GMSH", "IDEAS"].contains(&f.as_str()) => Some(
+                crate::diag::Diagnostic::error(format!(
+                    "not implemented yet: LIRE_MAILLAGE/FORMAT='{f}' (only FORMAT='MED' is read)"
+                ))
+                .at(v.span)
+                .in_command("LIRE_MAILLAGE")
+                .keyword("FORMAT")
+                .note("convert the mesh to MED (SALOME's mesh module, or gmsh's MED export) and read it with FORMAT='MED'"),
+            ),
+            _ => None,
+        })
+        .collect()
 }
 
 /// Reads the MED file behind the logical unit (only FORMAT='MED').

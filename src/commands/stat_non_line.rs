@@ -46,6 +46,7 @@ pub fn def() -> CommandDef {
                 .kw(),
             c_comportement(),
             c_etat_init_stat(),
+            c_resultat_reuse(),
             c_increment(),
             text("METHODE")
                 .into(&["NEWTON", "IMPLEX", "NEWTON_KRYLOV", "SNES", "RASPEN"])

@@ -36,6 +36,11 @@ const MATH: &[&str] = &[
     "fabs", "floor", "ceil", "sinh", "cosh", "tanh", "hypot", "degrees", "radians", "pi", "e",
 ];
 
+/// A function or constant of `math` that command files may use.
+pub fn is_math(name: &str) -> bool {
+    MATH.contains(&name)
+}
+
 /// The part of numpy that aster has: scalar functions whose result is the
 /// same float as Python's math gives. Arrays (np.array, np.linspace...)
 /// are refused: their printing and arithmetic differ from lists.

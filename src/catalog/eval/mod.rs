@@ -165,6 +165,21 @@ fn err(message: impl Into<String>, span: Span) -> Diagnostic {
     Diagnostic::error(message).at(span)
 }
 
+/// A name of `math` that the file did not bind: code_aster's command
+/// namespace has them without an import (its official tests sdnv100a and
+/// sdnv108a use `sqrt` and `pi` so), and so does aster. A name the file
+/// binds, or a concept DETRUIRE removed, is not one.
+fn math_fallback(name: &str, destroyed: &IndexMap<String, Span>) -> Option<PyVal> {
+    if destroyed.contains_key(name) || !builtins::is_math(name) {
+        return None;
+    }
+    let id = crate::lang::ast::Ident {
+        name: name.to_string(),
+        span: Span::new(0, 0),
+    };
+    builtins::module_attr("math", &id).ok()
+}
+
 /// The error for anything that needs a concept's content.
 pub fn concept_unknown(name: &str, what: &str, span: Span) -> Diagnostic {
     err(
@@ -186,6 +201,9 @@ impl Env {
                 ty: *ty,
             }),
             None => {
+                if let Some(v) = math_fallback(id, &self.destroyed) {
+                    return Ok(v);
+                }
                 let known: Vec<&str> = self.names.keys().map(String::as_str).collect();
                 let mut d = Diagnostic::error(format!("name '{id}' is not defined")).at(span);
                 if self.destroyed.contains_key(id) {
@@ -631,7 +649,8 @@ impl Env {
         }
         match self.names.get(name) {
             Some(Binding::Var(v)) => Some(v.clone()),
-            _ => None,
+            Some(Binding::Concept { .. }) => None,
+            None => math_fallback(name, &self.destroyed),
         }
     }
 
