@@ -107,10 +107,21 @@ impl DofNumbering {
                  solve are {OVERFLOW}",
                 self.equation_name(*unknown)
             ),
+            // A system inconsistent in itself (a right-hand side of another
+            // size than the matrix): aster's fault, not the structure's.
+            SolverError::Usage(_) => format!(
+                "{e}: {INTERNAL} (the linear system it built is inconsistent), \
+                 not a property of the study; please report it with the command file"
+            ),
             e => e.to_string(),
         }
     }
 }
+
+/// What a solver failure that is aster's own bug says (the step's
+/// description then blames no rigid-body mode: probe s8g D2 was told to
+/// "add the missing DDL_IMPO" for a right-hand side of the wrong length).
+pub const INTERNAL: &str = "an internal error of aster";
 
 /// Numbers the dofs of `model` on `mesh`, with the DDL_IMPO of `loads`.
 /// A dof imposed twice must get the same value; a dof outside the model
@@ -182,4 +193,34 @@ pub fn number(mesh: &Mesh, model: &Model, loads: &[&MechLoad]) -> Result<DofNumb
         free,
         imposed,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A solver misuse (a right-hand side of another size than the matrix)
+    /// is said to be aster's error; the quasi-static step's description
+    /// (nonlinear::dyna) then does not send the user after a missing
+    /// DDL_IMPO, which it did for probe s8g's D2.
+    #[test]
+    fn a_solver_misuse_is_reported_as_an_internal_error() {
+        let nb = DofNumbering {
+            nnodes: 1,
+            ndpn: 2,
+            active_node: vec![true],
+            eq: vec![0, 1],
+            free: vec![0, 1],
+            imposed: Vec::new(),
+        };
+        let m = nb.solver_failure(&SolverError::Usage(
+            "right-hand side of length 22 for a matrix of order 27".into(),
+        ));
+        assert!(
+            m.starts_with("linear solver misuse: right-hand side of length 22")
+                && m.contains(INTERNAL)
+                && m.contains("report it"),
+            "{m}"
+        );
+    }
 }

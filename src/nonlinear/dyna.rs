@@ -552,7 +552,8 @@ fn describe(engine: &Engine, tl: &TimeLoop, failure: &StepFailure) -> String {
         StepFailure::Singular(m)
             if !engine.scheme.inertia
                 && !m.contains("NPREC")
-                && !m.contains(crate::solver::OVERFLOW) =>
+                && !m.contains(crate::solver::OVERFLOW)
+                && !m.contains(crate::nonlinear::dofs::INTERNAL) =>
         {
             format!(
             "{m}: the stiffness of STAT_NON_LINE is singular, a rigid-body mode (or a mechanism) of the structure is not held; \
