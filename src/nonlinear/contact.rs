@@ -11,7 +11,7 @@
 use super::contact_active::ActiveSetContact;
 use super::continuous::ContinuousContact;
 use super::dofs::{DofNumbering, NONE};
-use super::newton::{ContactIteration, ContactTerm, IncrementCorrection};
+use super::newton::{ContactIteration, ContactTerm, ImposedIncrement, IncrementCorrection};
 use crate::contact::{
     evaluate, pair, ContactDef, ContactState, DiscreteAlgo, IterationInput, Pairing, ReacGeom,
 };
@@ -250,6 +250,13 @@ impl ContactTerm for DiscreteContact {
             return c.pattern_entries();
         }
         &self.entries
+    }
+
+    fn imposed_increment(&mut self, it: ImposedIncrement) -> Result<(), String> {
+        if let Some(c) = self.continuous.as_ref() {
+            c.imposed_increment(it.numbering, it.u_start, it.du, it.matrix, it.rhs);
+        }
+        Ok(())
     }
 
     fn add(&mut self, it: ContactIteration) -> Result<(), String> {

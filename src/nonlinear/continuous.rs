@@ -74,6 +74,8 @@ pub struct ContinuousContact {
     last_dlam: f64,
     u_start: Vec<[f64; 3]>,
     pairing: Pairing,
+    /// The displacement (per node) the pairing was made at.
+    u_paired: Vec<[f64; 3]>,
     /// Largest move of a point between the last two pairings (POINT_FIXE).
     geom_move: f64,
     /// Largest master edge (`arete_max`), the RESI_GEOM denominator.
@@ -226,6 +228,7 @@ impl ContinuousContact {
             fixed_point_changed: false,
             friction_loops: 0,
             friction_ref: vec![0.0; np],
+            u_paired: un.clone(),
             u_start: un,
             pairing,
             geom_move: 0.0,
@@ -284,6 +287,7 @@ impl ContinuousContact {
             .map(|l| (l.zone, l.slave, l.proj))
             .collect();
         self.pairing = pair(&self.def, &self.mesh, u);
+        self.u_paired = u.to_vec();
         // Move of the projections (RESI_GEOM of the fixed point).
         let mut mv: f64 = 0.0;
         for l in &self.pairing.links {
@@ -292,6 +296,27 @@ impl ContinuousContact {
             }
         }
         self.geom_move = mv / self.a_max;
+    }
+
+    /// The gap of `link` at displacement `u` (per node): the pairing's gap
+    /// plus the change of n·(Σ M_j u_j − u_s) since the pairing, the
+    /// projection ξ and the normal frozen (code_aster's gap with a fixed
+    /// pairing, the discrete method's `link_gap`). Until 2026-11-28 the
+    /// pairing's gap itself was used, as if the gap did not depend on the
+    /// displacement between two pairings: with `ALGO_RESO_GEOM=
+    /// 'POINT_FIXE'` (the default) every Newton iterate of a step was
+    /// judged by the gap of the step's start, and so was the first iterate
+    /// after a prediction that moves the nodes (an imposed displacement):
+    /// probe s8g's D2 and D3. Written as a difference so that at the
+    /// pairing's own displacement it is the pairing's gap bit for bit.
+    fn gap(&self, link: &Link, u: &[[f64; 3]]) -> f64 {
+        use crate::mesh::vec3::{dot, sub};
+        let n = link.normal;
+        let mut g = link.gap - dot(n, sub(u[link.slave], self.u_paired[link.slave]));
+        for (m, &j) in link.shape.iter().zip(&link.master_nodes) {
+            g += m * dot(n, sub(u[j], self.u_paired[j]));
+        }
+        g
     }
 
     /// The input of point i at displacement `u` (per node); `free(n, c)`
@@ -329,7 +354,7 @@ impl ContinuousContact {
             } else {
                 0.0
             },
-            d: -link.gap,
+            d: -self.gap(link, u),
             g_t: crate::mesh::vec3::dot(tangent, jump),
             normal: link.normal,
             tangent,
@@ -377,7 +402,7 @@ impl ContinuousContact {
                 zone: p.zone,
                 slave: p.node,
                 status,
-                gap: link.gap,
+                gap: -inp.d,
                 lambda_n,
                 normal: link.normal,
                 tangents: link.tangents,
@@ -422,7 +447,7 @@ impl ContinuousContact {
             } else {
                 [0.0; 2]
             },
-            d: -link.gap,
+            d: -self.gap(link, u),
             g_t: [dot(t[0], jump), dot(t[1], jump)],
             normal: link.normal,
             tangents: t,
@@ -504,7 +529,7 @@ impl ContinuousContact {
             zone: self.points[i].zone,
             slave: self.points[i].node,
             status,
-            gap: link.gap,
+            gap: -inp.d,
             lambda_n: crate::mesh::vec3::dot(o.f_n, link.normal),
             normal: link.normal,
             tangents: inp.tangents,
@@ -561,15 +586,71 @@ impl ContinuousContact {
         if !self.first && self.cdef.algo_reso_cont == Resolution::Newton {
             self.changed |= self.update_statuses(&u, Some(it.iteration))?;
         }
-        let links = self.links();
         self.first = false;
+        let mut extra = std::mem::take(&mut self.residual);
+        self.assemble(nb, &u, it.residual, it.force, &mut extra, it.matrix);
+        self.residual = extra;
+        self.trial = self.state(&u, None);
+        Ok(())
+    }
+
+    /// Its part of the prediction of a step whose imposed values move
+    /// (code_aster's prediction solves for the multipliers with the
+    /// displacements, note §7.2): the tangent at the step's start (its
+    /// statuses, λ = 0: called after [`Self::begin_step`]) into `matrix`,
+    /// and −(r(u_start + du) − r(u_start)) into `rhs`, the change of the
+    /// residual of every equation, free displacements then multipliers,
+    /// under the imposed increment `du` (full) at that frozen state and
+    /// pairing: its linear part, exactly so for the normal terms. A slave
+    /// or master node moved by a DDL_IMPO thus enters the prediction
+    /// through its gap, and a structure held by the contact alone is not
+    /// singular there.
+    pub fn imposed_increment(
+        &self,
+        nb: &DofNumbering,
+        u_start: &[f64],
+        du: &[f64],
+        matrix: &mut crate::solver::SparseMatrix,
+        rhs: &mut [f64],
+    ) {
+        let nfull = u_start.len();
+        let nx = self.lam.len();
+        let moved: Vec<f64> = u_start.iter().zip(du).map(|(a, b)| a + b).collect();
+        let (mut r0, mut r1, mut f) = (vec![0.0; nfull], vec![0.0; nfull], vec![0.0; nfull]);
+        let (mut x0, mut x1) = (vec![0.0; nx], vec![0.0; nx]);
+        let u0 = per_node(self.ndpn, u_start);
+        self.assemble(nb, &u0, &mut r0, &mut f, &mut x0, Some(matrix));
+        let u1 = per_node(self.ndpn, &moved);
+        self.assemble(nb, &u1, &mut r1, &mut f, &mut x1, None);
+        for (e, &df) in nb.free.iter().enumerate() {
+            rhs[e] -= r1[df] - r0[df];
+        }
+        for k in 0..nx {
+            rhs[self.neq + k] -= x1[k] - x0[k];
+        }
+    }
+
+    /// The contact residual at `u` (per node) with the current statuses,
+    /// multipliers and pairing: the nodal forces are added to `residual`
+    /// and `force` (full), the multiplier equations' residual written to
+    /// `extra`, and the tangent added to `matrix` when given. Changes
+    /// nothing in the term.
+    fn assemble(
+        &self,
+        nb: &DofNumbering,
+        u: &[[f64; 3]],
+        residual: &mut [f64],
+        force: &mut [f64],
+        extra: &mut [f64],
+        mut matrix: Option<&mut crate::solver::SparseMatrix>,
+    ) {
+        let links = self.links();
         let ndpn = self.ndpn;
         let dim = self.def.dim;
         let eq = |n: usize, c: usize| {
             let e = nb.eq[n * ndpn + c];
             (e != NONE).then_some(e)
         };
-        let mut matrix = it.matrix;
         for (i, l) in links.iter().enumerate() {
             let p = self.points[i];
             let xc = self.neq + i * self.stride;
@@ -577,12 +658,12 @@ impl ContinuousContact {
             let Some(l) = l else {
                 // Unpaired: the point is excluded, λ and Λ driven to 0.
                 let z = &self.cdef.zones[p.zone];
-                self.residual[i * self.stride] = -p.omega / z.coef_cont * self.lam[i * self.stride];
+                extra[i * self.stride] = -p.omega / z.coef_cont * self.lam[i * self.stride];
                 if let Some(m) = matrix.as_deref_mut() {
                     m.add(xc, xc, -p.omega / z.coef_cont);
                 }
                 for k in 1..self.stride {
-                    self.residual[i * self.stride + k] = p.omega * self.lam[i * self.stride + k];
+                    extra[i * self.stride + k] = p.omega * self.lam[i * self.stride + k];
                     if let Some(m) = matrix.as_deref_mut() {
                         m.add(xc + k, xc + k, p.omega);
                     }
@@ -591,36 +672,28 @@ impl ContinuousContact {
             };
             let link = &self.pairing.links[*l];
             if dim == 3 {
-                let inp = self.input3(i, link, &u);
+                let inp = self.input3(i, link, u);
                 let (_, o) = evaluate_point3(&inp);
-                self.assemble3(
-                    i,
-                    link,
-                    &o,
-                    it.residual,
-                    it.force,
-                    matrix.as_deref_mut(),
-                    nb,
-                );
-                self.residual[i * self.stride] = o.r_c;
+                self.assemble3(i, link, &o, residual, force, matrix.as_deref_mut(), nb);
+                extra[i * self.stride] = o.r_c;
                 for k in 1..self.stride {
-                    self.residual[i * self.stride + k] = o.r_f[k - 1];
+                    extra[i * self.stride + k] = o.r_f[k - 1];
                 }
                 continue;
             }
-            let inp = self.input(i, link, &u, &|n, c| self.free[n * self.ndpn + c]);
+            let inp = self.input(i, link, u, &|n, c| self.free[n * self.ndpn + c]);
             let (_, o) = evaluate_point(&inp);
             let nodes = point_nodes(p.node, link);
             for &(n, ca) in &nodes {
                 for c in 0..dim {
                     let f = n * ndpn + c;
-                    it.residual[f] += ca * o.f[c];
-                    it.force[f] += ca * o.f[c];
+                    residual[f] += ca * o.f[c];
+                    force[f] += ca * o.f[c];
                 }
             }
-            self.residual[i * self.stride] = o.r_c;
+            extra[i * self.stride] = o.r_c;
             if self.stride == 2 {
-                self.residual[i * self.stride + 1] = o.r_f;
+                extra[i * self.stride + 1] = o.r_f;
             }
             let Some(m) = matrix.as_deref_mut() else {
                 continue;
@@ -652,8 +725,6 @@ impl ContinuousContact {
                 m.add(xf, xf, o.dfr_df);
             }
         }
-        self.trial = self.state(&u, None);
-        Ok(())
     }
 
     /// Applies the solved correction of the multipliers.
@@ -755,7 +826,7 @@ impl ContinuousContact {
             let z = &self.cdef.zones[self.points[i].zone];
             let lam = self.lam[i * self.stride];
             new[i] = match l {
-                Some(l) => contact_status(lam, -self.pairing.links[*l].gap, z.coef_cont),
+                Some(l) => contact_status(lam, -self.gap(&self.pairing.links[*l], u), z.coef_cont),
                 None => false,
             };
         }

@@ -129,6 +129,20 @@ pub struct IncrementCorrection<'a> {
     pub iteration: usize,
 }
 
+/// What a term sees in the prediction of a step whose imposed values
+/// move (see [`ContactTerm::imposed_increment`]).
+pub struct ImposedIncrement<'a> {
+    pub numbering: &'a DofNumbering,
+    /// The committed displacement (full): where the tangent is taken.
+    pub u_start: &'a [f64],
+    /// The increment of the imposed dofs (full, 0 at free dofs).
+    pub du: &'a [f64],
+    /// The prediction's matrix (free equations, then the term's unknowns).
+    pub matrix: &'a mut SparseMatrix,
+    /// Its right-hand side, of the matrix's order.
+    pub rhs: &'a mut [f64],
+}
+
 /// A contact (or any extra) term of the equilibrium. This is the single
 /// place where contact plugs into the Newton loop: it adds its forces to
 /// the residual and its stiffness to the iteration matrix at each
@@ -150,6 +164,17 @@ pub trait ContactTerm {
     /// After each linear solve: may replace the increment. The default
     /// keeps it.
     fn correct(&mut self, _c: IncrementCorrection) -> Result<(), String> {
+        Ok(())
+    }
+    /// Its part of the prediction of a step whose imposed values move
+    /// ([`Engine::extend_imposed_increment`], called after
+    /// [`ContactTerm::begin_step`]): a term with its own unknowns adds its
+    /// tangent at the step's start to the matrix, whose order then counts
+    /// them, and the opposite of its residual's change under the imposed
+    /// increment to the right-hand side (free equations, then its own).
+    /// The default adds nothing: the discrete terms, with no unknowns of
+    /// their own, are not part of that solve.
+    fn imposed_increment(&mut self, _c: ImposedIncrement) -> Result<(), String> {
         Ok(())
     }
     /// Unknowns of the term besides the displacements (the Lagrange
@@ -450,7 +475,19 @@ impl Engine {
     /// take the whole increment, far beyond yield on a plastic ramp, and
     /// Newton from there can cycle between elastic and plastic states
     /// (tests/studies/hexs8_compression.comm stalled so with HEXS8).
-    fn extend_imposed_increment(&mut self, dt: f64) -> Result<(), StepFailure> {
+    ///
+    /// A continuous contact's multipliers are unknowns of that solve too
+    /// (its tangent at the step's start, [`ContactTerm::imposed_increment`]):
+    /// code_aster's prediction solves for every dof at once. Without it the
+    /// matrix, whose pattern counts the multipliers from the second step
+    /// on, met a right-hand side of the displacement equations alone (the
+    /// solver refused: "right-hand side of length 22 for a matrix of order
+    /// 27"), and a block held by the contact alone would be singular.
+    fn extend_imposed_increment<'c>(
+        &mut self,
+        dt: f64,
+        contact: Option<&mut (dyn ContactTerm + 'c)>,
+    ) -> Result<(), StepFailure> {
         let s = self.scheme;
         // The iteration matrix (1 + c_C α) K + (c_M + c_C β) M of Rayleigh
         // damping C = α K + β M (c_C its coefficient), K + c_M M without.
@@ -490,14 +527,27 @@ impl Engine {
         }
         // the iteration matrix must be rebuilt at the first iterate
         self.matrix_dt = None;
+        let nb = &self.asm.numbering;
+        let mut rhs: Vec<f64> = nb.free.iter().map(|&f| -self.work[f]).collect();
+        rhs.resize(self.matrix.n(), 0.0);
+        if let Some(c) = contact {
+            c.imposed_increment(ImposedIncrement {
+                numbering: nb,
+                u_start: &self.committed.motion.u,
+                du: &self.du,
+                matrix: &mut self.matrix,
+                rhs: &mut rhs,
+            })
+            .map_err(StepFailure::Contact)?;
+        }
         self.lu
             .factorize(&self.matrix)
             .map_err(|e| StepFailure::Singular(self.asm.numbering.solver_failure(&e)))?;
-        let nb = &self.asm.numbering;
-        let mut rhs: Vec<f64> = nb.free.iter().map(|&f| -self.work[f]).collect();
         self.lu
             .solve(&mut rhs)
             .map_err(|e| StepFailure::Singular(self.asm.numbering.solver_failure(&e)))?;
+        // The multipliers' part is dropped: they restart from 0 at every
+        // step, and the first iteration finds them (contact-continue.md §3).
         self.du.iter_mut().for_each(|v| *v = 0.0);
         for (e, &f) in nb.free.iter().enumerate() {
             self.du[f] = rhs[e];
@@ -523,6 +573,16 @@ impl Engine {
                 .map_err(StepFailure::NonFinite)?;
         }
         s.predict(dt, &self.committed.motion, &mut self.trial.motion);
+        // The contact term starts its step (pairing, statuses, multipliers)
+        // before the prediction, which may need its unknowns.
+        if let Some(c) = contact.as_deref_mut() {
+            let nb = &self.asm.numbering;
+            c.begin_step(nb, &self.committed.motion.u, self.committed.t, dt);
+            if self.asm.set_extra_entries(c.pattern_entries()) {
+                self.matrix = SparseMatrix::zeros(self.asm.pattern.clone());
+                self.matrix_dt = None;
+            }
+        }
         // Imposed values the initial state does not satisfy are reached
         // in this step, through the Newmark relations.
         self.du.iter_mut().for_each(|v| *v = 0.0);
@@ -536,7 +596,7 @@ impl Engine {
         }
         if any {
             s.correct(dt, &self.du, &mut self.trial.motion);
-            self.extend_imposed_increment(dt)?;
+            self.extend_imposed_increment(dt, contact.as_deref_mut())?;
         }
         let nb = &self.asm.numbering;
         let wp = s.previous_weight();
@@ -554,16 +614,14 @@ impl Engine {
             h.at(self.trial.t, &mut self.fext)
                 .map_err(StepFailure::NonFinite)?;
         }
-        if let Some(c) = contact.as_deref_mut() {
-            c.begin_step(nb, &self.committed.motion.u, self.committed.t, dt);
-        }
         let neq = nb.neq();
         let nx = contact.as_deref().map_or(0, |c| c.extra_unknowns());
         self.rhs.resize(neq + nx, 0.0);
         let mut history = Vec::new();
         let swap = self.steps_done > 0;
         let mut last_rela = f64::INFINITY;
-        let mut check_pattern = contact.is_some();
+        // The pattern was set before the prediction.
+        let mut check_pattern = false;
         for it in 0..=self.conv.iter_glob_maxi {
             // A stop request abandons the step: an iteration of a large
             // model can take seconds, and the committed state is intact.
