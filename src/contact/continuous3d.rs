@@ -44,8 +44,15 @@ pub struct PointInput3 {
     pub normal: [f64; 3],
     /// Unit tangents τ1, τ2.
     pub tangents: [[f64; 3]; 2],
-    /// Every displacement the slip depends on is imposed: Λ driven to 0.
-    pub slip_locked: bool,
+    /// Per tangent τ_k: every displacement the slip along τ_k depends on
+    /// is imposed (each component of τ_k is 0 or an imposed dof at every
+    /// node of the point), so the friction equation along τ_k has no
+    /// displacement to act on: Λ_k is driven to 0 and the friction works
+    /// along the other tangent only. Both: no friction at all. A symmetry
+    /// plane Y0 (DY = 0) under a slave face z = const locks τ1 = e_y; the
+    /// row of `LAGS_F1` was empty there and the tangent singular (probe
+    /// s8g D4).
+    pub slip_locked: [bool; 2],
 }
 
 /// Residual and derivatives of a 3D point, with respect to the jump [u]
@@ -104,11 +111,16 @@ fn threshold(p: &PointInput3) -> (f64, f64) {
     }
 }
 
+/// r = Λ + ρ_t g, 0 along a locked tangent (no friction there).
 fn aug(p: &PointInput3) -> [f64; 2] {
-    [
-        p.lambda_t[0] + p.rho_t * p.g_t[0],
-        p.lambda_t[1] + p.rho_t * p.g_t[1],
-    ]
+    let r = |k: usize| {
+        if p.slip_locked[k] {
+            0.0
+        } else {
+            p.lambda_t[k] + p.rho_t * p.g_t[k]
+        }
+    };
+    [r(0), r(1)]
 }
 
 /// The phase of a 3D point: stick while |Λ + ρ_t g| ≤ 1.
@@ -148,8 +160,28 @@ pub fn evaluate_point3(p: &PointInput3) -> (Phase, PointOutput3) {
             o.dfr_df[k][k] = w;
         }
     };
-    if p.slip_locked {
+    if p.slip_locked == [true, true] {
         free_lambda(&mut o);
+        return (ph, o);
+    }
+    if let Some(k) = (0..2).find(|&k| p.slip_locked[k]) {
+        // One tangent locked: the point with that tangent (and its Λ_k
+        // and slip) removed is a friction point along the other tangent
+        // alone; then Λ_k's own equation ω Λ_k = 0 is put back.
+        let mut q = *p;
+        q.slip_locked = [false; 2];
+        q.tangents[k] = [0.0; 3];
+        q.g_t[k] = 0.0;
+        q.lambda_t[k] = 0.0;
+        let (_, mut o) = evaluate_point3(&q);
+        o.r_f[k] = w * p.lambda_t[k];
+        o.dfr_du[k] = [0.0; 3];
+        o.dfr_df[k] = [0.0; 2];
+        o.dfr_df[k][k] = w;
+        o.dfr_df[1 - k][k] = 0.0;
+        for i in 0..3 {
+            o.df_df[i][k] = 0.0;
+        }
         return (ph, o);
     }
     let r = aug(p);
@@ -245,13 +277,14 @@ mod tests {
             g_t: [1e-3, 2e-3],
             normal: [0.0, s, -c],
             tangents: [[1.0, 0.0, 0.0], [0.0, c, s]],
-            slip_locked: false,
+            slip_locked: [false; 2],
         }
     }
 
     /// Central differences of the residual in [u] (through d and g),
     /// λ and Λ reproduce every block of the tangent, in stick and in slip
-    /// (slip directions oblique to both tangents), frictionless too.
+    /// (slip directions oblique to both tangents), frictionless too; and
+    /// so with one tangent locked (a symmetry plane, probe s8g D4).
     #[test]
     fn tangent_is_the_derivative_of_the_residual() {
         let cases: [(Option<f64>, [f64; 2], [f64; 2]); 4] = [
@@ -261,85 +294,97 @@ mod tests {
             (None, [0.0, 0.0], [1e-3, 2e-3]),
         ];
         let mut phases = Vec::new();
-        for (mu, lt, gt) in cases {
-            let mut p0 = base();
-            p0.mu = mu;
-            p0.lambda_t = lt;
-            p0.g_t = gt;
-            let (ph, o) = evaluate_point3(&p0);
-            phases.push(ph);
-            let h = 1e-7;
-            let tol = 1e-6;
-            for j in 0..3 {
+        for lock in [[false, false], [true, false], [false, true]] {
+            for (mu, lt, gt) in cases {
+                let mut p0 = base();
+                p0.slip_locked = lock;
+                p0.mu = mu;
+                p0.lambda_t = lt;
+                p0.g_t = gt;
+                let (ph, o) = evaluate_point3(&p0);
+                if lock == [false, false] {
+                    phases.push(ph);
+                } else if let Some(k) = (0..2).find(|&k| lock[k]).filter(|_| mu.is_some()) {
+                    // A locked Λ_k: driven to 0 by ω Λ_k, pushes on nothing.
+                    assert_eq!(o.r_f[k], p0.omega * lt[k]);
+                    assert_eq!(o.f_t[k], 0.0);
+                    for i in 0..3 {
+                        assert_eq!(o.df_df[i][k], 0.0);
+                    }
+                }
+                let h = 1e-7;
+                let tol = 1e-6;
+                for j in 0..3 {
+                    let mut pp = p0;
+                    let mut pm = p0;
+                    pp.d += p0.normal[j] * h;
+                    pm.d -= p0.normal[j] * h;
+                    for k in 0..2 {
+                        pp.g_t[k] += p0.tangents[k][j] * h;
+                        pm.g_t[k] -= p0.tangents[k][j] * h;
+                    }
+                    let (a, op) = evaluate_point3(&pp);
+                    let (b, om) = evaluate_point3(&pm);
+                    assert_eq!((a, b), (ph, ph));
+                    for i in 0..3 {
+                        let fd = (op.f[i] - om.f[i]) / (2.0 * h);
+                        assert!(
+                            (fd - o.df_du[i][j]).abs() < tol,
+                            "{ph:?} df_du {i}{j}: {fd} vs {}",
+                            o.df_du[i][j]
+                        );
+                    }
+                    let fd = (op.r_c - om.r_c) / (2.0 * h);
+                    assert!((fd - o.dc_du[j]).abs() < tol);
+                    for k in 0..2 {
+                        let fd = (op.r_f[k] - om.r_f[k]) / (2.0 * h);
+                        assert!(
+                            (fd - o.dfr_du[k][j]).abs() < tol,
+                            "{ph:?} dfr_du {k}{j}: {fd} vs {}",
+                            o.dfr_du[k][j]
+                        );
+                    }
+                }
                 let mut pp = p0;
                 let mut pm = p0;
-                pp.d += p0.normal[j] * h;
-                pm.d -= p0.normal[j] * h;
-                for k in 0..2 {
-                    pp.g_t[k] += p0.tangents[k][j] * h;
-                    pm.g_t[k] -= p0.tangents[k][j] * h;
-                }
-                let (a, op) = evaluate_point3(&pp);
-                let (b, om) = evaluate_point3(&pm);
-                assert_eq!((a, b), (ph, ph));
-                for i in 0..3 {
-                    let fd = (op.f[i] - om.f[i]) / (2.0 * h);
-                    assert!(
-                        (fd - o.df_du[i][j]).abs() < tol,
-                        "{ph:?} df_du {i}{j}: {fd} vs {}",
-                        o.df_du[i][j]
-                    );
-                }
-                let fd = (op.r_c - om.r_c) / (2.0 * h);
-                assert!((fd - o.dc_du[j]).abs() < tol);
-                for k in 0..2 {
-                    let fd = (op.r_f[k] - om.r_f[k]) / (2.0 * h);
-                    assert!(
-                        (fd - o.dfr_du[k][j]).abs() < tol,
-                        "{ph:?} dfr_du {k}{j}: {fd} vs {}",
-                        o.dfr_du[k][j]
-                    );
-                }
-            }
-            let mut pp = p0;
-            let mut pm = p0;
-            pp.lambda += h;
-            pm.lambda -= h;
-            pp.lambda_s += h;
-            pm.lambda_s -= h;
-            let (_, op) = evaluate_point3(&pp);
-            let (_, om) = evaluate_point3(&pm);
-            for i in 0..3 {
-                let fd = (op.f[i] - om.f[i]) / (2.0 * h);
-                assert!(
-                    (fd - o.df_dc[i]).abs() < tol,
-                    "{ph:?} df_dc {i}: {fd} vs {}",
-                    o.df_dc[i]
-                );
-            }
-            assert!(((op.r_c - om.r_c) / (2.0 * h) - o.dc_dc).abs() < tol);
-            for l in 0..2 {
-                let mut pp = p0;
-                let mut pm = p0;
-                pp.lambda_t[l] += h;
-                pm.lambda_t[l] -= h;
+                pp.lambda += h;
+                pm.lambda -= h;
+                pp.lambda_s += h;
+                pm.lambda_s -= h;
                 let (_, op) = evaluate_point3(&pp);
                 let (_, om) = evaluate_point3(&pm);
                 for i in 0..3 {
                     let fd = (op.f[i] - om.f[i]) / (2.0 * h);
                     assert!(
-                        (fd - o.df_df[i][l]).abs() < tol,
-                        "{ph:?} df_df {i}{l}: {fd} vs {}",
-                        o.df_df[i][l]
+                        (fd - o.df_dc[i]).abs() < tol,
+                        "{ph:?} df_dc {i}: {fd} vs {}",
+                        o.df_dc[i]
                     );
                 }
-                for k in 0..2 {
-                    let fd = (op.r_f[k] - om.r_f[k]) / (2.0 * h);
-                    assert!(
-                        (fd - o.dfr_df[k][l]).abs() < tol,
-                        "{ph:?} dfr_df {k}{l}: {fd} vs {}",
-                        o.dfr_df[k][l]
-                    );
+                assert!(((op.r_c - om.r_c) / (2.0 * h) - o.dc_dc).abs() < tol);
+                for l in 0..2 {
+                    let mut pp = p0;
+                    let mut pm = p0;
+                    pp.lambda_t[l] += h;
+                    pm.lambda_t[l] -= h;
+                    let (_, op) = evaluate_point3(&pp);
+                    let (_, om) = evaluate_point3(&pm);
+                    for i in 0..3 {
+                        let fd = (op.f[i] - om.f[i]) / (2.0 * h);
+                        assert!(
+                            (fd - o.df_df[i][l]).abs() < tol,
+                            "{ph:?} df_df {i}{l}: {fd} vs {}",
+                            o.df_df[i][l]
+                        );
+                    }
+                    for k in 0..2 {
+                        let fd = (op.r_f[k] - om.r_f[k]) / (2.0 * h);
+                        assert!(
+                            (fd - o.dfr_df[k][l]).abs() < tol,
+                            "{ph:?} dfr_df {k}{l}: {fd} vs {}",
+                            o.dfr_df[k][l]
+                        );
+                    }
                 }
             }
         }

@@ -429,9 +429,13 @@ impl ContinuousContact {
         }
         let t = tangents_from_normal(link.normal);
         let free = |n: usize, c: usize| self.free[n * self.ndpn + c];
-        let slip_locked = std::iter::once(p.node)
-            .chain(link.master_nodes.iter().copied())
-            .all(|n| (0..3).all(|c| (t[0][c] == 0.0 && t[1][c] == 0.0) || !free(n, c)));
+        // Per tangent: the slip along τ_k moves imposed dofs only.
+        let locked = |k: usize| {
+            std::iter::once(p.node)
+                .chain(link.master_nodes.iter().copied())
+                .all(|n| (0..3).all(|c| t[k][c] == 0.0 || !free(n, c)))
+        };
+        let slip_locked = [locked(0), locked(1)];
         let x = i * self.stride;
         PointInput3 {
             omega: p.omega,
