@@ -146,15 +146,7 @@ fn run_stick(tag: &str, frot: &str) -> Vec<std::collections::HashMap<String, Str
          IMPR_TABLE(TABLE=T, FORMAT_R='E24.16')\n\
          FIN()\n"
     );
-    std::fs::write(dir.join(format!("{tag}.comm")), comm).unwrap();
-    std::fs::write(
-        dir.join(format!("{tag}.export")),
-        format!("F mmed {} D 20\n", med.display()),
-    )
-    .unwrap();
-    let r = common::run_study(dir.join(format!("{tag}.comm")).to_str().unwrap(), tag);
-    let resu = r.file(&format!("{tag}.resu"));
-    assert_eq!(r.code, 0, "{tag}: {}\n{resu}", r.term);
+    let (_, resu) = common::run_generated(&dir, tag, &comm, &med);
     let rows = common::printed_table(&resu, "T");
     assert_eq!(rows.len(), 9, "{tag}: the 9 slave nodes\n{resu}");
     rows
