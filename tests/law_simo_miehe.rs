@@ -15,6 +15,8 @@ use aster::law::{
 };
 use nalgebra::{Matrix3, Rotation3, Vector3};
 
+mod common;
+
 fn params(e: f64, nu: f64, sy: f64, et: f64) -> (ElasParams, EcroLineParams) {
     let elas = ElasParams::new(e, nu, None).unwrap();
     (elas, EcroLineParams::new(&elas, sy, et).unwrap())
@@ -743,4 +745,133 @@ fn two_thirds_power_is_pow_within_one_ulp() {
     for x in [1.0 + 1.01 * r, 1.0 - 1.01 * r, 0.5, 1.7, 1e-3, 30.0] {
         assert_eq!(two_thirds_power(x).to_bits(), x.powf(2.0 / 3.0).to_bits());
     }
+}
+
+/// The prediction of a step (a tangent asked at F = F_n) takes its regime
+/// from V2, as code_aster's `lcpivm`: after a plastic step it is the
+/// plastic tangent with a zero multiplier, which is the limit of the
+/// consistent tangent of a plastic step whose increment goes to zero;
+/// the stress and the internal variables are those of the start.
+#[test]
+fn prediction_after_a_plastic_step_is_the_zero_multiplier_tangent() {
+    let law = copper();
+    let (f0, v0) = deformed_state(&law);
+    assert_eq!(v0[1], 1.0, "the state must come from a plastic step");
+    let start = run(&law, f0, f0, &v0, TangentKind::Consistent);
+    assert_eq!(start.regime, Regime::Plastic);
+    assert_eq!(start.internal.as_slice()[..2], v0[..2]);
+    // A further plastic step of shrinking size: its consistent tangent
+    // tends to the prediction's at first order.
+    let dir = Matrix3::new(1e-3, 2e-4, 0.0, -1e-4, -4e-4, 3e-4, 0.0, 0.0, -5e-4);
+    let pred = start.dtau_df.unwrap();
+    let mut errs = Vec::new();
+    for s in [1e-2, 1e-3] {
+        let f1 = f0 + f0 * dir * s;
+        let out = run(&law, f0, f1, &v0, TangentKind::Consistent);
+        assert_eq!(out.regime, Regime::Plastic, "step {s}");
+        errs.push((out.dtau_df.unwrap() - pred).norm() / pred.norm());
+    }
+    assert!(errs[1] < 2e-4, "{errs:?}");
+    assert!(errs[1] < errs[0] / 5.0, "not first order: {errs:?}");
+    // The elastic tangent (which the round-off sign of q - c0 could have
+    // given) is far from it.
+    let e = run(&law, f0, f0, &v0, TangentKind::Elastic)
+        .dtau_df
+        .unwrap();
+    assert!((e - pred).norm() / e.norm() > 1e-3);
+}
+
+/// After an elastic step (V2 = 0) the prediction is elastic even when the
+/// stress lies on the yield surface up to round-off on its outer side.
+#[test]
+fn prediction_after_an_elastic_step_is_elastic_on_the_surface() {
+    let law = copper();
+    let (f0, mut v0) = deformed_state(&law);
+    // The same state flagged elastic, its b̄ᵉ - 1 (V3..V8) enlarged by a
+    // relative 1e-10, so that q exceeds √(2/3) R(p) by about that much: the
+    // sign of q - c0 says plastic.
+    v0[1] = 0.0;
+    for v in &mut v0[2..8] {
+        *v *= 1.0 + 1e-10;
+    }
+    let trial = run(&law, f0, f0 * 1.0000001, &v0, TangentKind::None);
+    assert_eq!(trial.regime, Regime::Plastic, "the state must be outside");
+    let out = run(&law, f0, f0, &v0, TangentKind::Consistent);
+    assert_eq!(out.regime, Regime::Elastic);
+    assert_eq!(out.internal.as_slice()[..2], v0[..2]);
+    let e = run(&law, f0, f0, &v0, TangentKind::Elastic);
+    assert_eq!(out.dtau_df.unwrap(), e.dtau_df.unwrap());
+}
+
+/// Probe s8g D1: one AXIS QUAD8 (r in [4, 5], 9 Gauss points) stretched
+/// along its axis in perfect plasticity (D_SIGM_EPSI = 0, NU = 0) in 7
+/// steps. With the prediction's regime taken from the round-off sign of
+/// q - c0, at the prediction of the fourth step some points came out
+/// plastic and some elastic, and the predicted increment inverted the cell
+/// ("element inverted", the run stopped). Uniaxial Kirchhoff stress SY
+/// with J^2 = 1 + 2 SY/(3K) gives the Cauchy stress SY/sqrt(1 + 2 SY/3K)
+/// at every point.
+#[test]
+fn perfect_plasticity_axis_quad8_stretch() {
+    use aster::mesh::{Cell, CellType, Mesh};
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("sm_pp_quad8_src");
+    std::fs::create_dir_all(&dir).unwrap();
+    let coords = vec![
+        [4.0, 0.0, 0.0],
+        [5.0, 0.0, 0.0],
+        [5.0, 1.0, 0.0],
+        [4.0, 1.0, 0.0],
+        [4.5, 0.0, 0.0],
+        [5.0, 0.5, 0.0],
+        [4.5, 1.0, 0.0],
+        [4.0, 0.5, 0.0],
+    ];
+    let mut mesh = Mesh {
+        name: "BARRE".into(),
+        dim: 2,
+        coords,
+        ..Mesh::default()
+    };
+    for (group, kind, nodes) in [
+        ("BAR", CellType::Quad8, vec![0, 1, 2, 3, 4, 5, 6, 7]),
+        ("BAS", CellType::Seg3, vec![0, 1, 4]),
+        ("HAUT", CellType::Seg3, vec![2, 3, 6]),
+    ] {
+        mesh.cells.push(Cell { kind, nodes });
+        let c = mesh.cells.len() - 1;
+        mesh.cell_groups.insert(group.into(), vec![c]);
+    }
+    let med = dir.join("mesh.mmed");
+    aster::medio::write_mesh(&med, &mesh).unwrap();
+    let (sy, e): (f64, f64) = (100.0, 200_000.0);
+    let sigma = sy / (1.0 + 2.0 * sy / (e / 1.0)).sqrt();
+    let tests: String = (1..=9)
+        .map(|g| {
+            format!(
+                "TEST_RESU(RESU=_F(RESULTAT=R, INST=1., NOM_CHAM='SIEF_ELGA', NOM_CMP='SIYY', \
+                 GROUP_MA='BAR', POINT={g}, VALE_CALC={sigma:.12}, REFERENCE='ANALYTIQUE', \
+                 VALE_REFE={sigma:.12}, PRECISION=1.E-9))\n"
+            )
+        })
+        .collect();
+    let comm = format!(
+        "DEBUT()\n\
+         MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='AXIS'))\n\
+         ACIER = DEFI_MATERIAU(ELAS=_F(E={e}, NU=0.), ECRO_LINE=_F(SY={sy}, D_SIGM_EPSI=0.))\n\
+         CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+         RAMPE = DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0., 1., 0.2))\n\
+         BAS = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_MA='BAS', DY=0.))\n\
+         HAUT = AFFE_CHAR_MECA_F(MODELE=MO, DDL_IMPO=_F(GROUP_MA='HAUT', DY=RAMPE))\n\
+         L = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1., NOMBRE=7))\n\
+         R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=(_F(CHARGE=BAS), _F(CHARGE=HAUT)),\n\
+             COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', DEFORMATION='SIMO_MIEHE', TOUT='OUI'),\n\
+             INCREMENT=_F(LIST_INST=L))\n\
+         {tests}\
+         FIN()\n"
+    );
+    let (r, _) = common::run_generated(&dir, "sm_pp_quad8", &comm, &med);
+    common::assert_all_ok(&r, "sm_pp_quad8.resu");
+    let mess = r.file("sm_pp_quad8.mess");
+    assert!(mess.contains("7 steps (0 cuts)"), "{mess}");
 }

@@ -254,6 +254,14 @@ impl SimoMiehe {
         }
     }
 
+    /// R' on the right of `p` (H for a line).
+    fn slope(&self, p: f64) -> f64 {
+        match &self.curve {
+            None => self.h,
+            Some(curve) => curve.slope(p),
+        }
+    }
+
     pub fn initial_internal(&self) -> InternalVars {
         InternalVars::zeros(METADATA.internal_variables.len())
     }
@@ -418,10 +426,32 @@ impl SimoMiehe {
         let c0 = (2.0f64 / 3.0).sqrt() * self.yield_stress(p_n);
         let pressure_part = Matrix3::identity() * (0.5 * k * (j * j - 1.0));
 
-        let plastic = q > c0;
+        // The prediction of a step (a tangent asked at F = F_n, code_aster's
+        // RIGI_MECA_TANG) takes its regime from the previous step's
+        // indicator V2, as `lcpivm` does (`line = nint(vim(2))`), and a
+        // plastic one gets the tangent of a zero multiplier (`lcpitg` with
+        // dp = 0). The sign of q − c0 there is round-off of the converged
+        // return: points of one cell split between the regimes, and in
+        // perfect plasticity the plastic ones have no stiffness along n, so
+        // the predicted increment could invert the cell.
+        let prediction = input.tangent != TangentKind::None && input.f_np1 == input.f_n;
+        let plastic = if prediction {
+            input.internal[1] >= 0.5 && q > 0.0
+        } else {
+            q > c0
+        };
         let mut h = self.h;
         let mut c0_segment = c0;
-        let (s, be_new, p_new, beta, m) = if plastic {
+        let (s, be_new, p_new, beta, m) = if prediction {
+            if plastic {
+                let mu_bar = mu * i_e;
+                h = self.slope(p_n);
+                c0_segment = q;
+                (s_tr, be_tr, p_n, 1.0, mu_bar / (mu_bar + h / 3.0))
+            } else {
+                (s_tr, be_tr, p_n, 1.0, 0.0)
+            }
+        } else if plastic {
             let mu_bar = mu * i_e;
             let dgamma;
             (dgamma, h, c0_segment) = self.plastic_multiplier(q, c0, p_n, mu_bar)?;
