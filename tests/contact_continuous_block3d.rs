@@ -638,9 +638,12 @@ fn continuous_and_discrete_3d_agree_on_reactions() {
 }
 
 /// DEPL holds LAGS_C, LAGS_F1 and LAGS_F2 at the slave nodes (absent
-/// elsewhere); CONT_NOEU has the discrete method's components: in stick
-/// CONT = 1, JEU = 0, RZ = p A_node, (RTAX, RTAY) the friction force
-/// against the load, (q A_node) along it, R the norm; in slip CONT = 2.
+/// elsewhere); CONT_NOEU has the discrete method's components, the force
+/// vectors printed as code_aster prints them (minus the force on the slave
+/// node, docs/contact.md §4): in stick CONT = 1, JEU = 0, RZ = -p A_node
+/// (into the foundation), (RTAX, RTAY) = (q A_node) along the load (the
+/// friction force on the node is against it), R the norm; in slip
+/// CONT = 2.
 #[test]
 fn depl_and_cont_noeu_3d() {
     let steps = run(&continue_text(100.0, true), true, &[0.15, 0.33]);
@@ -662,10 +665,10 @@ fn depl_and_cont_noeu_3d() {
                 .product::<f64>();
             if s.q < MU * P {
                 assert_eq!(get(c, "CONT"), 1.0);
-                assert!((get(c, "RZ") - P * share).abs() <= 1e-10);
+                assert!((get(c, "RZ") + P * share).abs() <= 1e-10);
                 for (k, cmp) in ["RTAX", "RTAY"].iter().enumerate() {
                     assert!(
-                        (get(c, cmp) + s.q * share * d[k]).abs() <= 1e-10,
+                        (get(c, cmp) - s.q * share * d[k]).abs() <= 1e-10,
                         "{cmp} at {node}"
                     );
                 }
@@ -684,7 +687,8 @@ fn depl_and_cont_noeu_3d() {
 /// obliquely at (VX, VY, VZ) onto the turned plane and bounces, with
 /// Coulomb friction. The time integral of the CONT_NOEU reactions
 /// (RX, RY, RZ summed over the slave nodes, with the weights of Newmark's
-/// velocity update) equals the change of the block's momentum Σ M v,
+/// velocity update) equals minus the change of the block's momentum Σ M v
+/// (CONT_NOEU prints minus the forces on the slave nodes, as code_aster),
 /// computed from the consistent mass and the velocities only: no load and
 /// no imposed dof act on the block, and its internal forces sum to zero.
 ///
@@ -854,7 +858,8 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
     }
     // Coulomb: the friction force at the end of a step does no positive
     // work on the step's slip, at every node (CONTINUE's tangents are
-    // e_y, -e_x here: the slip is (-GLIY, GLIX, 0)).
+    // e_y, -e_x here: the slip is (-GLIY, GLIX, 0)); the force on the node
+    // is minus the printed RT*.
     if continuous {
         let mut slipping = 0;
         for s in 1..=last {
@@ -862,9 +867,9 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
             for &node in &slaves {
                 let g = |cmp: &str| c.get(node, cmp).unwrap();
                 let f = [
-                    g("RTAX") + g("RTGX"),
-                    g("RTAY") + g("RTGY"),
-                    g("RTAZ") + g("RTGZ"),
+                    -(g("RTAX") + g("RTGX")),
+                    -(g("RTAY") + g("RTGY")),
+                    -(g("RTAZ") + g("RTGZ")),
                 ];
                 let slip = [-g("GLIY"), g("GLIX"), 0.0];
                 let power = f[0] * slip[0] + f[1] * slip[1] + f[2] * slip[2];
@@ -907,10 +912,10 @@ RESU = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=BLOQ), CONTACT
     );
     assert!(dp[2] > 0.5 * p0[2].abs(), "dp {dp:?} of p0 {p0:?}");
     for c in 0..3 {
-        let rel = (impulse[c] - dp[c]).abs() / dp[2].abs();
+        let rel = (impulse[c] + dp[c]).abs() / dp[2].abs();
         assert!(
             rel < 1e-8,
-            "component {c}: impulse {} vs momentum change {}",
+            "component {c}: impulse {} vs minus the momentum change {}",
             impulse[c],
             dp[c]
         );

@@ -16,9 +16,11 @@
 //! threshold lambda_s = -p at the first prediction, so every slave node is
 //! in stick in both tangent directions from the start; q = 1 < mu p = 5,
 //! so the block sticks: CONT = 1 and GLI = 0 at every slave node; the
-//! friction carries the pull, sum RTAX = -q A = -4, sum RTAY = 0 (A = 4);
-//! vertical equilibrium gives sum RNZ = p A = 40 (the pull's moment only
-//! redistributes the pressure).
+//! friction carries the pull, sum RTAX = q A = 4, sum RTAY = 0 (A = 4);
+//! vertical equilibrium gives sum RNZ = -p A = -40 (the pull's moment only
+//! redistributes the pressure). CONT_NOEU prints, as code_aster, minus
+//! the forces on the slave nodes (docs/contact.md §4): RNZ into the
+//! foundation, RTAX along the pull.
 //!
 //! On Y0 the tangent tau1 = e_y (code_aster's rule for a normal along z)
 //! moves only the imposed DY: the friction equation of LAGS_F1 there had
@@ -158,8 +160,8 @@ fn num(row: &std::collections::HashMap<String, String>, k: &str) -> f64 {
         .unwrap_or_else(|_| panic!("{k} = {} is not a number", row[k]))
 }
 
-/// Every node sticks, the friction carries the pull (sum RTAX = -4,
-/// sum RTAY = 0) and the pressure the load (sum RNZ = 40), to round-off
+/// Every node sticks, the friction carries the pull (sum RTAX = 4,
+/// sum RTAY = 0) and the pressure the load (sum RNZ = -40), to round-off
 /// (1e-9 relative: the system is solved to RESI_GLOB_RELA = 1e-10 and the
 /// stick is exact, linear elasticity in a fixed contact state).
 fn check_stick(rows: &[std::collections::HashMap<String, String>], tag: &str) {
@@ -173,13 +175,13 @@ fn check_stick(rows: &[std::collections::HashMap<String, String>], tag: &str) {
         rnz += num(r, "RNZ");
     }
     assert!(
-        (rtax + 4.0).abs() < 4e-9,
-        "{tag}: sum RTAX = {rtax}, -4 expected"
+        (rtax - 4.0).abs() < 4e-9,
+        "{tag}: sum RTAX = {rtax}, 4 expected"
     );
     assert!(rtay.abs() < 1e-9, "{tag}: sum RTAY = {rtay}, 0 expected");
     assert!(
-        (rnz - 40.0).abs() < 4e-8,
-        "{tag}: sum RNZ = {rnz}, 40 expected"
+        (rnz + 40.0).abs() < 4e-8,
+        "{tag}: sum RNZ = {rnz}, -40 expected"
     );
 }
 

@@ -183,13 +183,14 @@ impl Run {
             "{p_before} vs {p0}"
         );
         assert!(p_after > 0.0, "rebound: momentum {p_after} after contact");
-        // Impulse of the contact forces (RY on the slave nodes, per radian),
-        // with the weights of Newmark's velocity update
-        // v_{n+1} = v_n + Δt[(1 − γ) a_n + γ a_{n+1}].
+        // Impulse of the contact forces (minus RY on the slave nodes, per
+        // radian: CONT_NOEU prints minus the force on the slave, as
+        // code_aster, docs/contact.md §4), with the weights of Newmark's
+        // velocity update v_{n+1} = v_n + Δt[(1 − γ) a_n + γ a_{n+1}].
         let mut impulse = 0.0;
         for s in first..=last + 1 {
             let dt = self.result.steps[s].inst - self.result.steps[s - 1].inst;
-            impulse += dt * (GAMMA * self.total(s, "RY") + (1.0 - GAMMA) * self.total(s - 1, "RY"));
+            impulse -= dt * (GAMMA * self.total(s, "RY") + (1.0 - GAMMA) * self.total(s - 1, "RY"));
         }
         let dp = p_after - p_before;
         assert!(
@@ -362,7 +363,8 @@ fn penetration_scales_with_one_over_e_n() {
 
 /// (2) Coulomb friction 0.25: with a fast radial spreading (k·r, 1e5 mm/s
 /// at the edge) the slave nodes slide and every sliding node carries a
-/// friction force 0.25 × RN against its slip; with a slow one (10 mm/s, NU = 0) and COULOMB = 1
+/// friction force 0.25 × RN against its slip (RTGX, minus that force as
+/// code_aster prints it, along the slip); with a slow one (10 mm/s, NU = 0) and COULOMB = 1
 /// the friction needed stays below the bound and every closed node sticks.
 #[test]
 fn coulomb_friction_slides_at_the_bound_and_sticks_below_it() {
@@ -384,11 +386,12 @@ fn coulomb_friction_slides_at_the_bound_and_sticks_below_it() {
                     mu * rn
                 );
                 // GLIX is the slip along τ1, the RIGID cell's direction:
-                // the force (x) opposes the slip τ1x·GLIX.
+                // the force on the node (x), −RTGX, opposes the slip
+                // τ1x·GLIX.
                 let slip_x = tau_x * fast.cont(s, n, "GLIX");
                 assert!(
-                    rt * slip_x < 0.0,
-                    "friction against the slip: RTGX {rt}, slip {slip_x}"
+                    -rt * slip_x < 0.0,
+                    "friction against the slip: RTGX {rt} (printed), slip {slip_x}"
                 );
             }
         }

@@ -1,6 +1,15 @@
 //! The state of every contact link after an iteration or a step, the
 //! `CONT_NOEU` field built from it (semantics.md §6.6, code_aster's
-//! `cfresu`), and the contact inputs of DEFI_LIST_INST's events.
+//! `cfresu` and `mmmres`), and the contact inputs of DEFI_LIST_INST's
+//! events.
+//!
+//! Signs (docs/contact.md §4): [`LinkState::normal_force`],
+//! [`LinkState::friction_force`] and [`LinkState::reaction`] are the
+//! forces exerted **on** the slave node (the physics: energy, momentum);
+//! the vectors `CONT_NOEU` prints (RN*, RTA*, RTG*, R*, and the
+//! percussions IX, IY, IZ) are their opposites, the contact term on the
+//! internal-force side of the slave's equilibrium, which is what
+//! code_aster prints ([`LinkState::printed_normal`]).
 
 use std::collections::HashMap;
 
@@ -14,7 +23,8 @@ pub const CONT_NOEU_COMPONENTS: [&str; 30] = [
     "PT_Z", "PROJ_X", "PROJ_Y", "PROJ_Z",
 ];
 
-/// Below this total reaction the percussion restarts from 0 (`cfresu`).
+/// Below this total reaction the percussion restarts from 0 (`cfresu`,
+/// `mmmres`).
 pub const PERCUSSION_RESET: f64 = 1e-6;
 
 /// Status of a link, with code_aster's `CONT` codes.
@@ -69,14 +79,16 @@ pub struct LinkState {
     pub friction: [f64; 2],
     /// Projection point at pairing.
     pub proj: [f64; 3],
-    /// Percussion (I, IX, IY, IZ): time integral of the reaction, see
-    /// [`ContactState::accumulate_percussion`].
+    /// Percussion (I, IX, IY, IZ) as `CONT_NOEU` prints it: R·dt of the
+    /// printed reaction [`LinkState::printed_reaction`], see
+    /// [`ContactState::step_percussion`] (discrete) and
+    /// [`ContactState::accumulate_percussion`] (continuous).
     pub percussion: [f64; 4],
 }
 
 impl LinkState {
     /// Normal contact force exerted on the slave node: λ_n·n_out
-    /// (RNX, RNY, RNZ).
+    /// (CONT_NOEU prints its opposite, [`LinkState::printed_normal`]).
     pub fn normal_force(&self) -> [f64; 3] {
         scale(-self.lambda_n, self.normal)
     }
@@ -88,9 +100,33 @@ impl LinkState {
         }
         f
     }
-    /// Total contact force on the slave node (RX, RY, RZ).
+    /// Total contact force on the slave node.
     pub fn reaction(&self) -> [f64; 3] {
         add(self.normal_force(), self.friction_force())
+    }
+    /// RNX, RNY, RNZ as code_aster prints them: λ_n·n_in, the normal
+    /// contact term on the internal-force side of the slave node's
+    /// equilibrium, i.e. minus the force on the slave node (the force the
+    /// slave node exerts on the master). code_aster's `cfresu` projects on
+    /// the normal the vector `AFMU` (penalised) or `ATMU` (`CONTRAINTE`),
+    /// both added to the internal forces (`nmequi`), whose slave entries
+    /// are λ·n_in (`cfcpes`, `cfcoef`, `cfnewj`); `mmmres` prints the
+    /// contact elements' nodal vector `CNELTC`, added to `CNFINT`
+    /// (`nmasco`, `nmaint`). A block pressed down on a foundation below it
+    /// has RNY < 0.
+    pub fn printed_normal(&self) -> [f64; 3] {
+        scale(-1.0, self.normal_force())
+    }
+    /// RTA* (sticking) or RTG* (sliding) as code_aster prints them: Σ F_t,k
+    /// τ_k, minus the friction force on the slave node (`cfresb` on
+    /// `AFMU`, `mmmres` on `CNELTF`): along the slip.
+    pub fn printed_friction(&self) -> [f64; 3] {
+        scale(-1.0, self.friction_force())
+    }
+    /// RX, RY, RZ as code_aster prints them: RN* + RT*, minus the total
+    /// contact force on the slave node.
+    pub fn printed_reaction(&self) -> [f64; 3] {
+        add(self.printed_normal(), self.printed_friction())
     }
 }
 
@@ -111,17 +147,42 @@ impl ContactState {
             .find(|l| l.zone == zone && l.slave == slave)
     }
 
-    /// Accumulates the percussion of a converged step of length `dt`:
-    /// I = I_prev + R·dt per link (and per component), where I_prev is the
-    /// value of the same (zone, slave node) in `prev` (the state of the
-    /// previous converged step, None at the first step); it restarts at 0
-    /// whenever R ≤ 1e-6.
-    ///
-    /// semantics.md §6.6 describes an accumulation; note that the
-    /// code_aster `cfresu` read for this work zeroes its stored percussion
-    /// of every link before accumulating, which would make I = R·dt of the
-    /// last step only (docs/contact.md, open question).
-    pub fn accumulate_percussion(&mut self, prev: Option<&ContactState>, dt: f64) {
+    /// The percussion of a converged step of length `dt` as code_aster's
+    /// discrete post-treatment (`cfresu`) computes it: the stored
+    /// percussion of every link is first set to 0, then R·dt is added, so
+    /// I = R·dt and (IX, IY, IZ) = (RX, RY, RZ)·dt **of this step only**
+    /// (0 when R ≤ 1e-6), with the printed reaction
+    /// ([`LinkState::printed_reaction`]). For `FORMULATION='DISCRETE'`
+    /// (penalised and `CONTRAINTE`).
+    pub fn step_percussion(&mut self, dt: f64) {
+        for l in &mut self.links {
+            let rv = l.printed_reaction();
+            let r = norm(rv);
+            l.percussion = if r <= PERCUSSION_RESET {
+                [0.0; 4]
+            } else {
+                [r * dt, rv[0] * dt, rv[1] * dt, rv[2] * dt]
+            };
+        }
+    }
+
+    /// The percussion of a converged step of length `dt` as code_aster's
+    /// continuous post-treatment (`mmmres`) computes it: the percussion
+    /// field is not reset from one step to the next ("on ne remet pas à
+    /// zéro d'un pas à l'autre"), and each contact point adds R·dt to the
+    /// value stored at its slave node. With `INTEGRATION='AUTO'` the
+    /// contact points are the nodes of each slave cell, so a node shared by
+    /// `visits(zone, node)` slave cells of its zone is visited that many
+    /// times per step: I = I_prev + visits·R·dt (and IX, IY, IZ likewise
+    /// with the printed reaction), I_prev being the value of the same
+    /// (zone, slave node) in `prev` (the previous converged step, None at
+    /// the first). Whenever R ≤ 1e-6 the percussion restarts at 0.
+    pub fn accumulate_percussion(
+        &mut self,
+        prev: Option<&ContactState>,
+        dt: f64,
+        visits: impl Fn(usize, usize) -> usize,
+    ) {
         let old: HashMap<(usize, usize), [f64; 4]> = prev
             .map(|p| {
                 p.links
@@ -131,18 +192,19 @@ impl ContactState {
             })
             .unwrap_or_default();
         for l in &mut self.links {
-            let rv = l.reaction();
+            let rv = l.printed_reaction();
             let r = norm(rv);
             if r <= PERCUSSION_RESET {
                 l.percussion = [0.0; 4];
                 continue;
             }
+            let m = visits(l.zone, l.slave) as f64 * dt;
             let p = old.get(&(l.zone, l.slave)).copied().unwrap_or([0.0; 4]);
             l.percussion = [
-                p[0] + r * dt,
-                p[1] + rv[0] * dt,
-                p[2] + rv[1] * dt,
-                p[3] + rv[2] * dt,
+                p[0] + r * m,
+                p[1] + rv[0] * m,
+                p[2] + rv[1] * m,
+                p[3] + rv[2] * m,
             ];
         }
     }
@@ -187,9 +249,10 @@ impl ContactState {
     /// - JEU is written for every paired link, in contact or not;
     /// - the other components only for links in contact;
     /// - an unpaired slave node has CONT = −1;
-    /// - RN*, RTA* (stick) or RTG* (slip) are the forces exerted on the
-    ///   slave node, R* their sum, PT_* = 0, PROJ_* the projection at
-    ///   pairing; HN (wear) is 0.
+    /// - RN*, RTA* (stick) or RTG* (slip) are minus the forces exerted on
+    ///   the slave node, as code_aster prints them
+    ///   ([`LinkState::printed_normal`]), R* their sum, PT_* = 0, PROJ_*
+    ///   the projection at pairing; HN (wear) is 0.
     ///
     /// A slave node in two zones shows the last zone's link.
     pub fn cont_noeu(&self, mesh_nnodes: usize) -> NodalField {
@@ -214,9 +277,9 @@ impl ContactState {
             if !l.status.in_contact() {
                 continue;
             }
-            let rn = l.normal_force();
-            let rt = l.friction_force();
-            let r = l.reaction();
+            let rn = l.printed_normal();
+            let rt = l.printed_friction();
+            let r = l.printed_reaction();
             let gli = (l.slip[0] * l.slip[0] + l.slip[1] * l.slip[1]).sqrt();
             let mut v = [0.0; 30];
             v[0] = l.status.code();

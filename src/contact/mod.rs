@@ -10,7 +10,8 @@
 //! 2. at every Newton iteration [`discrete::evaluate`] gives, at fixed
 //!    pairing, the contact contribution to the residual and to the tangent
 //!    matrix, and the [`ContactState`] of every link;
-//! 3. after convergence, [`ContactState::accumulate_percussion`] and
+//! 3. after convergence, [`ContactState::step_percussion`] (or, for the
+//!    continuous formulation, [`ContactState::accumulate_percussion`]) and
 //!    [`ContactState::cont_noeu`] give the `CONT_NOEU` field, and
 //!    [`collision_started`] / [`ContactState::max_interpenetration`] feed the
 //!    `COLLISION` and `INTERPENETRATION` events of DEFI_LIST_INST.

@@ -198,7 +198,8 @@ impl DiscreteContact {
     }
 
     /// Accepts the trial state of a converged step of length `dt`: the
-    /// percussion is accumulated from the committed state.
+    /// percussion is R·dt of this step (code_aster's `cfresu`; the
+    /// continuous formulation accumulates it, `ContinuousContact::commit`).
     pub fn commit(&mut self, dt: f64) {
         if let Some(c) = self.continuous.as_mut() {
             c.commit(dt);
@@ -207,7 +208,7 @@ impl DiscreteContact {
             return;
         }
         let mut st = self.trial.clone();
-        st.accumulate_percussion(Some(&self.committed), dt);
+        st.step_percussion(dt);
         self.committed = st;
         self.steps_committed += 1;
     }

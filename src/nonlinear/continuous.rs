@@ -43,6 +43,10 @@ pub struct ContinuousContact {
     mesh: Mesh,
     ndpn: usize,
     pub points: Vec<Point>,
+    /// Per (zone, slave node) of a point: the number of slave cells of
+    /// the zone holding the node, i.e. how many times code_aster's
+    /// `mmmres` visits it per step (the percussion's increment).
+    visits: std::collections::HashMap<(usize, usize), usize>,
     /// Unknowns per point: 1 (`LAGS_C`), or with friction 2 in 2D
     /// (+ `LAGS_F1`) and 3 in 3D (+ `LAGS_F1`, `LAGS_F2`).
     stride: usize,
@@ -140,6 +144,15 @@ impl ContinuousContact {
                 }
             }
         }
+        let mut visits: std::collections::HashMap<(usize, usize), usize> = Default::default();
+        for (iz, z) in cdef.zones.iter().enumerate() {
+            for &c in &z.slave_cells {
+                for &n in &mesh.cells[c].nodes {
+                    *visits.entry((iz, n)).or_insert(0) += 1;
+                }
+            }
+        }
+        visits.retain(|&(iz, n), _| points.iter().any(|p| p.zone == iz && p.node == n));
         let friction = cdef.zones.iter().any(|z| z.mu.is_some());
         // LAGS_C, then LAGS_F1 (and LAGS_F2 in 3D) with friction.
         let stride = if friction { def.dim } else { 1 };
@@ -213,6 +226,7 @@ impl ContinuousContact {
             mesh: mesh.clone(),
             ndpn,
             points,
+            visits,
             stride,
             neq,
             lam: vec![0.0; nx],
@@ -970,10 +984,16 @@ impl ContinuousContact {
         Ok(converged)
     }
 
-    /// Accepts the trial state of a converged step of length `dt`.
+    /// Accepts the trial state of a converged step of length `dt`: the
+    /// percussion accumulates over the steps, each slave node adding R·dt
+    /// once per slave cell holding it, as code_aster's `mmmres`
+    /// (`ContactState::accumulate_percussion`).
     pub fn commit(&mut self, dt: f64) {
         let mut st = self.trial.clone();
-        st.accumulate_percussion(Some(&self.committed), dt);
+        let visits = &self.visits;
+        st.accumulate_percussion(Some(&self.committed), dt, |z, n| {
+            visits.get(&(z, n)).copied().unwrap_or(1)
+        });
         self.committed = st;
         self.committed_lam.clone_from(&self.lam);
         self.committed_status.clone_from(&self.status);

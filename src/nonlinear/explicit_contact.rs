@@ -662,11 +662,12 @@ impl ExplicitContact {
     /// (sliding, or frictionless) when the tangential force reaches μλ_n
     /// within 1e-9, else 1; GLIX/GLIY the slave's tangential displacement
     /// over the step, relative to the master point Σ N_j u_j when the
-    /// master is deformable (a held master does not move). The
-    /// percussion I is R·dt of
-    /// the last step, which is what code_aster's `cfresu` stores (the
-    /// implicit loop accumulates it, an open question of §4); steps are
-    /// tiny here, so I is small.
+    /// master is deformable (a held master does not move). RN*, RT*, R*
+    /// and IX.. are printed as code_aster prints them, minus the forces on
+    /// the slave node (`LinkState::printed_normal`). The percussion I is
+    /// R·dt of the last step, which is what code_aster's `cfresu` stores
+    /// (as the implicit discrete formulation); steps are tiny here, so I
+    /// is small.
     pub fn cont_noeu(&self, u: &[f64], u_start: &[f64], dt: f64) -> crate::result::NodalField {
         use crate::contact::{ContactState, LinkState, LinkStatus};
         let nd = self.ndpn;
@@ -740,7 +741,7 @@ impl ExplicitContact {
                 percussion: [0.0; 4],
             };
             if status.in_contact() {
-                let r = link.reaction();
+                let r = link.printed_reaction();
                 let rn = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
                 link.percussion = [rn * dt, r[0] * dt, r[1] * dt, r[2] * dt];
             } else {
