@@ -19,70 +19,10 @@
 
 mod common;
 
-use aster::mesh::{Cell, CellType, Mesh};
 use std::collections::HashMap;
 use std::path::Path;
 
 const E: f64 = 1000.0;
-
-/// The block on its foundation. Cell groups BLOC, FOND, ESCL (block
-/// bottom), HAUT (block top), MAIT (foundation top); node groups GAUCHE
-/// (block, x = 0), TOP (block, y = 2), SOCLE (foundation), NESCL (block,
-/// y = 0).
-fn block_mesh() -> Mesh {
-    let mut coords: Vec<[f64; 3]> = Vec::new();
-    let mut grid = |x0: f64, y0: f64, nx: usize, ny: usize| -> Vec<Vec<usize>> {
-        (0..=nx)
-            .map(|i| {
-                (0..=ny)
-                    .map(|j| {
-                        coords.push([x0 + i as f64, y0 + j as f64, 0.0]);
-                        coords.len() - 1
-                    })
-                    .collect()
-            })
-            .collect()
-    };
-    let b = grid(0.0, 0.0, 4, 2);
-    let f = grid(-1.0, -1.0, 6, 1);
-    let mut m = Mesh {
-        name: "BLOC_SOCLE".into(),
-        dim: 2,
-        coords,
-        ..Mesh::default()
-    };
-    let add = |m: &mut Mesh, group: &str, kind: CellType, nodes: Vec<usize>| {
-        m.cells.push(Cell { kind, nodes });
-        let c = m.cells.len() - 1;
-        m.cell_groups.entry(group.into()).or_default().push(c);
-    };
-    for i in 0..4 {
-        for j in 0..2 {
-            let q = vec![b[i][j], b[i + 1][j], b[i + 1][j + 1], b[i][j + 1]];
-            add(&mut m, "BLOC", CellType::Quad4, q);
-        }
-    }
-    for i in 0..6 {
-        let q = vec![f[i][0], f[i + 1][0], f[i + 1][1], f[i][1]];
-        add(&mut m, "FOND", CellType::Quad4, q);
-    }
-    for i in 0..4 {
-        add(&mut m, "ESCL", CellType::Seg2, vec![b[i][0], b[i + 1][0]]);
-        add(&mut m, "HAUT", CellType::Seg2, vec![b[i + 1][2], b[i][2]]);
-    }
-    for i in (0..6).rev() {
-        add(&mut m, "MAIT", CellType::Seg2, vec![f[i + 1][1], f[i][1]]);
-    }
-    m.node_groups
-        .insert("GAUCHE".into(), (0..=2).map(|j| b[0][j]).collect());
-    m.node_groups
-        .insert("TOP".into(), (0..=4).map(|i| b[i][2]).collect());
-    m.node_groups
-        .insert("NESCL".into(), (0..=4).map(|i| b[i][0]).collect());
-    m.node_groups
-        .insert("SOCLE".into(), f.iter().flatten().copied().collect());
-    m
-}
 
 /// Runs the study whose body (after the mesh, model, material and contact
 /// definitions) is `body`, in the scratch directory `tag`; returns the
@@ -91,7 +31,7 @@ fn run(tag: &str, body: &str) -> (common::Run, String) {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{tag}_src"));
     std::fs::create_dir_all(&dir).unwrap();
     let med = dir.join("mesh.mmed");
-    aster::medio::write_mesh(&med, &block_mesh()).unwrap();
+    aster::medio::write_mesh(&med, &common::block_on_foundation()).unwrap();
     let comm = format!(
         "DEBUT()\n\
          MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
