@@ -704,7 +704,12 @@ pub fn c_archivage() -> Keyword {
         int("PAS_ARCH").doc("archive every PAS_ARCH steps").kw(),
     ];
     kws.extend(critere_precision(1e-6));
-    kws.push(text("CHAM_EXCLU").many().doc("fields not to store").kw());
+    kws.push(
+        text("CHAM_EXCLU")
+            .many()
+            .doc("fields left out of every archived instant but the last one of the call (which keeps them all, as code_aster forces it)")
+            .kw(),
+    );
     fact("ARCHIVAGE", kws)
         .defaulted()
         .rules(vec![exclus(&["PAS_ARCH", "LIST_INST", "INST"])])

@@ -368,10 +368,14 @@ fn forces_of_run(
         if !orders.contains(&step.nume_ordre) {
             continue;
         }
+        let (nume, excluded) = (step.nume_ordre, step.excluded.clone());
         let missing = |f: &str| {
             args.error(
                 "RESULTAT",
-                format!("NUME_ORDRE {} of {name} has no {f} field", step.nume_ordre),
+                format!(
+                    "NUME_ORDRE {nume} of {name} has no {f} field{}",
+                    crate::result::exclusion_note(&excluded, f)
+                ),
             )
         };
         let u = fields::from_nodal(
@@ -423,6 +427,11 @@ fn forces_of_run(
             history.at(step.inst, &mut fext).map_err(|m| {
                 args.error("RESULTAT", format!("NUME_ORDRE {}: {m}", step.nume_ordre))
             })?;
+            // A dynamic step whose ACCE CHAM_EXCLU took out has no M·a:
+            // an error, not the reaction without inertia.
+            if excluded.iter().any(|f| f == "ACCE") {
+                return Err(missing("ACCE"));
+            }
             let a = step
                 .nodal
                 .get("ACCE")
@@ -586,8 +595,9 @@ fn element_fields(
                 args.error(
                     key,
                     format!(
-                        "NUME_ORDRE {nume} of {name} has no {field} field to compute {} from",
-                        args.texts(key).join(", ")
+                        "NUME_ORDRE {nume} of {name} has no {field} field to compute {} from{}",
+                        args.texts(key).join(", "),
+                        step.exclusion_note(field)
                     ),
                 )
             })
@@ -663,7 +673,8 @@ fn element_fields(
                 args.error(
                     key,
                     format!(
-                        "NUME_ORDRE {nume} of {name} has no DEPL field to compute {prefix} from"
+                        "NUME_ORDRE {nume} of {name} has no DEPL field to compute {prefix} from{}",
+                        step.exclusion_note("DEPL")
                     ),
                 )
             })?;
@@ -856,7 +867,8 @@ pub fn enel_of_step(
                 args.error(
                     key,
                     format!(
-                        "NUME_ORDRE {nume} of {name} has no {field} field for the elastic energy"
+                        "NUME_ORDRE {nume} of {name} has no {field} field for the elastic energy{}",
+                        step.exclusion_note(field)
                     ),
                 )
             })

@@ -1,8 +1,10 @@
-//! CREA_CHAMP: creates a field (here nodal fields).
+//! CREA_CHAMP: creates a nodal field, by assigned values (AFFE) or as a
+//! copy of a result's field at one instant (EXTR).
 
 use super::blocks::*;
 use super::mesh_args::mesh_of;
 use super::model_args::{mesh_of_model, model_of, select_nodes};
+use super::post_args::{inst_access, is_gauss_name, result_of, step_nodal};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
@@ -10,6 +12,7 @@ use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::{closest, Diagnostic};
 use crate::model::{Dof, Model};
+use crate::result::Access;
 use crate::result::NodalField;
 use crate::study::Study;
 
@@ -20,8 +23,10 @@ pub fn def() -> CommandDef {
             .doc("result to extract from")
             .kw(),
         text("NOM_CHAM").required().into(NOM_CHAM_RESU).kw(),
-        int("NUME_ORDRE").kw(),
-        real("INST").kw(),
+        int("NUME_ORDRE").doc("stored index extracted").kw(),
+        real("INST")
+            .doc("instant extracted, found within CRITERE/PRECISION")
+            .kw(),
     ];
     extr.extend(critere_precision(1e-6));
     let spec = command(
@@ -30,8 +35,8 @@ pub fn def() -> CommandDef {
         vec![
             text("TYPE_CHAM")
                 .required()
-                .into(&["NOEU_DEPL_R"])
-                .doc("location and quantity of the field (nodal real displacement-like)")
+                .into(TYPE_CHAM)
+                .doc("location and quantity of the field: AFFE builds NOEU_DEPL_R; EXTR copies a nodal field of a result (NOEU_*); the fields by element (ELGA_*, ELNO_*) are not built yet")
                 .kw(),
             text("OPERATION")
                 .required()
@@ -76,13 +81,13 @@ pub fn def() -> CommandDef {
             .rules(vec![un_parmi(&["MAILLAGE", "MODELE"])])
             .kw(),
             block("b_extr", eq("OPERATION", "EXTR"), extr)
-                .rules(vec![exclus(&["NUME_ORDRE", "INST"])])
+                .rules(vec![un_parmi(&["NUME_ORDRE", "INST"])])
                 .kw(),
             info(),
             titre(),
         ],
     )
-    .doc("Creates a nodal field, e.g. an initial velocity for ETAT_INIT.");
+    .doc("Creates a nodal field (cham_no): assigned values (AFFE), e.g. an initial velocity for ETAT_INIT, or a copy of a result's nodal field at one instant (EXTR), e.g. for TEST_RESU CHAM_NO.");
     CommandDef { spec, exec }
 }
 
@@ -95,11 +100,114 @@ pub const DEPL_R: &[&str] = &[
     "DX", "DY", "DZ", "DRX", "DRY", "DRZ", "LAGS_C", "LAGS_F1", "LAGS_F2",
 ];
 
+/// TYPE_CHAM values of the catalogue: the nodal ones that EXTR copies
+/// (and AFFE builds, NOEU_DEPL_R), and code_aster's fields by element,
+/// which are refused at run time as not built yet.
+const TYPE_CHAM: &[&str] = &[
+    "NOEU_DEPL_R",
+    "NOEU_SIEF_R",
+    "NOEU_EPSI_R",
+    "NOEU_VAR2_R",
+    "NOEU_INFC_R",
+    "NOEU_ENER_R",
+    "ELGA_SIEF_R",
+    "ELGA_VARI_R",
+    "ELGA_EPSI_R",
+    "ELNO_SIEF_R",
+    "ELNO_VARI_R",
+    "ELNO_EPSI_R",
+];
+
+/// The TYPE_CHAM of a result's nodal field (code_aster's quantities:
+/// FORC_NODA and REAC_NODA are DEPL_R, the stresses and their
+/// equivalents SIEF_R, the strains and theirs EPSI_R, the internal
+/// variables at nodes VAR2_R, the discrete contact's CONT_NOEU INFC_R,
+/// the elastic energy ENER_R).
+pub fn nodal_type_cham(nom_cham: &str) -> Option<&'static str> {
+    Some(match nom_cham {
+        "DEPL" | "VITE" | "ACCE" | "FORC_NODA" | "REAC_NODA" => "NOEU_DEPL_R",
+        "SIEF_NOEU" | "SIGM_NOEU" | "SIEQ_NOEU" => "NOEU_SIEF_R",
+        "EPSI_NOEU" | "EPSG_NOEU" | "EPSL_NOEU" | "EPEQ_NOEU" => "NOEU_EPSI_R",
+        "VARI_NOEU" => "NOEU_VAR2_R",
+        "CONT_NOEU" => "NOEU_INFC_R",
+        "ENEL_NOEU" => "NOEU_ENER_R",
+        _ => return None,
+    })
+}
+
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
-    if args.text("OPERATION") != Some("AFFE") {
-        return Err(args.not_implemented("OPERATION", "only OPERATION='AFFE'"));
+    let type_cham = args.text("TYPE_CHAM").unwrap_or_default();
+    if !type_cham.starts_with("NOEU_") {
+        return Err(args.not_implemented(
+            "TYPE_CHAM",
+            "fields by element (ELGA_*, ELNO_*); CREA_CHAMP builds nodal fields: AFFE of NOEU_DEPL_R, EXTR of NOEU_DEPL_R, NOEU_SIEF_R, NOEU_EPSI_R, NOEU_VAR2_R, NOEU_INFC_R, NOEU_ENER_R",
+        ));
     }
-    affe(study, args, result)
+    match args.text("OPERATION") {
+        Some("AFFE") if type_cham != "NOEU_DEPL_R" => Err(args.not_implemented(
+            "TYPE_CHAM",
+            "OPERATION='AFFE' of a field other than NOEU_DEPL_R",
+        )),
+        Some("AFFE") => affe(study, args, result),
+        _ => extr(study, args, type_cham, result),
+    }
+}
+
+/// OPERATION='EXTR' from RESULTAT: a copy of the nodal field NOM_CHAM of
+/// the step that NUME_ORDRE or INST (within CRITERE/PRECISION) designates,
+/// on the result's mesh. The field keeps the result's components and its
+/// absent pairs (a CONT_NOEU outside the contact zones stays absent).
+fn extr(study: &mut Study, args: &Args, type_cham: &str, result: Option<&str>) -> ExecResult {
+    let (rname, res) = result_of(study, args, "RESULTAT")?;
+    let nom_cham = args.text("NOM_CHAM").unwrap_or_default();
+    let Some(expected) = nodal_type_cham(nom_cham) else {
+        let what = if is_gauss_name(nom_cham) || nom_cham.ends_with("_ELNO") {
+            "a field by element"
+        } else {
+            "not a nodal field"
+        };
+        return Err(args.not_implemented(
+            "NOM_CHAM",
+            &format!(
+                "EXTR of {nom_cham} ({what}); EXTR copies the nodal fields DEPL, VITE, ACCE, FORC_NODA, REAC_NODA (NOEU_DEPL_R), SIEF_NOEU, SIGM_NOEU, SIEQ_NOEU (NOEU_SIEF_R), EPSI_NOEU, EPSG_NOEU, EPSL_NOEU, EPEQ_NOEU (NOEU_EPSI_R), VARI_NOEU (NOEU_VAR2_R), CONT_NOEU (NOEU_INFC_R), ENEL_NOEU (NOEU_ENER_R)"
+            ),
+        ));
+    };
+    if expected != type_cham {
+        return Err(args.error(
+            "TYPE_CHAM",
+            format!("{nom_cham} is a field of type {expected}, not {type_cham}: give TYPE_CHAM='{expected}'"),
+        ));
+    }
+    let (step, key) = match args.int("NUME_ORDRE") {
+        Some(n) => {
+            let n = usize::try_from(n)
+                .map_err(|_| args.error("NUME_ORDRE", format!("NUME_ORDRE {n} is negative")))?;
+            (res.find(Access::NumeOrdre(n)), "NUME_ORDRE")
+        }
+        None => {
+            let t = args
+                .real("INST")
+                .ok_or_else(|| args.error("INST", "NUME_ORDRE or INST is needed"))?;
+            (res.find(inst_access(args, t, 1e-6)), "INST")
+        }
+    };
+    let step = step.map_err(|e| args.error(key, format!("result {rname}: {e}")))?;
+    let field = step_nodal(step, nom_cham, args, "NOM_CHAM", rname)?.clone();
+    let absent = field.values.iter().filter(|v| v.is_nan()).count();
+    let line = format!(
+        "    field {} ({type_cham}) = {nom_cham} of {rname} at NUME_ORDRE {} (INST {:e}): components {}, {} nodes, {absent} absent (node, component) pairs",
+        result.unwrap_or("(unnamed)"),
+        step.nume_ordre,
+        step.inst,
+        field.components.join(" "),
+        field.nnodes()
+    );
+    let mesh = res.mesh.clone();
+    study.log(line);
+    Ok(Some(ConceptData::Field(Box::new(
+        crate::concepts::ChamNo { mesh, field },
+    ))))
 }
 
 /// OPERATION='AFFE' (code_aster's `cnoaff`): the components are the union

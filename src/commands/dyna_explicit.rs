@@ -191,6 +191,7 @@ pub(crate) fn exec(
         instants,
         on_error: Action::Arret,
         archive,
+        cham_exclu: super::dyna_non_line::cham_exclu_of(args)?,
         newton_table: false,
         suivi: super::dyna_non_line::suivi_of(&md.mesh, &md.model, args, true)?,
         observations,

@@ -9,7 +9,7 @@ use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::{Concept, ConceptData, ConceptType as C};
-use crate::diag::Diagnostic;
+use crate::diag::{closest, Diagnostic};
 use crate::law::TangentKind;
 use crate::mesh::Mesh;
 use crate::model::{Material, MaterialField, MechLoad, Model};
@@ -920,10 +920,70 @@ pub(crate) fn archive_of(study: &Study, args: &Args) -> Result<ArchivePolicy, Di
     let Some(o) = args.fact("ARCHIVAGE") else {
         return Ok(ArchivePolicy::Every(1));
     };
-    if o.given("CHAM_EXCLU") {
-        return Err(o.not_implemented("CHAM_EXCLU", ""));
-    }
     instants_of(study, o, "PAS_ARCH")
+}
+
+/// The fields aster's time loops archive, which ARCHIVAGE/CHAM_EXCLU may
+/// leave out.
+const ARCHIVED_FIELDS: &[&str] = &[
+    "DEPL",
+    "VITE",
+    "ACCE",
+    "SIEF_ELGA",
+    "VARI_ELGA",
+    "CONT_NOEU",
+];
+
+/// Fields code_aster's DYNA_NON_LINE and STAT_NON_LINE archive and aster
+/// does not: excluding them changes nothing.
+const UNARCHIVED_FIELDS: &[&str] = &[
+    "COMPORTEMENT",
+    "STRX_ELGA",
+    "EPSI_ELGA",
+    "FORC_AMOR",
+    "FORC_LIAI",
+    "CONT_ELEM",
+    "MODE_FLAMB",
+    "MODE_STAB",
+    "DEPL_VIBR",
+    "DEPL_ABSOLU",
+    "VITE_ABSOLU",
+    "ACCE_ABSOLU",
+];
+
+/// ARCHIVAGE/CHAM_EXCLU: the fields to leave out of every archived
+/// instant of the call but the last one. A name that is no field the
+/// command archives is an error (code_aster ignores it silently, so a
+/// misspelt name would exclude nothing).
+pub(crate) fn cham_exclu_of(args: &Args) -> Result<Vec<String>, Diagnostic> {
+    let Some(o) = args.fact("ARCHIVAGE") else {
+        return Ok(Vec::new());
+    };
+    let mut out: Vec<String> = Vec::new();
+    for name in o.texts("CHAM_EXCLU") {
+        if !ARCHIVED_FIELDS.contains(&name) && !UNARCHIVED_FIELDS.contains(&name) {
+            let all: Vec<&str> = ARCHIVED_FIELDS
+                .iter()
+                .chain(UNARCHIVED_FIELDS)
+                .copied()
+                .collect();
+            let mut d = o.error(
+                "CHAM_EXCLU",
+                format!(
+                    "{name} is not a field this command archives (it archives {}; code_aster's {} are not archived by aster and may be named too)",
+                    ARCHIVED_FIELDS.join(", "),
+                    UNARCHIVED_FIELDS.join(", ")
+                ),
+            );
+            d.suggestion = closest(name, &all);
+            return Err(d);
+        }
+        if out.iter().any(|x| x == name) {
+            return Err(o.error("CHAM_EXCLU", format!("{name} is given twice in CHAM_EXCLU")));
+        }
+        out.push(name.to_string());
+    }
+    Ok(out)
 }
 
 /// Which computed steps an occurrence selects (ARCHIVAGE, OBSERVATION):
@@ -1539,6 +1599,21 @@ pub(crate) fn etat_init(
                 .ok_or_else(|| format!("the result {name} holds no step"))
         }
         .map_err(|m| o.error("EVOL_NOLI", m))?;
+        // A state lacking a field CHAM_EXCLU took out cannot be continued
+        // from (its displacement, velocity or stresses would start at 0);
+        // the acceleration alone is solved again from the equilibrium, as
+        // without ETAT_INIT.
+        if let Some(f) = step.excluded.iter().find(|f| f.as_str() != "ACCE") {
+            return Err(o.error(
+                "EVOL_NOLI",
+                format!(
+                    "NUME_ORDRE {} (INST {:e}) of {name} has no {f}{}: continue from the last instant of that call, which keeps every field, or archive {f} at this instant",
+                    step.nume_ordre,
+                    step.inst,
+                    step.exclusion_note(f)
+                ),
+            ));
+        }
         let nodal = |f: &str| {
             step.nodal
                 .get(f)
@@ -1973,6 +2048,7 @@ pub(crate) fn run(
         instants,
         on_error,
         archive,
+        cham_exclu: cham_exclu_of(args)?,
         newton_table: info >= 2 || !suivi.is_empty(),
         suivi,
         observations,

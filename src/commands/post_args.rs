@@ -448,9 +448,10 @@ pub fn step_nodal<'r>(
         args.error(
             key,
             format!(
-                "result {result_name} has no nodal field {nom_cham} at NUME_ORDRE {} (INST {}){}{}",
+                "result {result_name} has no nodal field {nom_cham} at NUME_ORDRE {} (INST {}){}{}{}",
                 step.nume_ordre,
                 crate::post::test_report::py_repr(step.inst),
+                step.exclusion_note(nom_cham),
                 fields_held(step),
                 if nom_cham == "CONT_NOEU" {
                     " (CONT_NOEU exists only for a computation with DEFI_CONTACT DISCRETE or CONTINUE; LIAISON_UNIL produces no CONT_NOEU, as in code_aster: the reactions are REAC_NODA of CALC_CHAMP)"
@@ -474,9 +475,10 @@ pub fn step_gauss<'r>(
         args.error(
             key,
             format!(
-                "result {result_name} has no Gauss-point field {nom_cham} at NUME_ORDRE {} (INST {}){}",
+                "result {result_name} has no Gauss-point field {nom_cham} at NUME_ORDRE {} (INST {}){}{}",
                 step.nume_ordre,
                 crate::post::test_report::py_repr(step.inst),
+                step.exclusion_note(nom_cham),
                 fields_held(step)
             ),
         )

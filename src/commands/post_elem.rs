@@ -506,8 +506,13 @@ fn ener_cin(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
             args.error(
                 "RESULTAT",
                 format!(
-                    "NUME_ORDRE {} of {name} has no VITE field (a quasi-static result has no kinetic energy)",
-                    step.nume_ordre
+                    "NUME_ORDRE {} of {name} has no VITE field{}",
+                    step.nume_ordre,
+                    if step.excluded.iter().any(|f| f == "VITE") {
+                        step.exclusion_note("VITE")
+                    } else {
+                        " (a quasi-static result has no kinetic energy)".to_string()
+                    }
                 ),
             )
         })?;
@@ -670,7 +675,10 @@ fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
         let depl = step.nodal.get("DEPL").ok_or_else(|| {
             args.error(
                 "ENER_POT",
-                format!("NUME_ORDRE {nume} of {name} has no DEPL field"),
+                format!(
+                    "NUME_ORDRE {nume} of {name} has no DEPL field{}",
+                    step.exclusion_note("DEPL")
+                ),
             )
         })?;
         let eps = crate::element::strain::strain_field(

@@ -159,6 +159,28 @@ const UNSUPPORTED: [&str; 11] = [
     "ORIGINE",
 ];
 
+/// What is not built about an [`UNSUPPORTED`] keyword, and what gives
+/// the same numbers when something does.
+fn unsupported_why(k: &str) -> &'static str {
+    match k {
+        "TOUT" | "GROUP_MA" | "MAILLE" => {
+            "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION is not built: the nodes are those of GROUP_NO/NOEUD, give them alone"
+        }
+        "INVARIANT" => {
+            "INVARIANT='OUI' (the invariants VMIS, TRESCA, TRACE, DETER of a tensor field) is not built; CALC_CHAMP CRITERES='SIEQ_NOEU' gives VMIS, TRESCA and TRSIG (the trace) at the nodes, to extract with NOM_CMP"
+        }
+        "ELEM_PRINCIPAUX" => {
+            "ELEM_PRINCIPAUX='OUI' (principal values and directions of a tensor field) is not built; CALC_CHAMP CRITERES='SIEQ_NOEU' gives PRIN_1, PRIN_2, PRIN_3 and VECT_i_X..Z at the nodes, to extract with NOM_CMP"
+        }
+        "MOMENT" => "MOMENT (the moment of RESULTANTE about POINT) is not built",
+        "POINT" => "POINT (the point of MOMENT) is not built",
+        "TRAC_NOR" | "TRAC_DIR" => {
+            "the traction of a stress field on a normal (TRAC_NOR) or a direction (TRAC_DIR) is not built"
+        }
+        _ => "a local frame (ANGL_NAUT, ORIGINE) is not built: the components are in the global frame",
+    }
+}
+
 type Row = Vec<(String, Cell)>;
 
 /// Builds one table from every ACTION occurrence, rows appended in order.
@@ -271,12 +293,7 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
         // EXTREMA and MOYENNE_ARITH select nodes by cells too.
         let selection = matches!(k, "TOUT" | "GROUP_MA" | "MAILLE");
         if occ.has(k) && !(selection && op != Operation::Extraction) {
-            let why = if selection {
-                "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION is not built: the nodes are those of GROUP_NO/NOEUD, give them alone"
-            } else {
-                "only nodal extraction on GROUP_NO/NOEUD is built"
-            };
-            return Err(occ.not_implemented(k, why));
+            return Err(occ.not_implemented(k, unsupported_why(k)));
         }
     }
     let intitule = occ.text("INTITULE").unwrap_or_default().to_string();

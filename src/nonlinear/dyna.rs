@@ -422,6 +422,10 @@ pub struct TimeLoop {
     /// The ERREUR rule of the time list.
     pub on_error: Action,
     pub archive: ArchivePolicy,
+    /// ARCHIVAGE/CHAM_EXCLU: the fields left out of every archived
+    /// instant of the call but the last one (code_aster's `diincl`,
+    /// forced at the last step and at a stop).
+    pub cham_exclu: Vec<String>,
     pub suivi: Vec<Suivi>,
     /// OBSERVATION occurrences (the result's table 'OBSERVATION').
     pub observations: Vec<super::observation::Observation>,
@@ -494,6 +498,12 @@ pub struct Stopped {
 /// Appends the state to the result if its instant is after the last
 /// stored one (an instant is never stored twice, which matters for reuse).
 /// `contact`, when given, adds its CONT_NOEU (of its committed state).
+///
+/// Every state is archived whole; the fields of ARCHIVAGE/CHAM_EXCLU
+/// are taken out of the previous instant of the same call when a later
+/// one is archived: so the last instant of the call (its end, or where it
+/// stopped) keeps them all, as code_aster forces the archiving of every
+/// field there, and the initial state and the others lose them.
 pub fn archive(
     engine: &Engine,
     tl: &TimeLoop,
@@ -505,6 +515,10 @@ pub fn archive(
         if state.t <= last.inst {
             return false;
         }
+    }
+    let run = result.current_run();
+    if let Some(prev) = result.steps.last_mut().filter(|s| s.run == run) {
+        exclude_fields(prev, &tl.cham_exclu);
     }
     let nume = result.steps.last().map_or(0, |s| s.nume_ordre + 1);
     let asm = &engine.asm;
@@ -541,6 +555,18 @@ pub fn archive(
     step.gauss.insert("VARI_ELGA".into(), vari);
     result.steps.push(step);
     true
+}
+
+/// Takes the fields of CHAM_EXCLU out of an archived step, recording
+/// those it held.
+fn exclude_fields(step: &mut Step, cham_exclu: &[String]) {
+    for name in cham_exclu {
+        let held =
+            step.nodal.shift_remove(name).is_some() | step.gauss.shift_remove(name).is_some();
+        if held && !step.excluded.contains(name) {
+            step.excluded.push(name.clone());
+        }
+    }
 }
 
 /// A step failure for the log. A singular quasi-static stiffness is

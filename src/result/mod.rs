@@ -158,6 +158,30 @@ pub struct Step {
     /// with different loads and masses, and CALC_CHAMP's REAC_NODA must
     /// take each step's own (code_aster keeps them per NUME_ORDRE).
     pub run: usize,
+    /// The fields ARCHIVAGE/CHAM_EXCLU left out of this step (every
+    /// archived instant of the call but its last one): named in the
+    /// message of a command that asks for one of them.
+    pub excluded: Vec<String>,
+}
+
+impl Step {
+    /// Why the field `name` is not in this step, for an error message
+    /// that already says it is missing: its exclusion by CHAM_EXCLU, or
+    /// nothing.
+    pub fn exclusion_note(&self, name: &str) -> String {
+        exclusion_note(&self.excluded, name)
+    }
+}
+
+/// [`Step::exclusion_note`] from the step's `excluded` list.
+pub fn exclusion_note(excluded: &[String], name: &str) -> String {
+    if excluded.iter().any(|e| e == name) {
+        format!(
+            " ({name} was excluded from this instant by ARCHIVAGE/CHAM_EXCLU of the command that computed it: only the last instant of the call keeps every field)"
+        )
+    } else {
+        String::new()
+    }
 }
 
 /// What one call (DYNA_NON_LINE, STAT_NON_LINE, MECA_STATIQUE) computed
@@ -324,12 +348,13 @@ impl EvolNoli {
                             .iter()
                             .min_by(|a, b| (a.inst - inst).abs().total_cmp(&(b.inst - inst).abs()));
                         Err(format!(
-                            "no stored instant matches INST={inst:e} (tolerance {tol:e}){}",
+                            "no stored instant matches INST={inst:e} (tolerance {tol:e}){}; stored instants: {}",
                             near.map(|s| format!(
                                 "; the nearest is {:e} (NUME_ORDRE {})",
                                 s.inst, s.nume_ordre
                             ))
-                            .unwrap_or_default()
+                            .unwrap_or_default(),
+                            self.describe_instants()
                         ))
                     }
                     many => Err(format!(
@@ -338,6 +363,21 @@ impl EvolNoli {
                     )),
                 }
             }
+        }
+    }
+
+    /// The stored instants, all of them up to 12, else the first and
+    /// last five around the count.
+    fn describe_instants(&self) -> String {
+        let t: Vec<String> = self.steps.iter().map(|s| format!("{:e}", s.inst)).collect();
+        match t.len() {
+            0 => "none".into(),
+            n if n <= 12 => t.join(", "),
+            n => format!(
+                "{}, ... ({n} in all), {}",
+                t[..5].join(", "),
+                t[n - 5..].join(", ")
+            ),
         }
     }
 
