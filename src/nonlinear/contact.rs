@@ -13,7 +13,8 @@ use super::continuous::ContinuousContact;
 use super::dofs::{DofNumbering, NONE};
 use super::newton::{ContactIteration, ContactTerm, ImposedIncrement, IncrementCorrection};
 use crate::contact::{
-    evaluate, pair, ContactDef, ContactState, DiscreteAlgo, IterationInput, Pairing, ReacGeom,
+    evaluate, pair, ContactDef, ContactState, DiscreteAlgo, IterationInput, LinkStatus, Pairing,
+    ReacGeom,
 };
 use crate::mesh::Mesh;
 use crate::result::NodalField;
@@ -49,6 +50,80 @@ pub struct DiscreteContact {
     /// Converged steps committed so far: before the first one CONT_NOEU
     /// is code_aster's initial field (zeros on the slave nodes).
     pub steps_committed: usize,
+    /// Per evaluation since the step's start (or its last pairing): the
+    /// RESI_GLOB_RELA the iteration was given and the links' statuses, for
+    /// [`newton_cycle`].
+    iterates: Vec<(f64, Vec<(usize, LinkStatus)>)>,
+}
+
+/// Relative agreement of two RESI_GLOB_RELA for [`newton_cycle`] to call
+/// them the same iterate.
+const CYCLE_RESI_TOLERANCE: f64 = 1e-6;
+
+/// A Newton cycle of the discrete penalised contact: the last `3p`
+/// evaluations (p = 2, 3 or 4) repeat with period p, each its statuses
+/// exactly and its RESI_GLOB_RELA to [`CYCLE_RESI_TOLERANCE`], and at least
+/// one link changes status within the period. Newton's map is then back
+/// where it was and goes round forever: the message names the period, the
+/// repeated residuals and the slave nodes that switch (with their statuses
+/// over one period, CONT codes: 0 open, 1 stick, 2 slip). Each entry of
+/// `iterates` is (RESI_GLOB_RELA given to the iteration, (slave node,
+/// status) per link).
+pub fn newton_cycle(iterates: &[(f64, Vec<(usize, LinkStatus)>)]) -> Option<String> {
+    let n = iterates.len();
+    let same = |a: &(f64, Vec<(usize, LinkStatus)>), b: &(f64, Vec<(usize, LinkStatus)>)| {
+        a.0.is_finite()
+            && b.0.is_finite()
+            && (a.0 - b.0).abs() <= CYCLE_RESI_TOLERANCE * a.0.abs().max(b.0.abs())
+            && a.1 == b.1
+    };
+    for p in 2..=4 {
+        if n < 3 * p || !(n - 2 * p..n).all(|k| same(&iterates[k], &iterates[k - p])) {
+            continue;
+        }
+        let period = &iterates[n - p..];
+        let nlinks = period[0].1.len();
+        let code = |s: LinkStatus| match s {
+            LinkStatus::Unpaired => "-1",
+            LinkStatus::Open => "0",
+            LinkStatus::Stick => "1",
+            LinkStatus::Slip => "2",
+        };
+        let switching: Vec<String> = (0..nlinks)
+            .filter(|&l| period.iter().any(|it| it.1[l].1 != period[0].1[l].1))
+            .map(|l| {
+                let seq: Vec<&str> = period.iter().map(|it| code(it.1[l].1)).collect();
+                format!("N{} ({})", period[0].1[l].0 + 1, seq.join(" -> "))
+            })
+            .collect();
+        if switching.is_empty() {
+            continue;
+        }
+        let contact = (0..nlinks).any(|l| {
+            period.iter().any(|it| it.1[l].1 == LinkStatus::Open)
+                && period.iter().any(|it| it.1[l].1 != LinkStatus::Open)
+        });
+        let friction = (0..nlinks).any(|l| {
+            period.iter().any(|it| it.1[l].1 == LinkStatus::Stick)
+                && period.iter().any(|it| it.1[l].1 == LinkStatus::Slip)
+        });
+        let what = match (contact, friction) {
+            (true, true) => "between contact and open and between stick and slip",
+            (true, false) => "between contact and open",
+            _ => "between stick and slip",
+        };
+        let resi: Vec<String> = period.iter().map(|it| format!("{:.4e}", it.0)).collect();
+        let shown = switching.len().min(12);
+        return Some(format!(
+            "discrete contact: Newton cycles with period {p} (RESI_GLOB_RELA {} repeated over the last {} iterations): {} slave node(s) switch {what} and come back: {}{}; the step is abandoned now instead of after ITER_GLOB_MAXI (DEFI_LIST_INST ECHEC/EVENEMENT='ERREUR' ACTION='DECOUPE' cuts it)",
+            resi.join(", "),
+            3 * p,
+            switching.len(),
+            switching[..shown].join(", "),
+            if shown < switching.len() { ", ..." } else { "" },
+        ));
+    }
+    None
 }
 
 pub(super) fn per_node(ndpn: usize, u: &[f64]) -> Vec<[f64; 3]> {
@@ -82,6 +157,7 @@ impl DiscreteContact {
             committed: ContactState::default(),
             pairings: 0,
             steps_committed: 0,
+            iterates: Vec::new(),
         };
         c.repair(numbering, u0);
         let u = c.u_start.clone();
@@ -130,6 +206,7 @@ impl DiscreteContact {
             entries: Vec::new(),
             pairings: 0,
             steps_committed: 0,
+            iterates: Vec::new(),
         })
     }
 
@@ -194,6 +271,7 @@ impl DiscreteContact {
         self.u_paired.extend_from_slice(u);
         self.pairings_in_step += 1;
         self.pairings += 1;
+        self.iterates.clear();
         crate::profile::count(crate::profile::Counter::Pairings, 1);
     }
 
@@ -236,6 +314,7 @@ impl ContactTerm for DiscreteContact {
         let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.u_start = per_node(self.ndpn, u_start);
         self.pairings_in_step = 0;
+        self.iterates.clear();
         if let Some(a) = self.active.as_mut() {
             a.begin_step();
         }
@@ -305,8 +384,15 @@ impl ContactTerm for DiscreteContact {
                 m.values[p] += v;
             }
         }
+        self.iterates.push((
+            it.resi_glob_rela,
+            state.links.iter().map(|l| (l.slave, l.status)).collect(),
+        ));
         self.trial = state;
-        Ok(())
+        match newton_cycle(&self.iterates) {
+            Some(m) => Err(m),
+            None => Ok(()),
+        }
     }
 
     fn accept(&mut self, numbering: &DofNumbering, u: &[f64]) -> Result<bool, String> {
