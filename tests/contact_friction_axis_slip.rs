@@ -6,6 +6,8 @@
 //! (DECOUPE cuts it) instead of after ITER_GLOB_MAXI; it never fires on a
 //! converging sequence.
 
+mod common;
+
 use aster::contact::LinkStatus::{self, Open, Slip, Stick};
 use aster::nonlinear::contact::newton_cycle;
 
@@ -93,4 +95,72 @@ fn converging_or_static_sequences_are_not_cycles() {
     // The prediction's RESI is +inf: never equal to anything.
     let h: Vec<Iterate> = (0..9).map(|_| it(f64::INFINITY, &[Open, Slip])).collect();
     assert!(newton_cycle(&h).is_none());
+}
+
+/// The probe's study end to end: the 2 x 2 x 1 block of
+/// `common::block_on_foundation_3d` made quadratic (CREA_MAILLAGE
+/// LINE_QUAD: HEXA20, QUAD8 faces), under 3D (full integration), slides
+/// along x on its held foundation under gravity tilted by tan(theta) = 0.5,
+/// discrete penalised contact with Coulomb 0.25. Newton cycles at some
+/// steps (rows of the QUAD8 face open and close in turn); the detector
+/// fails those steps at once and DECOUPE cuts them, and the slide is the
+/// analytic one: a = g (sin(theta) - mu cos(theta)), DX(T) = a T^2 / 2 at
+/// the top centre, sum RN = m g cos(theta).
+#[test]
+fn hexa20_block_sliding_along_an_axis_reaches_the_analytic_slide() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("h20_axis_slip_src");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut mesh = common::block_on_foundation_3d();
+    let top = mesh
+        .coords
+        .iter()
+        .position(|c| *c == [1.0, 1.0, 1.0])
+        .unwrap();
+    mesh.node_groups.insert("HAUT_C".into(), vec![top]);
+    let med = dir.join("mesh.mmed");
+    aster::medio::write_mesh(&med, &mesh).unwrap();
+    let (rho, g, mu, tan, t_fin): (f64, f64, f64, f64, f64) = (7.8e-9, 1e6, 0.25, 0.5, 1e-3);
+    let (c, s) = (
+        1.0 / (1.0 + tan * tan).sqrt(),
+        tan / (1.0 + tan * tan).sqrt(),
+    );
+    let n = rho * 4.0 * g * c;
+    let dx = 0.5 * g * (s - mu * c) * t_fin * t_fin;
+    let comm = format!(
+        "DEBUT()\n\
+         MA0 = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+         MA = CREA_MAILLAGE(MAILLAGE=MA0, LINE_QUAD=_F(TOUT='OUI'))\n\
+         MA = MODI_MAILLAGE(reuse=MA, MAILLAGE=MA, ORIE_PEAU_3D=_F(GROUP_MA=('ESCL', 'MAIT')))\n\
+         MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(NOM='NESCL20', GROUP_MA='ESCL'))\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\n\
+         ACIER = DEFI_MATERIAU(ELAS=_F(E=2.E5, NU=0.3, RHO={rho}))\n\
+         CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+         FIXE = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_MA='FOND', DX=0., DY=0., DZ=0.))\n\
+         PES = AFFE_CHAR_MECA(MODELE=MO, PESANTEUR=_F(GRAVITE={g}, DIRECTION=({tan}, 0., -1.), GROUP_MA='BLOC'))\n\
+         CONT = DEFI_CONTACT(MODELE=MO, FORMULATION='DISCRETE', FROTTEMENT='COULOMB',\n\
+             REAC_GEOM='CONTROLE', NB_ITER_GEOM=2,\n\
+             ZONE=_F(GROUP_MA_MAIT='MAIT', GROUP_MA_ESCL='ESCL', ALGO_CONT='PENALISATION', E_N=1.E4,\n\
+                     ALGO_FROT='PENALISATION', E_T=1.E5, COULOMB={mu}))\n\
+         L = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A={t_fin}, NOMBRE=100))\n\
+         DL = DEFI_LIST_INST(DEFI_LIST=_F(LIST_INST=L), ECHEC=_F(EVENEMENT='ERREUR', ACTION='DECOUPE',\n\
+             SUBD_METHODE='MANUEL', SUBD_PAS=2, SUBD_NIVEAU=6))\n\
+         R = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=(_F(CHARGE=FIXE), _F(CHARGE=PES)), CONTACT=CONT,\n\
+             COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), INCREMENT=_F(LIST_INST=DL),\n\
+             SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', BETA=0.3025, GAMMA=0.6, FORMULATION='DEPLACEMENT'),\n\
+             CONVERGENCE=_F(RESI_GLOB_RELA=1.E-8, ITER_GLOB_MAXI=100))\n\
+         T = POST_RELEVE_T(ACTION=_F(INTITULE='C', GROUP_NO='NESCL20', RESULTAT=R, INST={t_fin},\n\
+             NOM_CHAM='CONT_NOEU', NOM_CMP=('CONT', 'RN'), OPERATION='EXTRACTION'))\n\
+         TEST_TABLE(TABLE=T, NOM_PARA='RN', TYPE_TEST='SOMM', VALE_CALC={n:.15e}, REFERENCE='ANALYTIQUE',\n\
+             VALE_REFE={n:.15e}, PRECISION=1.E-4)\n\
+         TEST_RESU(RESU=_F(RESULTAT=R, INST={t_fin}, NOM_CHAM='DEPL', NOM_CMP='DX', GROUP_NO='HAUT_C',\n\
+             VALE_CALC={dx:.15e}, REFERENCE='ANALYTIQUE', VALE_REFE={dx:.15e}, PRECISION=1.E-4))\n\
+         FIN()\n"
+    );
+    let (r, _) = common::run_generated(&dir, "h20_axis_slip", &comm, &med);
+    common::assert_all_ok(&r, "h20_axis_slip.resu");
+    let mess = r.file("h20_axis_slip.mess");
+    assert!(
+        mess.contains("Newton cycles with period"),
+        "no cycle was detected: the test no longer exercises the detector\n{mess}"
+    );
 }

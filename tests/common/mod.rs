@@ -224,3 +224,90 @@ pub fn block_on_foundation() -> aster::mesh::Mesh {
         .insert("SOCLE".into(), f.iter().flatten().copied().collect());
     m
 }
+
+/// The 3D block [0, 2] x [0, 2] x [0, 1] (2 x 2 x 1 HEXA8) on its foundation
+/// [-1, 3] x [-1, 3] x [-1, 0] (one HEXA8) of the 3D contact tests.
+/// Cell groups BLOC, FOND, ESCL, HAUT, MAIT; node groups SOCLE (the
+/// foundation), Y0 (block, y = 0), NESCL (block, z = 0).
+#[allow(clippy::needless_range_loop)]
+pub fn block_on_foundation_3d() -> aster::mesh::Mesh {
+    use aster::mesh::shape::reference_nodes;
+    use aster::mesh::{Cell, CellType, Mesh};
+    let mut m = Mesh {
+        name: "BLOC3D".into(),
+        dim: 3,
+        ..Mesh::default()
+    };
+    let mut id = [[[0usize; 2]; 3]; 3];
+    for k in 0..2 {
+        for j in 0..3 {
+            for i in 0..3 {
+                id[i][j][k] = m.coords.len();
+                m.coords.push([i as f64, j as f64, k as f64]);
+            }
+        }
+    }
+    let mut fid = [[[0usize; 2]; 2]; 2];
+    for k in 0..2 {
+        for j in 0..2 {
+            for i in 0..2 {
+                fid[i][j][k] = m.coords.len();
+                m.coords
+                    .push([-1.0 + 4.0 * i as f64, -1.0 + 4.0 * j as f64, k as f64 - 1.0]);
+            }
+        }
+    }
+    let add = |m: &mut Mesh, group: &str, kind: CellType, nodes: Vec<usize>| {
+        m.cells.push(Cell { kind, nodes });
+        let c = m.cells.len() - 1;
+        m.cell_groups.entry(group.into()).or_default().push(c);
+    };
+    let a = |v: f64| usize::from(v > 0.0);
+    for ci in 0..2 {
+        for cj in 0..2 {
+            let nodes = reference_nodes(CellType::Hexa8)
+                .iter()
+                .map(|x| id[ci + a(x[0])][cj + a(x[1])][a(x[2])])
+                .collect();
+            add(&mut m, "BLOC", CellType::Hexa8, nodes);
+        }
+    }
+    let nodes = reference_nodes(CellType::Hexa8)
+        .iter()
+        .map(|x| fid[a(x[0])][a(x[1])][a(x[2])])
+        .collect();
+    add(&mut m, "FOND", CellType::Hexa8, nodes);
+    let quad = |f: &dyn Fn(usize, usize) -> usize| -> Vec<usize> {
+        reference_nodes(CellType::Quad4)
+            .iter()
+            .map(|x| f(a(x[0]), a(x[1])))
+            .collect()
+    };
+    for ci in 0..2 {
+        for cj in 0..2 {
+            let q = quad(&|u, v| id[ci + u][cj + v][0]);
+            add(&mut m, "ESCL", CellType::Quad4, q);
+            let q = quad(&|u, v| id[ci + u][cj + v][1]);
+            add(&mut m, "HAUT", CellType::Quad4, q);
+        }
+    }
+    let q = quad(&|u, v| fid[u][v][1]);
+    add(&mut m, "MAIT", CellType::Quad4, q);
+    m.node_groups.insert(
+        "SOCLE".into(),
+        fid.iter().flatten().flatten().copied().collect(),
+    );
+    let mut y0: Vec<usize> = Vec::new();
+    let mut nescl: Vec<usize> = Vec::new();
+    for i in 0..3 {
+        for k in 0..2 {
+            y0.push(id[i][0][k]);
+        }
+        for j in 0..3 {
+            nescl.push(id[i][j][0]);
+        }
+    }
+    m.node_groups.insert("Y0".into(), y0);
+    m.node_groups.insert("NESCL".into(), nescl);
+    m
+}
