@@ -20,7 +20,7 @@
 
 mod common;
 
-use aster::mesh::{Cell, CellType, Mesh};
+use aster::mesh::{CellType, Mesh};
 use std::path::{Path, PathBuf};
 
 /// The bar: cells VOL (HEXA8), TOP and BOT (QUAD4); node groups PTOP
@@ -43,11 +43,7 @@ fn bar_mesh() -> Mesh {
         coords,
         ..Mesh::default()
     };
-    let add = |m: &mut Mesh, group: &str, kind: CellType, nodes: Vec<usize>| {
-        m.cells.push(Cell { kind, nodes });
-        let c = m.cells.len() - 1;
-        m.cell_groups.entry(group.into()).or_default().push(c);
-    };
+    let add = common::add_cell;
     // MED order: the bottom face turns clockwise seen from the top.
     let face = |k: usize| vec![id(0, 0, k), id(0, 1, k), id(1, 1, k), id(1, 0, k)];
     for k in 0..nz {

@@ -170,7 +170,7 @@ pub fn tuples(mess: &str, tag: &str) -> Vec<Vec<f64>> {
 /// (block, x = 0), TOP (block, y = 2), SOCLE (foundation), NESCL (block,
 /// y = 0).
 pub fn block_on_foundation() -> aster::mesh::Mesh {
-    use aster::mesh::{Cell, CellType, Mesh};
+    use aster::mesh::{CellType, Mesh};
     let mut coords: Vec<[f64; 3]> = Vec::new();
     let mut grid = |x0: f64, y0: f64, nx: usize, ny: usize| -> Vec<Vec<usize>> {
         (0..=nx)
@@ -192,11 +192,7 @@ pub fn block_on_foundation() -> aster::mesh::Mesh {
         coords,
         ..Mesh::default()
     };
-    let add = |m: &mut Mesh, group: &str, kind: CellType, nodes: Vec<usize>| {
-        m.cells.push(Cell { kind, nodes });
-        let c = m.cells.len() - 1;
-        m.cell_groups.entry(group.into()).or_default().push(c);
-    };
+    let add = add_cell;
     for i in 0..4 {
         for j in 0..2 {
             let q = vec![b[i][j], b[i + 1][j], b[i + 1][j + 1], b[i][j + 1]];
@@ -232,7 +228,7 @@ pub fn block_on_foundation() -> aster::mesh::Mesh {
 #[allow(clippy::needless_range_loop)]
 pub fn block_on_foundation_3d() -> aster::mesh::Mesh {
     use aster::mesh::shape::reference_nodes;
-    use aster::mesh::{Cell, CellType, Mesh};
+    use aster::mesh::{CellType, Mesh};
     let mut m = Mesh {
         name: "BLOC3D".into(),
         dim: 3,
@@ -257,11 +253,7 @@ pub fn block_on_foundation_3d() -> aster::mesh::Mesh {
             }
         }
     }
-    let add = |m: &mut Mesh, group: &str, kind: CellType, nodes: Vec<usize>| {
-        m.cells.push(Cell { kind, nodes });
-        let c = m.cells.len() - 1;
-        m.cell_groups.entry(group.into()).or_default().push(c);
-    };
+    let add = add_cell;
     let a = |v: f64| usize::from(v > 0.0);
     for ci in 0..2 {
         for cj in 0..2 {
@@ -310,4 +302,17 @@ pub fn block_on_foundation_3d() -> aster::mesh::Mesh {
     m.node_groups.insert("Y0".into(), y0);
     m.node_groups.insert("NESCL".into(), nescl);
     m
+}
+
+/// Appends a cell of `kind` on `nodes` to `m` and to its cell group
+/// `group` (created if absent): the step every mesh built by a test repeats.
+pub fn add_cell(
+    m: &mut aster::mesh::Mesh,
+    group: &str,
+    kind: aster::mesh::CellType,
+    nodes: Vec<usize>,
+) {
+    m.cells.push(aster::mesh::Cell { kind, nodes });
+    let c = m.cells.len() - 1;
+    m.cell_groups.entry(group.into()).or_default().push(c);
 }
