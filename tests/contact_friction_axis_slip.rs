@@ -9,10 +9,12 @@
 mod common;
 
 use aster::contact::LinkStatus::{self, Open, Slip, Stick};
-use aster::nonlinear::contact::newton_cycle;
+use aster::nonlinear::contact::{newton_cycle, LinkIterate};
 
-type Iterate = (f64, Vec<(usize, LinkStatus)>);
+type Iterate = (f64, Vec<LinkIterate>);
 
+/// An evaluation of links on slave nodes 8, 9, ...; a sliding link slips
+/// along +tau1.
 fn it(resi: f64, statuses: &[LinkStatus]) -> Iterate {
     (
         resi,
@@ -20,7 +22,7 @@ fn it(resi: f64, statuses: &[LinkStatus]) -> Iterate {
             .iter()
             .copied()
             .enumerate()
-            .map(|(i, s)| (8 + i, s))
+            .map(|(i, s)| (8 + i, s, [if s == Slip { 1 } else { 0 }, 0]))
             .collect(),
     )
 }
@@ -47,10 +49,10 @@ fn a_period_three_contact_cycle_is_named_after_three_periods() {
     assert!(m.contains("between contact and open"), "{m}");
     // Slave nodes 8..11 are N9..N12; every one of them switches.
     for n in [
-        "N9 (0 -> 0 -> 2)",
+        "N9 (0 -> 0 -> 2+)",
         "N10",
-        "N11 (2 -> 0 -> 2)",
-        "N12 (2 -> 2 -> 0)",
+        "N11 (2+ -> 0 -> 2+)",
+        "N12 (2+ -> 2+ -> 0)",
     ] {
         assert!(m.contains(n), "{n} missing: {m}");
     }
@@ -70,6 +72,33 @@ fn a_stick_slip_two_cycle_is_named() {
         "{m}"
     );
     assert!(m.contains("N9 (0 -> 1)"), "{m}");
+}
+
+/// Every link sliding, first one way then the other, with the same
+/// residual: the status alone does not change, the slip direction does.
+#[test]
+fn a_slip_direction_two_cycle_is_named() {
+    let flip = |resi: f64, sign: i8| -> Iterate {
+        (resi, vec![(0, Slip, [sign, 0]), (4, Slip, [sign, -1])])
+    };
+    let mut h = vec![it(f64::INFINITY, &[Open, Open])];
+    for _ in 0..3 {
+        h.push(flip(0.5207, 1));
+        h.push(flip(0.5207, -1));
+    }
+    let m = newton_cycle(&h).expect("a cycle");
+    assert!(
+        m.contains("period 2") && m.contains("between slip directions"),
+        "{m}"
+    );
+    assert!(
+        m.contains("N1 (2+ -> 2-)") && m.contains("N5 (2+- -> 2--)"),
+        "{m}"
+    );
+    // The same residuals with one slip direction throughout converge to a
+    // fixed point, not a cycle.
+    let h: Vec<Iterate> = (0..8).map(|_| flip(0.5207, 1)).collect();
+    assert!(newton_cycle(&h).is_none());
 }
 
 #[test]
@@ -158,9 +187,62 @@ fn hexa20_block_sliding_along_an_axis_reaches_the_analytic_slide() {
     );
     let (r, _) = common::run_generated(&dir, "h20_axis_slip", &comm, &med);
     common::assert_all_ok(&r, "h20_axis_slip.resu");
+    // With code_aster's friction flag (a link closing in an iterate gets
+    // its friction from the next one) the rows no longer rock: the slide
+    // needs no cut (before the flag: 28 cuts, each a period-3 cycle).
     let mess = r.file("h20_axis_slip.mess");
     assert!(
-        mess.contains("Newton cycles with period"),
-        "no cycle was detected: the test no longer exercises the detector\n{mess}"
+        mess.contains("100 steps (0 cuts)"),
+        "the slide needed cuts again\n{mess}"
+    );
+}
+
+/// The penalised sleeve of tests/verification/contact_friction_continue.comm
+/// (STICK_D: held on its mandrel by friction, tan = 0.15 < mu N / W) with
+/// COEF_MATR_FROT = 1: the 2D slip matrix MAF1 - MAF2 is then zero, the
+/// links close without friction in the first corrected iterate (the
+/// friction flag), slide by 7e-6 mm (the stick cone is 5e-8 mm) and Newton,
+/// with no tangential stiffness but the inertia, throws the sleeve from
+/// one slip direction to the other (RESI_GLOB_RELA 0.5207 for ever). The
+/// detector names it at the 13th iteration instead of the 100th. The study
+/// itself runs with the default COEF_MATR_FROT = 0 (the secant matrix),
+/// which converges.
+#[test]
+fn a_sleeve_thrown_between_slip_directions_is_named() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
+    let study = std::fs::read_to_string(root.join("contact_friction_continue.comm")).unwrap();
+    let head = study.split("STICK = DYNA_NON_LINE").next().unwrap();
+    let head = head.replace(
+        "ALGO_FROT='PENALISATION', E_T=E_T, COULOMB=MU)",
+        "ALGO_FROT='PENALISATION', E_T=E_T, COULOMB=MU, COEF_MATR_FROT=1.)",
+    );
+    assert!(
+        head.contains("COEF_MATR_FROT=1."),
+        "the study's CONTD changed"
+    );
+    let comm = format!(
+        "{head}\
+         STICK_D = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=(_F(CHARGE=FIXE), _F(CHARGE=PES1)),\n\
+             CONTACT=CONTD, COMPORTEMENT=_F(RELATION='ELAS', TOUT='OUI'), INCREMENT=_F(LIST_INST=L_INST),\n\
+             SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', BETA=0.3025, GAMMA=0.6, FORMULATION='DEPLACEMENT'),\n\
+             CONVERGENCE=_F(RESI_GLOB_RELA=1.E-8, ITER_GLOB_MAXI=100))\n\
+         FIN()\n"
+    );
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("sleeve_matr_frot_1_src");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("sleeve1.comm"), comm).unwrap();
+    std::fs::write(
+        dir.join("sleeve1.export"),
+        format!("F mmed {} D 20\n", root.join("sleeve.mmed").display()),
+    )
+    .unwrap();
+    let r = common::run_study(dir.join("sleeve1.comm").to_str().unwrap(), "sleeve1");
+    let mess = r.file("sleeve1.mess");
+    assert_ne!(r.code, 0, "the step converged\n{mess}");
+    assert!(
+        mess.contains("Newton cycles with period 2")
+            && mess.contains("between slip directions")
+            && mess.contains("N1 (2"),
+        "{mess}"
     );
 }

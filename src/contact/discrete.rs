@@ -82,6 +82,30 @@ pub fn evaluate<F>(
 where
     F: Fn(usize, usize) -> Option<usize>,
 {
+    evaluate_armed(def, pairing, input, None, dof)
+}
+
+/// [`evaluate`] with code_aster's friction flag: `armed[slave]` false
+/// makes an active link frictionless in this evaluation. code_aster's
+/// `cffpfo` gives a link its friction coefficient only if the link was in
+/// contact at the previous contact call (the flag that `cffpm2` sets for
+/// an active link and clears for an open one): a link that closes, or
+/// closes again, carries no friction until the next call. Without the
+/// flag a closing link sticks at once with E_T times its slip since the
+/// start of the step, which includes its motion while it was open: in an
+/// iterate that overshoots, a large spurious force (B at 1.55e-5 s: up to
+/// 4.2e3 N against 100 to 400 N). Such a link is reported sticking, with
+/// no friction force. None: every link armed.
+pub fn evaluate_armed<F>(
+    def: &ContactDef,
+    pairing: &Pairing,
+    input: &IterationInput,
+    armed: Option<&[bool]>,
+    dof: F,
+) -> (Contribution, ContactState)
+where
+    F: Fn(usize, usize) -> Option<usize>,
+{
     let dim = def.dim;
     let mut out = Contribution::default();
     let mut state = ContactState {
@@ -92,7 +116,13 @@ where
     for link in &pairing.links {
         let zone = &def.zones[link.zone];
         let local = LinkCalc::new(link, dim, input);
-        let (ls, r, k) = local.forces(link, zone.e_n, zone.friction.as_ref(), input);
+        let armed_link = armed.is_none_or(|a| a.get(link.slave).copied().unwrap_or(false));
+        let friction = zone.friction.as_ref().filter(|_| armed_link);
+        let (mut ls, r, k) = local.forces(link, zone.e_n, friction, input);
+        if zone.friction.is_some() && !armed_link && ls.status != LinkStatus::Open {
+            ls.status = LinkStatus::Stick;
+            ls.frictional = true;
+        }
         let active = ls.status != LinkStatus::Open;
         state.links.push(ls);
         if !active {

@@ -31,8 +31,8 @@ pub mod unilateral;
 
 pub use cont_noeu::{collision_started, ContactState, LinkState, LinkStatus, CONT_NOEU_COMPONENTS};
 pub use discrete::{
-    evaluate, initial_penetration_alarm, penetrations, Contribution, IterationInput,
-    RESI_COEF_MATR_FROT,
+    evaluate, evaluate_armed, initial_penetration_alarm, penetrations, Contribution,
+    IterationInput, RESI_COEF_MATR_FROT,
 };
 pub use pairing::{pair, project, Link, Pairing, Projection};
 

@@ -13,8 +13,8 @@ use super::continuous::ContinuousContact;
 use super::dofs::{DofNumbering, NONE};
 use super::newton::{ContactIteration, ContactTerm, ImposedIncrement, IncrementCorrection};
 use crate::contact::{
-    evaluate, pair, ContactDef, ContactState, DiscreteAlgo, IterationInput, LinkStatus, Pairing,
-    ReacGeom,
+    evaluate, evaluate_armed, pair, ContactDef, ContactState, DiscreteAlgo, IterationInput,
+    LinkStatus, Pairing, ReacGeom,
 };
 use crate::mesh::Mesh;
 use crate::result::NodalField;
@@ -53,25 +53,55 @@ pub struct DiscreteContact {
     /// Per evaluation since the step's start (or its last pairing): the
     /// RESI_GLOB_RELA the iteration was given and the links' statuses, for
     /// [`newton_cycle`].
-    iterates: Vec<(f64, Vec<(usize, LinkStatus)>)>,
+    iterates: Vec<(f64, Vec<LinkIterate>)>,
+    /// code_aster's friction flag per slave node (`cffpfo`, `cffpm2`;
+    /// [`crate::contact::evaluate_armed`]): the node's link was in contact
+    /// at the previous evaluation. Never reset between steps, at a cut or
+    /// at a pairing (code_aster's `cfinit` and pairing leave it).
+    armed: Vec<bool>,
 }
 
 /// Relative agreement of two RESI_GLOB_RELA for [`newton_cycle`] to call
 /// them the same iterate.
 const CYCLE_RESI_TOLERANCE: f64 = 1e-6;
 
+/// One link in one evaluation, as [`newton_cycle`] compares them: the
+/// slave node, its status, and for a sliding link the sign (+1 or -1) of
+/// its slip along each tangent (0 otherwise). The signs matter because a
+/// sliding link's friction force jumps with the slip direction while its
+/// status stays "slip": a body whose friction should hold it can be thrown
+/// from one slip direction to the other at every iteration (the 2D slip
+/// tangent is zero with COEF_MATR_FROT = 1, docs/contact.md §3).
+pub type LinkIterate = (usize, LinkStatus, [i8; 2]);
+
+/// The [`LinkIterate`] of a link state.
+pub fn link_iterate(l: &crate::contact::LinkState) -> LinkIterate {
+    let sign = |k: usize| -> i8 {
+        if l.status != LinkStatus::Slip || k >= l.ntangents || l.slip[k] == 0.0 {
+            0
+        } else if l.slip[k] > 0.0 {
+            1
+        } else {
+            -1
+        }
+    };
+    (l.slave, l.status, [sign(0), sign(1)])
+}
+
 /// A Newton cycle of the discrete penalised contact: the last `3p`
 /// evaluations (p = 2, 3 or 4) repeat with period p, each its statuses
-/// exactly and its RESI_GLOB_RELA to [`CYCLE_RESI_TOLERANCE`], and at least
-/// one link changes status within the period. Newton's map is then back
-/// where it was and goes round forever: the message names the period, the
-/// repeated residuals and the slave nodes that switch (with their statuses
-/// over one period, CONT codes: 0 open, 1 stick, 2 slip). Each entry of
-/// `iterates` is (RESI_GLOB_RELA given to the iteration, (slave node,
-/// status) per link).
-pub fn newton_cycle(iterates: &[(f64, Vec<(usize, LinkStatus)>)]) -> Option<String> {
+/// (with the slip directions) exactly and its RESI_GLOB_RELA to
+/// [`CYCLE_RESI_TOLERANCE`], and at least one link changes status or slip
+/// direction within the period. Newton's map is then back where it was
+/// and goes round forever: the message names the period, the repeated
+/// residuals and the slave nodes that switch (with their statuses over
+/// one period, CONT codes: 0 open, 1 stick, 2 slip, followed for a slip
+/// by the signs of its components along the tangents). Each entry of
+/// `iterates` is (RESI_GLOB_RELA given to the iteration, one
+/// [`LinkIterate`] per link).
+pub fn newton_cycle(iterates: &[(f64, Vec<LinkIterate>)]) -> Option<String> {
     let n = iterates.len();
-    let same = |a: &(f64, Vec<(usize, LinkStatus)>), b: &(f64, Vec<(usize, LinkStatus)>)| {
+    let same = |a: &(f64, Vec<LinkIterate>), b: &(f64, Vec<LinkIterate>)| {
         a.0.is_finite()
             && b.0.is_finite()
             && (a.0 - b.0).abs() <= CYCLE_RESI_TOLERANCE * a.0.abs().max(b.0.abs())
@@ -83,42 +113,66 @@ pub fn newton_cycle(iterates: &[(f64, Vec<(usize, LinkStatus)>)]) -> Option<Stri
         }
         let period = &iterates[n - p..];
         let nlinks = period[0].1.len();
-        let code = |s: LinkStatus| match s {
-            LinkStatus::Unpaired => "-1",
-            LinkStatus::Open => "0",
-            LinkStatus::Stick => "1",
-            LinkStatus::Slip => "2",
+        let code = |(_, s, d): LinkIterate| {
+            let base = match s {
+                LinkStatus::Unpaired => "-1",
+                LinkStatus::Open => "0",
+                LinkStatus::Stick => "1",
+                LinkStatus::Slip => "2",
+            };
+            let signs: String = d
+                .iter()
+                .filter(|&&x| x != 0)
+                .map(|&x| if x > 0 { '+' } else { '-' })
+                .collect();
+            format!("{base}{signs}")
         };
         let switching: Vec<String> = (0..nlinks)
-            .filter(|&l| period.iter().any(|it| it.1[l].1 != period[0].1[l].1))
+            .filter(|&l| period.iter().any(|it| it.1[l] != period[0].1[l]))
             .map(|l| {
-                let seq: Vec<&str> = period.iter().map(|it| code(it.1[l].1)).collect();
+                let seq: Vec<String> = period.iter().map(|it| code(it.1[l])).collect();
                 format!("N{} ({})", period[0].1[l].0 + 1, seq.join(" -> "))
             })
             .collect();
         if switching.is_empty() {
             continue;
         }
+        let status = |l: usize, s: LinkStatus| period.iter().any(|it| it.1[l].1 == s);
         let contact = (0..nlinks).any(|l| {
-            period.iter().any(|it| it.1[l].1 == LinkStatus::Open)
-                && period.iter().any(|it| it.1[l].1 != LinkStatus::Open)
+            status(l, LinkStatus::Open) && period.iter().any(|it| it.1[l].1 != LinkStatus::Open)
         });
-        let friction = (0..nlinks).any(|l| {
-            period.iter().any(|it| it.1[l].1 == LinkStatus::Stick)
-                && period.iter().any(|it| it.1[l].1 == LinkStatus::Slip)
+        let friction =
+            (0..nlinks).any(|l| status(l, LinkStatus::Stick) && status(l, LinkStatus::Slip));
+        let direction = (0..nlinks).any(|l| {
+            period.iter().any(|a| {
+                period.iter().any(|b| {
+                    a.1[l].1 == LinkStatus::Slip
+                        && b.1[l].1 == LinkStatus::Slip
+                        && a.1[l].2 != b.1[l].2
+                })
+            })
         });
-        let what = match (contact, friction) {
-            (true, true) => "between contact and open and between stick and slip",
-            (true, false) => "between contact and open",
-            _ => "between stick and slip",
-        };
+        let mut what = Vec::new();
+        if contact {
+            what.push("between contact and open");
+        }
+        if friction {
+            what.push("between stick and slip");
+        }
+        if direction {
+            what.push("between slip directions");
+        }
+        if what.is_empty() {
+            what.push("status");
+        }
         let resi: Vec<String> = period.iter().map(|it| format!("{:.4e}", it.0)).collect();
         let shown = switching.len().min(12);
         return Some(format!(
-            "discrete contact: Newton cycles with period {p} (RESI_GLOB_RELA {} repeated over the last {} iterations): {} slave node(s) switch {what} and come back: {}{}; the step is abandoned now instead of after ITER_GLOB_MAXI (DEFI_LIST_INST ECHEC/EVENEMENT='ERREUR' ACTION='DECOUPE' cuts it)",
+            "discrete contact: Newton cycles with period {p} (RESI_GLOB_RELA {} repeated over the last {} iterations): {} slave node(s) switch {} and come back: {}{}; the step is abandoned now instead of after ITER_GLOB_MAXI (DEFI_LIST_INST ECHEC/EVENEMENT='ERREUR' ACTION='DECOUPE' cuts it)",
             resi.join(", "),
             3 * p,
             switching.len(),
+            what.join(" and "),
             switching[..shown].join(", "),
             if shown < switching.len() { ", ..." } else { "" },
         ));
@@ -158,6 +212,7 @@ impl DiscreteContact {
             pairings: 0,
             steps_committed: 0,
             iterates: Vec::new(),
+            armed: vec![false; mesh.nnodes()],
         };
         c.repair(numbering, u0);
         let u = c.u_start.clone();
@@ -172,6 +227,13 @@ impl DiscreteContact {
             },
             |_, _| None,
         );
+        // The evaluation of the initial state counts as the previous
+        // contact call: a body that starts in contact (ETAT_INIT) has its
+        // friction from the first iteration, as it would have had in the
+        // run that computed that state.
+        for l in &st.links {
+            c.armed[l.slave] = l.status != LinkStatus::Open;
+        }
         c.committed = st.clone();
         c.trial = st;
         c
@@ -207,6 +269,7 @@ impl DiscreteContact {
             pairings: 0,
             steps_committed: 0,
             iterates: Vec::new(),
+            armed: Vec::new(),
         })
     }
 
@@ -355,7 +418,7 @@ impl ContactTerm for DiscreteContact {
         }
         let nb = it.numbering;
         let u = per_node(self.ndpn, it.u);
-        let (contrib, state) = evaluate(
+        let (contrib, state) = evaluate_armed(
             &self.def,
             pairing,
             &IterationInput {
@@ -364,11 +427,15 @@ impl ContactTerm for DiscreteContact {
                 resi_glob_rela: it.resi_glob_rela,
                 symmetrise: true,
             },
+            Some(&self.armed),
             |n, c| {
                 let e = nb.eq[n * nb.ndpn + c];
                 (c < nb.ndpn && e != NONE).then_some(e)
             },
         );
+        for l in &state.links {
+            self.armed[l.slave] = l.status != LinkStatus::Open;
+        }
         for (n, v) in &contrib.nodal {
             for (c, x) in v.iter().enumerate().take(self.ndpn) {
                 let f = n * self.ndpn + c;
@@ -386,7 +453,7 @@ impl ContactTerm for DiscreteContact {
         }
         self.iterates.push((
             it.resi_glob_rela,
-            state.links.iter().map(|l| (l.slave, l.status)).collect(),
+            state.links.iter().map(link_iterate).collect(),
         ));
         self.trial = state;
         match newton_cycle(&self.iterates) {
