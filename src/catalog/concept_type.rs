@@ -15,6 +15,8 @@ pub enum ConceptType {
     CharCineMeca,
     CharContact,
     Listr8,
+    /// DEFI_LIST_ENTI: a strictly increasing list of integers (LIST_ORDRE).
+    Listis,
     ListInst,
     Fonction,
     /// FORMULE: a function given by an expression.
@@ -50,6 +52,7 @@ impl ConceptType {
         ConceptType::EvolElas,
         ConceptType::CaraElem,
         ConceptType::Table,
+        ConceptType::Listis,
     ];
 
     /// The place of a type in [`ConceptType::ALL`]. The match has no
@@ -73,6 +76,7 @@ impl ConceptType {
             ConceptType::EvolElas => 13,
             ConceptType::CaraElem => 14,
             ConceptType::Table => 15,
+            ConceptType::Listis => 16,
         }
     }
 
@@ -94,6 +98,7 @@ impl ConceptType {
             ConceptType::EvolElas => "evol_elas",
             ConceptType::CaraElem => "cara_elem",
             ConceptType::Table => "table_sdaster",
+            ConceptType::Listis => "listis_sdaster",
         }
     }
 }

@@ -42,6 +42,7 @@ pub fn def() -> CommandDef {
         .kw(),
         text("TOUT_ORDRE").into(&["OUI"]).kw(),
         int("NUME_ORDRE").many().kw(),
+        concept("LIST_ORDRE", &[C::Listis]).doc("stored indices of a DEFI_LIST_ENTI list").kw(),
         real("INST").many().kw(),
         concept("LIST_INST", &[C::Listr8]).kw(),
     ];
@@ -92,7 +93,13 @@ pub fn def() -> CommandDef {
     let spec = command("CALC_CHAMP", Produces::SameAs("RESULTAT", C::EvolNoli), kws)
         .reentrant(Reentrant::Optional("RESULTAT"))
         .rules(vec![
-            exclus(&["TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"]),
+            exclus(&[
+                "TOUT_ORDRE",
+                "NUME_ORDRE",
+                "LIST_ORDRE",
+                "INST",
+                "LIST_INST",
+            ]),
             exclus(&["TOUT", "GROUP_MA", "MAILLE"]),
         ])
         .doc("Adds derived fields to a result, at all stored indices unless restricted.");
@@ -461,9 +468,9 @@ fn selected_steps(
         selected.push(s.nume_ordre);
         Ok(())
     };
-    if args.has("NUME_ORDRE") {
-        for k in args.ints("NUME_ORDRE") {
-            pick(Access::NumeOrdre(k.max(0) as usize)).map_err(|m| args.error("NUME_ORDRE", m))?;
+    if let Some((key, indices)) = super::post_args::nume_ordre_selection(study, args)? {
+        for k in indices {
+            pick(Access::NumeOrdre(k.max(0) as usize)).map_err(|m| args.error(key, m))?;
         }
     } else if args.has("INST") || args.has("LIST_INST") {
         let insts = if let Some(l) = args.concept("LIST_INST") {

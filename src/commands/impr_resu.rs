@@ -26,6 +26,9 @@ pub fn def() -> CommandDef {
             .kw(),
         text("TOUT_ORDRE").into(&["OUI"]).kw(),
         int("NUME_ORDRE").many().kw(),
+        concept("LIST_ORDRE", &[C::Listis])
+            .doc("stored indices of a DEFI_LIST_ENTI list")
+            .kw(),
         real("INST").many().kw(),
         concept("LIST_INST", &[C::Listr8]).kw(),
     ];
@@ -80,7 +83,7 @@ pub fn def() -> CommandDef {
                     block("b_extrac", present("RESULTAT"), acces)
                         .rules(vec![
                             exclus(&["TOUT_CHAM", "NOM_CHAM"]),
-                            exclus(&["TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"]),
+                            exclus(&["TOUT_ORDRE", "NUME_ORDRE", "LIST_ORDRE", "INST", "LIST_INST"]),
                         ])
                         .kw(),
                     text("TOUT_CMP").into(&["OUI"]).kw(),

@@ -33,6 +33,7 @@ pub mod defi_contact;
 pub mod defi_fichier;
 pub mod defi_fonction;
 pub mod defi_group;
+pub mod defi_list_enti;
 pub mod defi_list_inst;
 pub mod defi_list_reel;
 pub mod defi_materiau;
@@ -107,6 +108,7 @@ pub fn all() -> Vec<CommandDef> {
         defi_fichier::def(),
         defi_fonction::def(),
         defi_group::def(),
+        defi_list_enti::def(),
         defi_list_inst::def(),
         defi_list_reel::def(),
         defi_materiau::def(),

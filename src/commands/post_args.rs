@@ -392,7 +392,26 @@ pub fn inst_access(args: &Args, inst: f64, default_precision: f64) -> Access {
     }
 }
 
-/// The steps selected by TOUT_ORDRE / NUME_ORDRE / INST / LIST_INST at this
+/// The stored indices asked by NUME_ORDRE or by a DEFI_LIST_ENTI list in
+/// LIST_ORDRE at this level, with the keyword that gave them (for
+/// messages); None when neither is given.
+pub fn nume_ordre_selection(
+    study: &Study,
+    args: &Args,
+) -> Result<Option<(&'static str, Vec<i64>)>, Diagnostic> {
+    if args.has("NUME_ORDRE") {
+        return Ok(Some(("NUME_ORDRE", args.ints("NUME_ORDRE"))));
+    }
+    let Some(name) = args.concept("LIST_ORDRE") else {
+        return Ok(None);
+    };
+    match study.concepts.data(name) {
+        Some(ConceptData::ListInt(v)) => Ok(Some(("LIST_ORDRE", v.clone()))),
+        _ => Err(no_data(args, "LIST_ORDRE", name, "list of integers")),
+    }
+}
+
+/// The steps selected by TOUT_ORDRE / NUME_ORDRE / LIST_ORDRE / INST / LIST_INST at this
 /// level, in the order asked; all stored steps when none is given. An
 /// index or instant that is not stored is an error naming the keyword (the
 /// message gives the nearest stored instant).
@@ -401,16 +420,15 @@ pub fn select_steps<'r>(
     result: &'r EvolNoli,
     args: &Args,
 ) -> Result<Vec<&'r Step>, Diagnostic> {
-    if args.has("NUME_ORDRE") {
-        return args
-            .ints("NUME_ORDRE")
+    if let Some((key, indices)) = nume_ordre_selection(study, args)? {
+        return indices
             .into_iter()
             .map(|n| {
                 let n = usize::try_from(n)
-                    .map_err(|_| args.error("NUME_ORDRE", format!("NUME_ORDRE {n} is negative")))?;
+                    .map_err(|_| args.error(key, format!("NUME_ORDRE {n} is negative")))?;
                 result
                     .find(Access::NumeOrdre(n))
-                    .map_err(|e| args.error("NUME_ORDRE", e))
+                    .map_err(|e| args.error(key, e))
             })
             .collect();
     }

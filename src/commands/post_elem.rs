@@ -139,6 +139,7 @@ pub fn def() -> CommandDef {
             .kw(),
         text("TOUT_ORDRE").into(&["OUI"]).kw(),
         int("NUME_ORDRE").many().kw(),
+        concept("LIST_ORDRE", &[C::Listis]).doc("stored indices of a DEFI_LIST_ENTI list").kw(),
         real("INST").many().kw(),
         concept("LIST_INST", &[C::Listr8]).kw(),
     ];
@@ -147,7 +148,7 @@ pub fn def() -> CommandDef {
     let spec = command("POST_ELEM", Produces::Concept(C::Table), keywords)
         .rules(vec![
             un_parmi(OPTIONS),
-            exclus(&["TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"]),
+            exclus(&["TOUT_ORDRE", "NUME_ORDRE", "LIST_ORDRE", "INST", "LIST_INST"]),
             exclus(&["CHAM_GD", "RESULTAT"]),
         ])
         .doc("Global quantities as a table: MASS_INER (mass, centre of gravity, inertia), ENER_CIN (kinetic energy), ENER_POT (potential energy of DEPL), ENER_ELAS (elastic strain energy of the stress).");

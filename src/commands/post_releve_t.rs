@@ -21,6 +21,9 @@ pub fn def() -> CommandDef {
         text("NOM_CHAM").required().into(NOM_CHAM_RESU).kw(),
         text("TOUT_ORDRE").into(&["OUI"]).kw(),
         int("NUME_ORDRE").many().kw(),
+        concept("LIST_ORDRE", &[C::Listis])
+            .doc("stored indices of a DEFI_LIST_ENTI list")
+            .kw(),
         real("INST").many().kw(),
         concept("LIST_INST", &[C::Listr8]).kw(),
     ];
@@ -47,7 +50,7 @@ pub fn def() -> CommandDef {
                         .doc("all stored indices unless restricted")
                         .kw(),
                     block("b_extrac", present("RESULTAT"), extrac)
-                        .rules(vec![exclus(&["TOUT_ORDRE", "NUME_ORDRE", "INST", "LIST_INST"])])
+                        .rules(vec![exclus(&["TOUT_ORDRE", "NUME_ORDRE", "LIST_ORDRE", "INST", "LIST_INST"])])
                         .kw(),
                     tout(),
                     group_ma(),

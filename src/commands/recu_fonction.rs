@@ -30,6 +30,7 @@ pub fn def() -> CommandDef {
                 vec![
                     text("TOUT_ORDRE").into(&["OUI"]).kw(),
                     int("NUME_ORDRE").many().kw(),
+        concept("LIST_ORDRE", &[C::Listis]).doc("stored indices of a DEFI_LIST_ENTI list").kw(),
                     text("TOUT_INST").into(&["OUI"]).kw(),
                     real("INST").many().kw(),
                     concept("LIST_INST", &[C::Listr8]).kw(),

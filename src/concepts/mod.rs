@@ -23,6 +23,8 @@ pub enum ConceptData {
     Mesh(Box<crate::mesh::Mesh>),
     /// A list of reals (DEFI_LIST_REEL).
     ListReal(Vec<f64>),
+    /// A strictly increasing list of integers (DEFI_LIST_ENTI).
+    ListInt(Vec<i64>),
     Table(Box<crate::post::table::Table>),
     Model(Box<crate::model::Model>),
     Material(Box<crate::model::Material>),
