@@ -545,7 +545,7 @@ fn bad_input_is_located() {
     let (code, term) = run_variant("elas", &text, unit.clone());
     assert_eq!(code, 1, "{term}");
     assert!(term.contains("ELEMENTSSI_3"), "{term}");
-    assert!(term.contains("ETAT_INIT with SIGM or EVOL_NOLI"), "{term}");
+    assert!(term.contains("ETAT_INIT with EVOL_NOLI"), "{term}");
     let comp = std::fs::read_to_string(dir().join("hexs8_compression.comm")).unwrap();
     let text = comp.replacen(
         "NOM_VARI='EPSPEQ', GROUP_MA",

@@ -139,6 +139,34 @@ fn bad_unilateral_definitions_are_located_errors() {
     expect_errors(&cases);
 }
 
+/// A COEF_PENA that is not positive is refused by DEFI_CONTACT itself,
+/// before any computation uses the contact (probe of 2026-11-28: it was
+/// found only when DYNA_NON_LINE built its term, after the .mess had
+/// shown DEFI_CONTACT done).
+#[test]
+fn a_non_positive_coef_pena_stops_defi_contact() {
+    for (tag, value) in [("pena_zero", "0."), ("pena_negative", "-1.E6")] {
+        let run = run_variant(
+            tag,
+            "ALGO_CONT='PENALISATION', COEF_PENA=1.E12))",
+            &format!("ALGO_CONT='PENALISATION', COEF_PENA={value}))"),
+        );
+        let mess = run.file(&format!("{tag}.mess"));
+        assert_eq!(run.code, 1, "{tag}: {}", run.term);
+        assert!(
+            run.term.contains("DEFI_CONTACT/ZONE/COEF_PENA")
+                && run.term.contains("COEF_PENA must be > 0"),
+            "{tag}: {}",
+            run.term
+        );
+        let last = mess.lines().filter(|l| l.starts_with("# ---- ")).last();
+        assert!(
+            last.is_some_and(|l| l.ends_with("= DEFI_CONTACT (line 58)")),
+            "{tag}: the penalised DEFI_CONTACT should stop the study\n{mess}"
+        );
+    }
+}
+
 /// NOM_CMP naming a component the model lacks next to one it has is
 /// accepted, as code_aster's creaun accepts it (the component is dropped
 /// with the note UNILATER_75), and gives the same motion.

@@ -434,6 +434,14 @@ fn unil_zone(
             ),
         ));
     }
+    // Checked here too, not only when a computation turns the zone into
+    // its term: a contact defined and never used is still a wrong input.
+    if let Some(e) = zone
+        .real("COEF_PENA")
+        .filter(|e| !(e.is_finite() && *e > 0.0))
+    {
+        return Err(zone.error("COEF_PENA", format!("COEF_PENA must be > 0, got {e:e}")));
+    }
     let cmps = zone.texts("NOM_CMP");
     let mult = zone.concepts("COEF_MULT");
     if cmps.len() != mult.len() {
