@@ -507,10 +507,12 @@ FIN()
 /// DEBUT(PAR_LOT=...) of code_aster 14 is accepted.
 #[test]
 fn code_aster_files_meet_clear_messages() {
-    let full = "DEBUT()\nL = DEFI_LIST_ENTI(DEBUT=1, INTERVALLE=_F(JUSQU_A=5, PAS=1))\nFIN()\n";
-    let ds = check(full).expect_err("DEFI_LIST_ENTI");
+    // (DEFI_LIST_ENTI was this test's command until aster implemented it.)
+    let full =
+        "DEBUT()\nN = DEFI_NAPPE(NOM_PARA='AMOR', PARA=(0.01, 0.02), FONCTION=(F1, F2))\nFIN()\n";
+    let ds = check(full).expect_err("DEFI_NAPPE");
     assert_eq!(ds.len(), 1, "{ds:?}");
-    assert_eq!(ds[0].message, "unknown command DEFI_LIST_ENTI");
+    assert_eq!(ds[0].message, "unknown command DEFI_NAPPE");
     assert!(ds[0].suggestion.is_none(), "{:?}", ds[0].suggestion);
     assert!(
         ds[0]

@@ -159,7 +159,7 @@ fn a_non_positive_coef_pena_stops_defi_contact() {
             "{tag}: {}",
             run.term
         );
-        let last = mess.lines().filter(|l| l.starts_with("# ---- ")).last();
+        let last = mess.lines().rfind(|l| l.starts_with("# ---- "));
         assert!(
             last.is_some_and(|l| l.ends_with("= DEFI_CONTACT (line 58)")),
             "{tag}: the penalised DEFI_CONTACT should stop the study\n{mess}"
