@@ -332,3 +332,27 @@ fn discrete_contact_carries_the_weight_statically() {
 fn discrete_and_continuous_contact_hold_a_ring_statically() {
     run_study("stat_contact_continue");
 }
+
+/// Penalised Coulomb friction in STAT_NON_LINE (stat_friction_pull.comm):
+/// a block pressed on its foundation by ETAT_INIT and pulled along x to
+/// 0.15 of its weight sticks, sum RN = m g and sum RTAX = 0.15 m g to
+/// 1e-9. Pulled to 0.4 (COULOMB 0.25) it has no static equilibrium: the
+/// run stops, and the message says so besides the DDL_IMPO hint.
+#[test]
+fn friction_holds_a_pulled_block_and_a_pull_beyond_it_is_explained() {
+    run_study("stat_friction_pull");
+    expect_errors(
+        "stat_friction_pull",
+        &[(
+            "pull_beyond_mu",
+            "PULL = 0.15",
+            "PULL = 0.4",
+            &[
+                "STAT_NON_LINE stopped",
+                "Newton did not converge",
+                "a tangential load larger than the friction can hold (COULOMB times the normal force) has no static equilibrium either",
+                "pull_beyond_mu.comm:44:1",
+            ],
+        )],
+    );
+}

@@ -1787,8 +1787,23 @@ pub(crate) fn run(
         notes.push(format!(
             "alarm: the rigid-body mode(s) {modes} are held by no DDL_IMPO, only by the contact, if at all (without inertia nothing else holds them)"
         ));
+        // With Coulomb friction the other way to fail is a load that the
+        // friction cannot hold: then no static equilibrium exists at all
+        // (probe of 2026-11-28: a block pulled beyond mu N was told only
+        // about DDL_IMPO).
+        let coulomb = args
+            .concept("CONTACT")
+            .and_then(|c| study.concepts.data(c))
+            .is_some_and(|d| {
+                matches!(d, crate::concepts::ConceptData::Contact(a) if a.text("FROTTEMENT") == Some("COULOMB"))
+            });
         hint = Some(format!(
-            "the rigid-body mode(s) {modes} are held by no DDL_IMPO: if the contact does not hold them (a frictionless contact holds no tangential motion), the stiffness of STAT_NON_LINE is singular; add the missing DDL_IMPO"
+            "the rigid-body mode(s) {modes} are held by no DDL_IMPO: if the contact does not hold them (a frictionless contact holds no tangential motion), the stiffness of STAT_NON_LINE is singular; add the missing DDL_IMPO{}",
+            if coulomb {
+                "; with Coulomb friction, a tangential load larger than the friction can hold (COULOMB times the normal force) has no static equilibrium either: the body slides, which only DYNA_NON_LINE follows"
+            } else {
+                ""
+            }
         ));
     }
     if args.concept("CONTACT").is_none() && !free.is_empty() {
