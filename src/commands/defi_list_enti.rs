@@ -16,7 +16,7 @@ use crate::diag::Diagnostic;
 use crate::study::Study;
 
 use super::blocks::{eq, info, t, titre, RESULTS};
-use super::defi_list_reel::MAX_VALUES;
+use super::defi_list_reel::{strictly_increasing, MAX_VALUES};
 
 pub fn def() -> CommandDef {
     let spec = command(
@@ -95,19 +95,7 @@ fn exec(_study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
 }
 
 fn explicit(args: &Args) -> Result<Vec<i64>, Diagnostic> {
-    let v = args.ints("VALE");
-    if let Some(k) = (1..v.len()).find(|&k| v[k] <= v[k - 1]) {
-        return Err(args.error(
-            "VALE",
-            format!(
-                "the values must be strictly increasing: value {} ({}) follows {}",
-                k + 1,
-                v[k],
-                v[k - 1]
-            ),
-        ));
-    }
-    Ok(v)
+    strictly_increasing(args, args.ints("VALE"), |x| x.to_string())
 }
 
 /// DEBUT, then each occurrence's values up to its JUSQU_A in equal whole

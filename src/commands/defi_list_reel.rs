@@ -74,15 +74,24 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
 }
 
 fn explicit(args: &Args) -> Result<Vec<f64>, Diagnostic> {
-    let v = args.reals("VALE");
+    strictly_increasing(args, args.reals("VALE"), |x| format!("{x:e}"))
+}
+
+/// VALE of a list command, refused unless strictly increasing (the error
+/// names the first value out of order, written by `show`).
+pub(super) fn strictly_increasing<T: PartialOrd + Copy>(
+    args: &Args,
+    v: Vec<T>,
+    show: impl Fn(T) -> String,
+) -> Result<Vec<T>, Diagnostic> {
     if let Some(k) = (1..v.len()).find(|&k| v[k] <= v[k - 1]) {
         return Err(args.error(
             "VALE",
             format!(
-                "the values must be strictly increasing: value {} ({:e}) follows {:e}",
+                "the values must be strictly increasing: value {} ({}) follows {}",
                 k + 1,
-                v[k],
-                v[k - 1]
+                show(v[k]),
+                show(v[k - 1])
             ),
         ));
     }
