@@ -34,7 +34,6 @@
 mod common;
 
 use std::collections::HashMap;
-use std::path::Path;
 
 const P: f64 = 10.0;
 const Q: f64 = 1.0;
@@ -49,10 +48,7 @@ const CMPS: [&str; 17] = [
 /// keywords `extra`, and returns the printed CONT_NOEU rows of the slave
 /// nodes at t = 0.5 and t = 1, sorted by x.
 fn run(tag: &str, contact: &str, loads: &str, extra: &str) -> [Vec<HashMap<String, String>>; 2] {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{tag}_src"));
-    std::fs::create_dir_all(&dir).unwrap();
-    let med = dir.join("mesh.mmed");
-    aster::medio::write_mesh(&med, &common::block_on_foundation()).unwrap();
+    let (dir, med) = common::scratch_mesh(tag, &common::block_on_foundation());
     let cmps = CMPS.map(|c| format!("'{c}'")).join(", ");
     let comm = format!(
         "DEBUT()\n\

@@ -30,16 +30,11 @@
 
 mod common;
 
-use std::path::Path;
-
 /// Runs the stick study with the friction options `frot` (extra
 /// DEFI_CONTACT keywords); returns the printed CONT_NOEU rows of the 9
 /// slave nodes at t = 2.
 fn run_stick(tag: &str, frot: &str) -> Vec<std::collections::HashMap<String, String>> {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{tag}_src"));
-    std::fs::create_dir_all(&dir).unwrap();
-    let med = dir.join("mesh.mmed");
-    aster::medio::write_mesh(&med, &common::block_on_foundation_3d()).unwrap();
+    let (dir, med) = common::scratch_mesh(tag, &common::block_on_foundation_3d());
     let comm = format!(
         "DEBUT()\n\
          MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\

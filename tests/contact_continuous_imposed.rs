@@ -20,7 +20,6 @@
 mod common;
 
 use std::collections::HashMap;
-use std::path::Path;
 
 const E: f64 = 1000.0;
 
@@ -28,10 +27,7 @@ const E: f64 = 1000.0;
 /// definitions) is `body`, in the scratch directory `tag`; returns the
 /// run and its .resu.
 fn run(tag: &str, body: &str) -> (common::Run, String) {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{tag}_src"));
-    std::fs::create_dir_all(&dir).unwrap();
-    let med = dir.join("mesh.mmed");
-    aster::medio::write_mesh(&med, &common::block_on_foundation()).unwrap();
+    let (dir, med) = common::scratch_mesh(tag, &common::block_on_foundation());
     let comm = format!(
         "DEBUT()\n\
          MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\

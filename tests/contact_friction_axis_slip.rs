@@ -230,13 +230,7 @@ fn a_sleeve_thrown_between_slip_directions_is_named() {
     );
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("sleeve_matr_frot_1_src");
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("sleeve1.comm"), comm).unwrap();
-    std::fs::write(
-        dir.join("sleeve1.export"),
-        format!("F mmed {} D 20\n", root.join("sleeve.mmed").display()),
-    )
-    .unwrap();
-    let r = common::run_study(dir.join("sleeve1.comm").to_str().unwrap(), "sleeve1");
+    let r = common::run_generated_any(&dir, "sleeve1", &comm, &root.join("sleeve.mmed"));
     let mess = r.file("sleeve1.mess");
     assert_ne!(r.code, 0, "the step converged\n{mess}");
     assert!(

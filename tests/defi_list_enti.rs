@@ -5,17 +5,12 @@
 
 mod common;
 
-use std::path::Path;
-
 /// A STAT_NON_LINE of the block of `common::block_on_foundation` (held at
 /// its bottom, its top pressed by PRES = 10 t over 4 steps: NUME_ORDRE
 /// 0..4 at t = 0, 0.25, ..., 1), then `post`; returns the run's .resu and
 /// exit code.
 fn run(tag: &str, post: &str) -> (i32, String, String) {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{tag}_src"));
-    std::fs::create_dir_all(&dir).unwrap();
-    let med = dir.join("mesh.mmed");
-    aster::medio::write_mesh(&med, &common::block_on_foundation()).unwrap();
+    let (dir, med) = common::scratch_mesh(tag, &common::block_on_foundation());
     let comm = format!(
         "DEBUT()\n\
          MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
@@ -32,13 +27,7 @@ fn run(tag: &str, post: &str) -> (i32, String, String) {
          {post}\n\
          FIN()\n"
     );
-    std::fs::write(dir.join(format!("{tag}.comm")), comm).unwrap();
-    std::fs::write(
-        dir.join(format!("{tag}.export")),
-        format!("F mmed {} D 20\n", med.display()),
-    )
-    .unwrap();
-    let r = common::run_study(dir.join(format!("{tag}.comm")).to_str().unwrap(), tag);
+    let r = common::run_generated_any(&dir, tag, &comm, &med);
     let resu = r.file(&format!("{tag}.resu"));
     let mess = r.file(&format!("{tag}.mess"));
     (r.code, resu, mess)

@@ -112,9 +112,7 @@ pub fn unil_def(
                         "COEF_PENA is compulsory with ALGO_CONT='PENALISATION'",
                     )
                 })?;
-                if !(e.is_finite() && e > 0.0) {
-                    return Err(z.error("COEF_PENA", format!("COEF_PENA must be > 0, got {e:e}")));
-                }
+                // Positive: DEFI_CONTACT refuses any other value.
                 Some(e)
             }
             UnilAlgo::ActiveSet => None,
