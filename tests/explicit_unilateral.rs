@@ -230,3 +230,34 @@ fn sdnv103e_explicit_momentum_is_the_impulse() {
         "{i:?} {m:?}"
     );
 }
+
+/// A floor that rises into a cube (tests/verification/unil_rising_floor.comm,
+/// its TEST_RESU the hand values): under DIFF_CENT and TCHAMWA the printed
+/// impulse of the reactions is the momentum the cube gains, m W (TCHAMWA
+/// updates v with the step's start acceleration, so its impulse weighs the
+/// step's start force; it printed the trapezoid, 4.09e-4); and the floor's
+/// motion is neither an initial violation (explicit) nor energy created by
+/// the scheme (implicit NEWMARK): no alarm says so.
+#[test]
+fn a_rising_floor_gives_its_impulse_and_no_false_alarm() {
+    let run = common::run_study(
+        "tests/verification/unil_rising_floor.comm",
+        "unil_rising_floor",
+    );
+    common::assert_all_ok(&run, "unil_rising_floor.resu");
+    let mess = run.file("unil_rising_floor.mess");
+    let impulse = tuples(&mess, IMPULSE);
+    let momentum = tuples(&mess, MOMENTUM);
+    assert_eq!((impulse.len(), momentum.len()), (2, 2), "{mess}");
+    let mw = 7.8e-9 * 1000.0 * 100.0;
+    for (k, (i, m)) in impulse.iter().zip(&momentum).enumerate() {
+        assert!((i[2] - mw).abs() <= 1e-12 * mw, "run {k}: impulse {}", i[2]);
+        assert!(
+            (m[2] - mw).abs() <= 1e-12 * mw,
+            "run {k}: momentum {}",
+            m[2]
+        );
+    }
+    assert!(!mess.contains("violated at the initial state"), "{mess}");
+    assert!(!mess.contains("more energy than it absorbed"), "{mess}");
+}

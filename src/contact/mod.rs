@@ -31,7 +31,7 @@ pub mod unilateral;
 
 pub use cont_noeu::{collision_started, ContactState, LinkState, LinkStatus, CONT_NOEU_COMPONENTS};
 pub use discrete::{
-    evaluate, evaluate_armed, initial_penetration_alarm, penetrations, Contribution,
+    evaluate, evaluate_armed, initial_penetration_alarm, penetrations, roundoff_gap, Contribution,
     IterationInput, RESI_COEF_MATR_FROT,
 };
 pub use pairing::{pair, project, Link, Pairing, Projection};

@@ -97,6 +97,16 @@ pub fn eval_coef_impo(f: &Coef, inst: f64, x: [f64; 3]) -> Result<f64, String> {
 }
 
 impl UnilDef {
+    /// Whether some link's COEF_IMPO or COEF_MULT is a function of INST:
+    /// the conditions then move (a rising floor), and the obstacle does
+    /// work on the model that the balance counts in TRAV_LIAI, with no
+    /// error of the scheme in it.
+    pub fn moves_with_time(&self) -> bool {
+        self.zones.iter().any(|z| {
+            z.coef_impo.depends_on("INST") || z.components.iter().any(|(_, c)| c.depends_on("INST"))
+        })
+    }
+
     /// The rows of every link at instant `t`, on the equations `eq` (full
     /// dof → equation, `None` for a dof without equation) of a numbering
     /// with `ndpn` components per node. A component imposed by DDL_IMPO

@@ -75,6 +75,21 @@ pub trait ExplicitConstraint {
     /// How many links the state `u` violates (the last prepared links),
     /// and the deepest violation.
     fn penetrations(&self, numbering: &DofNumbering, u: &[f64]) -> (usize, f64);
+    /// How many links the initial state `u` violates under the conditions
+    /// of the initial instant `t0` (those of a moving LIAISON_UNIL floor
+    /// differ from the first step's end, where a floor that rises into
+    /// the body is the motion, not an initial violation). The discrete
+    /// contact's conditions do not depend on the instant.
+    fn initial_penetrations(&self, numbering: &DofNumbering, u: &[f64], _t0: f64) -> (usize, f64) {
+        self.penetrations(numbering, u)
+    }
+    /// Whether the conditions move with the instant (LIAISON_UNIL whose
+    /// coefficients are functions of INST): the obstacle then works on
+    /// the model, and TRAV_LIAI holds that work besides any energy the
+    /// enforcement creates.
+    fn moves_with_time(&self) -> bool {
+        false
+    }
     /// The .mess alarm for `n` links violated at the initial state.
     fn initial_alarm(&self, n: usize, depth: f64) -> String;
     /// The penalty forces at `u` (the step's end at `t`), the step
@@ -102,8 +117,10 @@ pub trait ExplicitConstraint {
     ) -> Result<(), String>;
     /// The initial state's forces start the first step's trapezoid.
     fn start(&mut self);
-    /// After the step of `dt` ending at the committed `u`.
-    fn commit(&mut self, u: &[f64], dt: f64);
+    /// After the step of `dt` ending at the committed `u`; `w` the weight
+    /// of the step's end in the scheme's velocity update
+    /// (`ExplicitScheme::end_weight`), for the impulse of the forces.
+    fn commit(&mut self, u: &[f64], dt: f64, w: f64);
     /// The contact forces of the last state on the F_int side, full.
     fn force_on_fint_side(&self) -> &[f64];
     fn friction_dissipation(&self) -> f64;
@@ -1038,7 +1055,11 @@ fn run_on(
         // E_N depth), an impulse the user did not model.
         // A continuation's penetrations are the penalty's own, balanced by
         // the stored forces: no alarm there.
-        let (n, depth) = ct.penetrations(&engine.asm.numbering, &engine.committed.motion.u);
+        let (n, depth) = ct.initial_penetrations(
+            &engine.asm.numbering,
+            &engine.committed.motion.u,
+            engine.committed.t,
+        );
         if n > 0 && restored.is_none() {
             log(&ct.initial_alarm(n, depth));
         }
@@ -1299,7 +1320,7 @@ fn run_on(
         }
         engine.commit();
         if let Some(ct) = contact.as_deref_mut() {
-            ct.commit(&engine.committed.motion.u, dt);
+            ct.commit(&engine.committed.motion.u, dt, ex.scheme.end_weight());
         }
         let fc = contact
             .as_deref()
@@ -1349,7 +1370,7 @@ fn run_on(
         {
             summary.archived += 1;
             archive_line(&mut energy, result, &summary, dt, log);
-            if !energy_alarmed {
+            if !energy_alarmed && !contact.as_deref().is_some_and(|c| c.moves_with_time()) {
                 if let Some(m) = contact_energy_alarm(&energy, engine.committed.t, dt, contact_w2) {
                     log(&m);
                     energy_alarmed = true;

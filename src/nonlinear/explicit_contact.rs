@@ -520,8 +520,10 @@ impl ExplicitContact {
     }
 
     /// After the step of length `dt` ending at the committed `u`: the
-    /// impulse of the reactions (trapezoidal, as DIFF_CENT updates the
-    /// momentum) and the friction dissipation (the trapezoid of the
+    /// impulse of the reactions (with the weight `w` of the step's end
+    /// that the scheme's velocity update gives: the trapezoid for
+    /// DIFF_CENT, the step's start for TCHAMWA, so that the impulse is the
+    /// momentum exchanged) and the friction dissipation (the trapezoid of the
     /// friction forces on the step's slip, the rule of TRAV_LIAI, so that
     /// DISS_FROT is the tangential part of TRAV_LIAI for both enforcements;
     /// with the kinematic correction of the step's start alone, DISS_FROT
@@ -535,9 +537,9 @@ impl ExplicitContact {
     /// against a deformable one the momentum the slave side receives from
     /// the master side (which receives its opposite: the total is
     /// conserved).
-    pub fn commit(&mut self, u: &[f64], dt: f64) {
+    pub fn commit(&mut self, u: &[f64], dt: f64, w: f64) {
         for k in 0..3 {
-            self.impulse[k] += 0.5 * dt * (self.body_force_prev[k] + self.body_force[k]);
+            self.impulse[k] += dt * ((1.0 - w) * self.body_force_prev[k] + w * self.body_force[k]);
         }
         let nd = self.ndpn;
         let keys: std::collections::BTreeSet<(usize, usize)> =
@@ -863,8 +865,8 @@ impl ExplicitConstraint for ExplicitContact {
         ExplicitContact::start(self)
     }
 
-    fn commit(&mut self, u: &[f64], dt: f64) {
-        ExplicitContact::commit(self, u, dt)
+    fn commit(&mut self, u: &[f64], dt: f64, w: f64) {
+        ExplicitContact::commit(self, u, dt, w)
     }
 
     fn force_on_fint_side(&self) -> &[f64] {

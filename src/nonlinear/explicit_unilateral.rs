@@ -191,6 +191,35 @@ impl ExplicitConstraint for ExplicitUnilateral {
         (count, deepest)
     }
 
+    fn initial_penetrations(&self, numbering: &DofNumbering, u: &[f64], t0: f64) -> (usize, f64) {
+        let eq = |f: usize| (numbering.eq[f] != NONE).then(|| numbering.eq[f]);
+        // A coefficient undefined at t0 (a function that starts later) is
+        // no initial violation: the run reports its own error where the
+        // conditions are evaluated.
+        let Ok(rows) = self.def.rows(t0, self.ndpn, eq, imposed_value(numbering)) else {
+            return (0, 0.0);
+        };
+        let mut count = 0;
+        let mut deepest: f64 = 0.0;
+        for r in &rows {
+            let au: f64 = r
+                .entries
+                .iter()
+                .map(|&(e, a)| a * u[numbering.free[e]])
+                .sum();
+            let g = r.c - au;
+            if g < -crate::contact::roundoff_gap(r.c.abs() + au.abs()) {
+                count += 1;
+                deepest = deepest.max(-g);
+            }
+        }
+        (count, deepest)
+    }
+
+    fn moves_with_time(&self) -> bool {
+        self.def.moves_with_time()
+    }
+
     fn initial_alarm(&self, n: usize, depth: f64) -> String {
         format!(
             "  alarm: {n} LIAISON_UNIL link(s) violated at the initial state (largest c - A u = -{depth:.4e}): {}, an impulse of the initial state, not of the motion",
@@ -330,9 +359,9 @@ impl ExplicitConstraint for ExplicitUnilateral {
         self.force_prev.copy_from_slice(&self.force);
     }
 
-    fn commit(&mut self, _u: &[f64], dt: f64) {
+    fn commit(&mut self, _u: &[f64], dt: f64, w: f64) {
         for k in 0..3 {
-            self.impulse[k] += 0.5 * dt * (self.body_force_prev[k] + self.body_force[k]);
+            self.impulse[k] += dt * ((1.0 - w) * self.body_force_prev[k] + w * self.body_force[k]);
         }
         self.body_force_prev = self.body_force;
         self.force_prev.copy_from_slice(&self.force);

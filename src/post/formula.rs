@@ -447,6 +447,16 @@ impl Coef {
         }
     }
 
+    /// Whether the value may change with the parameter `name` (a
+    /// function of it, or a formula that takes it): a constant or a
+    /// function of another parameter does not.
+    pub fn depends_on(&self, name: &str) -> bool {
+        match self {
+            Coef::Function(f) => f.para == name,
+            Coef::Formula(g) => g.params.iter().any(|p| p == name),
+        }
+    }
+
     /// The name of the concept's type in messages.
     pub fn type_name(&self) -> &'static str {
         match self {

@@ -45,6 +45,18 @@ impl ExplicitScheme {
         }
     }
 
+    /// The weight w of the step's end in the velocity update
+    /// v_{n+1} − v_n = Δt((1 − w) a_n + w a_{n+1}): ½ for DIFF_CENT, 0 for
+    /// TCHAMWA (a_{n+1} first enters v_{n+2}). The impulse of a force over
+    /// a step is Δt((1 − w) f_n + w f_{n+1}), so that it equals the
+    /// momentum the force changes.
+    pub fn end_weight(&self) -> f64 {
+        match self {
+            ExplicitScheme::DiffCent => 0.5,
+            ExplicitScheme::Tchamwa { .. } => 0.0,
+        }
+    }
+
     /// The factor f of the critical step f·2/ω_max. For DIFF_CENT 1. For
     /// TCHAMWA the exact single-dof limit Ω ≤ 2/√(2φ−1) (notes/explicit.md
     /// §3.2, the amplification matrix [[1−φΩ², 1], [−Ω², 1]]); code_aster
