@@ -261,3 +261,24 @@ fn a_rising_floor_gives_its_impulse_and_no_false_alarm() {
     assert!(!mess.contains("violated at the initial state"), "{mess}");
     assert!(!mess.contains("more energy than it absorbed"), "{mess}");
 }
+
+/// RECH_LINEAIRE, written by a user who converts an implicit file, has no
+/// effect in explicit (code_aster accepts it there; notes/explicit.md §2):
+/// the run goes on with the note that says so (probe
+/// rech_lineaire_explicit: it stopped as not implemented).
+#[test]
+fn line_search_is_accepted_without_effect_in_explicit() {
+    let run = run_variant(
+        "rech",
+        "SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT'",
+        "RECH_LINEAIRE=_F(), SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT'",
+    );
+    assert_eq!(run.code, 0, "{}", run.term);
+    let mess = run.file("rech.mess");
+    assert!(
+        mess.contains(
+            "CONVERGENCE, NEWTON and RECH_LINEAIRE have no effect with an explicit scheme"
+        ),
+        "{mess}"
+    );
+}

@@ -324,6 +324,38 @@ fn bad_formulas_are_located_errors() {
     expect_errors(&cases);
 }
 
+/// What code_aster stops with DYNA_NON_LINE around LIAISON_UNIL, and what
+/// aster does not build, are located errors (probes
+/// unil_solveur_gcpc_accepted and coef_mass_shift_ignored: both ran
+/// silently on the direct solver and the plain mass).
+#[test]
+fn iterative_solver_and_mass_shift_are_located_errors() {
+    let schema =
+        "                    SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))\nREC";
+    expect_errors(&[
+        (
+            "gcpc",
+            schema,
+            "                    SOLVEUR=_F(METHODE='GCPC'),\n                    SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))\nREC",
+            &[
+                "DYNA_NON_LINE/SOLVEUR/METHODE",
+                "METHODE='GCPC'",
+                "MECANONLINE3_96",
+                "gcpc.comm:",
+            ],
+        ),
+        (
+            "mass_shift",
+            schema,
+            "                    SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT', COEF_MASS_SHIFT=1.E-12))\nREC",
+            &[
+                "not implemented yet: DYNA_NON_LINE/SCHEMA_TEMPS/COEF_MASS_SHIFT",
+                "mass_shift.comm:",
+            ],
+        ),
+    ]);
+}
+
 /// A link on a component imposed by DDL_IMPO (the corner P0 of the floor
 /// zone held at DZ = 0, tests/studies/unil_ddl_conflict.comm): once the
 /// floor passes P0 its link, without unknown, is dropped from the active

@@ -14,6 +14,67 @@ use crate::result::energy::CellEnergy;
 use crate::result::{Access, GaussField, NodalField, RunData};
 use crate::study::Study;
 
+/// The element options of code_aster's CALC_CHAMP on a nonlinear result
+/// (C_NOM_CHAM_INTO, category 'nonlin') by keyword: those computed here,
+/// then the others, which the catalogue accepts as code_aster's values and
+/// the executor refuses as not implemented (a user's valid option is not
+/// an input error).
+#[rustfmt::skip]
+const OPTIONS: [(&str, &[&str], &[&str]); 5] = [
+    (
+        "CONTRAINTE",
+        &["SIEF_ELNO", "SIGM_ELNO", "SIEF_NOEU", "SIGM_NOEU", "SIGM_ELGA"],
+        &[
+            "EFGE_ELGA", "EFGE_ELNO", "EFGE_NOEU", "SIPM_ELNO", "SIPO_ELNO", "SIPO_NOEU",
+            "SIRO_ELEM",
+        ],
+    ),
+    (
+        "DEFORMATION",
+        &[
+            "EPSI_ELGA", "EPSI_ELNO", "EPSI_NOEU", "EPSG_ELGA", "EPSG_ELNO", "EPSG_NOEU",
+            "EPSL_ELGA", "EPSL_ELNO", "EPSL_NOEU",
+        ],
+        &[
+            "DEGE_ELGA", "DEGE_ELNO", "DEGE_NOEU", "EPFD_ELGA", "EPFD_ELNO", "EPFD_NOEU",
+            "EPFP_ELGA", "EPFP_ELNO", "EPFP_NOEU", "EPME_ELGA", "EPME_ELNO", "EPME_NOEU",
+            "EPMG_ELGA", "EPMG_ELNO", "EPMG_NOEU", "EPSP_ELGA", "EPSP_ELNO", "EPSP_NOEU",
+            "EPVC_ELGA", "EPVC_ELNO", "EPVC_NOEU",
+        ],
+    ),
+    (
+        "CRITERES",
+        &["SIEQ_ELGA", "SIEQ_ELNO", "SIEQ_NOEU", "EPEQ_ELGA", "EPEQ_ELNO", "EPEQ_NOEU"],
+        &[
+            "DERA_ELGA", "DERA_ELNO", "DERA_NOEU", "ENDO_ELGA", "ENDO_ELNO", "ENDO_NOEU",
+            "EPGQ_ELGA", "EPGQ_ELNO", "EPGQ_NOEU", "EPMQ_ELGA", "EPMQ_ELNO", "EPMQ_NOEU",
+            "INDL_ELGA", "PDIL_ELGA",
+        ],
+    ),
+    (
+        "VARI_INTERNE",
+        &["VARI_ELNO", "VARI_NOEU"],
+        &["VAEX_ELGA", "VAEX_ELNO", "VAEX_NOEU", "VARC_ELGA"],
+    ),
+    (
+        "ENERGIE",
+        &["ENEL_ELGA", "ENEL_ELNO", "ENEL_NOEU"],
+        &[
+            "DISS_ELEM", "DISS_ELGA", "DISS_ELNO", "DISS_NOEU", "ENEL_ELEM", "ENTR_ELEM",
+            "ETOT_ELEM", "ETOT_ELGA", "ETOT_ELNO", "ETOT_NOEU",
+        ],
+    ),
+];
+
+/// Every value of `key` the catalogue accepts: the built ones first.
+fn option_values(key: &str) -> Vec<&'static str> {
+    OPTIONS
+        .iter()
+        .filter(|(k, _, _)| *k == key)
+        .flat_map(|(_, built, other)| built.iter().chain(other.iter()).copied())
+        .collect()
+}
+
 pub fn def() -> CommandDef {
     let mut kws = vec![
         concept("RESULTAT", RESULTS)
@@ -56,31 +117,32 @@ pub fn def() -> CommandDef {
         maille(),
         text("CONTRAINTE")
             .many()
-            .into(&["SIEF_ELNO", "SIGM_ELNO", "SIEF_NOEU", "SIGM_NOEU", "SIGM_ELGA"])
+            .into(&option_values("CONTRAINTE"))
             .doc("stress fields: *_ELNO extrapolated from SIEF_ELGA cell by cell, *_NOEU their mean over the cells at each node; SIGM_* the stress components SIXX..SIYZ only (SIGM_ELGA: those of SIEF_ELGA)")
             .kw(),
         text("DEFORMATION")
             .many()
-            .into(&[
-                "EPSI_ELGA", "EPSI_ELNO", "EPSI_NOEU", "EPSG_ELGA", "EPSG_ELNO", "EPSG_NOEU",
-                "EPSL_ELGA", "EPSL_ELNO", "EPSL_NOEU",
-            ])
+            .into(&option_values("DEFORMATION"))
             .doc("strains of DEPL on the initial geometry, tensor shears (EPXY = γxy/2): EPSI linearised ½(H + Hᵀ), EPSG Green-Lagrange ½(FᵀF − 1), EPSL logarithmic ½ ln(FᵀF); *_ELGA at the SIEF_ELGA points, *_ELNO extrapolated cell by cell, *_NOEU their mean at each node")
             .kw(),
         text("CRITERES")
             .many()
-            .into(&["SIEQ_ELGA", "SIEQ_ELNO", "SIEQ_NOEU", "EPEQ_ELGA", "EPEQ_ELNO", "EPEQ_NOEU"])
+            .into(&option_values("CRITERES"))
             .doc("equivalent stresses VMIS, TRESCA, PRIN_1..3, VMIS_SG, VECT_1_X..VECT_3_Z, TRSIG, TRIAX: SIEQ_ELGA of SIEF_ELGA, SIEQ_ELNO of SIGM_ELNO, SIEQ_NOEU the mean of SIEQ_ELNO at each node ; EPEQ_ELGA, EPEQ_ELNO, EPEQ_NOEU the equivalent strains INVA_2, PRIN_1..3, INVA_2SG, VECT_1_X..VECT_3_Z of EPSI_ELGA, EPSI_ELNO and the mean of EPEQ_ELNO")
             .kw(),
         text("VARI_INTERNE")
             .many()
-            .into(&["VARI_ELNO", "VARI_NOEU"])
+            .into(&option_values("VARI_INTERNE"))
             .doc("internal variables V1..Vn at nodes: VARI_ELNO extrapolated from VARI_ELGA cell by cell, VARI_NOEU its mean at each node")
+            .kw(),
+        text("NOM_VARI")
+            .many()
+            .doc("the variables VAEX_* extract (VAEX_* not implemented)")
             .kw(),
         text("ENERGIE")
             .many()
-            .into(&["ENEL_ELGA", "ENEL_ELNO", "ENEL_NOEU", "ETOT_ELGA", "ETOT_ELNO", "ETOT_NOEU"])
-            .doc("ENEL_ELGA: the elastic energy density TOTALE, ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance) under PETIT and PETIT_REAC, the stored energy K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3) for VMIS_ISOT_LINE, VMIS_ISOT_TRAC and VMIS_ISOT_PUIS in SIMO_MIEHE; ENEL_ELNO extrapolated, ENEL_NOEU averaged (ETOT_* and GDEF_LOG not implemented)")
+            .into(&option_values("ENERGIE"))
+            .doc("ENEL_ELGA: the elastic energy density TOTALE, ½ σ:S:σ of SIEF_ELGA (S the ELAS compliance) under PETIT and PETIT_REAC, the stored energy K/2 (½(J² − 1) − ln J) + μ/2 (tr b̄ᵉ − 3) for VMIS_ISOT_LINE, VMIS_ISOT_TRAC and VMIS_ISOT_PUIS in SIMO_MIEHE; ENEL_ELNO extrapolated, ENEL_NOEU averaged (the other code_aster options and GDEF_LOG not implemented)")
             .kw(),
         text("FORCE")
             .many()
@@ -124,11 +186,13 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         Some(ConceptData::Result(r)) => (**r).clone(),
         _ => return Err(args.error("RESULTAT", format!("the result {name} holds no data"))),
     };
-    if let Some(o) = args.texts("ENERGIE").iter().find(|o| o.starts_with("ETOT")) {
-        return Err(args.not_implemented(
-            "ENERGIE",
-            &format!("{o}; ENEL_ELGA, ENEL_ELNO and ENEL_NOEU are computed"),
-        ));
+    for (key, built, _) in OPTIONS {
+        if let Some(o) = args.texts(key).iter().find(|o| !built.contains(o)) {
+            return Err(args.not_implemented(
+                key,
+                &format!("{o}; the {key} options computed are {}", built.join(", ")),
+            ));
+        }
     }
     // GROUP_MA/MAILLE restrict the element options; FORC_NODA and
     // REAC_NODA are assembled over the whole model.

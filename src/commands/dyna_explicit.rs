@@ -79,8 +79,8 @@ pub(crate) fn exec(
             ));
         }
     }
-    if args.has("CONVERGENCE") || args.has("NEWTON") {
-        notes.push("CONVERGENCE and NEWTON have no effect with an explicit scheme: every step is converged by definition (as code_aster)".into());
+    if args.has("CONVERGENCE") || args.has("NEWTON") || args.given("RECH_LINEAIRE") {
+        notes.push("CONVERGENCE, NEWTON and RECH_LINEAIRE have no effect with an explicit scheme: every step is converged by definition (as code_aster)".into());
     }
     if scheme.stability_factor().is_none() {
         let m = format!(

@@ -1682,9 +1682,6 @@ pub(crate) fn run(
 ) -> ExecResult {
     // ENERGIE is accepted: the balance is computed for every run
     // (nonlinear::energy) and kept as the result's PARA_CALC table.
-    if args.given("RECH_LINEAIRE") {
-        return Err(args.not_implemented("RECH_LINEAIRE", ""));
-    }
     if args.given("PILOTAGE") {
         return Err(args.not_implemented("PILOTAGE", ""));
     }
@@ -1693,6 +1690,19 @@ pub(crate) fn run(
         Analysis::Dynamic => scheme_of(args)?,
         Analysis::Static => SchemeChoice::Implicit(Scheme::quasi_static()),
     };
+    // An explicit step calls no line search, and code_aster accepts the
+    // keyword there without effect (the explicit path's note says so).
+    if args.given("RECH_LINEAIRE") && matches!(choice, SchemeChoice::Implicit(_)) {
+        return Err(args.not_implemented("RECH_LINEAIRE", ""));
+    }
+    if let Some(st) = args.fact("SCHEMA_TEMPS") {
+        if st.real("COEF_MASS_SHIFT").is_some_and(|c| c != 0.0) {
+            return Err(st.not_implemented(
+                "COEF_MASS_SHIFT",
+                "the mass M + COEF_MASS_SHIFT K of the first step kept for the run; leave the default 0",
+            ));
+        }
+    }
     if !inertia && !args.given("CHAM_MATER") {
         return Err(args.error(
             "CHAM_MATER",
@@ -1708,6 +1718,16 @@ pub(crate) fn run(
     let unilateral = args.concept("CONTACT").is_some_and(|name| {
         matches!(study.concepts.data(name), Some(ConceptData::Contact(c)) if c.text("FORMULATION") == Some("LIAISON_UNIL"))
     });
+    if unilateral {
+        if let Some(s) = args.fact("SOLVEUR") {
+            if let Some(m @ ("GCPC" | "PETSC")) = s.text("METHODE") {
+                return Err(s.error(
+                    "METHODE",
+                    format!("LIAISON_UNIL cannot be used with the iterative solver METHODE='{m}': its active set solves with the factorised matrix (MECANONLINE3_96); use a direct solver (MUMPS, MULT_FRONT, LDLT)"),
+                ));
+            }
+        }
+    }
     // LIAISON_UNIL with DIFF_CENT/TCHAMWA (code_aster: MECANONLINE5_23)
     // is an aster extension, checked by the explicit path.
     if let (true, SchemeChoice::Implicit(s)) = (unilateral, &choice) {
