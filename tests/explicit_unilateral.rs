@@ -171,7 +171,7 @@ fn what_cannot_run_is_a_located_error() {
             "_F(GROUP_NO='HAUT_C', NOM_CMP=('DX', 'DY'), COEF_MULT=(MUN, MUN), COEF_IMPO=MUN)",
             &[
                 "DYNA_NON_LINE",
-                "LIAISON_UNIL at INST = 1e0: the links of node",
+                "LIAISON_UNIL at INST = 1e0: the links of node N",
                 "cannot all be satisfied",
                 "MECANONLINE9_6",
             ],

@@ -355,7 +355,7 @@ fn impose(
         return Err(occ.error(
             "",
             format!(
-                "{} of the nodes of {} (node {} first) belong to no cell of the model {model_name}: they carry no degree of freedom",
+                "{} of the nodes of {} (node N{} first) belong to no cell of the model {model_name}: they carry no degree of freedom",
                 outside.len(),
                 selection_label(occ),
                 n0 + 1

@@ -500,7 +500,7 @@ fn imposed_under_mult(
                 return Err(ex.error(
                     "FONC_MULT",
                     format!(
-                        "{} of node {} is imposed by this load, whose FONC_MULT makes it vary in time, and by a load without FONC_MULT: one value per dof and instant",
+                        "{} of node N{} is imposed by this load, whose FONC_MULT makes it vary in time, and by a load without FONC_MULT: one value per dof and instant",
                         imp.dof.name(),
                         imp.node + 1
                     ),
@@ -1535,7 +1535,7 @@ pub(crate) fn start_comp_elas(
             args.error(
                 "ETAT_INIT",
                 format!(
-                    "the stress of the initial displacement DEPL: cell {}: {}",
+                    "the stress of the initial displacement DEPL: cell M{}: {}",
                     f.cell + 1,
                     f.failure
                 ),

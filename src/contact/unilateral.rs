@@ -139,7 +139,7 @@ impl UnilDef {
                         (None, Some(u)) => shift += a * u,
                         (None, None) => {
                             return Err(format!(
-                                "the unilateral condition at node {} acts on a component without degree of freedom in the model",
+                                "the unilateral condition at node N{} acts on a component without degree of freedom in the model",
                                 l.node + 1
                             ))
                         }

@@ -200,7 +200,7 @@ pub fn gravity_forces(
                 .and_then(|m| m.get("ELAS", "RHO"))
                 .ok_or_else(|| {
                     format!(
-                        "PESANTEUR: cell {} has no density (ELAS/RHO of its material)",
+                        "PESANTEUR: cell M{} has no density (ELAS/RHO of its material)",
                         c + 1
                     )
                 })?;
@@ -211,7 +211,7 @@ pub fn gravity_forces(
             } else {
                 element_body_force(spec, &coords, rho, b)
             }
-            .map_err(|e| format!("PESANTEUR: cell {}: {e}", c + 1))?;
+            .map_err(|e| format!("PESANTEUR: cell M{}: {e}", c + 1))?;
             for (a, &n) in nodes.iter().enumerate() {
                 for i in 0..d {
                     out[n * d + i] += f[a * d + i];

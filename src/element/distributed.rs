@@ -236,7 +236,7 @@ fn add_cell_forces(
         let Some(f) = forces(role, cell.kind, formulation, &coords) else {
             continue;
         };
-        let f = f.map_err(|e| format!("{keyword}: cell {}: {e}", c + 1))?;
+        let f = f.map_err(|e| format!("{keyword}: cell M{}: {e}", c + 1))?;
         scatter(&cell.nodes, d, &f, out);
     }
     Ok(())

@@ -80,7 +80,7 @@ impl FoldWatch {
         let Some(f) = fold else { return };
         if self.seen == 0 {
             log(&format!(
-                "  alarm: at t = {t:e} cell {} folds at its node N{}: det F = {:.3e} there while its Gauss points stay positive (a distorted corner, or the spurious mode of an under-integrated cell the Gauss points do not see: the mesh is tangling there); the computation goes on, the deepest fold is given at the end",
+                "  alarm: at t = {t:e} cell M{} folds at its node N{}: det F = {:.3e} there while its Gauss points stay positive (a distorted corner, or the spurious mode of an under-integrated cell the Gauss points do not see: the mesh is tangling there); the computation goes on, the deepest fold is given at the end",
                 f.0 + 1,
                 f.1 + 1,
                 f.2
@@ -97,7 +97,7 @@ impl FoldWatch {
     pub fn summary(&self) -> Option<String> {
         let (t, (cell, node, det_f)) = self.deepest?;
         Some(format!(
-            "  alarm: {} checked states had a folded cell; the deepest fold: det F = {det_f:.3e} at node N{} of cell {} at t = {t:e}",
+            "  alarm: {} checked states had a folded cell; the deepest fold: det F = {det_f:.3e} at node N{} of cell M{} at t = {t:e}",
             self.seen,
             node + 1,
             cell + 1
@@ -243,7 +243,7 @@ impl Assembler {
         let mut mass_free = vec![0.0; pattern.nnz()];
         let mut mass_full = SparseMatrix::zeros(full_pattern);
         for (e, m) in elements.iter().zip(masses) {
-            let m = m.map_err(|f| format!("cell {}: mass matrix: {f}", e.cell + 1))?;
+            let m = m.map_err(|f| format!("cell M{}: mass matrix: {f}", e.cell + 1))?;
             let n = e.full.len();
             for a in 0..n {
                 for b in 0..n {

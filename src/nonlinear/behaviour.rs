@@ -196,7 +196,7 @@ pub fn build_for(
                     None,
                     "",
                     format!(
-                        "cell {} of the model has no material in the CHAM_MATER",
+                        "cell M{} of the model has no material in the CHAM_MATER",
                         cell + 1
                     ),
                 )
@@ -503,7 +503,7 @@ pub fn check_hexs8(
                 occ,
                 "RELATION",
                 format!(
-                    "cell {}: the element MECA_HEXS8 (3D_SI on HEXA8) refuses RELATION='ELAS' with \
+                    "cell M{}: the element MECA_HEXS8 (3D_SI on HEXA8) refuses RELATION='ELAS' with \
                      DEFORMATION='{deformation}' (ELEMENTSSI_3): a law written in the reference \
                      configuration cannot drive its incremental hourglass stresses; use \
                      DEFORMATION='PETIT_REAC', an initial state (ETAT_INIT with EVOL_NOLI; \
@@ -523,7 +523,7 @@ pub fn check_hexs8(
                 occ,
                 "DEFORMATION",
                 format!(
-                    "cell {}: the element MECA_HEXS8 (3D_SI on HEXA8) accepts only \
+                    "cell M{}: the element MECA_HEXS8 (3D_SI on HEXA8) accepts only \
                      DEFORMATION='PETIT' or 'PETIT_REAC', not '{deformation}' (ELEMENTSSI_1)",
                     cell + 1
                 ),

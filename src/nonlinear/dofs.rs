@@ -140,7 +140,7 @@ pub fn number(mesh: &Mesh, model: &Model, loads: &[&MechLoad]) -> Result<DofNumb
         for imp in &load.imposed {
             let Some(k) = model.dofs.iter().position(|d| *d == imp.dof) else {
                 return Err(format!(
-                    "DDL_IMPO of the load on {} at node {}: the model has no such component (components: {})",
+                    "DDL_IMPO of the load on {} at node N{}: the model has no such component (components: {})",
                     imp.dof.name(),
                     imp.node + 1,
                     model.dofs.iter().map(|d| d.name()).collect::<Vec<_>>().join(", ")
@@ -148,7 +148,7 @@ pub fn number(mesh: &Mesh, model: &Model, loads: &[&MechLoad]) -> Result<DofNumb
             };
             if imp.node >= nnodes || !active_node[imp.node] {
                 return Err(format!(
-                    "DDL_IMPO on {} at node {}: the node belongs to no element of the model",
+                    "DDL_IMPO on {} at node N{}: the node belongs to no element of the model",
                     imp.dof.name(),
                     imp.node + 1
                 ));
@@ -160,7 +160,7 @@ pub fn number(mesh: &Mesh, model: &Model, loads: &[&MechLoad]) -> Result<DofNumb
             match value[f] {
                 Some(v) if v != imp.value => {
                     return Err(format!(
-                        "{} of node {} is imposed twice with different values ({v} and {})",
+                        "{} of node N{} is imposed twice with different values ({v} and {})",
                         imp.dof.name(),
                         imp.node + 1,
                         imp.value

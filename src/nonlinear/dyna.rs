@@ -1170,10 +1170,10 @@ fn contact_energy_alarm(energy: &EnergyBalance, t: f64, gamma: f64) -> Option<St
     let surplus = energy.surplus();
     let why = if gamma > 0.5 + 1e-12 {
         format!(
-            "links that close or open within a step did more work on the model than the numerical dissipation of the scheme (GAMMA = {gamma}) took out; smaller steps reduce it"
+            "links that close or open within a step did more work on the model than the numerical dissipation of the scheme (GAMMA = {gamma}) took out; a smaller step does not always reduce it (node-wise constraints in a Newmark-type scheme give each closing node the velocity jump of the scheme's rule at every impact: docs/contact.md §7a)"
         )
     } else {
-        "a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and ENER_CIN keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it, smaller steps reduce it".to_string()
+        "a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and ENER_CIN keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it".to_string()
     };
     Some(format!(
         "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of ENER_CIN at the start and |TRAV_EXT|) and the model holds {surplus:.4e} more than it was given ({:.2} %: ENER_CIN - ENER_CIN at the start + ENER_TOT + TRAV_AMOR - TRAV_EXT): {why}; this alarm is given once",

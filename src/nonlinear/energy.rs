@@ -279,19 +279,24 @@ impl EnergyBalance {
         } else {
             String::new()
         };
+        // DISS_SCH relative to the energy given: the initial kinetic
+        // energy, or the external work for a run that starts at rest
+        // (a ratio to a zero ENER_CIN0 printed 0 whatever DISS_SCH was).
+        let ratio = if self.kinetic0 > 0.0 {
+            format!(" ({:.3e} of ENER_CIN0)", v[6] / self.kinetic0)
+        } else if self.external != 0.0 {
+            format!(" ({:.3e} of |TRAV_EXT|)", v[6] / self.external.abs())
+        } else {
+            String::new()
+        };
         format!(
-            "  energy at t = {t:e}: ENER_CIN {:.6e}  ENER_TOT {:.6e}  TRAV_EXT {:.6e}{amor}  TRAV_LIAI {:.6e}  DISS_FROT {:.6e}  DISS_SCH {:.6e} ({:.3e} of ENER_CIN0)",
+            "  energy at t = {t:e}: ENER_CIN {:.6e}  ENER_TOT {:.6e}  TRAV_EXT {:.6e}{amor}  TRAV_LIAI {:.6e}  DISS_FROT {:.6e}  DISS_SCH {:.6e}{ratio}",
             v[1],
             v[2],
             v[0],
             v[4],
             v[5],
             v[6],
-            if self.kinetic0 > 0.0 {
-                v[6] / self.kinetic0
-            } else {
-                0.0
-            }
         )
     }
 

@@ -251,10 +251,10 @@ impl Explicit {
         let mut elem_mass = Vec::with_capacity(asm.elements.len());
         for e in &asm.elements {
             let m = mass(&e.spec, &e.coords, rho[e.cell])
-                .map_err(|f| format!("cell {}: mass matrix: {f}", e.cell + 1))?;
+                .map_err(|f| format!("cell M{}: mass matrix: {f}", e.cell + 1))?;
             let l = hrz_lumped(&m, d).ok_or_else(|| {
                 format!(
-                    "cell {}: the lumped (HRZ) mass is not positive (zero density or volume)",
+                    "cell M{}: the lumped (HRZ) mass is not positive (zero density or volume)",
                     e.cell + 1
                 )
             })?;
@@ -556,7 +556,7 @@ impl Explicit {
                 &self.vstar,
                 &mut self.dforce,
             )
-            .map_err(|f| format!("cell {}: damping: {}", f.cell + 1, f.failure))?;
+            .map_err(|f| format!("cell M{}: damping: {}", f.cell + 1, f.failure))?;
         }
         asm.integrate_explicit(
             team,
@@ -566,7 +566,7 @@ impl Explicit {
             &mut tr.points,
             dt,
         )
-        .map_err(|f| format!("cell {}: {}", f.cell + 1, f.failure))?;
+        .map_err(|f| format!("cell M{}: {}", f.cell + 1, f.failure))?;
         let asm: &Assembler = asm;
         let nb = &asm.numbering;
         let fc: &[f64] = match contact {
@@ -1012,7 +1012,7 @@ fn run_on(
         )
         .map_err(|f| {
             stop(
-                format!("step estimate: cell {}: {}", f.cell + 1, f.failure),
+                format!("step estimate: cell M{}: {}", f.cell + 1, f.failure),
                 &summary,
             )
         })?;
@@ -1277,7 +1277,7 @@ fn run_on(
             if dt_next < list_dt * (1.0 - 1e-9) && !alarmed_sub {
                 alarmed_sub = true;
                 log(&format!(
-                    "  alarm: at t = {:e} the critical step on the current geometry is {:.4e} (cell {}), below the list's step {:.4e}: the list's steps are cut into equal sub-steps from now on while needed (an aster extension; code_aster checks the list once)",
+                    "  alarm: at t = {:e} the critical step on the current geometry is {:.4e} (cell M{}), below the list's step {:.4e}: the list's steps are cut into equal sub-steps from now on while needed (an aster extension; code_aster checks the list once)",
                     engine.trial.t,
                     bound.dt,
                     bound.cell + 1,

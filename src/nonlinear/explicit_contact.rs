@@ -192,7 +192,7 @@ impl ExplicitContact {
                         }
                         if enforcement == Enforcement::Kinematic {
                             return Err(format!(
-                                "not implemented yet: explicit contact with ALGO_CONT='CONTRAINTE' against a deformable master surface: node {} of the master group {} has free dofs (the kinematic correction against a moving master is a coupled solve); use ALGO_CONT='PENALISATION', or hold the master by DDL_IMPO on all its dofs (a rigid obstacle)",
+                                "not implemented yet: explicit contact with ALGO_CONT='CONTRAINTE' against a deformable master surface: node N{} of the master group {} has free dofs (the kinematic correction against a moving master is a coupled solve); use ALGO_CONT='PENALISATION', or hold the master by DDL_IMPO on all its dofs (a rigid obstacle)",
                                 n + 1,
                                 z.master_group
                             ));
@@ -614,7 +614,7 @@ impl ExplicitContact {
                 .is_some_and(|zone| zone.slave_nodes.binary_search(&s).is_ok());
             if !fits {
                 return Err(format!(
-                    "its friction link of zone {} at node {} is not a slave node of this contact's zone {}",
+                    "its friction link of zone {} at node N{} is not a slave node of this contact's zone {}",
                     z + 1,
                     s + 1,
                     z + 1
@@ -629,7 +629,7 @@ impl ExplicitContact {
             .find(|&&n| n >= nnodes)
         {
             return Err(format!(
-                "its master node {} is not a node of this mesh",
+                "its master node N{} is not a node of this mesh",
                 n + 1
             ));
         }

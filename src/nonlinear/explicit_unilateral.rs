@@ -333,7 +333,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
                     .map(|(&i, _)| self.def.links[i].zone + 1)
                     .unwrap_or(0);
                 format!(
-                    "LIAISON_UNIL at INST = {t_next:e}: the links of node {} (zone {worst} violated) cannot all be satisfied: contradictory conditions, or a violated condition on components all imposed by DDL_IMPO (the explicit counterpart of MECANONLINE9_6)",
+                    "LIAISON_UNIL at INST = {t_next:e}: the links of node N{} (zone {worst} violated) cannot all be satisfied: contradictory conditions, or a violated condition on components all imposed by DDL_IMPO (the explicit counterpart of MECANONLINE9_6)",
                     node + 1
                 )
             })?;

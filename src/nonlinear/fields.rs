@@ -143,7 +143,7 @@ pub fn states_from_gauss(
             || (hex && (fstab != Some(6) || ns != 6 + hexs8::NQ))
         {
             return Err(format!(
-                "cell {}: the stored SIEF_ELGA/VARI_ELGA do not match the element {} ({} points, {} variables{})",
+                "cell M{}: the stored SIEF_ELGA/VARI_ELGA do not match the element {} ({} points, {} variables{})",
                 e.cell + 1,
                 e.spec.name,
                 npg,
@@ -158,7 +158,7 @@ pub fn states_from_gauss(
                 st.stress[k] = s[p * ns + k];
             }
             st.internal = InternalVars::from_slice(&v[p * nv..p * nv + nvar])
-                .ok_or_else(|| format!("cell {}: bad internal variables", e.cell + 1))?;
+                .ok_or_else(|| format!("cell M{}: bad internal variables", e.cell + 1))?;
         }
         if hex {
             let internal = out[e.state_offset].internal;

@@ -315,7 +315,7 @@ impl std::fmt::Display for StepFailure {
                 }
                 Ok(())
             }
-            StepFailure::Element(c) => write!(f, "cell {}: {}", c.cell + 1, c.failure),
+            StepFailure::Element(c) => write!(f, "cell M{}: {}", c.cell + 1, c.failure),
             StepFailure::Singular(m) => write!(f, "{m}"),
             StepFailure::NonFinite(m) => write!(f, "{m}"),
             StepFailure::Contact(m) => write!(f, "contact: {m}"),

@@ -130,8 +130,8 @@ impl UnilateralContact {
             .collect();
         Some(format!(
             "alarm: LIAISON_UNIL: {} link(s) violated at the end of a step are held by nothing: {}{}; \
-             a link whose components are all imposed by DDL_IMPO has no unknown and the imposed value wins: \
-             code_aster drops it from its active set (a zero pivot of the contact matrix, \
+             a link whose components are all imposed by DDL_IMPO, or whose COEF_MULT are all zero, \
+             has no unknown and the imposed values win: code_aster drops it from its active set (a zero pivot of the contact matrix, \
              `LIAISON i (node - cmp): PIVOT NUL` in its message file) and its penalty acts on a blocked dof; \
              the condition is not enforced there",
             self.unheld.len(),
