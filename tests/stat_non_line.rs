@@ -148,8 +148,8 @@ fn unilateral_links_hold_the_static_references() {
 /// The bilinear uniaxial curve of VMIS_ISOT_LINE under an imposed
 /// displacement ramp and an elastic unloading (stat_plastic_bar.comm):
 /// SIZZ = SY + ET (e − SY/E), p = (e − SY/E)/(1 + H/E), unloading
-/// elastic with p frozen, REAC_NODA = 4 SIZZ; 3D HEXA8 with code_aster's
-/// default REAC_ITER = 0, 3D_SI HEXS8 with REAC_ITER = 1 (loading only).
+/// elastic with p frozen, REAC_NODA = 4 SIZZ; 3D HEXA8 and 3D_SI HEXS8
+/// (loading only), both with the default NEWTON (REAC_ITER = 1).
 #[test]
 fn plastic_bar_follows_the_bilinear_curve() {
     run_study("stat_plastic_bar");
