@@ -2388,8 +2388,8 @@ fn a_cell_folded_between_its_gauss_points_is_an_alarm() {
         );
         common::assert_all_ok(&run, &format!("{tag}.resu"));
         let mess = run.file(&format!("{tag}.mess"));
-        let first = "alarm: at t = 9e-1 cell 1 folds at its node N6: det F = -7.43";
-        let deepest = "checked states had a folded cell; the deepest fold: det F = -1.125e0 at node N6 of cell 1 at t = 1e0";
+        let first = "alarm: at t = 9e-1 cell M1 folds at its node N6: det F = -7.43";
+        let deepest = "checked states had a folded cell; the deepest fold: det F = -1.125e0 at node N6 of cell M1 at t = 1e0";
         if folds {
             assert!(
                 mess.contains(first)

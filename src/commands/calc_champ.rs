@@ -33,13 +33,12 @@ const OPTIONS: [(&str, &[&str], &[&str]); 5] = [
         "DEFORMATION",
         &[
             "EPSI_ELGA", "EPSI_ELNO", "EPSI_NOEU", "EPSG_ELGA", "EPSG_ELNO", "EPSG_NOEU",
-            "EPSL_ELGA", "EPSL_ELNO", "EPSL_NOEU",
+            "EPSL_ELGA", "EPSL_ELNO", "EPSL_NOEU", "EPSP_ELGA", "EPSP_ELNO", "EPSP_NOEU",
         ],
         &[
             "DEGE_ELGA", "DEGE_ELNO", "DEGE_NOEU", "EPFD_ELGA", "EPFD_ELNO", "EPFD_NOEU",
             "EPFP_ELGA", "EPFP_ELNO", "EPFP_NOEU", "EPME_ELGA", "EPME_ELNO", "EPME_NOEU",
-            "EPMG_ELGA", "EPMG_ELNO", "EPMG_NOEU", "EPSP_ELGA", "EPSP_ELNO", "EPSP_NOEU",
-            "EPVC_ELGA", "EPVC_ELNO", "EPVC_NOEU",
+            "EPMG_ELGA", "EPMG_ELNO", "EPMG_NOEU", "EPVC_ELGA", "EPVC_ELNO", "EPVC_NOEU",
         ],
     ),
     (
@@ -123,7 +122,7 @@ pub fn def() -> CommandDef {
         text("DEFORMATION")
             .many()
             .into(&option_values("DEFORMATION"))
-            .doc("strains of DEPL on the initial geometry, tensor shears (EPXY = γxy/2): EPSI linearised ½(H + Hᵀ), EPSG Green-Lagrange ½(FᵀF − 1), EPSL logarithmic ½ ln(FᵀF); *_ELGA at the SIEF_ELGA points, *_ELNO extrapolated cell by cell, *_NOEU their mean at each node")
+            .doc("strains of DEPL on the initial geometry, tensor shears (EPXY = γxy/2): EPSI linearised ½(H + Hᵀ), EPSG Green-Lagrange ½(FᵀF − 1), EPSL logarithmic ½ ln(FᵀF); EPSP the anelastic strain EPSI − S:σ (S the ELAS compliance; PETIT and PETIT_REAC); *_ELGA at the SIEF_ELGA points, *_ELNO extrapolated cell by cell, *_NOEU their mean at each node")
             .kw(),
         text("CRITERES")
             .many()
@@ -654,6 +653,12 @@ fn element_fields(
     } else {
         elastic_constants(study, args, "ENERGIE", evol, mesh, model, &cells)?
     };
+    let wants_epsp = strain_opts.iter().any(|o| o.starts_with("EPSP"));
+    let elastic_small = if wants_epsp {
+        elastic_constants(study, args, "DEFORMATION", evol, mesh, model, &cells)?
+    } else {
+        Vec::new()
+    };
     let restrict = |f: &GaussField| f.restricted(&cells);
     let noeu = |f: &GaussField| crate::result::elno::noeu(f, mesh);
     for step in evol.steps.iter_mut() {
@@ -785,6 +790,41 @@ fn element_fields(
                 gauss_out.push((format!("{prefix}_ELGA"), gauss));
             }
         }
+        if wants_epsp {
+            let depl = step.nodal.get("DEPL").ok_or_else(|| {
+                args.error(
+                    "DEFORMATION",
+                    format!(
+                        "NUME_ORDRE {nume} of {name} has no DEPL field to compute EPSP from{}",
+                        step.exclusion_note("DEPL")
+                    ),
+                )
+            })?;
+            let eps = crate::element::strain::strain_field(
+                crate::element::strain::Measure::of_prefix("EPSI").expect("EPSI has a measure"),
+                mesh,
+                model,
+                depl,
+                &cells,
+            )
+            .map_err(located("DEFORMATION"))?;
+            let sief = gauss_of("DEFORMATION", "SIEF_ELGA")?;
+            let p = crate::result::energy::epsp(&eps, &sief, &elastic_small)
+                .map_err(located("DEFORMATION"))?;
+            if wants(&strain_opts, "EPSP", "ELNO") || wants(&strain_opts, "EPSP", "NOEU") {
+                let all: Vec<usize> = (0..p.ncmp()).collect();
+                let elno = elno_of(&p, &all, "DEFORMATION")?;
+                if wants(&strain_opts, "EPSP", "NOEU") {
+                    nodal_out.push(("EPSP_NOEU".into(), noeu(&elno)));
+                }
+                if wants(&strain_opts, "EPSP", "ELNO") {
+                    elno_out.push(("EPSP_ELNO".into(), elno));
+                }
+            }
+            if wants(&strain_opts, "EPSP", "ELGA") {
+                gauss_out.push(("EPSP_ELGA".into(), p));
+            }
+        }
         if !energy_opts.is_empty() {
             let w = enel_of_step(args, "ENERGIE", name, step, mesh, model, &cells, &elastic)?;
             if wants(&energy_opts, "ENEL", "ELNO") || wants(&energy_opts, "ENEL", "NOEU") {
@@ -864,13 +904,15 @@ pub fn elastic_constants(
             simo_miehe = def == "SIMO_MIEHE";
             if def != "PETIT"
                 && def != "PETIT_REAC"
-                && !(simo_miehe && rel.starts_with("VMIS_ISOT"))
+                && !(simo_miehe && rel.starts_with("VMIS_ISOT") && key == "ENERGIE")
             {
                 return Err(args.not_implemented(
                     key,
                     &format!(
-                        "ENEL of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC, and VMIS_ISOT_LINE/VMIS_ISOT_TRAC/VMIS_ISOT_PUIS in SIMO_MIEHE)",
-                        cell()
+                        "{} of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC{})",
+                        if key == "ENERGIE" { "ENEL" } else { "EPSP" },
+                        cell(),
+                        if key == "ENERGIE" { ", and VMIS_ISOT_LINE/VMIS_ISOT_TRAC/VMIS_ISOT_PUIS in SIMO_MIEHE" } else { "" }
                     ),
                 ));
             }

@@ -331,7 +331,7 @@ fn calc_champ_keyword(nom_cham: &str) -> &'static str {
         "SIEQ" | "EPEQ" => "CRITERES",
         "VARI" => "VARI_INTERNE",
         "ENEL" => "ENERGIE",
-        "EPSI" | "EPSG" | "EPSL" => "DEFORMATION",
+        "EPSI" | "EPSG" | "EPSL" | "EPSP" => "DEFORMATION",
         _ => "CONTRAINTE",
     }
 }

@@ -57,6 +57,78 @@ pub enum CellEnergy {
     SimoMiehe { e: f64, nu: f64, be: [usize; 3] },
 }
 
+/// The anelastic strain EPSP = ε − S:σ at each point of the cells `laws`
+/// gives small-strain constants for (other cells have no point): `eps`
+/// the strain of DEPL (EPXX.. with tensor shears, EPSI_ELGA) at the points
+/// of the stress `sief` (SIXX.. by name), S the isotropic ELAS compliance
+/// ε_ii = ((1 + ν) σ_ii − ν tr σ)/E, ε_ij = (1 + ν) σ_ij/E. code_aster's
+/// EPSP_ELGA, without command variables (no thermal strain exists here):
+/// for a von Mises law, the plastic strain.
+pub fn epsp(
+    eps: &GaussField,
+    sief: &GaussField,
+    laws: &[Option<CellEnergy>],
+) -> Result<GaussField, String> {
+    let stress = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
+    let strain = ["EPXX", "EPYY", "EPZZ", "EPXY", "EPXZ", "EPYZ"];
+    let s_idx: Vec<Option<usize>> = stress
+        .iter()
+        .map(|n| sief.components.iter().position(|c| c == n))
+        .collect();
+    let e_idx: Vec<Option<usize>> = eps
+        .components
+        .iter()
+        .map(|c| strain.iter().position(|n| n == c))
+        .collect();
+    let (ns, ne) = (sief.ncmp().max(1), eps.ncmp().max(1));
+    let mut out = GaussField {
+        components: eps.components.clone(),
+        offsets: Vec::with_capacity(eps.offsets.len()),
+        values: Vec::new(),
+    };
+    for c in 0..eps.offsets.len().saturating_sub(1) {
+        out.offsets.push(out.values.len());
+        let (e, nu) = match laws.get(c) {
+            Some(Some(CellEnergy::Small { e, nu })) => (*e, *nu),
+            Some(Some(CellEnergy::SimoMiehe { .. })) => {
+                return Err(format!(
+                    "cell M{}: EPSP under SIMO_MIEHE is not computed",
+                    c + 1
+                ))
+            }
+            _ => continue,
+        };
+        let (es, ss) = (eps.cell(c), sief.cell(c));
+        if es.len() / ne != ss.len() / ns {
+            return Err(format!(
+                "cell M{}: {} strain points for {} stress points",
+                c + 1,
+                es.len() / ne,
+                ss.len() / ns
+            ));
+        }
+        for (er, sr) in es.chunks(ne).zip(ss.chunks(ns)) {
+            let mut s = [0.0; 6];
+            for (k, i) in s_idx.iter().enumerate() {
+                if let Some(i) = i {
+                    s[k] = sr[*i];
+                }
+            }
+            let tr = s[0] + s[1] + s[2];
+            for (v, k) in er.iter().zip(&e_idx) {
+                let elastic = match k {
+                    Some(k @ 0..=2) => ((1.0 + nu) * s[*k] - nu * tr) / e,
+                    Some(k) => (1.0 + nu) * s[*k] / e,
+                    None => 0.0,
+                };
+                out.values.push(v - elastic);
+            }
+        }
+    }
+    out.offsets.push(out.values.len());
+    Ok(out)
+}
+
 /// The ENEL field: one component TOTALE at each point of the cells
 /// `laws` gives a [`CellEnergy`] for (other cells have no point), from
 /// the stress `sief` (components SIXX.. by name) or, for SIMO_MIEHE, from
