@@ -492,7 +492,7 @@ fn affe_char_meca_f_distributed_load_errors() {
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_char_f_distributed");
 }
 
-/// ENERGIE ETOT_* and DEFORMATION EPSP_ELGA (not built), an ELNO field tested without CALC_CHAMP,
+/// ENERGIE ETOT_* and DEFORMATION EPME_ELGA (not built), an ELNO field tested without CALC_CHAMP,
 /// an ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
 /// located errors.
 #[test]
@@ -512,12 +512,12 @@ fn bad_stresses_at_nodes_are_located_errors() {
         (
             // A value of code_aster's catalogue not built here is not
             // an input error (probe calc_champ_valid_options_refused).
-            "epsp_elga",
+            "epme_elga",
             (
                 "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU')",
-                "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU'), DEFORMATION='EPSP_ELGA'",
+                "CONTRAINTE=('SIGM_ELNO', 'SIEF_NOEU'), DEFORMATION='EPME_ELGA'",
             ),
-            "not implemented yet: CALC_CHAMP/DEFORMATION (EPSP_ELGA",
+            "not implemented yet: CALC_CHAMP/DEFORMATION (EPME_ELGA",
         ),
         (
             "not_computed",

@@ -2049,7 +2049,7 @@ pub(crate) fn run(
     }
     if !ignored.is_empty() {
         notes.push(format!(
-            "the time list's events {} are ignored (acted upon: ERREUR, DELTA_GRANDEUR, RESI_MAXI, DIVE_RESI, and with CONTACT, COLLISION and INTERPENETRATION)",
+            "the time list's events {} are ignored (acted upon: ERREUR, DELTA_GRANDEUR, RESI_MAXI, DIVE_RESI, and with a DISCRETE or CONTINUE contact, not LIAISON_UNIL, COLLISION and INTERPENETRATION)",
             ignored.join(", ")
         ));
     }
