@@ -183,6 +183,8 @@ fn what_cannot_run_is_a_located_error() {
             &[
                 "DYNA_NON_LINE/CONTACT",
                 "LIAISON_UNIL at INST = 8e0: ZONE 1, COEF_MULT",
+                // The function by its concept's name, not TOUTRESU.
+                "COEF_MULT: UN(INST=",
                 "domain.comm:",
             ],
         ),

@@ -48,7 +48,19 @@ const FLOOR: &str = "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=MUN, COEF_I
 
 #[test]
 fn bad_unilateral_definitions_are_located_errors() {
-    let cases: [(&str, &str, &str, &[&str]); 9] = [
+    let cases: [(&str, &str, &str, &[&str]); 10] = [
+        (
+            // A discrete zone's keyword in a LIAISON_UNIL zone says where
+            // it belongs, as a top-level one does (probe minor_messages).
+            "master_in_unil_zone",
+            FLOOR,
+            "ZONE=_F(GROUP_MA='SZZ', NOM_CMP='DY', COEF_MULT=MUN, COEF_IMPO=FH, GROUP_MA_MAIT='SZZ'))\nPLAF",
+            &[
+                "DEFI_CONTACT/ZONE/GROUP_MA_MAIT",
+                "keyword GROUP_MA_MAIT of ZONE is not allowed here: ZONE has it only when FORMULATION='DISCRETE'",
+                "master_in_unil_zone.comm:",
+            ],
+        ),
         (
             "dz_in_axis",
             FLOOR,

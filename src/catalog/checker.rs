@@ -87,6 +87,7 @@ pub fn check_program<D: AsRef<CommandSpec>>(
         seen_debut: false,
         fin_at: None,
         iterating: Vec::new(),
+        cmd_keywords: &[],
         captured: Vec::new(),
         current: Span::default(),
         prints: Vec::new(),
@@ -143,6 +144,9 @@ struct Checker<'a> {
     fin_at: Option<Span>,
     /// The identities of the lists the enclosing `for`s go through.
     iterating: Vec<u64>,
+    /// The keywords of the command being checked, for the hint on a
+    /// keyword of another variant of a factor keyword.
+    cmd_keywords: &'a [Keyword],
     /// The command-file variables FORMULEs read without a keyword: (the
     /// variable, the value the formula keeps, the formula's name), and
     /// the warning of a later rebinding, given at the end unless the
@@ -1028,6 +1032,7 @@ impl Checker<'_> {
         }
         let mut top = Args::new(cmd, "", span);
         let before_level = self.errors.len();
+        self.cmd_keywords = &spec.keywords;
         self.level(cmd, "", &spec.keywords, &spec.rules, given, &mut top);
         if !from_dict.is_empty() {
             for d in &mut self.errors[before_level..] {
@@ -1343,6 +1348,21 @@ impl Checker<'_> {
                 continue;
             }
             let kp = join(path, &k.name);
+            // A keyword of the same factor keyword under another block
+            // (GROUP_MA_MAIT in a ZONE of DEFI_CONTACT's LIAISON_UNIL:
+            // a ZONE of DISCRETE or CONTINUE has it).
+            let fact = path.rsplit('/').next().unwrap_or("");
+            let mut variants = Vec::new();
+            if !fact.is_empty() {
+                find_fact_variants(self.cmd_keywords, fact, &k.name, None, &mut variants);
+            }
+            let mut conds: Vec<String> = Vec::new();
+            for c in variants {
+                let d = describe_cond(c);
+                if !conds.contains(&d) {
+                    conds.push(d);
+                }
+            }
             if let Some(cond) = find_in_blocks(keywords, &k.name) {
                 self.errors.push(
                     Diagnostic::error(format!(
@@ -1354,6 +1374,18 @@ impl Checker<'_> {
                     .in_command(cmd)
                     .keyword(kp),
                 );
+            } else if !conds.is_empty() {
+                self.errors.push(
+                    Diagnostic::error(format!(
+                        "keyword {} of {fact} is not allowed here: {fact} has it only when {}",
+                        k.name,
+                        conds.join(", or when ")
+                    ))
+                    .at(k.span)
+                    .in_command(cmd)
+                    .keyword(kp),
+                );
+                unknown_given = true;
             } else {
                 let valid: Vec<&str> = active.iter().map(|a| a.name()).collect();
                 let mut d = Diagnostic::error(format!(
@@ -1943,6 +1975,33 @@ fn flatten<'k>(
 }
 
 /// Finds the condition of the (first) block that declares `name`.
+/// The conditions of the blocks under which a factor keyword `fact` of
+/// the command declares `name` (searched in `keywords` and their blocks;
+/// `within` the condition of the innermost enclosing block so far).
+fn find_fact_variants<'k>(
+    keywords: &'k [Keyword],
+    fact: &str,
+    name: &str,
+    within: Option<&'k Cond>,
+    out: &mut Vec<&'k Cond>,
+) {
+    for k in keywords {
+        match k {
+            Keyword::Factor(f) if f.name == fact => {
+                let declares = f.keywords.iter().any(|x| x.name() == name)
+                    || find_in_blocks(&f.keywords, name).is_some();
+                if let (true, Some(c)) = (declares, within) {
+                    out.push(c);
+                }
+            }
+            Keyword::Block(b) => {
+                find_fact_variants(&b.keywords, fact, name, Some(&b.condition), out)
+            }
+            _ => {}
+        }
+    }
+}
+
 fn find_in_blocks<'k>(keywords: &'k [Keyword], name: &str) -> Option<&'k Cond> {
     for k in keywords {
         if let Keyword::Block(b) = k {

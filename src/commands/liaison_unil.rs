@@ -16,7 +16,15 @@ const MAX_COMPONENTS: usize = 30;
 
 fn function(study: &Study, zone: &Args, key: &str, name: &str) -> Result<Coef, Diagnostic> {
     match study.concepts.data(name) {
-        Some(ConceptData::Function(f)) => Ok(Coef::Function((**f).clone())),
+        Some(ConceptData::Function(f)) => {
+            // Messages name the function by its NOM_RESU: the default
+            // TOUTRESU says nothing to the user, the concept's name does.
+            let mut f = (**f).clone();
+            if f.resu == "TOUTRESU" {
+                f.resu = name.to_string();
+            }
+            Ok(Coef::Function(f))
+        }
         Some(ConceptData::Formula(f)) => Ok(Coef::Formula((**f).clone())),
         _ => Err(zone.error(
             key,
