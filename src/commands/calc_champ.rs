@@ -790,6 +790,28 @@ fn element_fields(
                 gauss_out.push((format!("{prefix}_ELGA"), gauss));
             }
         }
+        // An option family's ELGA field, with its ELNO extrapolation and
+        // NOEU mean when asked.
+        let mut family_fields = |opts: &[&str],
+                                 prefix: &str,
+                                 key: &'static str,
+                                 g: GaussField|
+         -> Result<(), crate::diag::Diagnostic> {
+            if wants(opts, prefix, "ELNO") || wants(opts, prefix, "NOEU") {
+                let all: Vec<usize> = (0..g.ncmp()).collect();
+                let elno = elno_of(&g, &all, key)?;
+                if wants(opts, prefix, "NOEU") {
+                    nodal_out.push((format!("{prefix}_NOEU"), noeu(&elno)));
+                }
+                if wants(opts, prefix, "ELNO") {
+                    elno_out.push((format!("{prefix}_ELNO"), elno));
+                }
+            }
+            if wants(opts, prefix, "ELGA") {
+                gauss_out.push((format!("{prefix}_ELGA"), g));
+            }
+            Ok(())
+        };
         if wants_epsp {
             let depl = step.nodal.get("DEPL").ok_or_else(|| {
                 args.error(
@@ -811,34 +833,11 @@ fn element_fields(
             let sief = gauss_of("DEFORMATION", "SIEF_ELGA")?;
             let p = crate::result::energy::epsp(&eps, &sief, &elastic_small)
                 .map_err(located("DEFORMATION"))?;
-            if wants(&strain_opts, "EPSP", "ELNO") || wants(&strain_opts, "EPSP", "NOEU") {
-                let all: Vec<usize> = (0..p.ncmp()).collect();
-                let elno = elno_of(&p, &all, "DEFORMATION")?;
-                if wants(&strain_opts, "EPSP", "NOEU") {
-                    nodal_out.push(("EPSP_NOEU".into(), noeu(&elno)));
-                }
-                if wants(&strain_opts, "EPSP", "ELNO") {
-                    elno_out.push(("EPSP_ELNO".into(), elno));
-                }
-            }
-            if wants(&strain_opts, "EPSP", "ELGA") {
-                gauss_out.push(("EPSP_ELGA".into(), p));
-            }
+            family_fields(&strain_opts, "EPSP", "DEFORMATION", p)?;
         }
         if !energy_opts.is_empty() {
             let w = enel_of_step(args, "ENERGIE", name, step, mesh, model, &cells, &elastic)?;
-            if wants(&energy_opts, "ENEL", "ELNO") || wants(&energy_opts, "ENEL", "NOEU") {
-                let elno = elno_of(&w, &[0], "ENERGIE")?;
-                if wants(&energy_opts, "ENEL", "NOEU") {
-                    nodal_out.push(("ENEL_NOEU".into(), noeu(&elno)));
-                }
-                if wants(&energy_opts, "ENEL", "ELNO") {
-                    elno_out.push(("ENEL_ELNO".into(), elno));
-                }
-            }
-            if wants(&energy_opts, "ENEL", "ELGA") {
-                gauss_out.push(("ENEL_ELGA".into(), w));
-            }
+            family_fields(&energy_opts, "ENEL", "ENERGIE", w)?;
         }
         if !vari_opts.is_empty() {
             let vari = gauss_of("VARI_INTERNE", "VARI_ELGA")?;
