@@ -644,6 +644,9 @@ pub fn run(
     let mut energy = EnergyBalance::new(engine, result.tables.get(super::energy::TABLE_NAME));
     let mut folds = super::assembly::FoldWatch::default();
     let mut contact_energy_alarmed = false;
+    // Moving LIAISON_UNIL conditions work on the model: the energy they
+    // give is the obstacle's, not the scheme's, so no alarm blames it.
+    let unil_moves = unil.as_deref().is_some_and(|u| u.def.moves_with_time());
     let mut energy_overflow_alarmed = false;
     let mut observer = (!tl.observations.is_empty()).then(|| {
         let mut o = Observer::new(result.tables.get(super::observation::TABLE_NAME));
@@ -917,10 +920,7 @@ pub fn run(
                         energy_overflow_alarmed = true;
                     }
                 }
-                // Moving LIAISON_UNIL conditions work on the model: the
-                // energy they give is the obstacle's, not the scheme's.
-                let moving = unil.as_deref().is_some_and(|u| u.def.moves_with_time());
-                if !contact_energy_alarmed && !moving && command(engine) == "DYNA_NON_LINE" {
+                if !contact_energy_alarmed && !unil_moves && command(engine) == "DYNA_NON_LINE" {
                     if let Some(m) = contact_energy_alarm(&energy, t_end, engine.scheme.gamma) {
                         log(&m);
                         contact_energy_alarmed = true;
