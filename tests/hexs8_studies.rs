@@ -382,6 +382,16 @@ fn uniaxial_plastic_compression() {
     run_study("hexs8_compression");
 }
 
+/// SUIVI_DDL, OBSERVATION and DELTA_GRANDEUR read a HEXS8 cell's one
+/// Gauss point, not the hourglass-stress rows stored after it
+/// (tests/studies/hexs8_observe.comm: the MAX, MIN and POINT=1 of SIZZ
+/// over a uniaxially compressed column against the uniaxial answer).
+#[test]
+fn observation_reads_the_one_gauss_point_of_hexs8() {
+    let resu = run_study("hexs8_observe");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 3, "{resu}");
+}
+
 /// Bending of a cantilever driven by a DDL_IMPO ramp at its end
 /// (tests/studies/hexs8_cantilever.comm): HEXS20 and HEXS8 (2 and 4
 /// across) against beam theory in the command file; here, from the

@@ -128,7 +128,7 @@ pub struct Suivi {
 
 impl Suivi {
     /// The value of the column on `state`.
-    pub fn evaluate(&self, state: &State, ndpn: usize, cell_offsets: &[usize]) -> f64 {
+    pub fn evaluate(&self, state: &State, ndpn: usize, rows: &fields::GaussRows) -> f64 {
         let nodal = |v: &[f64]| {
             self.eval
                 .apply(self.entities.iter().map(|&n| v[n * ndpn + self.component]))
@@ -140,30 +140,25 @@ impl Suivi {
             SuiviField::ForcNoda => nodal(&state.fint),
             SuiviField::SiefElga | SuiviField::VariElga => {
                 let per_cell = self.entities.iter().filter_map(|&c| {
-                    let (a, b) = (cell_offsets[c], cell_offsets[c + 1]);
-                    if a == b {
+                    let n = rows.npoints(c);
+                    if n == 0 {
                         return None;
                     }
                     let value = |p: usize| {
-                        let st = &state.points[a + p];
                         if self.field == SuiviField::SiefElga {
-                            st.stress[self.component]
+                            rows.stress(&state.points, c, p, self.component)
                         } else {
-                            st.internal
-                                .as_slice()
-                                .get(self.component)
-                                .copied()
-                                .unwrap_or(0.0)
+                            rows.internal(&state.points, c, p, self.component)
                         }
                     };
                     Some(match self.eval_elga {
                         Reduce::Vale => self.eval.apply(
                             self.points
                                 .iter()
-                                .filter(|&&p| p >= 1 && p <= b - a)
+                                .filter(|&&p| p >= 1 && p <= n)
                                 .map(|&p| value(p - 1)),
                         ),
-                        r => r.apply((0..b - a).map(value)),
+                        r => r.apply((0..n).map(value)),
                     })
                 });
                 self.eval.apply(per_cell)
@@ -203,7 +198,13 @@ pub struct DeltaGrandeur {
 
 impl DeltaGrandeur {
     /// The largest |increment| of the component from `from` to `to`.
-    pub fn max_increment(&self, from: &State, to: &State, ndpn: usize) -> f64 {
+    pub fn max_increment(
+        &self,
+        from: &State,
+        to: &State,
+        ndpn: usize,
+        rows: &fields::GaussRows,
+    ) -> f64 {
         let c = self.component;
         match self.field {
             SuiviField::Depl => to
@@ -215,11 +216,12 @@ impl DeltaGrandeur {
                 .step_by(ndpn)
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max),
-            SuiviField::SiefElga => to
-                .points
-                .iter()
-                .zip(&from.points)
-                .map(|(a, b)| (a.stress[c] - b.stress[c]).abs())
+            SuiviField::SiefElga => (0..rows.ncells())
+                .flat_map(|cell| (0..rows.npoints(cell)).map(move |p| (cell, p)))
+                .map(|(cell, p)| {
+                    let at = |s: &State| rows.stress(&s.points, cell, p, c);
+                    (at(to) - at(from)).abs()
+                })
                 .fold(0.0, f64::max),
             _ => to
                 .points
@@ -640,7 +642,7 @@ pub fn run(
     let started = Instant::now();
     let mut summary = RunSummary::default();
     let ndpn = engine.asm.numbering.ndpn;
-    let offsets = engine.asm.cell_state_offsets.clone();
+    let offsets = fields::GaussRows::of(&engine.asm);
     let mut energy = EnergyBalance::new(engine, result.tables.get(super::energy::TABLE_NAME));
     let mut folds = super::assembly::FoldWatch::default();
     let mut contact_energy_alarmed = false;
@@ -876,7 +878,7 @@ pub fn run(
         let mut outcome = outcome;
         if outcome.is_ok() {
             let over = tl.deltas.iter().find_map(|d| {
-                let m = d.max_increment(&engine.committed, &engine.trial, ndpn);
+                let m = d.max_increment(&engine.committed, &engine.trial, ndpn, &offsets);
                 (m > d.vale_ref).then_some((d, m))
             });
             if let Some((d, m)) = over {
@@ -984,7 +986,7 @@ pub fn run(
                     let index = rep.iterations.saturating_sub(1);
                     // After the commit the trial state is the step's start.
                     let (from, to) = (&engine.trial, &engine.committed);
-                    let increment = |d: &DeltaGrandeur| d.max_increment(from, to, ndpn);
+                    let increment = |d: &DeltaGrandeur| d.max_increment(from, to, ndpn, &offsets);
                     adapted = grow(&mut pending, t_end, |jalon| {
                         adapter.next(tl, g, (t_end, dt, index), jalon, &increment)
                     });
@@ -1212,7 +1214,7 @@ fn step_line(
     tl: &TimeLoop,
     engine: &Engine,
     ndpn: usize,
-    offsets: &[usize],
+    offsets: &fields::GaussRows,
 ) -> String {
     let mut line = format!(
         "  {n:>6}  {t:>13.6e}  {dt:>10.3e}  {:>4}  {:>13.3e}{}  {:>14.3e}  {level:>5}",

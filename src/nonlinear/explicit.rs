@@ -1119,7 +1119,7 @@ fn run_on(
     // instant of the list (the sub-steps of the critical step are not
     // instants of the computation, as for ARCHIVAGE).
     let ndpn = engine.asm.numbering.ndpn;
-    let offsets = engine.asm.cell_state_offsets.clone();
+    let offsets = super::fields::GaussRows::of(&engine.asm);
     let mut observer = (!tl.observations.is_empty()).then(|| {
         let mut o = Observer::new(result.tables.get(OBSERVATION_TABLE));
         o.observe(&tl.observations, &engine.committed, None, ndpn, &offsets);
@@ -1458,7 +1458,7 @@ fn suivi_line(
     state: &super::State,
     step: usize,
     ndpn: usize,
-    offsets: &[usize],
+    offsets: &super::fields::GaussRows,
 ) -> String {
     let mut line = format!("  SUIVI_DDL  {step:>6}  {:>13.6e}", state.t);
     for s in &tl.suivi {

@@ -7,6 +7,62 @@ use crate::law::InternalVars;
 use crate::model::spec::Formulation;
 use crate::result::{GaussField, NodalField};
 
+/// Which of the state's rows are the Gauss points a user addresses
+/// (EVAL_ELGA and POINT of SUIVI_DDL and OBSERVATION), cell by cell: a
+/// HEXS8 cell stores its centre point and then 12 rows of hourglass
+/// stresses, which are not points: [`gauss`] shows them as the FSTAB
+/// components of the one point, and so does this view.
+#[derive(Debug, Clone)]
+pub struct GaussRows {
+    offsets: Vec<usize>,
+    hexs8: Vec<bool>,
+}
+
+impl GaussRows {
+    pub fn of(asm: &Assembler) -> Self {
+        let offsets = asm.cell_state_offsets.clone();
+        let mut hexs8 = vec![false; offsets.len().saturating_sub(1)];
+        for e in &asm.elements {
+            hexs8[e.cell] = e.spec.is_hexs8();
+        }
+        GaussRows { offsets, hexs8 }
+    }
+
+    pub fn ncells(&self) -> usize {
+        self.hexs8.len()
+    }
+
+    /// The number of Gauss points of cell `c` (0 outside the model).
+    pub fn npoints(&self, c: usize) -> usize {
+        let n = self.offsets[c + 1] - self.offsets[c];
+        if self.hexs8[c] {
+            n.min(1)
+        } else {
+            n
+        }
+    }
+
+    /// SIEF_ELGA component `k` (in [`sief_components`] order) at point `p`
+    /// (0-based) of cell `c`.
+    pub fn stress(&self, points: &[PointState], c: usize, p: usize, k: usize) -> f64 {
+        let (a, b) = (self.offsets[c], self.offsets[c + 1]);
+        if k < 6 {
+            points[a + p].stress[k]
+        } else if self.hexs8[c] {
+            hexs8::hourglass_stresses(&points[a..b])[k - 6]
+        } else {
+            0.0
+        }
+    }
+
+    /// VARI_ELGA component `k` at point `p` of cell `c` (0 beyond the
+    /// cell's own internal variables, as [`gauss`] pads them).
+    pub fn internal(&self, points: &[PointState], c: usize, p: usize, k: usize) -> f64 {
+        let st = &points[self.offsets[c] + p];
+        st.internal.as_slice().get(k).copied().unwrap_or(0.0)
+    }
+}
+
 /// Nodal field of a full vector: components = the model's dofs, nodes of
 /// no element absent.
 pub fn nodal(asm: &Assembler, names: &[String], v: &[f64]) -> NodalField {

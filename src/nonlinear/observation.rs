@@ -95,7 +95,7 @@ impl Observer {
         state: &State,
         computed: Option<usize>,
         ndpn: usize,
-        cell_offsets: &[usize],
+        cell_offsets: &super::fields::GaussRows,
     ) {
         for o in observations {
             let due = match computed {
@@ -108,7 +108,13 @@ impl Observer {
         }
     }
 
-    fn rows(&mut self, o: &Observation, state: &State, ndpn: usize, cell_offsets: &[usize]) {
+    fn rows(
+        &mut self,
+        o: &Observation,
+        state: &State,
+        ndpn: usize,
+        cell_offsets: &super::fields::GaussRows,
+    ) {
         let nodal = o.nodal();
         for (cmp, s) in &o.columns {
             let mut base: Vec<(&str, Cell)> = vec![
@@ -140,7 +146,7 @@ impl Observer {
                     continue;
                 }
                 let c = s.entities[i];
-                let npoints = cell_offsets[c + 1] - cell_offsets[c];
+                let npoints = cell_offsets.npoints(c);
                 for &p in s.points.iter().filter(|&&p| p >= 1 && p <= npoints) {
                     let at = Suivi {
                         points: vec![p],
