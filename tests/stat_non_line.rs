@@ -298,9 +298,29 @@ fn steps_are_cut_and_a_static_result_is_continued() {
 /// link active, the vertical translation held by nothing), the run stops
 /// on its step and says which rigid-body mode only the contact could
 /// hold; the alarm is logged before the first step.
+///
+/// The contact surfaces need not be in the model (code_aster's zzzz237a
+/// models only its two blocks): with AFFE_MODELE on the volumes alone the
+/// same checks pass; their nodes move with the volumes under them.
 #[test]
 fn discrete_contact_carries_the_weight_statically() {
-    let (_, mess) = run_study_mess("stat_contact");
+    let (resu, mess) = run_study_mess("stat_contact");
+    let volumes = common::run_variant(
+        &dir(),
+        "stat_non_line_ok",
+        "stat_contact",
+        "surfaces_outside_model",
+        "AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))",
+        "AFFE=_F(GROUP_MA=('BLOC', 'SOCLE'), PHENOMENE='MECANIQUE', MODELISATION='3D'))",
+    );
+    let volumes = common::assert_all_ok(&volumes, "surfaces_outside_model.resu");
+    let checks = |r: &str| -> Vec<String> {
+        r.lines()
+            .filter(|l| l.contains("ANALYTIQUE"))
+            .map(String::from)
+            .collect()
+    };
+    assert_eq!(checks(&volumes), checks(&resu));
     assert!(
         mess.contains("alarm: the rigid-body mode(s) (translation DZ of the part BLOC) are held by no DDL_IMPO, only by the contact"),
         "{mess}"
@@ -354,5 +374,28 @@ fn friction_holds_a_pulled_block_and_a_pull_beyond_it_is_explained() {
                 "pull_beyond_mu.comm:44:1",
             ],
         )],
+    );
+}
+
+/// POST_RELEVE_T keeps the first 16 characters of a longer INTITULE, as
+/// code_aster's K16 column does (its own zzzz237a titles a table 'Forces
+/// nodales ABCD'), and says so in the .mess instead of stopping the study.
+#[test]
+fn a_long_intitule_is_cut_to_16_characters() {
+    let run = common::run_variant(
+        &dir(),
+        "stat_non_line_ok",
+        "stat_contact",
+        "long_intitule",
+        "INTITULE='EN1'",
+        "INTITULE='Forces contact EN1'",
+    );
+    let resu = common::assert_all_ok(&run, "long_intitule.resu");
+    assert!(resu.contains("Forces contact E "), "{resu}");
+    assert!(!resu.contains("Forces contact EN1"), "{resu}");
+    let mess = run.file("long_intitule.mess");
+    assert!(
+        mess.contains("INTITULE 'Forces contact EN1' is kept as 'Forces contact E' (16 characters"),
+        "{mess}"
     );
 }

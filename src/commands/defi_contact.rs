@@ -15,7 +15,7 @@ use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
 use crate::diag::Diagnostic;
 use crate::mesh::Mesh;
-use crate::model::{CellRole, Dof, Model};
+use crate::model::{Dof, Model};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -372,9 +372,11 @@ fn check_outward(mesh: &Mesh, zone: &Args, key: &str, k: usize) -> Result<(), Di
     ))
 }
 
-/// A contact surface is one cell group whose cells all are boundary cells
-/// of the model (edges in AXIS, faces in 3D): the contact elements are
-/// built on them.
+/// A contact surface is one cell group of boundary cells (edges in 2D,
+/// faces in 3D) whose nodes all move with the model. The cells themselves
+/// need not be in AFFE_MODELE: as in code_aster (zzzz237a models only its
+/// two blocks), a surface is geometry, the contact terms act on the dofs
+/// of its nodes.
 fn check_surface(
     mesh: &Mesh,
     model: &Model,
@@ -387,6 +389,7 @@ fn check_surface(
         return Err(zone.error(key, "one cell group is expected"));
     };
     let dim = model.dofs.len() - 1;
+    let moves = model.node_mask(mesh);
     for &c in &mesh.cell_groups[group] {
         let kind = mesh.cells[c].kind;
         if kind.dim() != dim {
@@ -398,11 +401,13 @@ fn check_surface(
                 ),
             ));
         }
-        if model.cells[c] == CellRole::None {
+        if let Some(&n) = mesh.cells[c].nodes.iter().find(|&&n| !moves[n]) {
             return Err(zone.error(
                 key,
                 format!(
-                    "the cells of the contact surface {group} are not in the model {model_name}: add them to an AFFE of AFFE_MODELE"
+                    "the node N{} of the contact surface {group} (cell M{}) is on no cell of the model {model_name}: contact acts on the displacements of the surface's nodes; add the body under it to an AFFE of AFFE_MODELE",
+                    n + 1,
+                    c + 1
                 ),
             ));
         }

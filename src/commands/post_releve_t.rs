@@ -190,6 +190,13 @@ type Row = Vec<(String, Cell)>;
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut rows: Vec<Row> = Vec::new();
     for occ in args.facts("ACTION") {
+        let given = occ.text("INTITULE").unwrap_or_default();
+        let kept = intitule(occ);
+        if kept.len() < given.len() {
+            study.log(format!(
+                "  POST_RELEVE_T: INTITULE '{given}' is kept as '{kept}' (16 characters, as code_aster's INTITULE column)"
+            ));
+        }
         extract(study, occ, &mut rows)?;
     }
     let mut table = Table::new();
@@ -226,6 +233,17 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             .map_err(|e| table_error(args, "ACTION", e))?;
     }
     Ok(Some(ConceptData::Table(Box::new(table))))
+}
+
+/// The INTITULE of an occurrence as the table holds it: code_aster reads
+/// it into 16 characters (its K16 column) and so cuts a longer title,
+/// silently (its own zzzz237a titles a table 'Forces nodales ABCD').
+fn intitule(occ: &Args) -> String {
+    occ.text("INTITULE")
+        .unwrap_or_default()
+        .chars()
+        .take(16)
+        .collect()
 }
 
 /// What an ACTION occurrence computes from each nodal field.
@@ -299,13 +317,7 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
             return Err(occ.not_implemented(k, unsupported_why(k)));
         }
     }
-    let intitule = occ.text("INTITULE").unwrap_or_default().to_string();
-    if intitule.chars().count() > 16 {
-        return Err(occ.error(
-            "INTITULE",
-            format!("INTITULE '{intitule}' is longer than the 16 characters code_aster keeps"),
-        ));
-    }
+    let intitule = intitule(occ);
     if occ.has("RESULTAT") {
         let (rname, res) = result_of(study, occ, "RESULTAT")?;
         let mesh = mesh_of_result(study, occ, "RESULTAT", rname, res)?;
