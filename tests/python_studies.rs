@@ -533,6 +533,30 @@ fn code_aster_files_meet_clear_messages() {
         ds[0].notes
     );
 
+    // Keywords code_aster removed: the note says what replaced them.
+    for (full, what, by) in [
+        (
+            "DEBUT()\nR = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=C),\n\
+             COMP_INCR=_F(RELATION='VMIS_ISOT_LINE'), INCREMENT=_F(LIST_INST=L))\nFIN()\n",
+            "COMP_INCR",
+            "it is now COMPORTEMENT",
+        ),
+        (
+            "DEBUT()\nC = AFFE_CHAR_MECA(MODELE=MO, LIAISON_UNILATER=_F(GROUP_NO='A', NOM_CMP='DY',\n\
+             COEF_IMPO=0., COEF_MULT=1.))\nFIN()\n",
+            "LIAISON_UNILATER",
+            "DEFI_CONTACT(FORMULATION='LIAISON_UNIL'",
+        ),
+    ] {
+        let ds = check(full).expect_err(what);
+        let d = ds
+            .iter()
+            .find(|d| d.message.starts_with(&format!("unknown keyword {what}")))
+            .unwrap_or_else(|| panic!("{ds:?}"));
+        assert!(d.notes.iter().any(|n| n.contains(by)), "{:?}", d.notes);
+        assert!(d.suggestion.is_none(), "{:?}", d.suggestion);
+    }
+
     let full = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\n\
                 MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\n\
                 CH = AFFE_CHAR_MECA(MODELE=MO, LIAISON_DDL=_F(GROUP_NO=('A', 'B'), DDL=('DX', 'DX'), COEF_MULT=(1., -1.), COEF_IMPO=0.))\n\

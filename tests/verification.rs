@@ -3039,6 +3039,25 @@ fn elas_initial_displacement_is_stressed() {
         .filter(|l| l.trim_start().starts_with("OK ") && l.contains("ANALYTIQUE"))
         .count();
     assert_eq!(oks, 28, "{resu}");
+    // ITER_GLOB_MAXI=0 acts as 1 (code_aster's nmcvgn stops at row 0, the
+    // prediction, which solves this linear spring exactly): the 3D
+    // Newmark run gives the same checks (code_aster's sdld32a uses 0).
+    let zero = common::run_variant(
+        &dir(),
+        "verif_iter_zero",
+        "elas_initial_depl",
+        "iter_glob_maxi_zero",
+        "SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))",
+        "SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'),\n                  CONVERGENCE=_F(ITER_GLOB_MAXI=0))",
+    );
+    let zero = common::assert_all_ok(&zero, "iter_glob_maxi_zero.resu");
+    let checks = |r: &str| -> Vec<String> {
+        r.lines()
+            .filter(|l| !l.starts_with("#ASTER"))
+            .map(String::from)
+            .collect()
+    };
+    assert_eq!(checks(&zero), checks(&resu));
 }
 
 /// HHT's ALPHA outside ]-1, 0] runs, as code_aster accepts it (only

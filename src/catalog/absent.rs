@@ -96,6 +96,38 @@ const NOT_IMPLEMENTED: &[&str] = &[
     "THER_NON_LINE",
 ];
 
+/// Keywords that code_aster itself removed or renamed, by command ("" for
+/// every command), with what replaced them: a file written for an older
+/// code_aster got a bare "unknown keyword" (probes h_si and h_unil over
+/// code_aster's own test files of 2008-2013).
+const REMOVED_KEYWORDS: &[(&str, &str, &str)] = &[
+    ("", "COMP_ELAS", "COMPORTEMENT (RELATION='ELAS', ...)"),
+    ("", "COMP_INCR", "COMPORTEMENT"),
+    (
+        "AFFE_CHAR_MECA",
+        "CONTACT",
+        "DEFI_CONTACT, given to STAT_NON_LINE / DYNA_NON_LINE by CONTACT=",
+    ),
+    (
+        "AFFE_CHAR_MECA",
+        "LIAISON_UNILATER",
+        "DEFI_CONTACT(FORMULATION='LIAISON_UNIL', ZONE=_F(...)), given to STAT_NON_LINE / DYNA_NON_LINE by CONTACT=",
+    ),
+    ("TEST_RESU", "VALE", "VALE_CALC (and VALE_REFE with REFERENCE)"),
+    ("TEST_TABLE", "VALE", "VALE_CALC (and VALE_REFE with REFERENCE)"),
+];
+
+/// What became of keyword `name` of `command` in code_aster, when
+/// code_aster removed or renamed it.
+pub fn removed_keyword(command: &str, name: &str) -> Option<String> {
+    REMOVED_KEYWORDS
+        .iter()
+        .find(|(c, k, _)| (c.is_empty() || *c == command) && *k == name)
+        .map(|(_, _, by)| {
+            format!("{name} is an old code_aster keyword, removed from code_aster itself: it is now {by}")
+        })
+}
+
 /// What a call of `name` is, when it is a code_aster command aster lacks.
 pub fn describe(name: &str) -> Option<String> {
     if let Some((_, by)) = OBSOLETE.iter().find(|(n, _)| *n == name) {

@@ -1400,8 +1400,13 @@ impl Checker<'_> {
                 .at(k.span)
                 .in_command(cmd)
                 .keyword(kp);
-                d.suggestion = closest(&k.name, &valid);
-                d.choices = valid.iter().map(|s| s.to_string()).collect();
+                match super::absent::removed_keyword(cmd, &k.name) {
+                    Some(note) => d.notes.push(note),
+                    None => {
+                        d.suggestion = closest(&k.name, &valid);
+                        d.choices = valid.iter().map(|s| s.to_string()).collect();
+                    }
+                }
                 self.errors.push(d);
                 unknown_given = true;
             }

@@ -322,7 +322,7 @@ fn newton_with(reac_iter: i64) -> Keyword {
                 .kw(),
             text("PREDICTION")
                 .into(&["DEPL_CALCULE", "TANGENTE", "ELASTIQUE", "EXTRAPOLE"])
-                .doc("prediction matrix; absent: the value of MATRICE")
+                .doc("prediction matrix; absent: the value of MATRICE (the only value computed: DEPL_CALCULE, EXTRAPOLE or another matrix stop as not implemented yet)")
                 .kw(),
             text("MATRICE")
                 .into(&["TANGENTE", "ELASTIQUE"])
@@ -392,7 +392,8 @@ pub fn c_convergence() -> Keyword {
                 .kw(),
             int("ITER_GLOB_MAXI")
                 .default(i(10))
-                .doc("maximum Newton iterations per step")
+                .min_val(0.0)
+                .doc("maximum Newton iterations per step (0 acts as 1: the prediction only)")
                 .kw(),
             int("ITER_GLOB_ELAS").default(i(25)).kw(),
             oui_non("ARRET", "OUI")
@@ -583,7 +584,7 @@ pub fn c_rech_lineaire() -> Keyword {
             real("RHO_EXCL").default(r(9e-3)).min_val(0.0).kw(),
         ],
     )
-    .doc("line search (forbidden with continuous contact, alarm with discrete contact)")
+    .doc("line search (code_aster: forbidden with continuous contact, an alarm with discrete contact); not implemented yet in STAT_NON_LINE and implicit DYNA_NON_LINE (a located error at the run), accepted without effect by an explicit scheme as code_aster")
     .kw()
 }
 

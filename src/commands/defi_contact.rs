@@ -561,6 +561,7 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             text(name)
                 .into(&["AUTO", "FIXE", "VECT_Y"])
                 .default(t("AUTO"))
+                .doc("normal of the surface; only 'AUTO' (the cells' own) is computed: FIXE and VECT_Y stop as not implemented yet")
                 .kw(),
             block(
                 if name == "VECT_MAIT" {
@@ -589,7 +590,7 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             text("APPARIEMENT")
                 .into(appariement)
                 .default(t("MAIT_ESCL"))
-                .doc("slave nodes projected on master cells")
+                .doc("slave nodes projected on master cells; NODAL pairing: not implemented yet")
                 .kw(),
             text("GROUP_MA_MAIT").doc("master surface (one group)").kw(),
             text("MAILLE_MAIT").many().hidden().kw(),
@@ -598,7 +599,7 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             text("NORMALE")
                 .into(&["MAIT", "MAIT_ESCL", "ESCL"])
                 .default(t("MAIT"))
-                .doc("surface giving the normal")
+                .doc("surface giving the normal; only 'MAIT' is computed (MAIT_ESCL, ESCL: not implemented yet)")
                 .kw(),
         ],
         vect("VECT_MAIT", "MAIT_FIXE", "MAIT_VECT_Y"),
@@ -607,6 +608,7 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             text("TYPE_PROJECTION")
                 .into(&["ORTHOGONALE", "FIXE"])
                 .default(t("ORTHOGONALE"))
+                .doc("projection of the slave nodes; only 'ORTHOGONALE' is computed (FIXE: not implemented yet)")
                 .kw(),
             block(
                 "b_appa_fixe",
@@ -636,7 +638,7 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             text("SANS_MAILLE").many().hidden().kw(),
             text("SANS_GROUP_MA").many().kw(),
             oui_non("RESOLUTION", "OUI")
-                .doc("'NON': pairing and interpenetration check only")
+                .doc("'NON' (pairing and interpenetration check only): not implemented yet")
                 .kw(),
             block(
                 "b_verif",

@@ -105,7 +105,7 @@ fn schema_temps() -> Keyword {
                     "THETA_METHODE",
                     "KRENK",
                 ])
-                .doc("time integration scheme (DIFF_CENT, TCHAMWA explicit; the others implicit)")
+                .doc("time integration scheme (DIFF_CENT, TCHAMWA explicit; NEWMARK, HHT implicit; THETA_METHODE and KRENK stop as not implemented yet)")
                 .kw(),
             real("COEF_MASS_SHIFT").default(r(0.0)).kw(),
             block(
@@ -906,10 +906,11 @@ fn convergence_of(
                 c.resi_glob_rela.unwrap_or(0.0)
             ));
         }
-        let it = o.int("ITER_GLOB_MAXI").unwrap_or(10);
-        if it < 1 {
-            return Err(o.error("ITER_GLOB_MAXI", "ITER_GLOB_MAXI must be >= 1"));
-        }
+        // code_aster's nmcvgn stops at row `iterat` when iterat + 1 >=
+        // ITER_GLOB_MAXI, so 0 stops at row 0, the prediction, as 1 does
+        // (its sdld32a gives 0 for a linear oscillator); the catalogue
+        // refuses negative values.
+        let it = o.int("ITER_GLOB_MAXI").unwrap_or(10).max(1);
         c.iter_glob_maxi = it as usize;
         c.arret = o.text("ARRET").unwrap_or("OUI") == "OUI";
     }
