@@ -157,6 +157,54 @@ fn cell_fields_round_trip() {
     assert_eq!(read_nodal_fields(&p, None).unwrap(), vec![nodal_f]);
 }
 
+/// A cell field absent (NaN) on every cell of a type at every step, as
+/// the mean per cell of a Gauss field on skin cells (no point), gets no
+/// block of that type in the file rather than a block of NaN; a type with
+/// one defined value keeps its whole block. The reader gives the absent
+/// cells NaN again.
+#[test]
+fn cells_without_the_field_get_no_block() {
+    let m = all_types_mesh();
+    let n = CellType::ALL.len();
+    let values = |k: f64| -> Vec<f64> {
+        (0..2 * n)
+            .map(|i| if i < 2 { f64::NAN } else { k + i as f64 })
+            .collect()
+    };
+    let ef = ElemField {
+        name: "R_______SIEF".into(),
+        components: vec!["SIXX".into(), "SIYY".into()],
+        steps: vec![
+            FieldStep {
+                numdt: 1,
+                time: 1.0,
+                values: values(0.0),
+            },
+            FieldStep {
+                numdt: 2,
+                time: 2.0,
+                values: values(10.0),
+            },
+        ],
+    };
+    let p = scratch("resu_absent_cells.med");
+    write_result_fields(&p, &m, &[], std::slice::from_ref(&ef)).unwrap();
+    let back = read_elem_fields(&p, None).unwrap();
+    assert_eq!(back.len(), 1);
+    for (a, b) in back[0].steps.iter().zip(&ef.steps) {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&a.values), bits(&b.values));
+    }
+    let first = m.cells[0].kind.med_name();
+    let f = hdf5::File::open(&p).unwrap();
+    let field = f.group("CHA/R_______SIEF").unwrap();
+    let steps = field.member_names().unwrap();
+    assert_eq!(steps.len(), 2, "{steps:?}");
+    let blocks = field.group(&steps[0]).unwrap().member_names().unwrap();
+    assert!(!blocks.contains(&format!("MAI.{first}")), "{blocks:?}");
+    assert_eq!(blocks.len(), n - 1, "{blocks:?}");
+}
+
 #[test]
 fn writer_refuses_bad_input_without_creating_a_file() {
     let m = all_types_mesh();

@@ -208,6 +208,16 @@ fn write_field(
     h5util::put_str(ctx, &fg, "NOM", &names)?;
     h5util::put_str(ctx, &fg, "UNI", &" ".repeat(16 * nco))?;
     h5util::put_str(ctx, &fg, "UNT", "")?;
+    // Cells of a type where the field is absent at every step (NaN: the
+    // skin cells of a Gauss field's mean per cell, which have no point)
+    // get no block, as code_aster writes a field only where it is
+    // defined, rather than a block of NaN.
+    let defined = |ids: &[usize]| {
+        steps.iter().any(|s| {
+            ids.iter()
+                .any(|&i| s.values[i * nco..(i + 1) * nco].iter().any(|v| !v.is_nan()))
+        })
+    };
     for s in steps {
         let sg = h5util::group(ctx, &fg, &step_name(i64::from(s.numdt), -1))?;
         h5util::put_int(ctx, &sg, "NDT", i64::from(s.numdt))?;
@@ -221,7 +231,7 @@ fn write_field(
                 write_block(ctx, &sg, "NOE", &ids, &s.values, nco)?;
             }
             Support::Cells(blocks) | Support::CellMeans(blocks) => {
-                for (t, ids) in blocks.iter() {
+                for (t, ids) in blocks.iter().filter(|(_, ids)| defined(ids)) {
                     write_block(
                         ctx,
                         &sg,
