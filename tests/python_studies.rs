@@ -569,11 +569,11 @@ fn code_aster_files_meet_clear_messages() {
         ds[0].message
     );
 
-    let (m, l, c) = error("MA = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)");
+    let (m, l, c) = error("MA = LIRE_MAILLAGE(FORMAT='GIBI', UNITE=20)");
     assert_eq!(
         (m.as_str(), l, c),
         (
-            "not implemented yet: LIRE_MAILLAGE/FORMAT='ASTER' (only FORMAT='MED' is read)",
+            "not implemented yet: LIRE_MAILLAGE/FORMAT='GIBI' (FORMAT='MED' and 'ASTER' are read)",
             1,
             27
         )

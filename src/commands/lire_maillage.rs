@@ -16,7 +16,7 @@ pub fn def() -> CommandDef {
             text("FORMAT")
                 .into(&["ASTER", "GIBI", "GMSH", "IDEAS", "MED"])
                 .default(t("MED"))
-                .doc("file format")
+                .doc("file format: MED, or code_aster's own (.mail) with ASTER; GIBI, GMSH, IDEAS are not read")
                 .kw(),
             int("UNITE")
                 .default(i(20))
@@ -72,9 +72,9 @@ fn other_formats(
         .iter()
         .filter(|(k, _)| k.name == "FORMAT")
         .filter_map(|(_, v)| match &v.v {
-            PyVal::Str(f) if f != "MED" && ["ASTER", "GIBI", "GMSH", "IDEAS"].contains(&f.as_str()) => Some(
+            PyVal::Str(f) if ["GIBI", "GMSH", "IDEAS"].contains(&f.as_str()) => Some(
                 crate::diag::Diagnostic::error(format!(
-                    "not implemented yet: LIRE_MAILLAGE/FORMAT='{f}' (only FORMAT='MED' is read)"
+                    "not implemented yet: LIRE_MAILLAGE/FORMAT='{f}' (FORMAT='MED' and 'ASTER' are read)"
                 ))
                 .at(v.span)
                 .in_command("LIRE_MAILLAGE")
@@ -86,11 +86,13 @@ fn other_formats(
         .collect()
 }
 
-/// Reads the MED file behind the logical unit (only FORMAT='MED').
-fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
-    if args.text("FORMAT") != Some("MED") {
-        return Err(args.not_implemented("FORMAT", "only FORMAT='MED' is read"));
-    }
+/// Reads the MED or code_aster (`.mail`) file behind the logical unit.
+fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
+    let aster = match args.text("FORMAT") {
+        Some("MED") => false,
+        Some("ASTER") => true,
+        _ => return Err(args.not_implemented("FORMAT", "FORMAT='MED' and 'ASTER' are read")),
+    };
     let unit = args.int("UNITE").unwrap_or(20);
     let path = study.unit_path(unit);
     if !path.is_file() {
@@ -114,8 +116,23 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
         }
         return Err(d);
     }
-    let (mesh, undescribed) = crate::medio::read_mesh_with_notes(&path, args.text("NOM_MED"))
-        .map_err(|e| {
+    let (mesh, undescribed) = if aster {
+        let bytes = std::fs::read(&path)
+            .map_err(|e| args.error("UNITE", format!("cannot read '{}': {e}", path.display())))?;
+        let text = String::from_utf8_lossy(&bytes);
+        let (mesh, alarms) =
+            crate::mesh::mail::parse(&text, result.unwrap_or("MAIL")).map_err(|e| {
+                args.error(
+                    "FORMAT",
+                    format!("the code_aster mesh file '{}', {e}", path.display()),
+                )
+            })?;
+        for a in alarms {
+            study.log(format!("<A> <LIRE_MAILLAGE> {a}"));
+        }
+        (mesh, Vec::new())
+    } else {
+        crate::medio::read_mesh_with_notes(&path, args.text("NOM_MED")).map_err(|e| {
             args.error(
                 if args.given("NOM_MED") {
                     "NOM_MED"
@@ -124,7 +141,8 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
                 },
                 e.to_string(),
             )
-        })?;
+        })?
+    };
     study.log(format!(
         "    mesh '{}' read from {}: {} nodes, {} cells",
         mesh.name,

@@ -304,6 +304,7 @@ impl Mesh {
     }
 }
 
+pub mod mail;
 pub mod ops;
 pub mod quadrature;
 pub mod shape;

@@ -1,0 +1,112 @@
+//! LIRE_MAILLAGE(FORMAT='ASTER'): code_aster's own mesh format
+//! (`aster::mesh::mail`). A study on a mixed HEXA8/PENTA6 mesh written in
+//! code_aster's orientation against the uniaxial answer, the cells'
+//! orientation after reading, and located errors on broken files.
+
+use aster::mesh::mail::parse;
+use aster::mesh::ops::jacobian_dets;
+use aster::mesh::CellType;
+
+mod common;
+
+/// tests/verification/mail_column.comm: a uniaxial homogeneous state on a
+/// HEXA8 under two PENTA6 read from a `.mail` file, DZ, DX, DY of the top
+/// corner and SIZZ everywhere against the closed form (1e-10), and the
+/// .mess says what the file held.
+#[test]
+fn a_code_aster_mesh_file_runs_a_study() {
+    let run = common::run_study("tests/verification/mail_column.comm", "mail_column");
+    let resu = common::assert_all_ok(&run, "mail_column.resu");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 5, "{resu}");
+    let mess = run.file("mail_column.mess");
+    assert!(mess.contains("mesh 'MA' read from"), "{mess}");
+    assert!(mess.contains("PENTA6   2"), "{mess}");
+    // N1..N12 and M1..M5 in file order: nothing to say about names.
+    assert!(!mess.contains("names of the file are not kept"), "{mess}");
+}
+
+const CUBE: &str = "COOR_3D\n\
+    A 0 0 0\n B 1 0 0\n C 1 1 0\n D 0 1 0\n\
+    E 0 0 1\n F 1 0 1\n G 1 1 1\n H 0 1 1\nFINSF\n\
+    HEXA8\n CUBE A B C D E F G H\nFINSF\n\
+    TETRA4\n T1 A B D E\nFINSF\n\
+    PENTA6\n P1 A B D E F H\nFINSF\n\
+    GROUP_MA\n TOUT CUBE T1 P1\nFINSF\n\
+    GROUP_NO NOM=BASE\n A B C\n D\nFINSF\nFIN\n";
+
+/// Cells listed in code_aster's orientation (the base turning
+/// counter-clockwise seen from the rest of the cell, as VTK) come out in
+/// MED order: every Jacobian positive. The names of the file are not kept,
+/// and the reader says which k-th node or cell a name became.
+#[test]
+fn linear_3d_cells_come_out_in_med_order() {
+    let (mesh, alarms) = parse(CUBE, "CUBE").unwrap();
+    assert_eq!(mesh.nnodes(), 8);
+    assert_eq!(mesh.dim, 3);
+    let kinds: Vec<CellType> = mesh.cells.iter().map(|c| c.kind).collect();
+    assert_eq!(kinds, [CellType::Hexa8, CellType::Tetra4, CellType::Penta6]);
+    for cell in &mesh.cells {
+        let dets = jacobian_dets(&mesh, cell).unwrap();
+        assert!(dets.iter().all(|&d| d > 0.0), "{:?} {dets:?}", cell.kind);
+    }
+    assert_eq!(mesh.cell_groups["TOUT"], vec![0, 1, 2]);
+    assert_eq!(mesh.node_groups["BASE"], vec![0, 1, 2, 3]);
+    assert_eq!(alarms.len(), 2, "{alarms:?}");
+    assert!(alarms[0].contains("the file's A is N1"), "{alarms:?}");
+    assert!(alarms[1].contains("the file's CUBE is M1"), "{alarms:?}");
+}
+
+/// Broken files: the line and what is wrong, never a panic.
+#[test]
+fn broken_files_name_the_line() {
+    let cases: &[(&str, usize, &str)] = &[
+        ("COOR_2D\n N1 0 0\n", 1, "not closed by FINSF"),
+        ("COOR_2D\n N1 0 0\nFINSF\n", 3, "does not end with FIN"),
+        (
+            "COOR_2D\n N1 0 zero\nFINSF\nFIN\n",
+            2,
+            "'zero' is not a number",
+        ),
+        (
+            "COOR_2D\n N1 0 0\n N1 1 0\nFINSF\nFIN\n",
+            3,
+            "node N1 is defined twice",
+        ),
+        ("COOR_2D\n N1 0 0 N2\nFINSF\nFIN\n", 2, "the last one has 1"),
+        (
+            "COOR_2D\n N1 0 0\n N2 1 0\nFINSF\nSEG2\n S1 N1 N3\nFINSF\nFIN\n",
+            6,
+            "names the node N3",
+        ),
+        (
+            "COOR_3D\n N1 0 0 0\nFINSF\nHEXA20\nFINSF\nFIN\n",
+            4,
+            "not implemented yet: HEXA20",
+        ),
+        (
+            "COOR_3D\n N1 0 0 0\nFINSF\nPYRAM5\nFINSF\nFIN\n",
+            4,
+            "not implemented yet: cells of type PYRAM5",
+        ),
+        (
+            "COOR_3D\n N1 0 0 0\nFINSF\nHEXA9\nFINSF\nFIN\n",
+            4,
+            "unknown sub-file HEXA9",
+        ),
+        (
+            "COOR_2D\n N1 0 0\nFINSF\nGROUP_NO\n G N1 N2\nFINSF\nFIN\n",
+            5,
+            "names the node N2",
+        ),
+        (
+            "COOR_2D\n N1 0 0\nFINSF\nCOOR_3D\n N2 0 0 0\nFINSF\nFIN\n",
+            4,
+            "COOR_2D and COOR_3D",
+        ),
+    ];
+    for &(text, line, what) in cases {
+        let e = parse(text, "M").unwrap_err();
+        assert_eq!(e.line, line, "{text}: {e}");
+        assert!(e.message.contains(what), "{text}: {e}");
+    }
+}
