@@ -3060,6 +3060,27 @@ fn elas_initial_displacement_is_stressed() {
     assert_eq!(checks(&zero), checks(&resu));
 }
 
+/// The swap to RESI_GLOB_MAXI when the loads vanish works at every
+/// zero-load instant of a run, not only the first (zero_load_twice.comm:
+/// a pressure cycled 0, P, 0, P, 0 on an elastic column; DZ against the
+/// uniaxial answer at t = 2, 3, 4); both zero-load steps are marked
+/// swapped (`*`) in the .mess.
+#[test]
+fn the_swap_to_resi_glob_maxi_works_at_every_zero_load_instant() {
+    let run = common::run_study(
+        "tests/verification/zero_load_twice.comm",
+        "verif_zero_load_twice",
+    );
+    let resu = common::assert_all_ok(&run, "zero_load_twice.resu");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 3, "{resu}");
+    let mess = run.file("zero_load_twice.mess");
+    let swapped = mess
+        .lines()
+        .filter(|l| l.split_whitespace().any(|w| w.ends_with('*')))
+        .count();
+    assert_eq!(swapped, 2, "{mess}");
+}
+
 /// HHT's ALPHA outside ]-1, 0] runs, as code_aster accepts it (only
 /// ALPHA = -1 is fatal): ALPHA = 0.2 (both MODI_EQUI) and -1.5 (NON)
 /// follow their Newmark / alpha-method recurrences on the exact SDOF

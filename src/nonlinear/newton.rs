@@ -731,6 +731,11 @@ impl Engine {
             }
             if it > 0 {
                 let rec = self.norms(dt, it, swap, reassemble);
+                // nmresi: the first step's row 0 sets the smallest
+                // denominator, converged or not.
+                if self.steps_done == 0 && it == 1 {
+                    self.min_denominator = Some(rec.denominator);
+                }
                 last_rela = rec.resi_rela;
                 history.push(rec);
                 on_iteration(&rec, &self.trial);
@@ -763,10 +768,18 @@ impl Engine {
                     // A cell folded between its Gauss points: the alarm's
                     // matter (nonlinear::assembly::FoldWatch).
                     let fold = self.asm.deepest_fold(&self.trial.motion.u);
-                    self.min_denominator = Some(
-                        self.min_denominator
-                            .map_or(rec.denominator, |m| m.min(rec.denominator)),
-                    );
+                    // code_aster's nmresi: the smallest denominator is
+                    // lowered by converged rows only, and not by a row
+                    // converged on the swapped criterion, whose
+                    // denominator is round-off (lowering it there kept a
+                    // second zero-load instant from swapping); the last
+                    // converged residual is kept from every converged row.
+                    if converged && !rec.swapped {
+                        self.min_denominator = Some(
+                            self.min_denominator
+                                .map_or(rec.denominator, |m| m.min(rec.denominator)),
+                        );
+                    }
                     if converged {
                         self.last_maxi = Some(rec.resi_maxi);
                     }
