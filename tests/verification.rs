@@ -3081,6 +3081,39 @@ fn the_swap_to_resi_glob_maxi_works_at_every_zero_load_instant() {
     assert_eq!(swapped, 2, "{mess}");
 }
 
+/// NEWTON(PREDICTION='ELASTIQUE', MATRICE='TANGENTE') (prediction_elastique.comm):
+/// a plastic column unloaded to zero in one step converges at once and
+/// matches the uniaxial answer (DZ at t = 1, 2, p); the same with the
+/// default prediction (the plastic tangent) cycles with a constant
+/// residual and stops: in 1D the prediction overshoots into reversed
+/// yielding (+418) and each tangent correction goes back (-418), which is
+/// what an elastic prediction (or code_aster's RECH_LINEAIRE) avoids.
+#[test]
+fn an_elastic_prediction_unloads_a_plastic_column() {
+    let run = common::run_study(
+        "tests/verification/prediction_elastique.comm",
+        "verif_prediction_elastique",
+    );
+    let resu = common::assert_all_ok(&run, "prediction_elastique.resu");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 3, "{resu}");
+    let tangent = common::run_variant(
+        &dir(),
+        "verif_prediction_tangente",
+        "prediction_elastique",
+        "prediction_tangente",
+        "NEWTON=_F(PREDICTION='ELASTIQUE', MATRICE='TANGENTE', REAC_ITER=1)",
+        "NEWTON=_F(MATRICE='TANGENTE', REAC_ITER=1)",
+    );
+    assert_eq!(tangent.code, 1, "{}", tangent.term);
+    assert!(
+        tangent
+            .term
+            .contains("Newton did not converge in 5 iterations"),
+        "{}",
+        tangent.term
+    );
+}
+
 /// HHT's ALPHA outside ]-1, 0] runs, as code_aster accepts it (only
 /// ALPHA = -1 is fatal): ALPHA = 0.2 (both MODI_EQUI) and -1.5 (NON)
 /// follow their Newmark / alpha-method recurrences on the exact SDOF

@@ -322,7 +322,7 @@ fn newton_with(reac_iter: i64) -> Keyword {
                 .kw(),
             text("PREDICTION")
                 .into(&["DEPL_CALCULE", "TANGENTE", "ELASTIQUE", "EXTRAPOLE"])
-                .doc("prediction matrix; absent: the value of MATRICE (the only value computed: DEPL_CALCULE, EXTRAPOLE or another matrix stop as not implemented yet)")
+                .doc("prediction matrix (TANGENTE or ELASTIQUE; absent: the value of MATRICE); DEPL_CALCULE and EXTRAPOLE stop as not implemented yet")
                 .kw(),
             text("MATRICE")
                 .into(&["TANGENTE", "ELASTIQUE"])

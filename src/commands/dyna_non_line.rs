@@ -860,11 +860,17 @@ fn newton_of(args: &Args, inertia: bool) -> Result<NewtonSettings, Diagnostic> {
             "ELASTIQUE" => TangentKind::Elastic,
             _ => TangentKind::Consistent,
         };
-        if let Some(p) = o.text("PREDICTION") {
-            if p != o.text("MATRICE").unwrap_or("TANGENTE") {
-                return Err(o.not_implemented("PREDICTION", "a prediction different from MATRICE"));
+        n.prediction = match o.text("PREDICTION") {
+            None => n.matrix,
+            Some("TANGENTE") => TangentKind::Consistent,
+            Some("ELASTIQUE") => TangentKind::Elastic,
+            Some(other) => {
+                return Err(o.not_implemented(
+                    "PREDICTION",
+                    &format!("PREDICTION='{other}' (TANGENTE and ELASTIQUE are computed)"),
+                ))
             }
-        }
+        };
         n.reac_incr = o.int("REAC_INCR").unwrap_or(1).max(0) as usize;
         n.reac_iter = o.int("REAC_ITER").unwrap_or(i64::from(inertia)).max(0) as usize;
         n.symmetrize = o.text("MATR_RIGI_SYME") == Some("OUI");

@@ -22,6 +22,11 @@ use crate::time::{Kinematics as Motion, Scheme};
 pub struct NewtonSettings {
     /// MATRICE: `Consistent` (TANGENTE) or `Elastic` (ELASTIQUE).
     pub matrix: TangentKind,
+    /// PREDICTION (TANGENTE or ELASTIQUE; absent: MATRICE's): the matrix
+    /// of the prediction, the iterations then use `matrix` (an elastic
+    /// prediction lets a fully plastic point unload without the Newton
+    /// cycle a plastic tangent prediction can start).
+    pub prediction: TangentKind,
     /// Reassemble at the prediction every `reac_incr` steps (0: never).
     pub reac_incr: usize,
     /// Reassemble every `reac_iter` iterations (0: keep the prediction's).
@@ -34,6 +39,7 @@ impl Default for NewtonSettings {
     fn default() -> Self {
         NewtonSettings {
             matrix: TangentKind::Consistent,
+            prediction: TangentKind::Consistent,
             reac_incr: 1,
             reac_iter: 1,
             symmetrize: false,
@@ -648,10 +654,17 @@ impl Engine {
                     self.matrix_dt != Some(dt)
                         || (self.newton.reac_iter > 0 && it % self.newton.reac_iter == 0)
                 };
-            let tangent = if reassemble {
-                self.newton.matrix
-            } else {
+            let tangent = if !reassemble {
                 TangentKind::None
+            } else if it == 0 {
+                self.newton.prediction
+            } else if self.newton.prediction != self.newton.matrix && self.newton.reac_iter == 0 {
+                // REAC_ITER=0 keeps the prediction's matrix: a step whose
+                // first iteration reassembles anyway (a new pattern or
+                // step size) assembles that same kind.
+                self.newton.prediction
+            } else {
+                self.newton.matrix
             };
             self.asm
                 .compute(
