@@ -1619,6 +1619,14 @@ impl Checker<'_> {
                 return Err(d);
             }
         }
+        if let Value::Text(t) = &value {
+            if s.not_built.contains(&t.as_str()) {
+                return Err(err(format!(
+                    "not implemented yet: {cmd}/{kp}='{t}' ({})",
+                    s.not_built_why
+                )));
+            }
+        }
         if let Some(x) = value.as_real() {
             if let Some(lo) = s.val_min {
                 if x < lo {

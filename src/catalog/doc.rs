@@ -110,6 +110,14 @@ fn simple_line(s: &Simple) -> String {
         let v: Vec<String> = into.iter().map(lit_text).collect();
         parts.push(format!("one of {}", v.join(", ")));
     }
+    if !s.not_built.is_empty() {
+        let v: Vec<String> = s.not_built.iter().map(|x| format!("'{x}'")).collect();
+        parts.push(format!(
+            "not implemented yet: {} ({})",
+            v.join(", "),
+            s.not_built_why
+        ));
+    }
     let bound = |v: f64| match s.ty {
         Ty::Int => format!("{}", v as i64),
         _ => num(v),

@@ -66,6 +66,12 @@ pub struct Simple {
     pub default: Vec<Lit>,
     /// Closed list of allowed values.
     pub into: Option<Vec<Lit>>,
+    /// Values of `into` that code_aster has and aster does not build, with
+    /// what aster builds instead: refused when the file is checked, so a
+    /// study stops before its first command rather than at the one that
+    /// would use them (probes of 2026-11-28 on code_aster's test files).
+    pub not_built: Vec<&'static str>,
+    pub not_built_why: &'static str,
     pub val_min: Option<f64>,
     pub val_max: Option<f64>,
     /// Minimum and maximum number of values (`max = None` is `'**'`).
@@ -203,6 +209,8 @@ pub fn simp(name: &'static str, ty: Ty) -> Simple {
         status: Status::Optional,
         default: Vec::new(),
         into: None,
+        not_built: Vec::new(),
+        not_built_why: "",
         val_min: None,
         val_max: None,
         min: 1,
@@ -247,6 +255,13 @@ impl Simple {
     /// Closed list of texts.
     pub fn into(mut self, choices: &[&'static str]) -> Self {
         self.into = Some(choices.iter().map(|c| Lit::Text(c)).collect());
+        self
+    }
+    /// Values of the closed list that aster does not build, and what it
+    /// builds (for the message and the generated documentation).
+    pub fn not_built(mut self, values: &[&'static str], why: &'static str) -> Self {
+        self.not_built = values.to_vec();
+        self.not_built_why = why;
         self
     }
     pub fn into_ints(mut self, choices: &[i64]) -> Self {

@@ -39,6 +39,10 @@ pub fn def() -> CommandDef {
                         vec![text("MODELISATION")
                             .required()
                             .into(MODELISATIONS)
+                            .not_built(
+                                &["C_PLAN", "C_PLAN_SI"],
+                                "aster builds 3D, 3D_SI, AXIS, AXIS_SI, D_PLAN and D_PLAN_SI models",
+                            )
                             .doc("element family; _SI is reduced integration")
                             .kw()],
                     )

@@ -322,7 +322,11 @@ fn newton_with(reac_iter: i64) -> Keyword {
                 .kw(),
             text("PREDICTION")
                 .into(&["DEPL_CALCULE", "TANGENTE", "ELASTIQUE", "EXTRAPOLE"])
-                .doc("prediction matrix (TANGENTE or ELASTIQUE; absent: the value of MATRICE); DEPL_CALCULE and EXTRAPOLE stop as not implemented yet")
+                .not_built(
+                    &["DEPL_CALCULE", "EXTRAPOLE"],
+                    "the prediction uses the matrix TANGENTE or ELASTIQUE",
+                )
+                .doc("prediction matrix (TANGENTE or ELASTIQUE; absent: the value of MATRICE)")
                 .kw(),
             text("MATRICE")
                 .into(&["TANGENTE", "ELASTIQUE"])

@@ -560,8 +560,9 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
         vec![
             text(name)
                 .into(&["AUTO", "FIXE", "VECT_Y"])
+                .not_built(&["FIXE", "VECT_Y"], "the normal is the cells' own, AUTO")
                 .default(t("AUTO"))
-                .doc("normal of the surface; only 'AUTO' (the cells' own) is computed: FIXE and VECT_Y stop as not implemented yet")
+                .doc("normal of the surface")
                 .kw(),
             block(
                 if name == "VECT_MAIT" {
@@ -589,8 +590,12 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
         vec![
             text("APPARIEMENT")
                 .into(appariement)
+                .not_built(
+                    &["NODAL"],
+                    "slave nodes are projected on master cells, MAIT_ESCL",
+                )
                 .default(t("MAIT_ESCL"))
-                .doc("slave nodes projected on master cells; NODAL pairing: not implemented yet")
+                .doc("slave nodes projected on master cells")
                 .kw(),
             text("GROUP_MA_MAIT").doc("master surface (one group)").kw(),
             text("MAILLE_MAIT").many().hidden().kw(),
@@ -598,8 +603,9 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             text("MAILLE_ESCL").many().hidden().kw(),
             text("NORMALE")
                 .into(&["MAIT", "MAIT_ESCL", "ESCL"])
+                .not_built(&["MAIT_ESCL", "ESCL"], "the normal is the master's, MAIT")
                 .default(t("MAIT"))
-                .doc("surface giving the normal; only 'MAIT' is computed (MAIT_ESCL, ESCL: not implemented yet)")
+                .doc("surface giving the normal")
                 .kw(),
         ],
         vect("VECT_MAIT", "MAIT_FIXE", "MAIT_VECT_Y"),
@@ -607,8 +613,9 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
         vec![
             text("TYPE_PROJECTION")
                 .into(&["ORTHOGONALE", "FIXE"])
+                .not_built(&["FIXE"], "the projection is ORTHOGONALE")
                 .default(t("ORTHOGONALE"))
-                .doc("projection of the slave nodes; only 'ORTHOGONALE' is computed (FIXE: not implemented yet)")
+                .doc("projection of the slave nodes")
                 .kw(),
             block(
                 "b_appa_fixe",

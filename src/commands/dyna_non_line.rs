@@ -105,7 +105,11 @@ fn schema_temps() -> Keyword {
                     "THETA_METHODE",
                     "KRENK",
                 ])
-                .doc("time integration scheme (DIFF_CENT, TCHAMWA explicit; NEWMARK, HHT implicit; THETA_METHODE and KRENK stop as not implemented yet)")
+                .not_built(
+                    &["THETA_METHODE", "KRENK"],
+                    "aster builds DIFF_CENT, TCHAMWA, NEWMARK and HHT",
+                )
+                .doc("time integration scheme (DIFF_CENT, TCHAMWA explicit; NEWMARK, HHT implicit)")
                 .kw(),
             real("COEF_MASS_SHIFT").default(r(0.0)).kw(),
             block(

@@ -40,6 +40,10 @@ pub fn def() -> CommandDef {
                         .required()
                         .count(1, 2)
                         .into(&["EXTRACTION", "MOYENNE", "MOYENNE_ARITH", "EXTREMA"])
+                        .not_built(
+                            &["MOYENNE"],
+                            "aster builds EXTRACTION, EXTREMA and MOYENNE_ARITH",
+                        )
                         .kw(),
                     text("INTITULE")
                         .required()
