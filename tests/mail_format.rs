@@ -72,16 +72,29 @@ fn broken_files_name_the_line() {
             3,
             "node N1 is defined twice",
         ),
-        ("COOR_2D\n N1 0 0 N2\nFINSF\nFIN\n", 2, "the last one has 1"),
+        ("COOR_2D\n N1 0 0 N2\nFINSF\nFIN\n", 2, "this one has 1"),
         (
             "COOR_2D\n N1 0 0\n N2 1 0\nFINSF\nSEG2\n S1 N1 N3\nFINSF\nFIN\n",
             6,
             "names the node N3",
         ),
         (
-            "COOR_3D\n N1 0 0 0\nFINSF\nHEXA20\nFINSF\nFIN\n",
+            "COOR_3D\n N1 0 0 0\nFINSF\nPENTA15\nFINSF\nFIN\n",
             4,
-            "not implemented yet: HEXA20",
+            "not implemented yet: PENTA15",
+        ),
+        ("COOR_1D\n N1 0\nFINSF\nFIN\n", 1, "not implemented yet: COOR_1D"),
+        ("COOR_2D\n N1 0 1E+400\nFINSF\nFIN\n", 2, "not a finite number"),
+        (
+            "COOR_3D\n N1 0 0 0\n N2 1 0\n N3 0 1 0\nFINSF\nFIN\n",
+            3,
+            "this one has 3",
+        ),
+        ("TITRE\nFINSF\nFIN\n", 3, "holds no node"),
+        (
+            "COOR_2D\n N1 0 0\n N2 1 0\n N3 1 1\n N4 0 1\nFINSF\nHEXA8\n M1 N1 N2 N3 N4 N1 N2 N3 N4\nFINSF\nFIN\n",
+            7,
+            "a volume cell needs COOR_3D",
         ),
         (
             "COOR_3D\n N1 0 0 0\nFINSF\nPYRAM5\nFINSF\nFIN\n",
@@ -109,4 +122,126 @@ fn broken_files_name_the_line() {
         assert_eq!(e.line, line, "{text}: {e}");
         assert!(e.message.contains(what), "{text}: {e}");
     }
+}
+
+/// A HEXA20 listed as code_aster does (corners as a HEXA8, then the
+/// mid-edge nodes of the base, of the vertical edges, of the top) comes
+/// out in MED order: every mid-edge node is at the middle of the MED edge
+/// of docs/mesh.md's table (base 0-1..3-0, top 4-5..7-4, vertical 0-4..3-7),
+/// and the Jacobian is positive. Records written `H = C0 ...` read too
+/// (code_aster's comp005b.mail writes `M2 = N0 N1`).
+#[test]
+fn hexa20_mid_edge_nodes_come_out_in_med_order() {
+    // The unit cube; code_aster's corner order turns counter-clockwise
+    // seen from the top.
+    let corners: [[i32; 3]; 8] = [
+        [0, 0, 0],
+        [1, 0, 0],
+        [1, 1, 0],
+        [0, 1, 0],
+        [0, 0, 1],
+        [1, 0, 1],
+        [1, 1, 1],
+        [0, 1, 1],
+    ];
+    let mail_edges = [
+        (0, 1),
+        (1, 2),
+        (2, 3),
+        (3, 0),
+        (0, 4),
+        (1, 5),
+        (2, 6),
+        (3, 7),
+        (4, 5),
+        (5, 6),
+        (6, 7),
+        (7, 4),
+    ];
+    let mut text = String::from("COOR_3D\n");
+    for (k, c) in corners.iter().enumerate() {
+        text += &format!(" C{k} {} {} {}\n", c[0], c[1], c[2]);
+    }
+    for (k, (a, b)) in mail_edges.iter().enumerate() {
+        let m: Vec<f64> = (0..3)
+            .map(|i| f64::from(corners[*a][i] + corners[*b][i]) / 2.0)
+            .collect();
+        text += &format!(" E{k} {} {} {}\n", m[0], m[1], m[2]);
+    }
+    text += "FINSF\nHEXA20\n H =";
+    for k in 0..8 {
+        text += &format!(" C{k}");
+    }
+    for k in 0..12 {
+        text += &format!(" E{k}");
+    }
+    text += "\nFINSF\nFIN\n";
+    let (mesh, _) = parse(&text, "H").unwrap();
+    let cell = &mesh.cells[0];
+    assert_eq!(cell.kind, CellType::Hexa20);
+    let x = |i: usize| mesh.coords[cell.nodes[i]];
+    let med_edges = [
+        (0, 1),
+        (1, 2),
+        (2, 3),
+        (3, 0),
+        (4, 5),
+        (5, 6),
+        (6, 7),
+        (7, 4),
+        (0, 4),
+        (1, 5),
+        (2, 6),
+        (3, 7),
+    ];
+    for (k, (a, b)) in med_edges.iter().enumerate() {
+        for i in 0..3 {
+            assert_eq!(
+                x(8 + k)[i],
+                (x(*a)[i] + x(*b)[i]) / 2.0,
+                "MED node {}",
+                8 + k
+            );
+        }
+    }
+    let dets = jacobian_dets(&mesh, cell).unwrap();
+    assert!(dets.iter().all(|&d| d > 0.0), "{dets:?}");
+}
+
+/// A node named N<k> that is not the k-th of the file: the alarm says
+/// that NOEUD='N<k>' reaches another node (code_aster's zzzz101a names its
+/// first nodes P1.., then N1..).
+#[test]
+fn a_name_of_the_form_n_k_elsewhere_is_a_caution() {
+    let text = "COOR_2D\n P1 0 0\n N1 1 0\n N2 1 1\nFINSF\nTRIA3\n M1 P1 N1 N2\nFINSF\nFIN\n";
+    let (_, alarms) = parse(text, "M").unwrap();
+    assert_eq!(alarms.len(), 1, "{alarms:?}");
+    assert!(alarms[0].contains("the file's P1 is N1"), "{alarms:?}");
+    assert!(
+        alarms[0].contains("CAUTION: the file's own N1 is N2 here"),
+        "{alarms:?}"
+    );
+}
+
+/// A `.mail` read as MED (an old code_aster file's `LIRE_MAILLAGE()`,
+/// FORMAT='ASTER' by default up to code_aster 12): the error says to give
+/// FORMAT='ASTER'.
+#[test]
+fn a_mail_file_read_as_med_points_to_format_aster() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
+    let run = common::run_variant(
+        &dir,
+        "mail_as_med",
+        "mail_column",
+        "mail_as_med",
+        "LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)",
+        "LIRE_MAILLAGE(UNITE=20)",
+    );
+    assert_eq!(run.code, 1, "{}", run.term);
+    assert!(run.term.contains("not an HDF5 file"), "{}", run.term);
+    assert!(
+        run.term.contains("read it with LIRE_MAILLAGE(FORMAT='ASTER')"),
+        "{}",
+        run.term
+    );
 }

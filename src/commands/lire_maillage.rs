@@ -133,14 +133,21 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         (mesh, Vec::new())
     } else {
         crate::medio::read_mesh_with_notes(&path, args.text("NOM_MED")).map_err(|e| {
-            args.error(
+            let d = args.error(
                 if args.given("NOM_MED") {
                     "NOM_MED"
                 } else {
                     "UNITE"
                 },
                 e.to_string(),
-            )
+            );
+            // code_aster up to version 12 read LIRE_MAILLAGE() as
+            // FORMAT='ASTER': its old files meet a .mail here.
+            if looks_like_mail(&path) {
+                d.note("the file is a code_aster mesh in its own text format (.mail): read it with LIRE_MAILLAGE(FORMAT='ASTER'), the default of code_aster up to version 12")
+            } else {
+                d
+            }
         })?
     };
     study.log(format!(
@@ -177,4 +184,25 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         ));
     }
     Ok(Some(ConceptData::Mesh(Box::new(mesh))))
+}
+
+/// Whether a file is text that opens like a code_aster `.mail` (a TITRE
+/// or COOR_ sub-file among its first lines).
+fn looks_like_mail(path: &std::path::Path) -> bool {
+    let Ok(bytes) = std::fs::read(path) else {
+        return false;
+    };
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]);
+    head.lines()
+        .map(|l| l.split('%').next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty())
+        .take(50)
+        .any(|l| {
+            let w = l
+                .split_whitespace()
+                .next()
+                .unwrap_or("")
+                .to_ascii_uppercase();
+            w == "TITRE" || w.starts_with("COOR_")
+        })
 }

@@ -51,14 +51,23 @@ fn err(line: usize, message: impl Into<String>) -> MailError {
     }
 }
 
-/// For each node of a cell as code_aster lists it, its MED index (the
-/// linear 3D cells turn the other way in MED: `vtk_permutation`).
+/// `p` with MED node i = the cell's node p[i] as code_aster lists it
+/// (empty: the same order). The 3D cells turn the other way in MED. For
+/// HEXA20 code_aster lists the mid-edge nodes of the base, then of the
+/// vertical edges, then of the top (MED: base, top, vertical): found by
+/// the probe h_mail of 2026-11-28 on the geometry of all 14 HEXA20 cells
+/// of code_aster's test meshes at hand (sslv07a, hsnv120a, hplv101b),
+/// whose sslv07a converted so reproduced 12 of code_aster's values. No
+/// PENTA15 or TETRA10 file was found to establish theirs.
 fn to_med(t: CellType) -> Option<&'static [usize]> {
     match t {
         CellType::Tetra4 => Some(&[0, 2, 1, 3]),
         CellType::Penta6 => Some(&[0, 2, 1, 3, 5, 4]),
         CellType::Hexa8 => Some(&[0, 3, 2, 1, 4, 7, 6, 5]),
-        CellType::Tetra10 | CellType::Penta15 | CellType::Hexa20 => None,
+        CellType::Hexa20 => Some(&[
+            0, 3, 2, 1, 4, 7, 6, 5, 11, 10, 9, 8, 19, 18, 17, 16, 12, 15, 14, 13,
+        ]),
+        CellType::Tetra10 | CellType::Penta15 => None,
         _ => Some(&[]),
     }
 }
@@ -73,7 +82,9 @@ fn lines(text: &str) -> impl Iterator<Item = (usize, Vec<&str>)> {
     text.lines().enumerate().filter_map(|(i, l)| {
         let l = l.split('%').next().unwrap_or("");
         let toks: Vec<&str> = l
-            .split(|c: char| c.is_whitespace() || c == ',')
+            // `M2 = N0 N1` (comp005b.mail) and `NOM = G` read as their
+            // names.
+            .split(|c: char| c.is_whitespace() || c == ',' || c == '=')
             .filter(|t| !t.is_empty())
             .collect();
         (!toks.is_empty()).then_some((i + 1, toks))
@@ -94,13 +105,28 @@ fn records<'a>(
         .flat_map(|(l, t)| t.iter().map(move |s| (*l, *s)))
         .collect();
     if !toks.len().is_multiple_of(arity) {
-        let start = toks.len() - toks.len() % arity;
+        // Records may wrap, so the short one cannot be told for sure: the
+        // first line that starts a record with fewer fields than a record
+        // and is not continued by a line of the missing count.
+        let mut count = 0;
+        let mut suspect = None;
+        for (i, (l, t)) in body.iter().enumerate() {
+            let continued = body
+                .get(i + 1)
+                .is_some_and(|(_, n)| (t.len() + n.len()).is_multiple_of(arity));
+            if suspect.is_none() && count % arity == 0 && t.len() < arity && !continued {
+                suspect = Some((*l, t.len()));
+            }
+            count += t.len();
+        }
+        let (line, n) =
+            suspect.unwrap_or((toks[toks.len() - toks.len() % arity].0, toks.len() % arity));
         return Err(err(
-            toks[start].0,
+            line,
             format!(
-                "a record of {what} has {arity} fields (a name and {}), the last one has {}",
+                "a record of {what} has {arity} fields (a name and {}); this one has {n} (the sub-file holds {} fields, not a multiple of {arity})",
                 arity - 1,
-                toks.len() - start
+                toks.len()
             ),
         ));
     }
@@ -111,9 +137,18 @@ fn records<'a>(
 }
 
 fn number(tok: &str, line: usize) -> Result<f64, MailError> {
-    tok.replace(['D', 'd'], "e")
+    let x = tok
+        .replace(['D', 'd'], "e")
         .parse::<f64>()
-        .map_err(|_| err(line, format!("'{tok}' is not a number")))
+        .map_err(|_| err(line, format!("'{tok}' is not a number")))?;
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(err(
+            line,
+            format!("the coordinate '{tok}' is not a finite number"),
+        ))
+    }
 }
 
 /// A group as read (its keyword's line, nodes or cells, its name, its
@@ -185,9 +220,8 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, Vec<String>), MailError> {
                 for (l, t) in &body {
                     members.extend(t.iter().map(|s| (*l, s.to_string())));
                 }
-                let named = header.join(" ").replace(' ', "");
-                let group = if let Some(n) = named.strip_prefix("NOM=") {
-                    n.to_string()
+                let group = if header.len() == 2 && header[0].eq_ignore_ascii_case("NOM") {
+                    header[1].to_string()
                 } else if header.is_empty() {
                     if members.is_empty() {
                         return Err(err(line, format!("{key} without a group name")));
@@ -197,12 +231,18 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, Vec<String>), MailError> {
                     return Err(err(
                         line,
                         format!(
-                            "unexpected '{}' after {key} (expected NOM=<group> or nothing)",
+                            "unexpected '{}' after {key} (expected NOM=<group name> or nothing)",
                             header.join(" ")
                         ),
                     ));
                 };
                 pending.push((line, nodes, group, members));
+            }
+            "COOR_1D" => {
+                return Err(err(
+                    line,
+                    "not implemented yet: COOR_1D (aster reads 2D and 3D meshes)",
+                ))
             }
             other => {
                 let t = CellType::ALL.into_iter().find(|t| t.aster_name() == other);
@@ -225,6 +265,12 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, Vec<String>), MailError> {
                         format!("not implemented yet: {other} cells in FORMAT='ASTER' (the order of their mid-edge nodes against MED's is not established); convert the mesh to MED"),
                     ));
                 };
+                if t.dim() == 3 && dim == Some(2) {
+                    return Err(err(
+                        line,
+                        format!("{other} cells in a mesh of COOR_2D: a volume cell needs COOR_3D"),
+                    ));
+                }
                 let n = t.nnodes();
                 for (l, tk) in records(&body, n + 1, other)? {
                     let mut listed = Vec::with_capacity(n);
@@ -244,7 +290,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, Vec<String>), MailError> {
                     } else {
                         let mut med = vec![0; n];
                         for (i, &p) in perm.iter().enumerate() {
-                            med[p] = listed[i];
+                            med[i] = listed[p];
                         }
                         med
                     };
@@ -258,6 +304,12 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, Vec<String>), MailError> {
     }
     if !ended {
         return Err(err(text.lines().count(), "the file does not end with FIN"));
+    }
+    if coords.is_empty() {
+        return Err(err(
+            text.lines().count(),
+            "the file holds no node (no COOR_2D or COOR_3D sub-file)",
+        ));
     }
     for (line, nodes, group, members) in pending {
         let (index, what, out) = if nodes {
@@ -296,18 +348,34 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, Vec<String>), MailError> {
     }
     let mut alarms = Vec::new();
     for (what, prefix, index) in [("node", 'N', &node_index), ("cell", 'M', &cell_index)] {
-        let mut other: Vec<(&String, usize)> = index
+        let Some((first, i)) = index
             .iter()
             .filter(|(n, &i)| **n != format!("{prefix}{}", i + 1))
             .map(|(n, &i)| (n, i))
-            .collect();
-        if let Some(&(first, i)) = other.iter().min_by_key(|(_, i)| *i) {
-            other.clear();
-            alarms.push(format!(
-                "the {what} names of the file are not kept: a {what} is {prefix}<k>, the k-th of the file, in NOEUD=/MAILLE= and in messages (the file's {first} is {prefix}{}); groups keep their members",
-                i + 1
+            .min_by_key(|(_, i)| *i)
+        else {
+            continue;
+        };
+        // A name of the form N<k> / M<k> that is not the k-th: NOEUD= and
+        // MAILLE= with that name reach another node or cell.
+        let clash = index
+            .iter()
+            .filter_map(|(n, &i)| {
+                let k: usize = n.strip_prefix(prefix)?.parse().ok()?;
+                (k >= 1 && k - 1 != i).then_some((n, i))
+            })
+            .min_by_key(|(_, i)| *i);
+        let mut a = format!(
+            "the {what} names of the file are not kept: a {what} is {prefix}<k>, the k-th of the file, in NOEUD=/MAILLE= and in messages (the file's {first} is {prefix}{}); groups keep their members",
+            i + 1
+        );
+        if let Some((n, j)) = clash {
+            a.push_str(&format!(
+                "; CAUTION: the file's own {n} is {prefix}{} here, so {n} in a command is another {what} than the file's: address it by a group",
+                j + 1
             ));
         }
+        alarms.push(a);
     }
     let mesh = Mesh {
         name: name.to_string(),
