@@ -231,7 +231,7 @@ fn a_mail_file_read_as_med_points_to_format_aster() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
     let run = common::run_variant(
         &dir,
-        "mail_as_med",
+        "mail_format_variants",
         "mail_column",
         "mail_as_med",
         "LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)",
@@ -240,7 +240,8 @@ fn a_mail_file_read_as_med_points_to_format_aster() {
     assert_eq!(run.code, 1, "{}", run.term);
     assert!(run.term.contains("not an HDF5 file"), "{}", run.term);
     assert!(
-        run.term.contains("read it with LIRE_MAILLAGE(FORMAT='ASTER')"),
+        run.term
+            .contains("read it with LIRE_MAILLAGE(FORMAT='ASTER')"),
         "{}",
         run.term
     );

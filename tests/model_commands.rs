@@ -443,15 +443,19 @@ fn affe_modele_errors() {
         "MODELISATION='AXIS'",
     );
 
-    // A modelisation of the catalogue that aster does not build.
+    // A modelisation of the catalogue that aster does not build: refused
+    // when the file is checked (catalogue `not_built`), before any command.
     let comm = axis("MO = AFFE_MODELE(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='C_PLAN'))");
-    let (_, err) = run("sdnv103b", &comm);
-    assert_error(
-        &comm,
-        err,
-        "not implemented yet: AFFE_MODELE/AFFE/MODELISATION",
-        &["C_PLAN", "D_PLAN"],
-        "C_PLAN",
+    let mut messages = String::new();
+    let checked = parse_and_check(
+        &Source::new("test.comm", comm.as_str()),
+        &commands::all(),
+        &mut messages,
+    );
+    assert!(checked.is_none(), "{messages}");
+    assert!(
+        messages.contains("not implemented yet: AFFE_MODELE/AFFE/MODELISATION='C_PLAN' (aster builds 3D, 3D_SI, AXIS, AXIS_SI, D_PLAN and D_PLAN_SI models)"),
+        "{messages}"
     );
 
     // 3D on a 2D mesh: the QUAD8 cells are only faces, no volume element.
