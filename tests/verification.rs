@@ -3155,3 +3155,68 @@ fn hht_alpha_outside_its_range_runs_with_an_alarm() {
         bad.term
     );
 }
+
+/// RHO = 0, code_aster's massless part (its sdnv100a gives it to a clamped
+/// rigid block): the foundation of contact_penalty.comm (implicit) and of
+/// explicit_friction.comm (DIFF_CENT, lumped mass), whose dofs are all
+/// imposed, made massless, gives the same checks; a massless cell with a
+/// free dof still stops the run with a located message.
+#[test]
+fn a_clamped_massless_part_changes_nothing() {
+    let checks = |r: &str| -> Vec<String> {
+        r.lines()
+            .filter(|l| l.contains("ANALYTIQUE") || l.contains("NON_REGRESSION"))
+            .map(String::from)
+            .collect()
+    };
+    let implicit = run_study("contact_penalty");
+    let massless = common::run_variant_edits(
+        &dir(),
+        "verif_rho_zero",
+        "contact_penalty",
+        "contact_penalty_rho0",
+        &[(
+            "CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', MATER=ACIER))",
+            "VIDE = DEFI_MATERIAU(ELAS=_F(E=2.E5, NU=0.3, RHO=0.))\n\
+             CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=(_F(TOUT='OUI', MATER=ACIER), _F(GROUP_MA='SOCLE', MATER=VIDE)))",
+        )],
+    );
+    let massless = common::assert_all_ok(&massless, "contact_penalty_rho0.resu");
+    assert_eq!(checks(&massless), checks(&implicit));
+
+    let explicit = run_study("explicit_friction");
+    let massless = common::run_variant_edits(
+        &dir(),
+        "verif_rho_zero",
+        "explicit_friction",
+        "explicit_friction_rho0",
+        &[(
+            "CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', MATER=ACIER))",
+            "VIDE = DEFI_MATERIAU(ELAS=_F(E=2.E5, NU=0.3, RHO=0.))\n\
+             CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=(_F(TOUT='OUI', MATER=ACIER), _F(GROUP_MA='SOCLE', MATER=VIDE)))",
+        )],
+    );
+    let massless = common::assert_all_ok(&massless, "explicit_friction_rho0.resu");
+    assert_eq!(checks(&massless), checks(&explicit));
+
+    // The block itself massless in the explicit run: refused, located.
+    let free = common::run_variant_edits(
+        &dir(),
+        "verif_rho_zero",
+        "explicit_friction",
+        "explicit_friction_block_rho0",
+        &[(
+            "CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', MATER=ACIER))",
+            "VIDE = DEFI_MATERIAU(ELAS=_F(E=2.E5, NU=0.3, RHO=0.))\n\
+             CHMAT = AFFE_MATERIAU(MAILLAGE=MAIL, AFFE=_F(TOUT='OUI', MATER=VIDE))",
+        )],
+    );
+    assert_eq!(free.code, 1, "{}", free.term);
+    assert!(
+        free.term
+            .contains("needs a density RHO > 0 (RHO = 0 only on cells whose dofs are all imposed)"),
+        "{}",
+        free.term
+    );
+    assert!(!free.term.contains("panicked"), "{}", free.term);
+}

@@ -249,12 +249,23 @@ impl Explicit {
         asm.prepare_gather();
         let mut diag = vec![0.0; nfull];
         let mut elem_mass = Vec::with_capacity(asm.elements.len());
+        let eq = &asm.numbering.eq;
         for e in &asm.elements {
             let m = mass(&e.spec, &e.coords, rho[e.cell])
                 .map_err(|f| format!("cell M{}: mass matrix: {f}", e.cell + 1))?;
-            let l = hrz_lumped(&m, d).ok_or_else(|| {
+            // A massless cell (RHO = 0) whose dofs are all imposed moves
+            // with its supports: no mass, no critical step (`step_bound`
+            // skips held cells). With a free dof it would give that dof
+            // no inertia in an explicit step: refused below.
+            let held = e.full.iter().all(|&f| eq[f] == NONE);
+            let l = if rho[e.cell] == 0.0 && held {
+                Some(vec![0.0; e.full.len()])
+            } else {
+                hrz_lumped(&m, d)
+            };
+            let l = l.ok_or_else(|| {
                 format!(
-                    "cell M{}: the lumped (HRZ) mass is not positive (zero density or volume)",
+                    "cell M{}: the lumped (HRZ) mass is not positive (zero density or volume); an explicit scheme needs a mass at every free dof (RHO = 0 is accepted on a cell whose dofs are all imposed)",
                     e.cell + 1
                 )
             })?;

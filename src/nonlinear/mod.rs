@@ -98,13 +98,19 @@ pub fn discretize_for(
     inertia: bool,
 ) -> Result<(Assembler, Vec<String>), PrepareError> {
     check_geometry(mesh, model)?;
+    let nb = dofs::number(mesh, model, loads).map_err(PrepareError::Load)?;
     if inertia {
-        check_density(mesh, model, matfield, materials)?;
+        let held = |c: usize| {
+            mesh.cells[c]
+                .nodes
+                .iter()
+                .all(|&n| (0..nb.ndpn).all(|k| nb.eq[n * nb.ndpn + k] == dofs::NONE))
+        };
+        check_density(mesh, model, matfield, materials, &held)?;
     }
     let beh = behaviour::build_for(model, matfield, materials, occurrences, inertia)
         .map_err(PrepareError::Behaviour)?;
     let alarms = beh.alarms.clone();
-    let nb = dofs::number(mesh, model, loads).map_err(PrepareError::Load)?;
     let asm = Assembler::new(mesh, model, beh, nb).map_err(PrepareError::Mesh)?;
     Ok((asm, alarms))
 }
@@ -175,6 +181,7 @@ fn check_density(
     model: &Model,
     matfield: &MaterialField,
     materials: &IndexMap<String, Material>,
+    held: &dyn Fn(usize) -> bool,
 ) -> Result<(), PrepareError> {
     for (cell, role) in model.cells.iter().enumerate() {
         if !matches!(role, crate::model::CellRole::Element(_)) {
@@ -186,7 +193,13 @@ fn check_density(
         let Some(rho) = materials.get(name).and_then(|m| m.get("ELAS", "RHO")) else {
             continue;
         };
-        if !(rho > 0.0 && rho.is_finite()) {
+        // RHO = 0 on a cell whose dofs are all imposed is code_aster's
+        // massless clamped part (its sdnv100a's rigid block): no inertia
+        // is lost. Elsewhere a massless cell leaves a dof without inertia
+        // (a body in flight without mass is singular).
+        let massive = rho > 0.0 && rho.is_finite();
+        let massless_and_held = rho == 0.0 && held(cell);
+        if !(massive || massless_and_held) {
             let cells: Vec<usize> = (0..model.cells.len())
                 .filter(|&c| {
                     matches!(model.cells[c], crate::model::CellRole::Element(_))
@@ -196,7 +209,7 @@ fn check_density(
                 .collect();
             return Err(PrepareError::Material(format!(
                 "the material {name} (DEFI_MATERIAU, ELAS/RHO = {rho:e}) is assigned to {} element(s) of group(s) {} (first: M{}); \
-                 the mass matrix of DYNA_NON_LINE needs a density RHO > 0",
+                 the mass matrix of DYNA_NON_LINE needs a density RHO > 0 (RHO = 0 only on cells whose dofs are all imposed)",
                 cells.len(),
                 mesh.groups_containing(&cells).join(", "),
                 cell + 1
