@@ -3220,3 +3220,47 @@ fn a_clamped_massless_part_changes_nothing() {
     );
     assert!(!free.term.contains("panicked"), "{}", free.term);
 }
+
+/// DEFI_CONTACT DIST_ESCL / DIST_MAIT equal to 0 everywhere (code_aster's
+/// sdnv100a gives DIST_ESCL a DEFI_CONSTANTE of 0): accepted, the same
+/// checks as without (contact_penalty.comm); a non-zero thickness stops at
+/// DEFI_CONTACT as not implemented, naming the keyword.
+#[test]
+fn a_zero_contact_thickness_changes_nothing() {
+    let checks = |r: &str| -> Vec<String> {
+        r.lines()
+            .filter(|l| l.contains("ANALYTIQUE") || l.contains("NON_REGRESSION"))
+            .map(String::from)
+            .collect()
+    };
+    let plain = run_study("contact_penalty");
+    let zone = "ZONE=_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL',\n                             ALGO_CONT='PENALISATION', E_N=E_N1))";
+    let with = |tag: &str, value: &str| {
+        common::run_variant_edits(
+            &dir(),
+            "verif_dist_zero",
+            "contact_penalty",
+            tag,
+            &[(
+                "CONT1 = DEFI_CONTACT(",
+                &format!("EP = DEFI_CONSTANTE(VALE={value})\nCONT1 = DEFI_CONTACT("),
+            ), (
+                zone,
+                "ZONE=_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL', DIST_ESCL=EP, DIST_MAIT=EP,\n                             ALGO_CONT='PENALISATION', E_N=E_N1))",
+            )],
+        )
+    };
+    let zero = with("contact_dist_zero", "0.");
+    let zero = common::assert_all_ok(&zero, "contact_dist_zero.resu");
+    assert_eq!(checks(&zero), checks(&plain));
+    let thick = with("contact_dist_thick", "0.1");
+    assert_eq!(thick.code, 1, "{}", thick.term);
+    assert!(
+        thick
+            .term
+            .contains("not implemented yet: DEFI_CONTACT/ZONE/DIST_MAIT"),
+        "{}",
+        thick.term
+    );
+    assert!(!thick.term.contains("panicked"), "{}", thick.term);
+}

@@ -459,11 +459,8 @@ fn zone(
             }
         }
     }
-    for key in ["DIST_MAIT", "DIST_ESCL"] {
-        if z.has(key) {
-            return Err(z.not_implemented(key, "fictitious thicknesses added to the gap"));
-        }
-    }
+    // DIST_MAIT / DIST_ESCL: DEFI_CONTACT let through only functions equal
+    // to 0 everywhere (`defi_contact::zero_thickness`), which change no gap.
     let algo = z.text("ALGO_CONT").unwrap_or("CONTRAINTE");
     if continuous {
         return zone_groups(z, mesh, 0.0, None);

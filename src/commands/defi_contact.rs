@@ -236,6 +236,28 @@ pub fn def() -> CommandDef {
 /// Keeps the checked keywords for the contact engine and does, now, the
 /// checks code_aster does when the contact is defined: names, surfaces,
 /// and the algorithm combinations it refuses.
+/// DIST_MAIT / DIST_ESCL, the fictitious thicknesses code_aster adds to
+/// the gap (shells' half thicknesses): only a function equal to 0
+/// everywhere is accepted, which changes nothing (code_aster's sdnv100a
+/// gives DIST_ESCL a DEFI_CONSTANTE of 0 in every version from 2012 to
+/// 2025); any other stops as not implemented.
+fn zero_thickness(study: &Study, zone: &Args, key: &str) -> Result<Option<String>, Diagnostic> {
+    let Some(name) = zone.concept(key) else {
+        return Ok(None);
+    };
+    match study.concepts.data(name) {
+        Some(ConceptData::Function(f)) if f.ordinates.iter().all(|&y| y == 0.0) => Ok(Some(
+            format!("    {key} = {name}: 0 everywhere, no thickness added to the gap"),
+        )),
+        _ => Err(zone.not_implemented(
+            key,
+            &format!(
+                "{key}={name}: a fictitious thickness added to the gap; only a function equal to 0 everywhere is accepted"
+            ),
+        )),
+    }
+}
+
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let (model_name, model) = model_of(study, args, "MODELE")?;
     let mesh = mesh_of_model(study, args, "MODELE", model)?;
@@ -281,6 +303,11 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         }
         for key in ["GROUP_MA_MAIT", "GROUP_MA_ESCL"] {
             check_surface(mesh, model, &model_name, zone, key)?;
+        }
+        for key in ["DIST_MAIT", "DIST_ESCL"] {
+            if let Some(line) = zero_thickness(study, zone, key)? {
+                lines.push(line);
+            }
         }
         let (mait, escl) = (
             zone.text("GROUP_MA_MAIT").unwrap_or_default(),
