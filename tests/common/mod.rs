@@ -332,3 +332,12 @@ pub fn add_cell(
     let c = m.cells.len() - 1;
     m.cell_groups.entry(group.into()).or_default().push(c);
 }
+
+/// The check lines (ANALYTIQUE and NON_REGRESSION rows) of a .resu, to
+/// compare a study with a variant that must not change them.
+pub fn check_lines(resu: &str) -> Vec<String> {
+    resu.lines()
+        .filter(|l| l.contains("ANALYTIQUE") || l.contains("NON_REGRESSION"))
+        .map(String::from)
+        .collect()
+}
