@@ -799,8 +799,9 @@ fn continuation_keeps_the_friction_history() {
 /// the printed bound) the start-of-run alarm gives the two bounds and the
 /// ratio, and the energy alarm names the first archived instant where
 /// TRAV_LIAI is below -1 % of EK0, with the value the table holds there;
-/// measured after the rebound: TRAV_LIAI -0.051 and -2.563, ENER_CIN 3.93
-/// and 5.83 (+46 % of EK0 created).
+/// measured after the rebound: TRAV_LIAI -0.051 and -2.563, kinetic energy
+/// 3.93 and 5.83 (+46 % of EK0 created; ENER_CIN, the change since the
+/// start, -0.07 and +1.83).
 #[test]
 fn penalised_contact_resolved_by_too_few_steps_is_alarmed() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification");
@@ -887,6 +888,6 @@ fn penalised_contact_resolved_by_too_few_steps_is_alarmed() {
             num(last, "ENER_CIN")
         );
         assert!(num(last, "TRAV_LIAI") < liai_max, "{pas}: {last:?}");
-        assert!(num(last, "ENER_CIN") > cin_min, "{pas}: {last:?}");
+        assert!(num(last, "ENER_CIN") + ek0 > cin_min, "{pas}: {last:?}");
     }
 }

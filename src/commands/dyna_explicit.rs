@@ -207,6 +207,7 @@ pub(crate) fn exec(
         hint: None,
         // The explicit loop finds a non-finite motion itself (no solve).
         load_peaks: Vec::new(),
+        energy_start: init.energy_start,
     };
     let mut evol = result_to_fill(
         study,
@@ -225,6 +226,7 @@ pub(crate) fn exec(
     let has_acce = init.a.is_some();
     let mut state = nonlinear::initial_state(&asm, tl.instants[0], init.u, init.v, init.a);
     super::dyna_non_line::start_comp_elas(args, init.stressed, &mut asm, &mut state, &mut notes)?;
+    notes.extend(init.energy_note.clone());
     if let Some(pts) = init.points {
         state.points = pts;
     }
@@ -468,7 +470,7 @@ pub(crate) fn exec(
         &mut evol,
         &mut log,
     );
-    result_of_run(study, args, result, evol, outcome)
+    result_of_run(study, args, result, evol, init.energy_start, outcome)
 }
 
 /// The alarm for slave mid-side nodes left free where both vertices of

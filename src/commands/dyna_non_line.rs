@@ -1524,6 +1524,11 @@ pub(crate) struct Init {
     /// The initial state carries stresses (EVOL_NOLI): RELATION='ELAS' is
     /// then incremental, as in code_aster (`start_comp_elas`).
     pub stressed: bool,
+    /// The energy table's values at the EVOL_NOLI step, which the new
+    /// call's balance continues from (zero without EVOL_NOLI).
+    pub energy_start: crate::nonlinear::energy::EnergyStart,
+    /// Why the balance starts from zero although EVOL_NOLI is given.
+    pub energy_note: Option<String>,
 }
 
 /// Starts the COMP_ELAS elements (ELAS/PETIT) of an initial state that
@@ -1575,6 +1580,8 @@ pub(crate) fn etat_init(
         points: None,
         contact: None,
         stressed: false,
+        energy_start: Default::default(),
+        energy_note: None,
     };
     let Some(o) = args.fact("ETAT_INIT") else {
         return Ok(init);
@@ -1639,6 +1646,21 @@ pub(crate) fn etat_init(
                 Some(fields::states_from_gauss(asm, s, v).map_err(|m| o.error("EVOL_NOLI", m))?);
         }
         init.t0 = Some(o.real("INST_ETAT_INIT").unwrap_or(step.inst));
+        // code_aster's nonlinDSEnergyInitValues: the new call's energies
+        // start from the initial state's row of the result's table.
+        if let Some(t) = r.tables.get(crate::nonlinear::energy::TABLE_NAME) {
+            match crate::nonlinear::energy::EnergyStart::from_table(t, step.nume_ordre, step.inst) {
+                Some(start) => init.energy_start = start,
+                None => {
+                    init.energy_note = Some(format!(
+                        "ETAT_INIT: the energy table {} of {name} has no row for NUME_ORDRE {} (INST {:e}): the energy balance of this call starts from 0",
+                        crate::nonlinear::energy::TABLE_NAME,
+                        step.nume_ordre,
+                        step.inst
+                    ))
+                }
+            }
+        }
     }
     for (key, slot) in [
         ("DEPL", &mut init.u),
@@ -2109,6 +2131,7 @@ pub(crate) fn run(
         subd_niveau: list.max_subd_niveau(),
         hint,
         load_peaks: load_peaks(study, &md, &loads, &load_names, &load_mults),
+        energy_start: init.energy_start,
     };
     let mut evol = result_to_fill(
         study,
@@ -2128,6 +2151,7 @@ pub(crate) fn run(
     let has_acce = init.a.is_some();
     let mut state = nonlinear::initial_state(&asm, t_start, init.u, init.v, init.a);
     start_comp_elas(args, init.stressed, &mut asm, &mut state, &mut notes)?;
+    notes.extend(init.energy_note.take());
     if let Some(p) = init.points {
         state.points = p;
     }
@@ -2266,7 +2290,7 @@ pub(crate) fn run(
             log(&format!("  {a}"));
         }
     }
-    result_of_run(study, args, result, evol, outcome)
+    result_of_run(study, args, result, evol, init.energy_start, outcome)
 }
 
 /// The alarm for ARCHIVAGE instants (LIST_INST or INST) inside the run's
@@ -2335,10 +2359,17 @@ pub(crate) fn result_of_run<T>(
     args: &Args,
     result: Option<&str>,
     evol: EvolNoli,
+    energy_start: crate::nonlinear::energy::EnergyStart,
     outcome: Result<T, crate::nonlinear::dyna::Stopped>,
 ) -> ExecResult {
     let mut evol = evol;
-    split_internal_energy(study, args, result.unwrap_or_default(), &mut evol);
+    split_internal_energy(
+        study,
+        args,
+        result.unwrap_or_default(),
+        &mut evol,
+        energy_start,
+    );
     if outcome.is_ok() {
         if let Some(alarm) = unarchived_instants(study, args, &evol) {
             study.log(&alarm);
@@ -2402,12 +2433,32 @@ pub(crate) fn result_to_fill(
 /// energy, and the trapezoidal rule's error in ENER_TOT. Where a cell's
 /// law has no elastic energy built (GDEF_LOG, VMIS_JOHN_COOK...), or a
 /// step holds no stress, the columns are left out and the .mess says why.
-fn split_internal_energy(study: &mut Study, args: &Args, name: &str, evol: &mut EvolNoli) {
+fn split_internal_energy(
+    study: &mut Study,
+    args: &Args,
+    name: &str,
+    evol: &mut EvolNoli,
+    start: crate::nonlinear::energy::EnergyStart,
+) {
     use crate::post::table::{Cell, ColumnType};
     let table_name = crate::nonlinear::energy::TABLE_NAME;
     if !evol.tables.contains_key(table_name) {
         return;
     }
+    // The call continues a balance whose ENER_TOT its start's row split:
+    // TRAV_PLAS goes on from that row's. A start whose ENER_TOT was not
+    // split (a law without elastic energy in the call before) cannot be.
+    let tot0 = start.values[2];
+    let plas0 = match start.trav_plas {
+        Some(p) => p,
+        None if tot0 == 0.0 => 0.0,
+        None => {
+            study.log(format!(
+                "  energy balance: ENER_TOT not split into ENER_ELAS and TRAV_PLAS (the initial state's row of the energy table has ENER_TOT {tot0:e} and no TRAV_PLAS: the call that computed it could not split it)"
+            ));
+            return;
+        }
+    };
     let Some(ConceptData::Model(model)) = study.concepts.data(&evol.model) else {
         return;
     };
@@ -2490,12 +2541,17 @@ fn split_internal_energy(study: &mut Study, args: &Args, name: &str, evol: &mut 
         else {
             continue;
         };
+        let p = plas0 + (total - tot0) - (w - w0);
         row[elas] = Some(Cell::Real(w));
-        row[plas] = Some(Cell::Real(total - (w - w0)));
-        last = Some((n, w, total - (w - w0), w0));
+        row[plas] = Some(Cell::Real(p));
+        last = Some((n, w, p, w0));
     }
     if let Some((n, w, p, w0)) = last {
-        study.log(if w0 == 0.0 {
+        study.log(if tot0 != 0.0 || plas0 != 0.0 {
+            format!(
+                "  energy balance split at NUME_ORDRE {n}: ENER_ELAS {w:e}  TRAV_PLAS {p:e} ({plas0:e} + (ENER_TOT - {tot0:e}) - (ENER_ELAS - {w0:e}): TRAV_PLAS, ENER_TOT and the elastic energy of the initial state)"
+            )
+        } else if w0 == 0.0 {
             format!(
                 "  energy balance split at NUME_ORDRE {n}: ENER_ELAS {w:e}  TRAV_PLAS {p:e} (ENER_TOT - ENER_ELAS)"
             )

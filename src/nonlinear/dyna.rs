@@ -464,6 +464,9 @@ pub struct TimeLoop {
     /// The largest value of each load, named in the message of a step
     /// whose numbers left the range of doubles (a load of 1e308).
     pub load_peaks: Vec<super::loads::LoadPeak>,
+    /// The energy table's values at the initial state (ETAT_INIT
+    /// EVOL_NOLI), which the balance continues from.
+    pub energy_start: super::energy::EnergyStart,
 }
 
 /// Totals of a run.
@@ -643,7 +646,11 @@ pub fn run(
     let mut summary = RunSummary::default();
     let ndpn = engine.asm.numbering.ndpn;
     let offsets = fields::GaussRows::of(&engine.asm);
-    let mut energy = EnergyBalance::new(engine, result.tables.get(super::energy::TABLE_NAME));
+    let mut energy = EnergyBalance::new(
+        engine,
+        result.tables.get(super::energy::TABLE_NAME),
+        tl.energy_start,
+    );
     let mut folds = super::assembly::FoldWatch::default();
     let mut contact_energy_alarmed = false;
     // Moving LIAISON_UNIL conditions work on the model: the energy they
@@ -1175,10 +1182,10 @@ fn contact_energy_alarm(energy: &EnergyBalance, t: f64, gamma: f64) -> Option<St
             "links that close or open within a step did more work on the model than the numerical dissipation of the scheme (GAMMA = {gamma}) took out; a smaller step does not always reduce it (node-wise constraints in a Newmark-type scheme give each closing node the velocity jump of the scheme's rule at every impact: docs/contact.md §7a)"
         )
     } else {
-        "a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and ENER_CIN keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it".to_string()
+        "a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and the kinetic energy keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it".to_string()
     };
     Some(format!(
-        "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of ENER_CIN at the start and |TRAV_EXT|) and the model holds {surplus:.4e} more than it was given ({:.2} %: ENER_CIN - ENER_CIN at the start + ENER_TOT + TRAV_AMOR - TRAV_EXT): {why}; this alarm is given once",
+        "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of the kinetic energy at the start and |TRAV_EXT|) and the model holds {surplus:.4e} more than it was given ({:.2} %: ENER_CIN + ENER_TOT + TRAV_AMOR - TRAV_EXT): {why}; this alarm is given once",
         -energy.contact,
         energy.contact,
         -100.0 * energy.contact / given,
@@ -1194,9 +1201,9 @@ fn log_energy(energy: &mut EnergyBalance, result: &EvolNoli, log: &mut dyn FnMut
 }
 
 /// The balance as the result's PARA_CALC table (RECU_TABLE). A
-/// continuation (reuse=) restarts the balance from its initial state and
-/// appends its rows, NUME_REUSE one more, to the table (code_aster's
-/// nmarpc, nmarnr).
+/// continuation (reuse=) continues the balance from its initial state's
+/// row and appends its rows, NUME_REUSE one more, to the table (code_aster's
+/// nonlinDSEnergyInitValues, nmarpc, nmarnr).
 fn store_energy(engine: &Engine, energy: &EnergyBalance, result: &mut EvolNoli) {
     result.tables.insert(
         super::energy::TABLE_NAME.to_string(),

@@ -28,9 +28,19 @@
 //!   tests/verification/energy_friction.comm.)
 //! - `TRAV_AMOR` = ∫ C_R v·du: the work of Rayleigh damping (C_R = AMOR_ALPHA
 //!   K + AMOR_BETA M, nonlinear::damping), the energy it dissipated;
-//! - `DISS_SCH` = TRAV_EXT − (ENER_CIN − ENER_CIN₀) − ENER_TOT − TRAV_AMOR −
-//!   TRAV_LIAI: the balance error, energy the time scheme dissipated (or
-//!   created).
+//! - `ENER_CIN` = ½ v·M v − ½ v₀·M v₀: the change of the kinetic energy
+//!   since the start, as code_aster's `enerca` cumulates it (the increments
+//!   v̄·M·Δv of every step, whose sum is that difference for a constant
+//!   symmetric M), not the kinetic energy itself: a bar launched at
+//!   3200 N mm that has slowed to 2934.38 shows −265.62 (code_aster's
+//!   sdnv100a);
+//! - `DISS_SCH` = TRAV_EXT − ENER_CIN − ENER_TOT − TRAV_AMOR − TRAV_LIAI:
+//!   the balance error, energy the time scheme dissipated (or created).
+//!
+//! Every column is cumulated from the call's initial state, plus the
+//! values that state holds in the PARA_CALC table of the ETAT_INIT
+//! EVOL_NOLI result when it has one ([`EnergyStart`], code_aster's
+//! `nonlinDSEnergyInitValues`): a chain of calls continues one balance.
 //!
 //! For the trapezoidal rule (Newmark β = 1/4, γ = 1/2) on a linear problem
 //! the identity is exact, so DISS_SCH measures only the solver tolerances;
@@ -76,11 +86,54 @@ const TABLE_COLUMNS: [(&str, ColumnType); 10] = [
     ("DISS_FROT", ColumnType::Real),
 ];
 
+/// The energies a call starts from: the row of its initial state in the
+/// PARA_CALC table of the ETAT_INIT EVOL_NOLI result (code_aster's
+/// `nonlinDSEnergyInitValues` reads that table at the initial instant and
+/// adds each column to the new call's totals), zero for a run that starts
+/// from fields or from rest.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyStart {
+    /// The values of [`COLUMNS`], in its order.
+    pub values: [f64; 7],
+    /// TRAV_PLAS of that row, when the call that wrote it could split
+    /// ENER_TOT (`commands::dyna_non_line::split_internal_energy`).
+    pub trav_plas: Option<f64>,
+}
+
+impl EnergyStart {
+    /// The start of a call continuing the step `nume_ordre` (instant `inst`)
+    /// of a result whose energy table is `table`: the row of that
+    /// NUME_ORDRE, or, in a table without one, the row at `inst` (relative
+    /// precision 1e-6). None when no row matches (code_aster then starts
+    /// from zero, which the caller says in the .mess).
+    pub fn from_table(table: &Table, nume_ordre: usize, inst: f64) -> Option<EnergyStart> {
+        let value = |row: usize, name: &str| table.cell(row, name).and_then(Cell::as_f64);
+        let matches = |row: usize| match value(row, "NUME_ORDRE") {
+            Some(n) => n as usize == nume_ordre,
+            None => value(row, "INST")
+                .is_some_and(|t| (t - inst).abs() <= 1e-6 * inst.abs().max(f64::MIN_POSITIVE)),
+        };
+        let row = (0..table.n_rows()).rev().find(|&r| matches(r))?;
+        let mut values = [0.0; 7];
+        for (v, name) in values.iter_mut().zip(COLUMNS) {
+            *v = value(row, name).unwrap_or(0.0);
+        }
+        Some(EnergyStart {
+            values,
+            trav_plas: value(row, "TRAV_PLAS"),
+        })
+    }
+}
+
 /// Running totals and the forces of the last committed step.
 #[derive(Debug, Clone)]
 pub struct EnergyBalance {
+    /// The kinetic energy ½ v·M v at the call's start and now (absolute:
+    /// the column ENER_CIN is their difference).
     pub kinetic0: f64,
     pub kinetic: f64,
+    /// The table's values at the call's start.
+    start: EnergyStart,
     pub internal: f64,
     pub external: f64,
     pub contact: f64,
@@ -106,14 +159,15 @@ pub struct EnergyBalance {
 
 impl EnergyBalance {
     /// The balance at the engine's committed (initial, initialized) state:
-    /// every work is zero there (a continuation counts its energies from
-    /// its own start, as code_aster's). `previous` is the result's
-    /// PARA_CALC table, if it has one: this call's rows go after its rows.
-    pub fn new(engine: &Engine, previous: Option<&Table>) -> EnergyBalance {
+    /// every column holds there the value `start` gives (zero for a fresh
+    /// run). `previous` is the result's PARA_CALC table, if it has one:
+    /// this call's rows go after its rows.
+    pub fn new(engine: &Engine, previous: Option<&Table>, start: EnergyStart) -> EnergyBalance {
         let n = engine.committed.motion.u.len();
         let mut e = EnergyBalance {
             kinetic0: 0.0,
             kinetic: 0.0,
+            start,
             internal: 0.0,
             external: 0.0,
             contact: 0.0,
@@ -211,15 +265,15 @@ impl EnergyBalance {
         self.kinetic = self.kinetic_of(engine);
     }
 
-    /// TRAV_EXT, ENER_CIN, ENER_TOT, TRAV_AMOR, TRAV_LIAI, DISS_FROT, DISS_SCH.
-    /// The energy given to the model, the scale of the balance's alarms:
-    /// the larger of ENER_CIN at the start and |TRAV_EXT|.
+    /// The energy given to the model in this call, the scale of the
+    /// balance's alarms: the larger of the kinetic energy at the start and
+    /// |TRAV_EXT| of the call.
     pub fn given(&self) -> f64 {
         self.kinetic0.max(self.external.abs())
     }
 
-    /// The energy the model holds beyond what it was given:
-    /// ENER_CIN − ENER_CIN₀ + ENER_TOT + TRAV_AMOR − TRAV_EXT, that is
+    /// The energy the model holds beyond what it was given in this call:
+    /// ENER_CIN + ENER_TOT + TRAV_AMOR − TRAV_EXT of the call, that is
     /// −(DISS_SCH + TRAV_LIAI).
     pub fn surplus(&self) -> f64 {
         self.kinetic - self.kinetic0 + self.internal + self.damping - self.external
@@ -252,21 +306,29 @@ impl EnergyBalance {
         (!bad.is_empty()).then(|| bad.join(", "))
     }
 
-    pub fn values(&self) -> [f64; 7] {
-        let error = self.external
-            - (self.kinetic - self.kinetic0)
-            - self.internal
-            - self.damping
-            - self.contact;
+    /// The columns' values of this call alone (from its initial state).
+    pub fn own_values(&self) -> [f64; 7] {
+        let kinetic = self.kinetic - self.kinetic0;
+        let error = self.external - kinetic - self.internal - self.damping - self.contact;
         [
             self.external,
-            self.kinetic,
+            kinetic,
             self.internal,
             self.damping,
             self.contact,
             self.friction,
             error,
         ]
+    }
+
+    /// The columns' values as the table holds them: this call's plus its
+    /// start's.
+    pub fn values(&self) -> [f64; 7] {
+        let mut v = self.own_values();
+        for (x, s) in v.iter_mut().zip(self.start.values) {
+            *x += s;
+        }
+        v
     }
 
     /// Records an archived instant; returns the .mess line.
@@ -279,24 +341,29 @@ impl EnergyBalance {
         } else {
             String::new()
         };
-        // DISS_SCH relative to the energy given: the initial kinetic
-        // energy, or the external work for a run that starts at rest
-        // (a ratio to a zero ENER_CIN0 printed 0 whatever DISS_SCH was).
+        // DISS_SCH relative to the energy given: the call's initial
+        // kinetic energy, or the external work for a run that starts at
+        // rest (a ratio to a zero kinetic energy printed 0 whatever
+        // DISS_SCH was).
         let ratio = if self.kinetic0 > 0.0 {
-            format!(" ({:.3e} of ENER_CIN0)", v[6] / self.kinetic0)
-        } else if self.external != 0.0 {
-            format!(" ({:.3e} of |TRAV_EXT|)", v[6] / self.external.abs())
+            format!(
+                " ({:.3e} of the initial kinetic energy)",
+                v[6] / self.kinetic0
+            )
+        } else if v[0] != 0.0 {
+            format!(" ({:.3e} of |TRAV_EXT|)", v[6] / v[0].abs())
         } else {
             String::new()
         };
         format!(
-            "  energy at t = {t:e}: ENER_CIN {:.6e}  ENER_TOT {:.6e}  TRAV_EXT {:.6e}{amor}  TRAV_LIAI {:.6e}  DISS_FROT {:.6e}  DISS_SCH {:.6e}{ratio}",
+            "  energy at t = {t:e}: ENER_CIN {:.6e}  ENER_TOT {:.6e}  TRAV_EXT {:.6e}{amor}  TRAV_LIAI {:.6e}  DISS_FROT {:.6e}  DISS_SCH {:.6e}{ratio}  kinetic energy {:.6e}",
             v[1],
             v[2],
             v[0],
             v[4],
             v[5],
             v[6],
+            self.kinetic,
         )
     }
 

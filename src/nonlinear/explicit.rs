@@ -746,8 +746,9 @@ impl Explicit {
         engine: &Engine,
         fc: &[f64],
         previous: Option<&crate::post::table::Table>,
+        start: super::energy::EnergyStart,
     ) -> EnergyBalance {
-        let e = EnergyBalance::new(engine, previous);
+        let e = EnergyBalance::new(engine, previous, start);
         self.prev_fc.copy_from_slice(fc);
         self.dforce.copy_from_slice(engine.damping_force());
         self.prev_df.copy_from_slice(engine.damping_force());
@@ -904,7 +905,7 @@ pub fn contact_energy_alarm(energy: &EnergyBalance, t: f64, dt: f64, w2c: f64) -
     let w = w2c.sqrt();
     let wdt = w * dt;
     Some(format!(
-        "  alarm: at t = {t:e} the penalised contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of ENER_CIN at the start and |TRAV_EXT|): energy created by the penalty switched on and off at the step instants (w_pen dt = {wdt:.3}; ENER_CIN is that much too high once the bodies separate, and DISS_SCH does not show it). Take a step of at most {:.4e} s (w_pen dt <= {PENALTY_WDT_MAX}) or lower E_N (or COEF_PENA) by a factor {:.3}; this alarm is given once",
+        "  alarm: at t = {t:e} the penalised contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of the kinetic energy at the start and |TRAV_EXT|): energy created by the penalty switched on and off at the step instants (w_pen dt = {wdt:.3}; ENER_CIN is that much too high once the bodies separate, and DISS_SCH does not show it). Take a step of at most {:.4e} s (w_pen dt <= {PENALTY_WDT_MAX}) or lower E_N (or COEF_PENA) by a factor {:.3}; this alarm is given once",
         -energy.contact,
         energy.contact,
         -100.0 * energy.contact / given,
@@ -924,8 +925,9 @@ const RUNAWAY: f64 = 100.0;
 /// anything overflowed. The balance error DISS_SCH of a stable explicit
 /// run is a small fraction of the energy given (the trapezoid of the
 /// works against the scheme's own rule, TCHAMWA's dissipation); energy
-/// created beyond a hundred times the larger of ENER_CIN at the start and
-/// |TRAV_EXT| is a runaway. Not checked when the model was given no
+/// created beyond a hundred times the larger of the kinetic energy at the
+/// start and |TRAV_EXT| is a runaway (this call's values: a continuation
+/// is judged on its own). Not checked when the model was given no
 /// energy (a release from a prestressed state with neither velocity nor
 /// load: its stored energy is not in the balance).
 fn runaway(energy: &EnergyBalance) -> Option<String> {
@@ -934,13 +936,13 @@ fn runaway(energy: &EnergyBalance) -> Option<String> {
             "the energy balance is not finite ({bad}): the motion has grown beyond what double precision can hold; the loads are far too large for the masses (look at their values and FONC_MULT), or the step is above the stable one (STOP_CFL='NON' lets such a step run)"
         ));
     }
-    let v = energy.values();
+    let v = energy.own_values();
     let created = -v[6];
     let given = energy.given();
     (given > 0.0 && created > RUNAWAY * given).then(|| {
         format!(
-            "the explicit scheme is unstable: it has created {created:.4e} of energy (DISS_SCH = {:.4e}, ENER_CIN = {:.4e}), more than {RUNAWAY} times the energy given to the model ({given:.4e}, the larger of ENER_CIN at the start and |TRAV_EXT|); the step is above the stable one (STOP_CFL='NON' lets such a step run) or a cell has degenerated",
-            v[6], v[1]
+            "the explicit scheme is unstable: it has created {created:.4e} of energy (DISS_SCH = {:.4e}, kinetic energy {:.4e}), more than {RUNAWAY} times the energy given to the model ({given:.4e}, the larger of the kinetic energy at the start and |TRAV_EXT|); the step is above the stable one (STOP_CFL='NON' lets such a step run) or a cell has degenerated",
+            v[6], energy.kinetic
         )
     })
 }
@@ -1121,7 +1123,12 @@ fn run_on(
     let fc0 = contact
         .as_deref()
         .map_or(zero.clone(), |c| c.force_on_fint_side().to_vec());
-    let mut energy = ex.start_energy(engine, &fc0, result.tables.get(super::energy::TABLE_NAME));
+    let mut energy = ex.start_energy(
+        engine,
+        &fc0,
+        result.tables.get(super::energy::TABLE_NAME),
+        tl.energy_start,
+    );
     if archive_with_contact(engine, tl, result, contact.as_deref(), None) {
         summary.archived += 1;
         archive_line(&mut energy, result, &summary, first_dt, log);
