@@ -581,4 +581,53 @@ fn code_aster_files_meet_clear_messages() {
 
     let c = check("DEBUT(PAR_LOT='NON')\nFIN()\n").unwrap();
     assert_eq!(c.commands.len(), 2);
+
+    // A value code_aster removed: the note names its replacement (probe
+    // h_frot: ssnv503b of 2013).
+    let full = "DEBUT()\nCK = DEFI_CONTACT(MODELE=MO, FORMULATION='DISCRETE', ZONE=_F(GROUP_MA_MAIT='A', GROUP_MA_ESCL='B', ALGO_CONT='LAGRANGIEN'))\nFIN()\n";
+    let ds = check(full).expect_err("LAGRANGIEN");
+    let d = ds
+        .iter()
+        .find(|d| d.keyword.as_deref() == Some("ZONE/ALGO_CONT"))
+        .unwrap_or_else(|| panic!("{ds:?}"));
+    assert!(
+        d.notes
+            .iter()
+            .any(|n| n.contains("removed from code_aster itself: write 'CONTRAINTE'")),
+        "{:?}",
+        d.notes
+    );
+    assert!(d.suggestion.is_none(), "{:?}", d.suggestion);
+
+    // Keywords and values aster does not build stop the check, before any
+    // command runs (probe h_gdef: code_aster's ssnv112 and ssnp159a passed
+    // `aster check` and stopped in STAT_NON_LINE).
+    let head = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\n\
+                MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\n\
+                MAT = DEFI_MATERIAU(ELAS=_F(E=1., NU=0., RHO=1.))\n\
+                CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=MAT))\n\
+                C = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(TOUT='OUI', DX=0.))\n\
+                L = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1., NOMBRE=1))\n";
+    for (body, want) in [
+        (
+            "R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=C),\n\
+             INCREMENT=_F(LIST_INST=L), CONVERGENCE=_F(RESI_REFE_RELA=1.E-3, SIGM_REFE=1.))\nFIN()\n",
+            "not implemented yet: STAT_NON_LINE/CONVERGENCE/RESI_REFE_RELA (give RESI_GLOB_RELA or RESI_GLOB_MAXI)",
+        ),
+        (
+            "R = DYNA_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=C, TYPE_CHARGE='DIDI'),\n\
+             INCREMENT=_F(LIST_INST=L), SCHEMA_TEMPS=_F(SCHEMA='NEWMARK', FORMULATION='DEPLACEMENT'))\nFIN()\n",
+            "not implemented yet: DYNA_NON_LINE/EXCIT/TYPE_CHARGE='DIDI' (loads are dead, FIXE_CSTE, built on the initial geometry)",
+        ),
+        (
+            "R0 = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=C), INCREMENT=_F(LIST_INST=L))\n\
+             R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=C),\n\
+             ETAT_INIT=_F(EVOL_NOLI=R0, NUME_DIDI=2), INCREMENT=_F(LIST_INST=L))\nFIN()\n",
+            "not implemented yet: STAT_NON_LINE/ETAT_INIT/NUME_DIDI (no TYPE_CHARGE='DIDI' load)",
+        ),
+    ] {
+        let full = format!("{head}{body}");
+        let ds = check(&full).expect_err(want);
+        assert!(ds.iter().any(|d| d.message == want), "{ds:?}");
+    }
 }

@@ -117,6 +117,35 @@ const REMOVED_KEYWORDS: &[(&str, &str, &str)] = &[
     ("TEST_TABLE", "VALE", "VALE_CALC (and VALE_REFE with REFERENCE)"),
 ];
 
+/// Values that code_aster itself removed, by command and keyword, with
+/// what replaced them (probe h_frot: ssnv503b of 2013 gives
+/// ALGO_CONT='LAGRANGIEN').
+const REMOVED_VALUES: &[(&str, &str, &str, &str)] = &[
+    (
+        "DEFI_CONTACT",
+        "ALGO_CONT",
+        "LAGRANGIEN",
+        "'CONTRAINTE' (the active set of FORMULATION='DISCRETE') or FORMULATION='CONTINUE' (ALGO_CONT='STANDARD')",
+    ),
+    (
+        "DEFI_CONTACT",
+        "ALGO_FROT",
+        "LAGRANGIEN",
+        "'PENALISATION' (FORMULATION='DISCRETE') or FORMULATION='CONTINUE' (ALGO_FROT='STANDARD')",
+    ),
+];
+
+/// What became of value `value` of keyword `name` of `command` in
+/// code_aster, when code_aster removed it.
+pub fn removed_value(command: &str, name: &str, value: &str) -> Option<String> {
+    REMOVED_VALUES
+        .iter()
+        .find(|(c, k, v, _)| *c == command && *k == name && *v == value)
+        .map(|(_, _, _, by)| {
+            format!("{name}='{value}' is an old code_aster value, removed from code_aster itself: write {by}")
+        })
+}
+
 /// What became of keyword `name` of `command` in code_aster, when
 /// code_aster removed or renamed it.
 pub fn removed_keyword(command: &str, name: &str) -> Option<String> {

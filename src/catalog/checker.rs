@@ -1615,9 +1615,18 @@ impl Checker<'_> {
                 };
                 let mut d = err(format!("{value} is not an allowed value of {}", s.name));
                 d.choices = choices.clone();
-                d.suggestion = closest(&given, &choices);
+                match super::absent::removed_value(cmd, s.name, &given) {
+                    Some(note) => d.notes.push(note),
+                    None => d.suggestion = closest(&given, &choices),
+                }
                 return Err(d);
             }
+        }
+        if s.not_built_at_all() {
+            return Err(err(format!(
+                "not implemented yet: {cmd}/{kp} ({})",
+                s.not_built_why
+            )));
         }
         if let Value::Text(t) = &value {
             if s.not_built.contains(&t.as_str()) {

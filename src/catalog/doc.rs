@@ -110,7 +110,9 @@ fn simple_line(s: &Simple) -> String {
         let v: Vec<String> = into.iter().map(lit_text).collect();
         parts.push(format!("one of {}", v.join(", ")));
     }
-    if !s.not_built.is_empty() {
+    if s.not_built_at_all() {
+        parts.push(format!("not implemented yet ({})", s.not_built_why));
+    } else if !s.not_built.is_empty() {
         let v: Vec<String> = s.not_built.iter().map(|x| format!("'{x}'")).collect();
         parts.push(format!(
             "not implemented yet: {} ({})",

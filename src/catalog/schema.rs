@@ -57,6 +57,9 @@ pub enum Status {
 }
 
 /// A simple keyword (SIMP).
+/// The `not_built` entry of a keyword refused whatever its value.
+const ANY_VALUE: &str = "*";
+
 #[derive(Debug, Clone)]
 pub struct Simple {
     pub name: &'static str,
@@ -263,6 +266,18 @@ impl Simple {
         self.not_built = values.to_vec();
         self.not_built_why = why;
         self
+    }
+    /// A keyword aster does not build whatever its value (a criterion or a
+    /// frame that would change the answer if ignored): refused when the
+    /// file is checked, like the values of [`Simple::not_built`].
+    pub fn not_built_any(mut self, why: &'static str) -> Self {
+        self.not_built = vec![ANY_VALUE];
+        self.not_built_why = why;
+        self
+    }
+    /// Whether the keyword is refused with any value.
+    pub fn not_built_at_all(&self) -> bool {
+        self.not_built == [ANY_VALUE]
     }
     pub fn into_ints(mut self, choices: &[i64]) -> Self {
         self.into = Some(choices.iter().map(|&c| Lit::Int(c)).collect());

@@ -384,6 +384,7 @@ pub fn c_convergence() -> Keyword {
             .kw(),
             real("RESI_REFE_RELA")
                 .doc("residual relative to reference forces built from the *_REFE values")
+                .not_built_any("give RESI_GLOB_RELA or RESI_GLOB_MAXI")
                 .kw(),
             real("RESI_GLOB_MAXI")
                 .doc("absolute residual: max over dofs of |R|")
@@ -640,7 +641,9 @@ fn etat_init_with(motion: bool) -> Keyword {
         real("INST")
             .doc("instant of the stored state to start from")
             .kw(),
-        int("NUME_DIDI").kw(),
+        int("NUME_DIDI")
+            .not_built_any("no TYPE_CHARGE='DIDI' load")
+            .kw(),
         real("INST_ETAT_INIT")
             .doc("overrides the initial instant taken from EVOL_NOLI")
             .kw(),

@@ -93,6 +93,7 @@ pub fn def() -> CommandDef {
                 concept("FONC_MULT", &[C::Fonction, C::Formule]).kw(),
                 text("TYPE_CHARGE")
                     .into(&["FIXE_CSTE", "SUIV", "DIDI"])
+                    .not_built(&["SUIV", "DIDI"], "only FIXE_CSTE loads")
                     .default(t("FIXE_CSTE"))
                     .kw(),
             ],
@@ -651,11 +652,29 @@ fn element_fields(
     let elastic = if energy_opts.is_empty() {
         Vec::new()
     } else {
-        elastic_constants(study, args, "ENERGIE", evol, mesh, model, &cells)?
+        elastic_constants(
+            study,
+            args,
+            "ENERGIE",
+            ElasticUse::StoredEnergy,
+            evol,
+            mesh,
+            model,
+            &cells,
+        )?
     };
     let wants_epsp = strain_opts.iter().any(|o| o.starts_with("EPSP"));
     let elastic_small = if wants_epsp {
-        elastic_constants(study, args, "DEFORMATION", evol, mesh, model, &cells)?
+        elastic_constants(
+            study,
+            args,
+            "DEFORMATION",
+            ElasticUse::PlasticStrain,
+            evol,
+            mesh,
+            model,
+            &cells,
+        )?
     } else {
         Vec::new()
     };
@@ -870,10 +889,27 @@ fn element_fields(
 /// A cell computed in GDEF_LOG, whose energy code_aster takes from its
 /// own internal variables (the stress T of the log formalism, which this
 /// law does not keep), is refused.
+/// What the elastic constants of [`elastic_constants`] are for: which
+/// kinematics each use can take.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElasticUse {
+    /// The stored elastic energy of the stress (CALC_CHAMP ENERGIE,
+    /// POST_ELEM ENER_ELAS, the balance's split): PETIT, PETIT_REAC, and
+    /// VMIS_ISOT_* in SIMO_MIEHE.
+    StoredEnergy,
+    /// The plastic strain ε − S:σ (CALC_CHAMP EPSP_*): PETIT, PETIT_REAC.
+    PlasticStrain,
+    /// The elastic energy of the small strain of DEPL (POST_ELEM ENER_POT),
+    /// whatever the law and the kinematics of the computation.
+    StrainOfDepl,
+}
+
+#[allow(clippy::too_many_arguments)]
 pub fn elastic_constants(
     study: &Study,
     args: &Args,
     key: &str,
+    usage: ElasticUse,
     evol: &crate::result::EvolNoli,
     mesh: &crate::mesh::Mesh,
     model: &crate::model::Model,
@@ -900,18 +936,20 @@ pub fn elastic_constants(
         let cell = || super::post_args::cell_name(c);
         let mut simo_miehe = false;
         if let Some(Some((rel, def))) = evol.comportement.get(c) {
-            simo_miehe = def == "SIMO_MIEHE";
-            if def != "PETIT"
+            let energy = usage == ElasticUse::StoredEnergy;
+            simo_miehe = energy && def == "SIMO_MIEHE";
+            if usage != ElasticUse::StrainOfDepl
+                && def != "PETIT"
                 && def != "PETIT_REAC"
-                && !(simo_miehe && rel.starts_with("VMIS_ISOT") && key == "ENERGIE")
+                && !(simo_miehe && rel.starts_with("VMIS_ISOT"))
             {
                 return Err(args.not_implemented(
                     key,
                     &format!(
                         "{} of cell {} computed with RELATION='{rel}', DEFORMATION='{def}' (PETIT, PETIT_REAC{})",
-                        if key == "ENERGIE" { "ENEL" } else { "EPSP" },
+                        if energy { "the elastic energy" } else { "EPSP" },
                         cell(),
-                        if key == "ENERGIE" { ", and VMIS_ISOT_LINE/VMIS_ISOT_TRAC/VMIS_ISOT_PUIS in SIMO_MIEHE" } else { "" }
+                        if energy { ", and VMIS_ISOT_LINE/VMIS_ISOT_TRAC/VMIS_ISOT_PUIS in SIMO_MIEHE" } else { "" }
                     ),
                 ));
             }

@@ -651,10 +651,10 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             )
             .kw(),
             concept("DIST_MAIT", &[C::Fonction])
-                .doc("extra gap added on the master side")
+                .doc("extra gap added on the master side; not implemented yet but as a function equal to 0 everywhere (checked when the command runs)")
                 .kw(),
             concept("DIST_ESCL", &[C::Fonction])
-                .doc("extra gap added on the slave side")
+                .doc("extra gap added on the slave side; not implemented yet but as a function equal to 0 everywhere (checked when the command runs)")
                 .kw(),
             real("DIST_APPA")
                 .default(r(-1.0))

@@ -41,6 +41,7 @@ pub fn def() -> CommandDef {
                 vec![
                     text("TYPE_CHARGE")
                         .into(&["FIXE_CSTE", "SUIV", "DIDI"])
+                        .not_built(&["SUIV", "DIDI"], "loads are dead, FIXE_CSTE, built on the initial geometry")
                         .default(t("FIXE_CSTE"))
                         .doc("dead load, follower load, or differential imposed displacement")
                         .kw(),

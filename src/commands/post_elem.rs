@@ -17,7 +17,7 @@
 //! and the forces (`te0082`); docs/post.md.
 
 use super::blocks::*;
-use super::calc_champ::{elastic_constants, enel_of_step};
+use super::calc_champ::{elastic_constants, enel_of_step, ElasticUse};
 use super::model_args::select_cells;
 use super::post_args::{cell_name, concept_title, select_steps, table_error};
 use super::{CommandDef, ExecResult};
@@ -554,7 +554,16 @@ fn ener_elas(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnos
             }
         }
     }
-    let elastic = elastic_constants(study, args, "ENER_ELAS", evol, ctx.mesh, ctx.model, &mask)?;
+    let elastic = elastic_constants(
+        study,
+        args,
+        "ENER_ELAS",
+        ElasticUse::StoredEnergy,
+        evol,
+        ctx.mesh,
+        ctx.model,
+        &mask,
+    )?;
     let measures = point_weights(args, ctx.mesh, ctx.model, "ENER_ELAS", &mask)?;
     for step in select_steps(study, evol, args)? {
         let w = enel_of_step(
@@ -589,7 +598,16 @@ pub(super) fn total_elastic_energy(
     let mask: Vec<bool> = (0..mesh.ncells())
         .map(|c| matches!(model.cells.get(c), Some(CellRole::Element(_))))
         .collect();
-    let elastic = elastic_constants(study, args, key, evol, mesh, model, &mask)?;
+    let elastic = elastic_constants(
+        study,
+        args,
+        key,
+        ElasticUse::StoredEnergy,
+        evol,
+        mesh,
+        model,
+        &mask,
+    )?;
     let measures = point_weights(args, mesh, model, key, &mask)?;
     evol.steps
         .iter()
@@ -669,7 +687,16 @@ fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
         .iter()
         .map(|r| matches!(r, CellRole::Element(_)))
         .collect();
-    let elastic = elastic_constants(study, args, "ENER_POT", evol, ctx.mesh, ctx.model, &mask)?;
+    let elastic = elastic_constants(
+        study,
+        args,
+        "ENER_POT",
+        ElasticUse::StrainOfDepl,
+        evol,
+        ctx.mesh,
+        ctx.model,
+        &mask,
+    )?;
     let measures = point_weights(args, ctx.mesh, ctx.model, "ENER_POT", &mask)?;
     for step in select_steps(study, evol, args)? {
         let nume = step.nume_ordre;

@@ -29,6 +29,10 @@ pub fn def() -> CommandDef {
                 vec![
                     text("TYPE_CHARGE")
                         .into(&["FIXE_CSTE", "FIXE_PILO", "SUIV", "DIDI"])
+                        .not_built(
+                            &["FIXE_PILO", "SUIV", "DIDI"],
+                            "loads are dead, FIXE_CSTE, built on the initial geometry; no PILOTAGE",
+                        )
                         .default(t("FIXE_CSTE"))
                         .doc("dead load (FIXE_CSTE); the others are not implemented yet")
                         .kw(),
