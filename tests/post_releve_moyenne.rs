@@ -36,6 +36,8 @@ use aster::result::{EvolNoli, NodalField, Step};
 use aster::run::driver::parse_and_check;
 use aster::study::Study;
 
+mod common;
+
 const GAP_ABSENT: usize = 11;
 
 fn mesh() -> Mesh {
@@ -487,7 +489,16 @@ fn extraction_and_moyenne_together() {
 /// What MOYENNE refuses, each at its keyword with the file position.
 #[test]
 fn moyenne_bad_input_is_located() {
-    let cases: [(&str, &[&str]); 7] = [
+    let cases: [(&str, &[&str]); 8] = [
+        // N11-N12: DZ absent at N12, no segment left for it.
+        (
+            "CHAM_GD=CH, NOEUD=('N11', 'N12'), NOM_CMP=('DX', 'DZ')",
+            &[
+                "POST_RELEVE_T/ACTION/NOEUD",
+                "MOYENNE of DZ of CH",
+                "has no length",
+            ],
+        ),
         // One node: no path (code_aster's POSTRELE_6).
         (
             "CHAM_GD=CH, GROUP_NO='ONE', NOM_CMP='DX'",
@@ -547,5 +558,27 @@ fn moyenne_bad_input_is_located() {
         e.contains("not implemented yet: POST_RELEVE_T/ACTION/OPERATION")
             && e.contains("the pair ('EXTRACTION', 'MOYENNE')"),
         "{e}"
+    );
+}
+
+/// tests/studies/post_moyenne.comm: MOYENNE as a user writes it, on the
+/// exact linear field of a plane strain plate pulled along x (a patch
+/// test on an unevenly spaced QUAD4 mesh read from a `.mail`), TEST_TABLE
+/// filtering INTITULE and QUANTITE: means at mid-path, MOMENT_1 as the
+/// difference of the ends (its sign with the path's direction), a bent
+/// path by NOEUD, a constant stress (MOMENT_1 = 0). All 14 ANALYTIQUE
+/// checks to 1e-10 relative (1e-8 absolute for the zeros).
+#[test]
+fn a_user_study_checks_moyenne_with_test_table() {
+    let run = common::run_study("tests/studies/post_moyenne.comm", "post_moyenne");
+    let resu = common::assert_all_ok(&run, "post_moyenne.resu");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 14, "{resu}");
+    let rows = common::printed_table(&resu, "MOY");
+    assert_eq!(rows.len(), 5 * 6, "{resu}");
+    let coude: Vec<_> = rows.iter().filter(|r| r["INTITULE"] == "COUDE").collect();
+    let q: Vec<&str> = coude.iter().map(|r| r["QUANTITE"].as_str()).collect();
+    assert_eq!(
+        q,
+        ["MOMENT_0", "MOMENT_1", "MINIMUM", "MAXIMUM", "MOYE_INT", "MOYE_EXT"]
     );
 }

@@ -368,7 +368,7 @@ fn extract(
     for k in UNSUPPORTED {
         // EXTREMA and MOYENNE_ARITH select nodes by cells too.
         let selection = matches!(k, "TOUT" | "GROUP_MA" | "MAILLE");
-        if occ.has(k) && !(selection && !op.on_nodes()) {
+        if occ.has(k) && (!selection || op.on_nodes()) {
             return Err(occ.not_implemented(k, unsupported_why(k)));
         }
     }
@@ -861,7 +861,8 @@ fn path_rows(
     for (c, i) in &cmps {
         let f: Vec<f64> = path.iter().map(|&n| value(n, *i)).collect();
         let mean = PathMean::of(&s, &f);
-        if !(mean.length > 0.0) {
+        // Zero, or NaN where no segment has the component at both ends.
+        if mean.length.is_nan() || mean.length <= 0.0 {
             return Err(occ.error(
                 key,
                 format!(
