@@ -168,7 +168,7 @@ const UNSUPPORTED: [&str; 11] = [
 fn unsupported_why(k: &str) -> &'static str {
     match k {
         "TOUT" | "GROUP_MA" | "MAILLE" => {
-            "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION is not built: the nodes are those of GROUP_NO/NOEUD, give them alone"
+            "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION or MOYENNE is not built (code_aster restricts fields by element to those cells): the nodes are those of GROUP_NO/NOEUD, give them alone"
         }
         "INVARIANT" => {
             "INVARIANT='OUI' (the invariants VMIS, TRESCA, TRACE, DETER of a tensor field) is not built; CALC_CHAMP CRITERES='SIEQ_NOEU' gives VMIS, TRESCA and TRSIG (the trace) at the nodes, to extract with NOM_CMP"
@@ -320,12 +320,6 @@ fn extract(
     if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
         return Err(occ.not_implemented("REPERE", "only the global frame is built"));
     }
-    // code_aster's EXTRACTION takes its nodes from GROUP_NO/NOEUD only:
-    // its catalogue's rule is AU_MOINS_UN('GROUP_NO', 'NOEUD'), and a
-    // GROUP_MA (or MAILLE, TOUT) alone is refused there. aster's
-    // catalogue lets them through to say so here, with the way to the
-    // nodes of cells (it advised extracting "a nodal field on the cells'
-    // nodes" of fields that were nodal already, probe s7a M1).
     // RESULTANTE sums over the nodes: code_aster refuses it with MOYENNE
     // (POSTRELE_67), and with the pair it would sum and drop the mean.
     if matches!(op, Operation::Mean | Operation::ExtractionMean) && occ.has("RESULTANTE") {
@@ -334,6 +328,13 @@ fn extract(
             "RESULTANTE goes with OPERATION='EXTRACTION' alone (code_aster's POSTRELE_67): give NOM_CMP or TOUT_CMP for the MOYENNE, and the sum in an occurrence of its own",
         ));
     }
+    // code_aster's EXTRACTION and MOYENNE take their nodes from
+    // GROUP_NO/NOEUD only: the rule of their catalogue block (b_autre)
+    // is AU_MOINS_UN('GROUP_NO', 'NOEUD'), and a
+    // GROUP_MA (or MAILLE, TOUT) alone is refused there. aster's
+    // catalogue lets them through to say so here, with the way to the
+    // nodes of cells (it advised extracting "a nodal field on the cells'
+    // nodes" of fields that were nodal already, probe s7a M1).
     if op.on_nodes() && !occ.has("GROUP_NO") && !occ.has("NOEUD") {
         if let Some(k) = ["GROUP_MA", "MAILLE", "TOUT"]
             .into_iter()
@@ -447,7 +448,8 @@ fn field_rows(
 }
 
 /// The nodes of the occurrence. EXTRACTION needs GROUP_NO/NOEUD (the
-/// catalogue's rule); EXTREMA and MOYENNE_ARITH also take the nodes of
+/// catalogue's rule); MOYENNE too, in the order of its path (see
+/// [`path_nodes`]); EXTREMA and MOYENNE_ARITH also take the nodes of
 /// GROUP_MA/MAILLE cells and default to every node of the mesh, as
 /// code_aster's `prexno`/`prmono` do.
 fn selected_nodes(mesh: &Mesh, occ: &Args, op: Operation) -> Result<Vec<usize>, Diagnostic> {
