@@ -707,12 +707,14 @@ fn impr_resu_resultat_honours_the_selection() {
 
 #[test]
 fn post_releve_t_refuses_other_operations() {
+    // MOYENNE is built on nodal fields (tests/post_releve_moyenne.rs),
+    // not on Gauss-point ones.
     let e = run_err(
         "T = POST_RELEVE_T(ACTION=_F(OPERATION='MOYENNE', INTITULE='M', RESULTAT=RESU,
-                NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY'))\n",
+                NOM_CHAM='SIEF_ELGA', GROUP_NO='B', NOM_CMP='SIXX'))\n",
     );
     assert!(
-        e.contains("not implemented yet: POST_RELEVE_T/ACTION/OPERATION"),
+        e.contains("not implemented yet: POST_RELEVE_T/ACTION/NOM_CHAM"),
         "{e}"
     );
     let e = run_err(
@@ -799,7 +801,7 @@ fn post_releve_t_extrema_bad_input_is_located() {
     );
     assert!(
         e.contains("not implemented yet: POST_RELEVE_T/ACTION/OPERATION")
-            && e.contains("EXTRACTION, EXTREMA and MOYENNE_ARITH, one at a time"),
+            && e.contains("EXTRACTION, MOYENNE, EXTREMA and MOYENNE_ARITH, one at a time"),
         "{e}"
     );
     for op in ["EXTREMA", "MOYENNE_ARITH"] {

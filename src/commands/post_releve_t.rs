@@ -40,10 +40,7 @@ pub fn def() -> CommandDef {
                         .required()
                         .count(1, 2)
                         .into(&["EXTRACTION", "MOYENNE", "MOYENNE_ARITH", "EXTREMA"])
-                        .not_built(
-                            &["MOYENNE"],
-                            "aster builds EXTRACTION, EXTREMA and MOYENNE_ARITH",
-                        )
+                        .doc("one, or the pair ('EXTRACTION', 'MOYENNE')")
                         .kw(),
                     text("INTITULE")
                         .required()
@@ -126,7 +123,7 @@ pub fn def() -> CommandDef {
             titre(),
         ],
     )
-    .doc("Extracts values of fields into a table (columns INTITULE, RESU, NOM_CHAM, NUME_ORDRE, INST, NOEUD, COOR_*, components).");
+    .doc("Extracts values of fields into a table (columns INTITULE, RESU, NOM_CHAM, NUME_ORDRE, INST, NOEUD, COOR_*, components), or their mean along a line of nodes (MOYENNE: six QUANTITE rows).");
     CommandDef { spec, exec }
 }
 
@@ -171,7 +168,7 @@ const UNSUPPORTED: [&str; 11] = [
 fn unsupported_why(k: &str) -> &'static str {
     match k {
         "TOUT" | "GROUP_MA" | "MAILLE" => {
-            "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION is not built: the nodes are those of GROUP_NO/NOEUD, give them alone"
+            "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION or MOYENNE is not built (code_aster restricts fields by element to those cells): the nodes are those of GROUP_NO/NOEUD, give them alone"
         }
         "INVARIANT" => {
             "INVARIANT='OUI' (the invariants VMIS, TRESCA, TRACE, DETER of a tensor field) is not built; CALC_CHAMP CRITERES='SIEQ_NOEU' gives VMIS, TRESCA and TRSIG (the trace) at the nodes, to extract with NOM_CMP"
@@ -190,9 +187,13 @@ fn unsupported_why(k: &str) -> &'static str {
 
 type Row = Vec<(String, Cell)>;
 
+/// The column naming MOYENNE's six rows.
+const QUANTITE: &str = "QUANTITE";
+
 /// Builds one table from every ACTION occurrence, rows appended in order.
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut rows: Vec<Row> = Vec::new();
+    let mut alarms: Vec<(&str, String)> = Vec::new();
     for occ in args.facts("ACTION") {
         let given = occ.text("INTITULE").unwrap_or_default();
         let kept = intitule(occ);
@@ -201,7 +202,10 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
                 "  POST_RELEVE_T: INTITULE '{given}' is kept as '{kept}' (16 characters, as code_aster's INTITULE column)"
             ));
         }
-        extract(study, occ, &mut rows)?;
+        extract(study, occ, &mut rows, &mut alarms)?;
+        for (id, text) in alarms.drain(..) {
+            super::post_args::alarm(study, "POST_RELEVE_T", id, &text);
+        }
     }
     let mut table = Table::new();
     table.title = if args.has("TITRE") {
@@ -218,12 +222,19 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     }
     for r in &rows {
         for (name, _) in r {
-            if table.column_index(name).is_none() {
+            if name != QUANTITE && table.column_index(name).is_none() {
                 table
                     .add_column(name, ColumnType::Real)
                     .map_err(|e| table_error(args, "ACTION", e))?;
             }
         }
+    }
+    // MOYENNE's QUANTITE comes after the components, where code_aster's
+    // `rvpara` puts it.
+    if rows.iter().any(|r| r.iter().any(|(n, _)| n == QUANTITE)) {
+        table
+            .add_column(QUANTITE, ColumnType::Text(16))
+            .map_err(|e| table_error(args, "ACTION", e))?;
     }
     for r in rows {
         let mut cells = vec![None; table.columns.len()];
@@ -259,21 +270,43 @@ enum Operation {
     Extrema,
     /// The arithmetic mean of each component over the nodes.
     MeanArith,
+    /// MOYENNE: the mean, first moment and extrema along the line of the
+    /// nodes (code_aster's `rvpstm`).
+    Mean,
+    /// OPERATION=('EXTRACTION', 'MOYENNE'): the node rows, then the six
+    /// MOYENNE rows, field by field (code_aster's `rvpost`).
+    ExtractionMean,
 }
 
-/// One ACTION occurrence: OPERATION='EXTRACTION', 'EXTREMA' or
-/// 'MOYENNE_ARITH' of nodal values.
-fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnostic> {
+impl Operation {
+    /// The operations of code_aster's catalogue block `b_autre`, whose
+    /// rule AU_MOINS_UN('GROUP_NO', 'NOEUD') takes nodes only.
+    fn on_nodes(self) -> bool {
+        !matches!(self, Operation::Extrema | Operation::MeanArith)
+    }
+}
+
+/// One ACTION occurrence: OPERATION='EXTRACTION', 'MOYENNE', 'EXTREMA'
+/// or 'MOYENNE_ARITH' of nodal values, or the pair ('EXTRACTION',
+/// 'MOYENNE'). Alarms for the .mess are pushed on `alarms` (id, text).
+fn extract(
+    study: &Study,
+    occ: &Args,
+    rows: &mut Vec<Row>,
+    alarms: &mut Vec<(&'static str, String)>,
+) -> Result<(), Diagnostic> {
     let ops = occ.texts("OPERATION");
     let op = match ops.as_slice() {
         ["EXTRACTION"] => Operation::Extraction,
         ["EXTREMA"] => Operation::Extrema,
         ["MOYENNE_ARITH"] => Operation::MeanArith,
+        ["MOYENNE"] => Operation::Mean,
+        ["EXTRACTION", "MOYENNE"] | ["MOYENNE", "EXTRACTION"] => Operation::ExtractionMean,
         _ => {
             return Err(occ.not_implemented(
                 "OPERATION",
                 &format!(
-                "OPERATION={}; aster builds EXTRACTION, EXTREMA and MOYENNE_ARITH, one at a time",
+                "OPERATION={}; aster builds EXTRACTION, MOYENNE, EXTREMA and MOYENNE_ARITH, one at a time, and the pair ('EXTRACTION', 'MOYENNE')",
                 ops.iter()
                     .map(|o| format!("'{o}'"))
                     .collect::<Vec<_>>()
@@ -287,29 +320,48 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
     if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
         return Err(occ.not_implemented("REPERE", "only the global frame is built"));
     }
-    // code_aster's EXTRACTION takes its nodes from GROUP_NO/NOEUD only:
-    // its catalogue's rule is AU_MOINS_UN('GROUP_NO', 'NOEUD'), and a
+    // RESULTANTE sums over the nodes: code_aster refuses it with MOYENNE
+    // (POSTRELE_67), and with the pair it would sum and drop the mean.
+    if matches!(op, Operation::Mean | Operation::ExtractionMean) && occ.has("RESULTANTE") {
+        return Err(occ.error(
+            "RESULTANTE",
+            "RESULTANTE goes with OPERATION='EXTRACTION' alone (code_aster's POSTRELE_67): give NOM_CMP or TOUT_CMP for the MOYENNE, and the sum in an occurrence of its own",
+        ));
+    }
+    // code_aster's EXTRACTION and MOYENNE take their nodes from
+    // GROUP_NO/NOEUD only: the rule of their catalogue block (b_autre)
+    // is AU_MOINS_UN('GROUP_NO', 'NOEUD'), and a
     // GROUP_MA (or MAILLE, TOUT) alone is refused there. aster's
     // catalogue lets them through to say so here, with the way to the
     // nodes of cells (it advised extracting "a nodal field on the cells'
     // nodes" of fields that were nodal already, probe s7a M1).
-    if op == Operation::Extraction && !occ.has("GROUP_NO") && !occ.has("NOEUD") {
+    if op.on_nodes() && !occ.has("GROUP_NO") && !occ.has("NOEUD") {
         if let Some(k) = ["GROUP_MA", "MAILLE", "TOUT"]
             .into_iter()
             .find(|k| occ.has(k))
         {
             let cells = occ.texts(k).join("', '");
-            let remedy = if k == "GROUP_MA" {
+            let mut remedy = if k == "GROUP_MA" {
                 format!(
                     "DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(GROUP_MA='{cells}')) makes the node group of its cells' nodes, to give as GROUP_NO='{cells}'"
                 )
             } else {
                 "DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(...)) makes a node group of the nodes wanted, to give as GROUP_NO".to_string()
             };
+            if op != Operation::Extraction {
+                remedy.push_str(
+                    "; MOYENNE follows the nodes in the group's order (such a group is ordered by node number), or in the order NOEUD lists them",
+                );
+            }
+            let named = ops
+                .iter()
+                .map(|o| format!("'{o}'"))
+                .collect::<Vec<_>>()
+                .join(", ");
             return Err(occ.error(
                 k,
                 format!(
-                    "OPERATION='EXTRACTION' takes its nodes from GROUP_NO or NOEUD: code_aster's catalogue rule AU_MOINS_UN('GROUP_NO', 'NOEUD') refuses {k} alone; {remedy} (EXTREMA and MOYENNE_ARITH take GROUP_MA directly)"
+                    "OPERATION={named} takes its nodes from GROUP_NO or NOEUD: code_aster's catalogue rule AU_MOINS_UN('GROUP_NO', 'NOEUD') refuses {k} alone; {remedy} (EXTREMA and MOYENNE_ARITH take GROUP_MA directly)"
                 ),
             ));
         }
@@ -317,7 +369,7 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
     for k in UNSUPPORTED {
         // EXTREMA and MOYENNE_ARITH select nodes by cells too.
         let selection = matches!(k, "TOUT" | "GROUP_MA" | "MAILLE");
-        if occ.has(k) && !(selection && op != Operation::Extraction) {
+        if occ.has(k) && (!selection || op.on_nodes()) {
             return Err(occ.not_implemented(k, unsupported_why(k)));
         }
     }
@@ -351,7 +403,7 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
                 ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre as i64)),
                 ("INST".to_string(), Cell::Real(step.inst)),
             ];
-            field_rows(occ, op, mesh, field, nom_cham, &nodes, lead, rows)?;
+            field_rows(occ, op, mesh, field, nom_cham, &nodes, lead, rows, alarms)?;
         }
     } else {
         let (fname, field) = cham_no_of(study, occ, "CHAM_GD")?;
@@ -362,7 +414,7 @@ fn extract(study: &Study, occ: &Args, rows: &mut Vec<Row>) -> Result<(), Diagnos
             ("INTITULE".to_string(), Cell::Text(intitule.clone())),
             ("CHAM_GD".to_string(), Cell::Text(fname.to_string())),
         ];
-        field_rows(occ, op, mesh, field, fname, &nodes, lead, rows)?;
+        field_rows(occ, op, mesh, field, fname, &nodes, lead, rows, alarms)?;
     }
     Ok(())
 }
@@ -378,6 +430,7 @@ fn field_rows(
     nodes: &[usize],
     lead: Row,
     rows: &mut Vec<Row>,
+    alarms: &mut Vec<(&'static str, String)>,
 ) -> Result<(), Diagnostic> {
     match op {
         Operation::Extraction if occ.has("RESULTANTE") => {
@@ -386,17 +439,25 @@ fn field_rows(
         Operation::Extraction => node_rows(occ, mesh, field, field_name, nodes, &lead, rows),
         Operation::Extrema => extrema_rows(occ, field, field_name, nodes, lead, rows),
         Operation::MeanArith => mean_rows(occ, field, field_name, nodes, lead, rows),
+        Operation::Mean => path_rows(occ, mesh, field, field_name, nodes, lead, rows, alarms),
+        Operation::ExtractionMean => {
+            node_rows(occ, mesh, field, field_name, nodes, &lead, rows)?;
+            path_rows(occ, mesh, field, field_name, nodes, lead, rows, alarms)
+        }
     }
 }
 
 /// The nodes of the occurrence. EXTRACTION needs GROUP_NO/NOEUD (the
-/// catalogue's rule); EXTREMA and MOYENNE_ARITH also take the nodes of
+/// catalogue's rule); MOYENNE too, in the order of its path (see
+/// [`path_nodes`]); EXTREMA and MOYENNE_ARITH also take the nodes of
 /// GROUP_MA/MAILLE cells and default to every node of the mesh, as
 /// code_aster's `prexno`/`prmono` do.
 fn selected_nodes(mesh: &Mesh, occ: &Args, op: Operation) -> Result<Vec<usize>, Diagnostic> {
     let mut nodes = nodes_of(mesh, occ)?;
-    if op == Operation::Extraction {
-        return Ok(nodes);
+    match op {
+        Operation::Extraction => return Ok(nodes),
+        Operation::Mean | Operation::ExtractionMean => return path_nodes(mesh, occ),
+        Operation::Extrema | Operation::MeanArith => {}
     }
     let cells = if occ.has("GROUP_MA") || occ.has("MAILLE") {
         super::model_args::select_cells(mesh, occ)?
@@ -628,4 +689,240 @@ fn node_rows(
         rows.push(row);
     }
     Ok(())
+}
+
+/// The nodes of a MOYENNE path in code_aster's order (`rvgnoe`): the
+/// nodes of NOEUD as listed, then those of each GROUP_NO in turn, in the
+/// group's own order; a node met again is kept at its first place. The
+/// order is the path: MOYENNE integrates along the polyline through them.
+fn path_nodes(mesh: &Mesh, occ: &Args) -> Result<Vec<usize>, Diagnostic> {
+    // The unknown group or node names are reported as everywhere else.
+    nodes_of(mesh, occ)?;
+    let mut out = Vec::new();
+    let mut seen = vec![false; mesh.nnodes()];
+    let names = occ.texts("NOEUD");
+    let named = names
+        .iter()
+        .map(|name| super::post_args::node_by_name(mesh, occ, "NOEUD", name))
+        .collect::<Result<Vec<_>, _>>()?;
+    let grouped = occ
+        .texts("GROUP_NO")
+        .into_iter()
+        .flat_map(|g| mesh.node_groups.get(g).into_iter().flatten().copied());
+    for n in named.into_iter().chain(grouped) {
+        if !std::mem::replace(&mut seen[n], true) {
+            out.push(n);
+        }
+    }
+    Ok(out)
+}
+
+/// The components of a MOYENNE: NOM_CMP, or every component of the field
+/// (TOUT_CMP), at most six as code_aster's `rvpstm` allows (POSTRELE_7).
+fn path_components(
+    occ: &Args,
+    field: &NodalField,
+    field_name: &str,
+) -> Result<Vec<(String, usize)>, Diagnostic> {
+    let cmps = components_of(occ, field, field_name)?;
+    if cmps.len() > 6 {
+        let key = if occ.has("NOM_CMP") {
+            "NOM_CMP"
+        } else {
+            "TOUT_CMP"
+        };
+        return Err(occ.error(
+            key,
+            format!(
+                "MOYENNE of {field_name} on {} components ({}): code_aster's MOYENNE takes at most 6 (POSTRELE_7); name at most 6 in NOM_CMP, in more occurrences if needed",
+                cmps.len(),
+                cmps.iter()
+                    .map(|(c, _)| c.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    }
+    Ok(cmps)
+}
+
+/// The six quantities of a MOYENNE of one component along a path, as
+/// code_aster's `rvpstm` computes them from the nodal values f_i at the
+/// curvilinear abscissae s_i (sums of the chords from the first node), f
+/// linear on each segment. Segments with an end where the component is
+/// absent are left out of the sums (their length too).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PathMean {
+    /// MOMENT_0 = (1/L) ∫ f ds, the mean along the path.
+    moment_0: f64,
+    /// MOMENT_1 = (12/L²) ∫ f (s − L/2) ds: the difference between the
+    /// ends of the linear part of f (its "bending" part).
+    moment_1: f64,
+    /// MINIMUM and MAXIMUM of the nodal values on the kept segments.
+    minimum: f64,
+    maximum: f64,
+    /// The length L of the kept segments.
+    length: f64,
+}
+
+impl PathMean {
+    fn of(s: &[f64], f: &[f64]) -> PathMean {
+        let (mut m1, mut m2, mut xl) = (0.0, 0.0, 0.0);
+        let (mut mi, mut ma) = (f64::INFINITY, f64::NEG_INFINITY);
+        for k in 0..s.len().saturating_sub(1) {
+            let (t1, t2) = (f[k], f[k + 1]);
+            if t1.is_nan() || t2.is_nan() {
+                continue;
+            }
+            let (s1, s2) = (s[k], s[k + 1]);
+            let h = s2 - s1;
+            xl += h;
+            m1 += h * (t1 + t2);
+            // Simpson's rule, exact for the quadratic f·s of a segment.
+            m2 += h / 3.0 * (t1 * s1 + (t1 + t2) * (s1 + s2) + t2 * s2);
+            mi = mi.min(t1).min(t2);
+            ma = ma.max(t1).max(t2);
+        }
+        let moment_0 = 0.5 * m1 / xl;
+        PathMean {
+            moment_0,
+            moment_1: 6.0 * (m2 / (xl * xl) - moment_0),
+            minimum: mi,
+            maximum: ma,
+            length: xl,
+        }
+    }
+
+    /// The six rows' values in code_aster's order (`rvtamo`): MOMENT_0,
+    /// MOMENT_1, MINIMUM, MAXIMUM, MOYE_INT, MOYE_EXT (the linear part at
+    /// the first and at the last node: MOMENT_0 ∓ MOMENT_1/2).
+    fn values(&self) -> [f64; 6] {
+        [
+            self.moment_0,
+            self.moment_1,
+            self.minimum,
+            self.maximum,
+            self.moment_0 - 0.5 * self.moment_1,
+            self.moment_0 + 0.5 * self.moment_1,
+        ]
+    }
+}
+
+/// MOYENNE (code_aster's `rvpstm`/`rvtamo`): along the path of the nodes
+/// (see [`path_nodes`]) without those where none of the components is
+/// defined (`rvouex`/`utmach`), six rows QUANTITE = MOMENT_0, MOMENT_1,
+/// MINIMUM, MAXIMUM, MOYE_INT, MOYE_EXT with a column per component. A
+/// node where some components are absent cuts the segments it ends for
+/// those: code_aster's alarm POSTRELE_62/63 ("hors de la matière").
+#[allow(clippy::too_many_arguments)]
+fn path_rows(
+    occ: &Args,
+    mesh: &Mesh,
+    field: &NodalField,
+    field_name: &str,
+    nodes: &[usize],
+    lead: Row,
+    rows: &mut Vec<Row>,
+    alarms: &mut Vec<(&'static str, String)>,
+) -> Result<(), Diagnostic> {
+    let cmps = path_components(occ, field, field_name)?;
+    let value = |n: usize, i: usize| field.values[n * field.ncmp() + i];
+    let path: Vec<usize> = nodes
+        .iter()
+        .copied()
+        .filter(|&n| cmps.iter().any(|&(_, i)| !value(n, i).is_nan()))
+        .collect();
+    let key = if occ.has("GROUP_NO") {
+        "GROUP_NO"
+    } else {
+        "NOEUD"
+    };
+    let cmp_list = cmps
+        .iter()
+        .map(|(c, _)| c.as_str())
+        .collect::<Vec<_>>()
+        .join(", ");
+    if path.len() < 2 {
+        return Err(occ.error(
+            key,
+            format!(
+                "MOYENNE of {field_name} needs a path of at least 2 nodes where {cmp_list} is defined; {} of the {} selected node(s) has it (code_aster: POSTRELE_6, path of zero length or of one node)",
+                path.len(),
+                nodes.len()
+            ),
+        ));
+    }
+    let mut s = vec![0.0; path.len()];
+    for k in 1..path.len() {
+        let (a, b) = (mesh.coords[path[k - 1]], mesh.coords[path[k]]);
+        let chord = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
+        s[k] = s[k - 1] + chord;
+    }
+    let mut means = Vec::new();
+    let mut warned = false;
+    for (c, i) in &cmps {
+        let f: Vec<f64> = path.iter().map(|&n| value(n, *i)).collect();
+        let mean = PathMean::of(&s, &f);
+        // Zero, or NaN where no segment has the component at both ends.
+        if mean.length.is_nan() || mean.length <= 0.0 {
+            return Err(occ.error(
+                key,
+                format!(
+                    "MOYENNE of {c} of {field_name}: the path through {} has no length where {c} is defined at both ends of a segment (code_aster would divide by zero)",
+                    path.iter()
+                        .map(|&n| node_name(n))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ));
+        }
+        let missing = f.iter().filter(|v| v.is_nan()).count();
+        if missing > 0 && !warned {
+            warned = true;
+            let (id, what) = if missing == 1 {
+                ("POSTRELE_62", "node is".to_string())
+            } else {
+                ("POSTRELE_63", "nodes are".to_string())
+            };
+            alarms.push((
+                id,
+                format!(
+                    "MOYENNE of {field_name}: {missing} {what} out of the material for {c} (the component is absent there); the segments they end are left out of the mean"
+                ),
+            ));
+        }
+        means.push(mean.values());
+    }
+    for (q, name) in [
+        "MOMENT_0", "MOMENT_1", "MINIMUM", "MAXIMUM", "MOYE_INT", "MOYE_EXT",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let mut row = lead.clone();
+        for ((c, _), v) in cmps.iter().zip(&means) {
+            row.push((c.clone(), Cell::Real(v[q])));
+        }
+        row.push((QUANTITE.to_string(), Cell::Text(name.to_string())));
+        rows.push(row);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::PathMean;
+
+    /// f = 2 + 3 s on [0, 6] with uneven nodes: the mean is f(3) = 11, the
+    /// linear part is f itself: MOMENT_1 = f(6) − f(0) = 18.
+    #[test]
+    fn linear_field_gives_its_midpoint_and_end_difference() {
+        let s = [0.0, 0.5, 2.0, 3.0, 6.0];
+        let f: Vec<f64> = s.iter().map(|x| 2.0 + 3.0 * x).collect();
+        let v = PathMean::of(&s, &f).values();
+        let want = [11.0, 18.0, 2.0, 20.0, 2.0, 20.0];
+        for (a, b) in v.iter().zip(want) {
+            assert!((a - b).abs() < 1e-12, "{v:?}");
+        }
+    }
 }
