@@ -50,6 +50,25 @@ fn explicit_wave_runs_at_the_plane_stress_speed() {
     run_study("cplan_wave_explicit");
 }
 
+/// code_aster's own C_PLAN test ssnp15b (VMIS_ISOT_LINE, traction then
+/// shear on one MECPQU4): 21 OK, its analytic references and code_aster's
+/// VALE_CALC (kept as code_aster recorded them) at 1e-6.
+#[test]
+fn code_aster_ssnp15b() {
+    let resu = run_study("cplan_ssnp15b");
+    assert_eq!(resu.lines().filter(|l| l.starts_with(" OK ")).count(), 21);
+}
+
+/// code_aster's C_PLAN test hplv101a (mechanical part, 1 MECPQU8, a
+/// uniform prestrain as edge forces): 16 OK, among them POST_ELEM
+/// ENER_POT = E/(2(1 - NU^2)) = 0.549450549 (code_aster's VALE_CALC),
+/// which needs the EPZZ of σ_zz = 0 (it gave the plane-strain 0.673).
+#[test]
+fn code_aster_hplv101a() {
+    let resu = run_study("cplan_hplv101a");
+    assert_eq!(resu.lines().filter(|l| l.starts_with(" OK ")).count(), 16);
+}
+
 /// What C_PLAN does not build is refused where it is written: finite
 /// strains (COMPORTEMENT/DEFORMATION), MECPQS4 (C_PLAN_SI on QUAD4),
 /// EPSL_ELGA (CALC_CHAMP/DEFORMATION), a model mixing C_PLAN and D_PLAN.
