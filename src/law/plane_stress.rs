@@ -216,6 +216,52 @@ mod tests {
         });
     }
 
+    /// A law with its own local iterations (VMIS_JOHN_COOK's scalar
+    /// root at its RESI_INTE_RELA) converges too: σ_zz = 0, the output
+    /// is the 3D update at the solved Δε_zz, and the condensed tangent
+    /// matches central differences.
+    #[test]
+    fn john_cook_converges_and_its_tangent_is_consistent() {
+        use crate::law::john_cook::{EcroCookParams, LocalControls, VmisJohnCook};
+        let elas = ElasParams::new(117_000.0, 0.35, Some(8.93e-9)).unwrap();
+        let ecro = EcroCookParams::new(90.0, 292.0, 0.025, 0.31, 1.09, 1.0, 298.0, 1083.0).unwrap();
+        let law = VmisJohnCook::new(elas, ecro, LocalControls::default());
+        let z = law.initial_internal();
+        let de = Vec6::new(4e-3, -1e-3, 0.0, 2e-3, 0.0, 0.0);
+        let run = |x: Vec6| {
+            integrate(
+                &law,
+                &SmallStrainInput {
+                    dt: 1e-6,
+                    ..input(Vec6::zeros(), z.as_slice(), x)
+                },
+            )
+            .unwrap()
+        };
+        let out = run(de);
+        assert_eq!(out.output.regime, Regime::Plastic);
+        let mut de3 = de;
+        de3[2] = out.strain_zz;
+        let direct = law
+            .integrate(&SmallStrainInput {
+                dt: 1e-6,
+                ..input(Vec6::zeros(), z.as_slice(), de3)
+            })
+            .unwrap();
+        assert!(
+            direct.stress[2].abs() < 1e-9 * direct.stress.amax(),
+            "{}",
+            direct.stress
+        );
+        for i in [0, 1, 3] {
+            assert!((direct.stress[i] - out.output.stress[i]).abs() < 1e-12 * direct.stress.amax());
+        }
+        let d = out.output.tangent.unwrap();
+        crate::law::assert_tangent_by_differences(&d, de, 5.0, "C_PLAN john_cook ", |x| {
+            run(x).output.stress
+        });
+    }
+
     /// Kinematic hardening: a biaxial step past yield and back keeps
     /// σ_zz = 0 with a condensed tangent equal to its differences.
     #[test]
