@@ -37,7 +37,7 @@ fn elastic_patch_tests() {
 /// VMIS_ISOT_LINE uniaxial past yield and unloading (the 1D law), under
 /// displacement and under FORCE_CONTOUR, equibiaxial (closed form of the
 /// proportional plane-stress flow), VMIS_CINE_LINE reversed into reverse
-/// yield, 1e-8.
+/// yield, VMIS_ISOT_TRAC and VMIS_ISOT_PUIS uniaxial (the 1D laws), 1e-8.
 #[test]
 fn plastic_plane_stress_against_closed_forms() {
     run_study("cplan_plastic");
