@@ -24,15 +24,17 @@ fn run_study(name: &str) -> String {
 /// exactly, EPXX = EPZZ = -NU B, reaction 2 E B per unit thickness) and
 /// a general linear boundary field (plane-stress Hooke at the Gauss
 /// points, the interior nodes on the linear field); the weight under
-/// PESANTEUR, RHO g times the area per unit thickness; 1e-9.
+/// PESANTEUR, RHO g times the area per unit thickness; POST_ELEM
+/// ENER_ELAS and ENER_POT of the general field, its plane-stress energy;
+/// 1e-9.
 #[test]
 fn elastic_patch_tests() {
     let resu = run_study("cplan_patch");
-    // 4 x 14 checks on the four cells, 2 on C_PLAN_SI, 1 weight: each
-    // with its reference.
+    // 4 x 14 checks on the four cells, 2 on C_PLAN_SI, 1 weight, 4 x 2
+    // energies: each with its reference.
     assert_eq!(
         resu.lines().filter(|l| l.contains("ANALYTIQUE")).count(),
-        59
+        67
     );
 }
 
@@ -50,25 +52,6 @@ fn plastic_plane_stress_against_closed_forms() {
 #[test]
 fn explicit_wave_runs_at_the_plane_stress_speed() {
     run_study("cplan_wave_explicit");
-}
-
-/// code_aster's own C_PLAN test ssnp15b (VMIS_ISOT_LINE, traction then
-/// shear on one MECPQU4): 21 OK, its analytic references and code_aster's
-/// VALE_CALC (kept as code_aster recorded them) at 1e-6.
-#[test]
-fn code_aster_ssnp15b() {
-    let resu = run_study("cplan_ssnp15b");
-    assert_eq!(resu.lines().filter(|l| l.starts_with(" OK ")).count(), 21);
-}
-
-/// code_aster's C_PLAN test hplv101a (mechanical part, 1 MECPQU8, a
-/// uniform prestrain as edge forces): 16 OK, among them POST_ELEM
-/// ENER_POT = E/(2(1 - NU^2)) = 0.549450549 (code_aster's VALE_CALC),
-/// which needs the EPZZ of σ_zz = 0 (it gave the plane-strain 0.673).
-#[test]
-fn code_aster_hplv101a() {
-    let resu = run_study("cplan_hplv101a");
-    assert_eq!(resu.lines().filter(|l| l.starts_with(" OK ")).count(), 16);
 }
 
 /// What C_PLAN does not build is refused where it is written: finite
