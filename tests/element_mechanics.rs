@@ -49,12 +49,17 @@ fn catalogue_follows_code_aster_tables() {
         ("D_PLAN", Tria6, "MEDPTR6", Fpg6, Fpg6, 6),
         ("D_PLAN", Tria3, "MEDPTR3", Fpg1, Fpg3, 1),
         ("D_PLAN_SI", Quad8, "MEDPQS8", Fpg4, Fpg9, 4),
+        ("C_PLAN", Quad8, "MECPQU8", Fpg9, Fpg9, 9),
+        ("C_PLAN", Quad4, "MECPQU4", Fpg4, Fpg4, 4),
+        ("C_PLAN", Tria6, "MECPTR6", Fpg6, Fpg6, 6),
+        ("C_PLAN", Tria3, "MECPTR3", Fpg1, Fpg3, 1),
+        ("C_PLAN_SI", Quad8, "MECPQS8", Fpg4, Fpg9, 4),
     ];
     for (m, c, name, rigi, mass, npg) in expect {
         let s = spec(m, c);
         assert_eq!((s.name, s.rigi, s.mass), (name, rigi, mass), "{m} {c:?}");
         assert_eq!(rigi_points(&s), npg);
-        let d = if m.starts_with("AXIS") || m.starts_with("D_PLAN") {
+        let d = if m.starts_with("AXIS") || m.starts_with("D_PLAN") || m.starts_with("C_PLAN") {
             2
         } else {
             3

@@ -819,11 +819,13 @@ pub(super) const DISTRIBUTED_KINDS: [DistributedKind; 4] = [
     DistributedKind::Internal,
 ];
 
-/// "AXIS", "D_PLAN", "2D" or "3D": the model as the messages name it.
+/// "AXIS", "D_PLAN", "C_PLAN", "2D" or "3D": the model as the messages
+/// name it.
 fn model_kind(model: &crate::model::Model) -> &'static str {
     match model.formulation() {
         Some(Formulation::Axis) => "AXIS",
         Some(Formulation::PlaneStrain) => "D_PLAN",
+        Some(Formulation::PlaneStress) => "C_PLAN",
         _ if model.ndof_per_node() == 2 => "2D",
         _ => "3D",
     }

@@ -39,10 +39,6 @@ pub fn def() -> CommandDef {
                         vec![text("MODELISATION")
                             .required()
                             .into(MODELISATIONS)
-                            .not_built(
-                                &["C_PLAN", "C_PLAN_SI"],
-                                "aster builds 3D, 3D_SI, AXIS, AXIS_SI, D_PLAN and D_PLAN_SI models",
-                            )
                             .doc("element family; _SI is reduced integration")
                             .kw()],
                     )
@@ -64,14 +60,15 @@ pub fn def() -> CommandDef {
     CommandDef { spec, exec }
 }
 
-/// The modelisations aster builds, with their formulation. The others of
-/// the catalogue (C_PLAN, ...) are refused as not implemented rather than
-/// silently giving no element.
+/// The modelisations aster builds, with their formulation. Any other
+/// value is refused as not implemented rather than silently giving no
+/// element.
 fn formulation_of(modelisation: &str) -> Option<Formulation> {
     match modelisation {
         "3D" | "3D_SI" => Some(Formulation::Solid3d),
         "AXIS" | "AXIS_SI" => Some(Formulation::Axis),
         "D_PLAN" | "D_PLAN_SI" => Some(Formulation::PlaneStrain),
+        "C_PLAN" | "C_PLAN_SI" => Some(Formulation::PlaneStress),
         _ => None,
     }
 }
@@ -92,8 +89,9 @@ fn skin_element(formulation: Formulation, cell: CellType) -> Option<&'static str
         (Formulation::Solid3d, Seg3) => Some("MECA_ARETE3"),
         (Formulation::Axis, Seg2) => Some("MEAXSE2"),
         (Formulation::Axis, Seg3) => Some("MEAXSE3"),
-        (Formulation::PlaneStrain, Seg2) => Some("MEPLSE2"),
-        (Formulation::PlaneStrain, Seg3) => Some("MEPLSE3"),
+        // code_aster's D_PLAN and C_PLAN share their edge elements.
+        (Formulation::PlaneStrain | Formulation::PlaneStress, Seg2) => Some("MEPLSE2"),
+        (Formulation::PlaneStrain | Formulation::PlaneStress, Seg3) => Some("MEPLSE3"),
         _ => None,
     }
 }
@@ -112,7 +110,7 @@ fn assigns_skin(modelisation: &str, form: Formulation, cell: CellType) -> bool {
 fn main_dim(f: Formulation) -> usize {
     match f {
         Formulation::Solid3d => 3,
-        Formulation::Axis | Formulation::PlaneStrain => 2,
+        Formulation::Axis | Formulation::PlaneStrain | Formulation::PlaneStress => 2,
     }
 }
 
@@ -121,6 +119,7 @@ fn family_name(f: Formulation) -> &'static str {
         Formulation::Solid3d => "3D (3D, 3D_SI)",
         Formulation::Axis => "2D axisymmetric (AXIS, AXIS_SI)",
         Formulation::PlaneStrain => "2D plane strain (D_PLAN, D_PLAN_SI)",
+        Formulation::PlaneStress => "2D plane stress (C_PLAN, C_PLAN_SI)",
     }
 }
 
@@ -143,7 +142,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         let Some(form) = formulation_of(modelisation) else {
             return Err(occ.not_implemented(
                 "MODELISATION",
-                &format!("MODELISATION='{modelisation}'; aster builds 3D, 3D_SI, AXIS, AXIS_SI, D_PLAN and D_PLAN_SI models"),
+                &format!("MODELISATION='{modelisation}'; aster builds 3D, 3D_SI, AXIS, AXIS_SI, D_PLAN, D_PLAN_SI, C_PLAN and C_PLAN_SI models"),
             ));
         };
         match &family {
@@ -314,7 +313,9 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         }
     }
     let dofs = match form {
-        Formulation::Axis | Formulation::PlaneStrain => vec![Dof::Dx, Dof::Dy],
+        Formulation::Axis | Formulation::PlaneStrain | Formulation::PlaneStress => {
+            vec![Dof::Dx, Dof::Dy]
+        }
         Formulation::Solid3d => vec![Dof::Dx, Dof::Dy, Dof::Dz],
     };
 

@@ -678,6 +678,33 @@ fn element_fields(
     } else {
         Vec::new()
     };
+    // C_PLAN: EPZZ comes from σ_zz = 0 with each cell's ELAS ν
+    // (element::strain::plane_stress_zz).
+    let plane_stress = model
+        .element_cells()
+        .any(|(_, s)| s.formulation == crate::model::spec::Formulation::PlaneStress);
+    let plane_nu: Vec<Option<f64>> = if plane_stress
+        && (!strain_opts.is_empty() || crit_opts.iter().any(|o| o.starts_with("EPEQ")))
+    {
+        elastic_constants(
+            study,
+            args,
+            "DEFORMATION",
+            ElasticUse::StrainOfDepl,
+            evol,
+            mesh,
+            model,
+            &cells,
+        )?
+        .into_iter()
+        .map(|c| match c {
+            Some(CellEnergy::Small { nu, .. } | CellEnergy::SimoMiehe { nu, .. }) => Some(nu),
+            None => None,
+        })
+        .collect()
+    } else {
+        Vec::new()
+    };
     let restrict = |f: &GaussField| f.restricted(&cells);
     let noeu = |f: &GaussField| crate::result::elno::noeu(f, mesh);
     for step in evol.steps.iter_mut() {
@@ -775,8 +802,20 @@ fn element_fields(
             })?;
             let measure = crate::element::strain::Measure::of_prefix(prefix)
                 .expect("the three strain prefixes have a measure");
-            let gauss = crate::element::strain::strain_field(measure, mesh, model, depl, &cells)
-                .map_err(located(key))?;
+            if plane_stress && measure == crate::element::strain::Measure::Logarithmic {
+                return Err(args.not_implemented(
+                    key,
+                    "EPSL_* on a C_PLAN model: its EPZZ would need the logarithmic strain of \
+                     σ_zz = 0, not built; EPSI_* and EPSG_* are",
+                ));
+            }
+            let mut gauss =
+                crate::element::strain::strain_field(measure, mesh, model, depl, &cells)
+                    .map_err(located(key))?;
+            if plane_stress {
+                crate::element::strain::plane_stress_zz(&mut gauss, model, &plane_nu)
+                    .map_err(located(key))?;
+            }
             let all: Vec<usize> = (0..gauss.ncmp()).collect();
             if for_epeq && wants(&crit_opts, "EPEQ", "ELGA") {
                 let q = crate::result::criteria::epeq(&gauss).map_err(located("CRITERES"))?;
@@ -841,7 +880,7 @@ fn element_fields(
                     ),
                 )
             })?;
-            let eps = crate::element::strain::strain_field(
+            let mut eps = crate::element::strain::strain_field(
                 crate::element::strain::Measure::of_prefix("EPSI").expect("EPSI has a measure"),
                 mesh,
                 model,
@@ -849,6 +888,10 @@ fn element_fields(
                 &cells,
             )
             .map_err(located("DEFORMATION"))?;
+            if plane_stress {
+                crate::element::strain::plane_stress_zz(&mut eps, model, &plane_nu)
+                    .map_err(located("DEFORMATION"))?;
+            }
             let sief = gauss_of("DEFORMATION", "SIEF_ELGA")?;
             let p = crate::result::energy::epsp(&eps, &sief, &elastic_small)
                 .map_err(located("DEFORMATION"))?;

@@ -103,6 +103,7 @@ pub(crate) fn exec(
         let two_d: Vec<&str> = [
             (Formulation::Axis, "AXIS (HRZ with the weight r)"),
             (Formulation::PlaneStrain, "D_PLAN"),
+            (Formulation::PlaneStress, "C_PLAN"),
         ]
         .into_iter()
         .filter(|(f, _)| md.model.element_cells().any(|(_, s)| s.formulation == *f))

@@ -698,6 +698,13 @@ fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
         &mask,
     )?;
     let measures = point_weights(args, ctx.mesh, ctx.model, "ENER_POT", &mask)?;
+    let plane_nu: Vec<Option<f64>> = elastic
+        .iter()
+        .map(|c| match c {
+            Some(CellEnergy::Small { nu, .. } | CellEnergy::SimoMiehe { nu, .. }) => Some(*nu),
+            None => None,
+        })
+        .collect();
     for step in select_steps(study, evol, args)? {
         let nume = step.nume_ordre;
         let depl = step.nodal.get("DEPL").ok_or_else(|| {
@@ -709,7 +716,7 @@ fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
                 ),
             )
         })?;
-        let eps = crate::element::strain::strain_field(
+        let mut eps = crate::element::strain::strain_field(
             crate::element::strain::Measure::Linear,
             ctx.mesh,
             ctx.model,
@@ -717,6 +724,10 @@ fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
             &mask,
         )
         .map_err(|m| args.error("ENER_POT", format!("NUME_ORDRE {nume}: {m}")))?;
+        // C_PLAN: the ε_zz of σ_zz = 0 (epsvmc), without which ½ ε:C:ε
+        // would be the plane-strain energy (hplv101a: 0.673 for 0.549).
+        crate::element::strain::plane_stress_zz(&mut eps, ctx.model, &plane_nu)
+            .map_err(|m| args.error("ENER_POT", format!("NUME_ORDRE {nume}: {m}")))?;
         let nc = eps.ncmp();
         let mut w = crate::result::GaussField {
             components: vec!["TOTALE".into()],

@@ -157,7 +157,9 @@ fn measure(f: Formulation, n: &[f64], dn: &[[f64; 3]], x: &[[f64; 3]]) -> Result
             }
             Ok(det)
         }
-        Formulation::PlaneStrain => Ok(super::mechanics::jacobian_2d(x, dn)?.0),
+        Formulation::PlaneStrain | Formulation::PlaneStress => {
+            Ok(super::mechanics::jacobian_2d(x, dn)?.0)
+        }
         Formulation::Axis => {
             let det = super::mechanics::jacobian_2d(x, dn)?.0;
             Ok(det * super::mechanics::gauss_radius(n, x)?)

@@ -45,6 +45,7 @@ use std::sync::OnceLock;
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 
 use crate::law::gdef_log::FiniteStrainBehaviour;
+use crate::law::plane_stress;
 use crate::law::simo_miehe::{Axi, FiniteStrainInput, SimoMiehe, StepStart};
 use crate::law::voigt::{stress_to_tensor, tensor_to_strain, tensor_to_stress};
 use crate::law::{
@@ -682,6 +683,17 @@ fn evaluate(
         });
     }
     check_law(kin, law)?;
+    if spec.formulation == Formulation::PlaneStress
+        && !matches!(kin, Kinematics::Petit | Kinematics::PetitReac)
+    {
+        // The behaviour field refuses it first (nonlinear::behaviour).
+        return Err(ElementFailure::BadInput {
+            message: format!(
+                "{}: plane stress is built for DEFORMATION='PETIT' and 'PETIT_REAC' only",
+                spec.name
+            ),
+        });
+    }
 
     forces.clear();
     forces.resize(ndof, 0.0);
@@ -714,6 +726,7 @@ fn evaluate(
     partners.resize(9, [0.0; MAX_DOFS]);
     let mt = &mut partners[..];
     let axis = spec.formulation == Formulation::Axis;
+    let plane_stress = spec.formulation == Formulation::PlaneStress;
 
     let mut du = [0.0; MAX_DOFS];
     for k in 0..ndof {
@@ -780,15 +793,22 @@ fn evaluate(
             (Kinematics::Petit | Kinematics::PetitReac, LawRef::Small(l)) => {
                 let grad_du = geom.gradient(&du[..ndof], d);
                 let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
-                let out = l
-                    .integrate(&SmallStrainInput {
-                        stress: st.stress,
-                        internal: st.internal.as_slice(),
-                        strain_increment: tensor_to_strain(&grad_du),
-                        dt,
-                        tangent,
-                    })
-                    .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                let input = SmallStrainInput {
+                    stress: st.stress,
+                    internal: st.internal.as_slice(),
+                    strain_increment: tensor_to_strain(&grad_du),
+                    dt,
+                    tangent,
+                };
+                // C_PLAN: the same element with σ_zz = 0 solved at the
+                // point (Δε_zz does not enter the in-plane virtual work,
+                // whose G have no zz entry) and the condensed tangent.
+                let out = if plane_stress {
+                    plane_stress::integrate(l, &input).map(|o| o.output)
+                } else {
+                    l.integrate(&input)
+                }
+                .map_err(|failure| ElementFailure::Law { point: p, failure })?;
                 drop(law_span);
                 let s = stress_to_tensor(&out.stress);
                 if want_k {
@@ -1755,7 +1775,7 @@ fn point_geometry(
             }
             out.dv = w * det;
         }
-        Formulation::PlaneStrain | Formulation::Axis => {
+        Formulation::PlaneStrain | Formulation::PlaneStress | Formulation::Axis => {
             let (det, inv) = jacobian_2d(x, dn)?;
             // An AXIS point also needs its radius, checked after det J as
             // it always was; D_PLAN is AXIS without it (per unit thickness).

@@ -17,6 +17,10 @@
 //! EPSI_R) and 4 in AXIS and D_PLAN (EPXX EPYY EPZZ EPXY). In AXIS x is
 //! r, y is z and EPZZ is the hoop strain u_r/r (EPSG: u_r/r + ½(u_r/r)²,
 //! EPSL: ln(1 + u_r/r)), as SIZZ is the hoop stress; in D_PLAN EPZZ = 0.
+//! In C_PLAN the displacement has no ε_zz: code_aster's `epsvmc` takes
+//! it from σ_zz = 0 with the ELAS Hooke matrix, EPZZ = −ν/(1−ν)(EPXX +
+//! EPYY) ([`plane_stress_zz`]), the true ε_zz of an elastic point (a
+//! plastic one's differs by the plastic part, which EPSI does not see).
 
 use nalgebra::{Matrix3, SymmetricEigen};
 
@@ -78,7 +82,7 @@ impl Measure {
 pub fn components(formulation: Option<Formulation>) -> Vec<String> {
     let all = ["EPXX", "EPYY", "EPZZ", "EPXY", "EPXZ", "EPYZ"];
     let n = match formulation {
-        Some(Formulation::Axis | Formulation::PlaneStrain) => 4,
+        Some(Formulation::Axis | Formulation::PlaneStrain | Formulation::PlaneStress) => 4,
         _ => 6,
     };
     all[..n].iter().map(|s| s.to_string()).collect()
@@ -113,6 +117,36 @@ pub fn strain_field(
         out.extend_from_slice(&v[..nc]);
         Ok(())
     })
+}
+
+/// EPZZ of the plane-stress (C_PLAN) cells of `field` (a strain field of
+/// [`strain_field`], 4 components) from σ_zz = 0 with Hooke's law, as
+/// code_aster's `epsvmc`: EPZZ = −ν/(1−ν)(EPXX + EPYY), `nu[c]` the ELAS
+/// ν of cell c. A C_PLAN cell with points and no ν is an error naming it.
+pub fn plane_stress_zz(
+    field: &mut GaussField,
+    model: &Model,
+    nu: &[Option<f64>],
+) -> Result<(), String> {
+    let nc = field.ncmp();
+    for (c, role) in model.cells.iter().enumerate() {
+        let CellRole::Element(spec) = role else {
+            continue;
+        };
+        let range = field.offsets[c]..field.offsets[c + 1];
+        if spec.formulation != Formulation::PlaneStress || range.is_empty() {
+            continue;
+        }
+        let nu = nu
+            .get(c)
+            .copied()
+            .flatten()
+            .ok_or_else(|| format!("cell M{}: no ELAS NU for the EPZZ of C_PLAN", c + 1))?;
+        for point in field.values[range].chunks_mut(nc) {
+            point[2] = -nu / (1.0 - nu) * (point[0] + point[1]);
+        }
+    }
+    Ok(())
 }
 
 /// J = det F at the SIEF_ELGA points of the selected element cells (one

@@ -17,6 +17,7 @@
 pub mod elas;
 pub mod gdef_log;
 pub mod john_cook;
+pub mod plane_stress;
 pub mod root1d;
 pub mod simo_miehe;
 pub mod vmis_cine_line;

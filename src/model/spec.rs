@@ -26,6 +26,12 @@ pub enum Formulation {
     /// hoop term and without the weight r: F_zz = 1 is the identity row
     /// of a 3D gradient, so every 3D law applies unchanged.
     PlaneStrain,
+    /// 2D plane stress (C_PLAN): the geometry, dofs, Gauss families and
+    /// integrals of [`Formulation::PlaneStrain`] (per unit thickness),
+    /// with σ_zz = 0 instead of ε_zz = 0: at each Gauss point ε_zz is
+    /// the unknown of a local Newton on σ_zz (`law::plane_stress`), and
+    /// the tangent is the 3D one with the zz row and column condensed.
+    PlaneStress,
     /// 3D continuum, dofs (DX, DY, DZ).
     Solid3d,
 }
@@ -36,14 +42,21 @@ impl Formulation {
         match self {
             Formulation::Axis => "AXIS",
             Formulation::PlaneStrain => "D_PLAN",
+            Formulation::PlaneStress => "C_PLAN",
             Formulation::Solid3d => "3D",
         }
+    }
+
+    /// D_PLAN or C_PLAN: the two share every geometric code path (the
+    /// Jacobian of the plane, no weight r, no hoop term).
+    pub fn is_plane(self) -> bool {
+        matches!(self, Formulation::PlaneStrain | Formulation::PlaneStress)
     }
 
     /// Degrees of freedom per node (2 for AXIS, 3 in 3D).
     pub fn dofs_per_node(self) -> usize {
         match self {
-            Formulation::Axis | Formulation::PlaneStrain => 2,
+            Formulation::Axis | Formulation::PlaneStrain | Formulation::PlaneStress => 2,
             Formulation::Solid3d => 3,
         }
     }
@@ -112,6 +125,14 @@ pub fn element_spec(modelisation: &str, cell: CellType) -> Option<ElementSpec> {
         ("D_PLAN", Tria6) => ("MEDPTR6", PlaneStrain, Fpg6, Fpg6),
         ("D_PLAN", Tria3) => ("MEDPTR3", PlaneStrain, Fpg1, Fpg3),
         ("D_PLAN_SI", Quad8) => ("MEDPQS8", PlaneStrain, Fpg4, Fpg9),
+        // code_aster's C_PLAN and C_PLAN_SI elements (phenomenon
+        // catalogue): the cells of D_PLAN's, with its Gauss families
+        // [mem: the element catalogue's C_PLAN families not re-read].
+        ("C_PLAN", Quad8) => ("MECPQU8", PlaneStress, Fpg9, Fpg9),
+        ("C_PLAN", Quad4) => ("MECPQU4", PlaneStress, Fpg4, Fpg4),
+        ("C_PLAN", Tria6) => ("MECPTR6", PlaneStress, Fpg6, Fpg6),
+        ("C_PLAN", Tria3) => ("MECPTR3", PlaneStress, Fpg1, Fpg3),
+        ("C_PLAN_SI", Quad8) => ("MECPQS8", PlaneStress, Fpg4, Fpg9),
         _ => return None,
     };
     Some(ElementSpec {
@@ -128,10 +149,12 @@ pub fn element_spec(modelisation: &str, cell: CellType) -> Option<ElementSpec> {
 /// element" would silently keep an earlier (e.g. fully integrated)
 /// element on the cell, or report a mesh without cells of the dimension.
 /// code_aster's D_PLAN_SI has MEDPQS4 on QUAD4 beside MEDPQS8 (its
-/// phenomenon catalogue); its AXIS_SI is QUAD8 only.
+/// phenomenon catalogue), C_PLAN_SI likewise MECPQS4; its AXIS_SI is
+/// QUAD8 only.
 pub fn unimplemented_element(modelisation: &str, cell: CellType) -> Option<&'static str> {
     match (modelisation, cell) {
         ("D_PLAN_SI", CellType::Quad4) => Some("MEDPQS4"),
+        ("C_PLAN_SI", CellType::Quad4) => Some("MECPQS4"),
         _ => None,
     }
 }

@@ -172,9 +172,9 @@ pub fn build_for(
         IndexMap::new();
     let mut uncovered = 0usize;
     for (cell, role) in model.cells.iter().enumerate() {
-        if !matches!(role, CellRole::Element(_)) {
+        let CellRole::Element(spec) = role else {
             continue;
-        }
+        };
         let (relation, deformation, occ) = match chosen[cell] {
             Some(k) => (
                 occurrences[k].relation.as_str(),
@@ -187,6 +187,28 @@ pub fn build_for(
             }
         };
         let kinematics = kinematics_of(relation, deformation, occ)?;
+        if spec.formulation == crate::model::spec::Formulation::PlaneStress
+            && !matches!(kinematics, Kinematics::Petit | Kinematics::PetitReac)
+        {
+            // law::plane_stress solves σ_zz = 0 for the small-strain
+            // contract; the finite-strain laws take F, whose F_zz would
+            // be the unknown of another Newton, not built.
+            return Err(BehaviourError {
+                not_implemented: true,
+                ..err(
+                    occ,
+                    "DEFORMATION",
+                    format!(
+                        "not implemented yet: COMPORTEMENT/DEFORMATION='{deformation}' on the plane-stress element {} \
+                         of cell M{} (AFFE_MODELE MODELISATION='C_PLAN'/'C_PLAN_SI'): aster builds \
+                         C_PLAN with DEFORMATION='PETIT' and 'PETIT_REAC'; use one of them, or D_PLAN or 3D \
+                         for finite strains",
+                        spec.name,
+                        cell + 1
+                    ),
+                )
+            });
+        }
         let mat_name = matfield
             .cell_material
             .get(cell)

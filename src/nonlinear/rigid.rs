@@ -92,9 +92,7 @@ fn part_modes(
     let axis = model
         .element_cells()
         .any(|(_, s)| s.formulation == Formulation::Axis);
-    let plane = model
-        .element_cells()
-        .any(|(_, s)| s.formulation == Formulation::PlaneStrain);
+    let plane = model.element_cells().any(|(_, s)| s.formulation.is_plane());
     if active.is_empty() {
         return Vec::new();
     }
