@@ -1879,7 +1879,7 @@ fn bad_kinematic_and_power_hardening_input_is_a_located_error() {
                 "RESP = CALC_CHAMP(reuse=RESP, RESULTAT=RESP,",
                 "RESG = CALC_CHAMP(reuse=RESG, RESULTAT=RESG,",
             ),
-            "not implemented yet: CALC_CHAMP/ENERGIE (ENEL of cell",
+            "not implemented yet: CALC_CHAMP/ENERGIE (the elastic energy of cell",
         ),
         (
             "vari_type_test",
