@@ -49,6 +49,7 @@ fn setup(friction: bool) -> (Mesh, ContactDef) {
             }),
             tole_proj_ext: Some(0.5),
             dist_appa: None,
+            user_gap: Default::default(),
         }],
     };
     (m, d)

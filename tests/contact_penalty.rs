@@ -45,6 +45,7 @@ fn def(mesh: &Mesh, e_n: f64, friction: Option<Coulomb>) -> ContactDef {
             friction,
             tole_proj_ext: Some(0.5),
             dist_appa: None,
+            user_gap: Default::default(),
         }],
     }
 }

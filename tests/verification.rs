@@ -3208,8 +3208,9 @@ fn a_clamped_massless_part_changes_nothing() {
 
 /// DEFI_CONTACT DIST_ESCL / DIST_MAIT equal to 0 everywhere (code_aster's
 /// sdnv100a gives DIST_ESCL a DEFI_CONSTANTE of 0): accepted, the same
-/// checks as without (contact_penalty.comm); a non-zero thickness stops at
-/// DEFI_CONTACT as not implemented, naming the keyword.
+/// checks as without (contact_penalty.comm); a thickness that is a
+/// function of INST stops as not implemented, naming the keyword (non-zero
+/// constants and functions of X, Y, Z are taken: contact_thickness.comm).
 #[test]
 fn a_zero_contact_thickness_changes_nothing() {
     let checks = common::check_lines;
@@ -3223,24 +3224,49 @@ fn a_zero_contact_thickness_changes_nothing() {
             tag,
             &[(
                 "CONT1 = DEFI_CONTACT(",
-                &format!("EP = DEFI_CONSTANTE(VALE={value})\nCONT1 = DEFI_CONTACT("),
+                &format!("EP = {value}\nCONT1 = DEFI_CONTACT("),
             ), (
                 zone,
                 "ZONE=_F(GROUP_MA_MAIT='FOND', GROUP_MA_ESCL='ESCL', DIST_ESCL=EP, DIST_MAIT=EP,\n                             ALGO_CONT='PENALISATION', E_N=E_N1))",
             )],
         )
     };
-    let zero = with("contact_dist_zero", "0.");
+    let zero = with("contact_dist_zero", "DEFI_CONSTANTE(VALE=0.)");
     let zero = common::assert_all_ok(&zero, "contact_dist_zero.resu");
     assert_eq!(checks(&zero), checks(&plain));
-    let thick = with("contact_dist_thick", "0.1");
+    let thick = with(
+        "contact_dist_inst",
+        "DEFI_FONCTION(NOM_PARA='INST', VALE=(0., 0.1, 1., 0.2))",
+    );
     assert_eq!(thick.code, 1, "{}", thick.term);
     assert!(
         thick
             .term
-            .contains("not implemented yet: DEFI_CONTACT/ZONE/DIST_MAIT"),
+            .contains("not implemented yet: DEFI_CONTACT/ZONE/DIST_MAIT")
+            && thick.term.contains("a thickness function of INST"),
         "{}",
         thick.term
     );
     assert!(!thick.term.contains("panicked"), "{}", thick.term);
+}
+
+/// DIST_MAIT + DIST_ESCL (a DEFI_CONSTANTE and a function of X) are taken
+/// off the gap of the discrete contact (code_aster's cfdist): the block
+/// rests on the foundation 0.01 above it, JEU = 0, the reactions carry the
+/// weight (contact_thickness.comm); the .mess names both thicknesses.
+#[test]
+fn contact_thickness_is_taken_off_the_gap() {
+    run_study("contact_thickness");
+    let mess = std::fs::read_to_string(
+        Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join("verif_contact_thickness")
+            .join("contact_thickness.mess"),
+    )
+    .unwrap();
+    for line in [
+        "DIST_MAIT = DM: a thickness (function of TOUTPARA) taken off the gap",
+        "DIST_ESCL = DE: a thickness (function of X) taken off the gap",
+    ] {
+        assert!(mess.contains(line), "{line} not in\n{mess}");
+    }
 }

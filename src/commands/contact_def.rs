@@ -51,6 +51,82 @@ impl ContactDef {
     }
 }
 
+/// DIST_MAIT + DIST_ESCL of every discrete zone, per slave node, into
+/// `def` (code_aster's `cfdist`: both functions of X, Y, Z evaluated at
+/// the contact point and added; the gap is the geometric one less their
+/// sum). Evaluated once, at the slave node's initial coordinates: a
+/// function of the position is read where the node starts, not where it
+/// has moved (the same for a constant, DEFI_CONSTANTE, the common case).
+/// A function of INST is refused, as is a thickness with
+/// FORMULATION='CONTINUE'.
+pub fn set_user_gaps(
+    study: &crate::study::Study,
+    args: &Args,
+    def: &mut ContactDef,
+    mesh: &Mesh,
+) -> Result<(), Diagnostic> {
+    use crate::concepts::ConceptData;
+    let continuous = args.text("FORMULATION") == Some("CONTINUE");
+    for (k, z) in args.facts("ZONE").iter().enumerate() {
+        let mut funcs = Vec::new();
+        for key in ["DIST_MAIT", "DIST_ESCL"] {
+            let Some(name) = z.concept(key) else {
+                continue;
+            };
+            let f = match study.concepts.data(name) {
+                Some(ConceptData::Function(f)) => f,
+                _ => return Err(z.error(key, format!("the function {name} holds no data"))),
+            };
+            if f.ordinates.iter().all(|&y| y == 0.0) {
+                continue;
+            }
+            if continuous {
+                return Err(z.not_implemented(
+                    key,
+                    &format!("{key}={name}: a fictitious thickness with FORMULATION='CONTINUE' (FORMULATION='DISCRETE' takes it)"),
+                ));
+            }
+            let axis = match f.para.as_str() {
+                "TOUTPARA" => None,
+                "X" => Some(0),
+                "Y" => Some(1),
+                "Z" => Some(2),
+                other => {
+                    return Err(z.not_implemented(
+                        key,
+                        &format!("{key}={name}: a thickness function of {other}; functions of X, Y, Z or constants (DEFI_CONSTANTE) are taken"),
+                    ))
+                }
+            };
+            funcs.push((key, name, f, axis));
+        }
+        if funcs.is_empty() {
+            continue;
+        }
+        let Some(zone) = def.zones.get_mut(k) else {
+            continue;
+        };
+        for &s in &zone.slave_nodes {
+            let mut total = 0.0;
+            for (key, name, f, axis) in &funcs {
+                let x = axis.map_or(0.0, |a| mesh.coords[s][a]);
+                total += f.eval(x).map_err(|m| {
+                    z.error(
+                        key,
+                        format!(
+                            "{key}={name} at slave node N{} ({}): {m}",
+                            s + 1,
+                            axis.map_or("constant", |a| ["X", "Y", "Z"][a])
+                        ),
+                    )
+                })?;
+            }
+            zone.user_gap.insert(s, total);
+        }
+    }
+    Ok(())
+}
+
 fn build(args: &Args, mesh: &Mesh, explicit: bool) -> Result<ContactDef, Diagnostic> {
     {
         let formulation = args.text("FORMULATION").unwrap_or("DISCRETE");
@@ -632,5 +708,6 @@ fn zone_groups(
         friction: coulomb,
         tole_proj_ext: (tole >= 0.0).then_some(tole),
         dist_appa: (dist_appa > 0.0).then_some(dist_appa),
+        user_gap: Default::default(),
     })
 }

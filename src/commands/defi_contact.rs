@@ -237,10 +237,11 @@ pub fn def() -> CommandDef {
 /// checks code_aster does when the contact is defined: names, surfaces,
 /// and the algorithm combinations it refuses.
 /// DIST_MAIT / DIST_ESCL, the fictitious thicknesses code_aster adds to
-/// the gap (shells' half thicknesses): only a function equal to 0
-/// everywhere is accepted, which changes nothing (code_aster's sdnv100a
-/// gives DIST_ESCL a DEFI_CONSTANTE of 0 in every version from 2012 to
-/// 2025); any other stops as not implemented.
+/// the gap (shells' half thicknesses; its sdnv100a gives DIST_ESCL a
+/// DEFI_CONSTANTE of 0): a function equal to 0 everywhere changes nothing
+/// and is said so; another is taken by the discrete formulation
+/// (`contact_def::set_user_gaps`, when the contact is used) and named in
+/// the .mess.
 fn zero_thickness(study: &Study, zone: &Args, key: &str) -> Result<Option<String>, Diagnostic> {
     let Some(name) = zone.concept(key) else {
         return Ok(None);
@@ -249,12 +250,11 @@ fn zero_thickness(study: &Study, zone: &Args, key: &str) -> Result<Option<String
         Some(ConceptData::Function(f)) if f.ordinates.iter().all(|&y| y == 0.0) => Ok(Some(
             format!("    {key} = {name}: 0 everywhere, no thickness added to the gap"),
         )),
-        _ => Err(zone.not_implemented(
-            key,
-            &format!(
-                "{key}={name}: a fictitious thickness added to the gap; only a function equal to 0 everywhere is accepted"
-            ),
-        )),
+        Some(ConceptData::Function(f)) => Ok(Some(format!(
+            "    {key} = {name}: a thickness (function of {}) taken off the gap of every slave node",
+            f.para
+        ))),
+        _ => Err(zone.error(key, format!("the function {name} holds no data"))),
     }
 }
 
@@ -651,10 +651,10 @@ fn pairing(appariement: &[&'static str]) -> Vec<Keyword> {
             )
             .kw(),
             concept("DIST_MAIT", &[C::Fonction])
-                .doc("extra gap added on the master side; not implemented yet but as a function equal to 0 everywhere (checked when the command runs)")
+                .doc("fictitious thickness on the master side, taken off the gap (DISCRETE: a constant or a function of X, Y, Z, read at the slave node's initial position)")
                 .kw(),
             concept("DIST_ESCL", &[C::Fonction])
-                .doc("extra gap added on the slave side; not implemented yet but as a function equal to 0 everywhere (checked when the command runs)")
+                .doc("fictitious thickness on the slave side, taken off the gap (DISCRETE: a constant or a function of X, Y, Z, read at the slave node's initial position)")
                 .kw(),
             real("DIST_APPA")
                 .default(r(-1.0))

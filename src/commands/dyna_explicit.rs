@@ -165,7 +165,9 @@ pub(crate) fn exec(
                 unil_def = Some(def);
                 None
             } else {
-                let (def, enf) = crate::contact::ContactDef::explicit_from_args(cargs, &md.mesh)?;
+                let (mut def, enf) =
+                    crate::contact::ContactDef::explicit_from_args(cargs, &md.mesh)?;
+                super::contact_def::set_user_gaps(study, cargs, &mut def, &md.mesh)?;
                 notes.push(format!(
                 "contact in explicit dynamics is an aster extension (code_aster stops with MECANONLINE5_22): {} against a fixed master (or, penalised, a deformable one)",
                 match enf {

@@ -1967,7 +1967,8 @@ pub(crate) fn run(
                 unil_def = Some(def);
                 None
             } else {
-                let def = crate::contact::ContactDef::from_args(cargs, &md.mesh)?;
+                let mut def = crate::contact::ContactDef::from_args(cargs, &md.mesh)?;
+                super::contact_def::set_user_gaps(study, cargs, &mut def, &md.mesh)?;
                 if newton.reac_incr == 0 {
                     let o = args.fact("NEWTON").unwrap_or(args);
                     return Err(o.error(

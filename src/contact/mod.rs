@@ -86,6 +86,11 @@ pub struct ContactZone {
     /// Slave nodes farther than this from their projection are not paired
     /// (`DIST_APPA`; None for the default −1).
     pub dist_appa: Option<f64>,
+    /// The fictitious thickness DIST_MAIT + DIST_ESCL of each slave node
+    /// (code_aster's `cfdist`), subtracted from its geometric gap: the
+    /// bodies touch when their surfaces are that far apart (half
+    /// thicknesses of shells modelled by their mid-surface). Empty: none.
+    pub user_gap: std::collections::HashMap<usize, f64>,
 }
 
 /// How the discrete formulation enforces non-penetration (`ALGO_CONT`,

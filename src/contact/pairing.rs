@@ -62,11 +62,12 @@ pub struct Link {
     pub ntangents: usize,
     /// Projection point at pairing (the `PROJ_*` components of CONT_NOEU).
     pub proj: [f64; 3],
-    /// Gap at pairing.
+    /// Gap at pairing, less the zone's DIST_MAIT + DIST_ESCL.
     pub gap: f64,
     /// Gap of the frozen link at zero displacement:
     /// n_in·(Σ N_j X_j − X_s) with X the initial coordinates, so that the
-    /// gap for displacements u is `gap_ref + n_in·(Σ N_j u_j − u_s)`.
+    /// gap for displacements u is `gap_ref + n_in·(Σ N_j u_j − u_s)`
+    /// (less DIST_MAIT + DIST_ESCL, as `gap`).
     pub gap_ref: f64,
 }
 
@@ -140,7 +141,9 @@ pub fn pair(def: &ContactDef, mesh: &Mesh, u: &[[f64; 3]]) -> Pairing {
             for (j, &n) in nodes.iter().enumerate() {
                 x_ref = add(x_ref, scale(pr.shape[j], mesh.coords[n]));
             }
-            let gap_ref = dot(pr.normal, sub(x_ref, mesh.coords[s]));
+            // DIST_MAIT + DIST_ESCL: the link closes that much earlier.
+            let user = zone.user_gap.get(&s).copied().unwrap_or(0.0);
+            let gap_ref = dot(pr.normal, sub(x_ref, mesh.coords[s])) - user;
             out.links.push(Link {
                 zone: iz,
                 slave: s,
@@ -152,7 +155,7 @@ pub fn pair(def: &ContactDef, mesh: &Mesh, u: &[[f64; 3]]) -> Pairing {
                 tangents: pr.tangents,
                 ntangents: def.dim - 1,
                 proj: pr.point,
-                gap: pr.gap,
+                gap: pr.gap - user,
                 gap_ref,
             });
         }
