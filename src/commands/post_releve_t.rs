@@ -72,6 +72,10 @@ pub fn def() -> CommandDef {
                     text("REPERE")
                         .into(&["GLOBAL", "LOCAL", "POLAIRE", "UTILISATEUR", "CYLINDRIQUE"])
                         .default(t("GLOBAL"))
+                        .not_built(
+                            &["LOCAL", "POLAIRE", "UTILISATEUR", "CYLINDRIQUE"],
+                            "only REPERE='GLOBAL' is built: the components are in the global frame",
+                        )
                         .kw(),
                     real("ANGL_NAUT").count(3, 3).kw(),
                     real("ORIGINE").count(3, 3).kw(),
@@ -315,8 +319,8 @@ fn extract(
             ))
         }
     };
-    // The frame first: ORIGINE and AXE_Z belong to REPERE='CYLINDRIQUE',
-    // and naming them would hide what is missing.
+    // The catalogue refuses the other frames when the file is checked
+    // (`not_built` on REPERE); this guards a program built another way.
     if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
         return Err(occ.not_implemented("REPERE", "only the global frame is built"));
     }
