@@ -725,19 +725,32 @@ fn post_releve_t_refuses_other_operations() {
         e.contains("not implemented yet: POST_RELEVE_T/ACTION/MOMENT"),
         "{e}"
     );
-    // A cylindrical frame written as code_aster wants it (ORIGINE, AXE_Z)
-    // is refused on REPERE, not on ORIGINE.
-    let e = run_err(
-        "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,
-                NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY', REPERE='CYLINDRIQUE',
-                ORIGINE=(0., 0., 0.), AXE_Z=(0., 0., 1.)))\n",
-    );
-    assert!(
-        e.contains(
-            "not implemented yet: POST_RELEVE_T/ACTION/REPERE (only the global frame is built)"
-        ) && e.contains("t.comm:"),
-        "{e}"
-    );
+    // The frames not built (LOCAL, POLAIRE; UTILISATEUR and CYLINDRIQUE
+    // are, tests/post_releve_repere.rs) are refused on REPERE, when the
+    // file is checked, at its line: they passed `aster check` and
+    // stopped only when POST_RELEVE_T ran.
+    for (repere, extra) in [
+        ("LOCAL", "VECT_Y=(0., 1., 0.)"),
+        ("POLAIRE", "VECT_Y=(0., 1., 0.)"),
+    ] {
+        let body = format!(
+            "T = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='M', RESULTAT=RESU,\n\
+             NOM_CHAM='DEPL', GROUP_NO='B', NOM_CMP='DY', REPERE='{repere}',\n\
+             {extra}))\n"
+        );
+        let src = Source::new("t.comm", format!("{PRELUDE}{body}"));
+        let mut msgs = String::new();
+        assert!(
+            parse_and_check(&src, &registry(), &mut msgs).is_none(),
+            "{repere} passed the check"
+        );
+        assert!(
+            msgs.contains(&format!(
+                "not implemented yet: POST_RELEVE_T/ACTION/REPERE='{repere}'"
+            )) && msgs.contains("t.comm:6:"),
+            "{repere}: {msgs}"
+        );
+    }
     // EXTRACTION by GROUP_MA alone: code_aster's catalogue refuses it
     // (AU_MOINS_UN('GROUP_NO', 'NOEUD'), in its 2012 and its current
     // post_releve_t.py alike), for nodal fields (DEPL, REAC_NODA,

@@ -72,10 +72,24 @@ pub fn def() -> CommandDef {
                     text("REPERE")
                         .into(&["GLOBAL", "LOCAL", "POLAIRE", "UTILISATEUR", "CYLINDRIQUE"])
                         .default(t("GLOBAL"))
+                        .not_built(
+                            &["LOCAL", "POLAIRE"],
+                            "REPERE='GLOBAL', 'UTILISATEUR' (ANGL_NAUT) and 'CYLINDRIQUE' (ORIGINE, AXE_Z) are built",
+                        )
+                        .doc("UTILISATEUR and CYLINDRIQUE turn the DX, DY, DZ (and DRX, DRY, DRZ) of a displacement-type field (DEPL, VITE, ACCE, FORC_NODA, REAC_NODA), names kept; in the cylindrical frame DX is radial, DY axial, DZ tangential, code_aster's order")
                         .kw(),
-                    real("ANGL_NAUT").count(3, 3).kw(),
-                    real("ORIGINE").count(3, 3).kw(),
-                    real("AXE_Z").count(3, 3).kw(),
+                    real("ANGL_NAUT")
+                        .count(3, 3)
+                        .doc("REPERE='UTILISATEUR': nautical angles (alpha, beta, gamma) of the frame, in degrees")
+                        .kw(),
+                    real("ORIGINE")
+                        .count(3, 3)
+                        .doc("REPERE='CYLINDRIQUE': a point of the axis")
+                        .kw(),
+                    real("AXE_Z")
+                        .count(3, 3)
+                        .doc("REPERE='CYLINDRIQUE': direction of the axis")
+                        .kw(),
                     text("TRAC_NOR").into(&["OUI"]).kw(),
                     text("TRAC_DIR").into(&["OUI"]).kw(),
                     real("DIRECTION").many().kw(),
@@ -149,7 +163,7 @@ const LEADING: [(&str, ColumnType); 13] = [
 
 /// Keywords of ACTION whose operation is not built: refused rather than
 /// ignored, since ignoring them would change the numbers.
-const UNSUPPORTED: [&str; 11] = [
+const UNSUPPORTED: [&str; 9] = [
     "MOMENT",
     "INVARIANT",
     "ELEM_PRINCIPAUX",
@@ -159,8 +173,6 @@ const UNSUPPORTED: [&str; 11] = [
     "GROUP_MA",
     "MAILLE",
     "POINT",
-    "ANGL_NAUT",
-    "ORIGINE",
 ];
 
 /// What is not built about an [`UNSUPPORTED`] keyword, and what gives
@@ -178,10 +190,9 @@ fn unsupported_why(k: &str) -> &'static str {
         }
         "MOMENT" => "MOMENT (the moment of RESULTANTE about POINT) is not built",
         "POINT" => "POINT (the point of MOMENT) is not built",
-        "TRAC_NOR" | "TRAC_DIR" => {
+        _ => {
             "the traction of a stress field on a normal (TRAC_NOR) or a direction (TRAC_DIR) is not built"
         }
-        _ => "a local frame (ANGL_NAUT, ORIGINE) is not built: the components are in the global frame",
     }
 }
 
@@ -315,11 +326,7 @@ fn extract(
             ))
         }
     };
-    // The frame first: ORIGINE and AXE_Z belong to REPERE='CYLINDRIQUE',
-    // and naming them would hide what is missing.
-    if occ.text("REPERE").unwrap_or("GLOBAL") != "GLOBAL" {
-        return Err(occ.not_implemented("REPERE", "only the global frame is built"));
-    }
+    let frame = frame_of(occ, op)?;
     // RESULTANTE sums over the nodes: code_aster refuses it with MOYENNE
     // (POSTRELE_67), and with the pair it would sum and drop the mean.
     if matches!(op, Operation::Mean | Operation::ExtractionMean) && occ.has("RESULTANTE") {
@@ -403,6 +410,16 @@ fn extract(
                 ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre as i64)),
                 ("INST".to_string(), Cell::Real(step.inst)),
             ];
+            let turned;
+            let field = match &frame {
+                Frame::Global => field,
+                f => {
+                    turned = in_frame(occ, f, mesh, field, nom_cham, &nodes, {
+                        super::crea_champ::nodal_type_cham(nom_cham) == Some("NOEU_DEPL_R")
+                    })?;
+                    &turned
+                }
+            };
             field_rows(occ, op, mesh, field, nom_cham, &nodes, lead, rows, alarms)?;
         }
     } else {
@@ -414,9 +431,225 @@ fn extract(
             ("INTITULE".to_string(), Cell::Text(intitule.clone())),
             ("CHAM_GD".to_string(), Cell::Text(fname.to_string())),
         ];
+        // A cham_no does not record its quantity: it is DEPL_R when every
+        // component is one of DEPL_R's.
+        let turned;
+        let field = match &frame {
+            Frame::Global => field,
+            f => {
+                let depl = field
+                    .components
+                    .iter()
+                    .all(|c| super::crea_champ::DEPL_R.contains(&c.as_str()));
+                turned = in_frame(occ, f, mesh, field, fname, &nodes, depl)?;
+                &turned
+            }
+        };
         field_rows(occ, op, mesh, field, fname, &nodes, lead, rows, alarms)?;
     }
     Ok(())
+}
+
+/// The frame of the components (REPERE).
+enum Frame {
+    Global,
+    /// UTILISATEUR: the rows of the matrix are the axes of the frame in
+    /// the global one (code_aster's `matrot` of ANGL_NAUT).
+    User([[f64; 3]; 3]),
+    /// CYLINDRIQUE: a point of the axis and its unit direction.
+    Cylinder {
+        origin: [f64; 3],
+        axis: [f64; 3],
+    },
+}
+
+/// code_aster's `matrot`: the matrix from the global frame to the frame
+/// of the nautical angles (alpha, beta, gamma), in radians: the global
+/// frame turned by alpha about z, then by beta about the new y, then by
+/// gamma about the newest x, i.e. (Rz(alpha) Ry(beta) Rx(gamma))^T. Its
+/// rows are the local axes in global components, the first x' = (cos b
+/// cos a, cos b sin a, -sin b), DEFI_GROUP's normal of ANGL_NAUT.
+pub(crate) fn nautical_matrix(a: f64, b: f64, g: f64) -> [[f64; 3]; 3] {
+    let (sa, ca) = a.sin_cos();
+    let (sb, cb) = b.sin_cos();
+    let (sg, cg) = g.sin_cos();
+    [
+        [cb * ca, cb * sa, -sb],
+        [sg * sb * ca - cg * sa, cg * ca + sg * sb * sa, sg * cb],
+        [sg * sa + cg * sb * ca, cg * sb * sa - ca * sg, cg * cb],
+    ]
+}
+
+/// The frame of an occurrence. code_aster's catalogue puts REPERE,
+/// ANGL_NAUT, ORIGINE and AXE_Z in the block of EXTRACTION and MOYENNE
+/// (`b_autre`), and its `extchn` reads ANGL_NAUT with UTILISATEUR and
+/// ORIGINE, AXE_Z with CYLINDRIQUE; the other combinations, which
+/// code_aster would ignore or read as garbage, are refused here at their
+/// keyword.
+fn frame_of(occ: &Args, op: Operation) -> Result<Frame, Diagnostic> {
+    let repere = occ.text("REPERE").unwrap_or("GLOBAL");
+    let wants: &[&str] = match repere {
+        "UTILISATEUR" => &["ANGL_NAUT"],
+        "CYLINDRIQUE" => &["ORIGINE", "AXE_Z"],
+        "GLOBAL" => &[],
+        // LOCAL and POLAIRE are refused by the catalogue (`not_built`);
+        // this guards a program built another way.
+        other => {
+            return Err(occ.not_implemented(
+                "REPERE",
+                &format!("REPERE='{other}'; GLOBAL, UTILISATEUR and CYLINDRIQUE are built"),
+            ))
+        }
+    };
+    if !op.on_nodes()
+        && (repere != "GLOBAL" || occ.has("ANGL_NAUT") || occ.has("ORIGINE") || occ.has("AXE_Z"))
+    {
+        let k = ["ANGL_NAUT", "ORIGINE", "AXE_Z"]
+            .into_iter()
+            .find(|k| occ.has(k))
+            .unwrap_or("REPERE");
+        return Err(occ.error(
+            k,
+            "EXTREMA and MOYENNE_ARITH read the components in the global frame: code_aster's catalogue gives REPERE, ANGL_NAUT, ORIGINE and AXE_Z to EXTRACTION and MOYENNE only; extract the nodes with OPERATION='EXTRACTION' and REPERE to read them in another frame",
+        ));
+    }
+    for k in ["ANGL_NAUT", "ORIGINE", "AXE_Z"] {
+        if occ.has(k) && !wants.contains(&k) {
+            let with = if k == "ANGL_NAUT" {
+                "REPERE='UTILISATEUR'"
+            } else {
+                "REPERE='CYLINDRIQUE'"
+            };
+            return Err(occ.error(
+                k,
+                format!("{k} goes with {with}, and REPERE is '{repere}': give {with} to read the components in that frame, or remove {k}"),
+            ));
+        }
+    }
+    if let Some(k) = wants.iter().find(|k| !occ.has(k)) {
+        return Err(occ.error(
+            "REPERE",
+            format!(
+                "REPERE='{repere}' needs {}: {k} is missing",
+                wants.join(" and ")
+            ),
+        ));
+    }
+    let three = |k: &str| {
+        let v = occ.reals(k);
+        [v[0], v[1], v[2]]
+    };
+    Ok(match repere {
+        "UTILISATEUR" => {
+            let d = three("ANGL_NAUT").map(f64::to_radians);
+            Frame::User(nautical_matrix(d[0], d[1], d[2]))
+        }
+        "CYLINDRIQUE" => {
+            let z = three("AXE_Z");
+            let n2 = z.iter().map(|c| c * c).sum::<f64>();
+            // code_aster's extchn: PREPOST_38 below 1e-6 (of the square).
+            if n2 < 1e-6 {
+                return Err(occ.error(
+                    "AXE_Z",
+                    format!(
+                        "AXE_Z = ({}, {}, {}) is (nearly) zero: it gives the direction of the axis of REPERE='CYLINDRIQUE' (code_aster's PREPOST_38)",
+                        z[0], z[1], z[2]
+                    ),
+                ));
+            }
+            let n = n2.sqrt();
+            Frame::Cylinder {
+                origin: three("ORIGINE"),
+                axis: z.map(|c| c / n),
+            }
+        }
+        _ => Frame::Global,
+    })
+}
+
+/// The field with the vectors (DX, DY, DZ) and (DRX, DRY, DRZ) of the
+/// selected nodes in the frame, as code_aster's `extchn` does before any
+/// operation (`rvchn1` for UTILISATEUR, `rvchn2` for CYLINDRIQUE): the
+/// components keep their names, each local value v' = P v, an absent
+/// component counting as 0 and staying absent. In the cylindrical frame
+/// the rows of P are, in this order, e_r (the node's direction from the
+/// axis), e_z (the axis) and e_theta = e_z x e_r: so DX holds the radial
+/// component, DY the axial one and DZ the tangential one (`rvchn2`'s
+/// order, not r, theta, z). A node on the axis has no e_r (code_aster's
+/// POSTRELE_30). code_aster turns DEPL_R fields only (POSTRELE_17
+/// otherwise: a stress tensor is not turned), so does aster.
+fn in_frame(
+    occ: &Args,
+    frame: &Frame,
+    mesh: &Mesh,
+    field: &NodalField,
+    field_name: &str,
+    nodes: &[usize],
+    depl_r: bool,
+) -> Result<NodalField, Diagnostic> {
+    let repere = occ.text("REPERE").unwrap_or("GLOBAL");
+    if !depl_r {
+        return Err(occ.error(
+            "REPERE",
+            format!(
+                "REPERE='{repere}' turns displacement-type fields only (code_aster's DEPL_R: DEPL, VITE, ACCE, FORC_NODA, REAC_NODA, whose DX, DY, DZ and DRX, DRY, DRZ it turns); {field_name} is not one, and code_aster stops on it (POSTRELE_17): extract it with REPERE='GLOBAL'"
+            ),
+        ));
+    }
+    let mut out = field.clone();
+    let triples = [["DX", "DY", "DZ"], ["DRX", "DRY", "DRZ"]];
+    for &n in nodes {
+        let p = match frame {
+            Frame::Global => return Ok(out),
+            Frame::User(p) => *p,
+            Frame::Cylinder { origin, axis } => {
+                let x = mesh.coords[n];
+                let mut r = [x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]];
+                let along: f64 = (0..3).map(|i| r[i] * axis[i]).sum();
+                for i in 0..3 {
+                    r[i] -= along * axis[i];
+                }
+                let n2: f64 = r.iter().map(|c| c * c).sum();
+                // code_aster's rvchn2: POSTRELE_30 below 1e-6 (of the square).
+                if n2 < 1e-6 {
+                    return Err(occ.error(
+                        "ORIGINE",
+                        format!(
+                            "node {} is on the axis of REPERE='CYLINDRIQUE' (ORIGINE, AXE_Z): it has no radial direction (code_aster's POSTRELE_30); leave it out of GROUP_NO/NOEUD",
+                            node_name(n)
+                        ),
+                    ));
+                }
+                let r = r.map(|c| c / n2.sqrt());
+                let z = *axis;
+                let t = [
+                    z[1] * r[2] - z[2] * r[1],
+                    z[2] * r[0] - z[0] * r[2],
+                    z[0] * r[1] - z[1] * r[0],
+                ];
+                [r, z, t]
+            }
+        };
+        for names in &triples {
+            let idx: Vec<Option<usize>> = names.iter().map(|c| field.component_index(c)).collect();
+            let at = |c: Option<usize>| {
+                c.map(|c| field.values[n * field.ncmp() + c])
+                    .filter(|v| !v.is_nan())
+            };
+            if idx.iter().all(|&c| at(c).is_none()) {
+                continue;
+            }
+            let v: Vec<f64> = idx.iter().map(|&c| at(c).unwrap_or(0.0)).collect();
+            for (i, &c) in idx.iter().enumerate() {
+                if let Some(c) = c {
+                    if at(Some(c)).is_some() {
+                        out.set(n, c, (0..3).map(|j| p[i][j] * v[j]).sum());
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// The rows of one field for the occurrence's operation.
