@@ -29,6 +29,8 @@ use aster::result::{EvolNoli, GaussField, NodalField, Step};
 use aster::run::driver::parse_and_check;
 use aster::study::Study;
 
+mod common;
+
 const INSTS: [f64; 5] = [-1e-5, 0.0, 2.5e-7, 5e-7, 1e-6];
 
 fn dx(t: f64, x: f64) -> f64 {
@@ -162,49 +164,29 @@ fn registry() -> Vec<CommandDef> {
 const PRELUDE: &str =
     "DEBUT()\nMA = SYNTH_MAIL()\nRESU = SYNTH_RESU(MAILLAGE=MA)\nCH = SYNTH_CHAMP()\n";
 
+const TEXT: common::TextStudies = common::TextStudies {
+    prefix: "post_commands",
+    prelude: PRELUDE,
+    registry,
+};
+
 fn out_dir(tag: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("post_commands_{tag}"));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    TEXT.out_dir(tag)
 }
 
-/// Runs PRELUDE + `body`; Ok(study) or Err(rendered error).
 fn run_in(study: &mut Study, body: &str) -> Result<(), String> {
-    let text = format!("{PRELUDE}{body}");
-    let src = Source::new("t.comm", text);
-    let reg = registry();
-    let mut msgs = String::new();
-    let Some(program) = parse_and_check(&src, &reg, &mut msgs) else {
-        return Err(msgs);
-    };
-    aster::run::execute(study, &program, &reg, &src).map_err(|d| d.render(Some(&src)))
+    TEXT.run_in(study, body)
 }
 
 fn run(tag: &str, body: &str) -> Study {
-    let mut s = Study {
-        out_dir: out_dir(tag),
-        ..Study::default()
-    };
-    if let Err(e) = run_in(&mut s, body) {
-        panic!("study failed:\n{e}\n--- mess:\n{}", s.mess);
-    }
-    s
+    TEXT.run(tag, body)
 }
 
 fn run_err(body: &str) -> String {
-    let mut s = Study {
-        out_dir: out_dir("errors"),
-        ..Study::default()
-    };
-    run_in(&mut s, body).expect_err("the study should fail")
+    TEXT.run_err(body)
 }
 
-fn table<'s>(s: &'s Study, name: &str) -> &'s aster::post::table::Table {
-    match s.concepts.data(name) {
-        Some(ConceptData::Table(t)) => t,
-        _ => panic!("{name} is not a table"),
-    }
-}
+use common::table;
 
 /// HDF5 opens files without close-on-exec: a child process started while a
 /// MED file is open (insta runs `cargo metadata` on its first snapshot)

@@ -23,17 +23,14 @@
 #![allow(clippy::result_large_err)]
 
 use std::f64::consts::PI;
-use std::path::PathBuf;
 
 use aster::catalog::args::Args;
 use aster::catalog::schema::{command, concept, Produces};
 use aster::commands::{self, CommandDef, ExecResult};
 use aster::concepts::{ConceptData, ConceptType as C};
-use aster::diag::Source;
 use aster::mesh::{Cell, CellType, Mesh};
 use aster::post::table::{Cell as TCell, Table};
 use aster::result::{EvolNoli, NodalField, Step};
-use aster::run::driver::parse_and_check;
 use aster::study::Study;
 
 mod common;
@@ -178,44 +175,21 @@ fn registry() -> Vec<CommandDef> {
 const PRELUDE: &str = "DEBUT()\nMA = SYNTH_MAIL()\nRESU = SYNTH_RESU(MAILLAGE=MA)\n\
                        CH = SYNTH_CHAMP()\nCH7 = SYNTH_CHAMP7()\n";
 
-fn run_in(study: &mut Study, body: &str) -> Result<(), String> {
-    let src = Source::new("t.comm", format!("{PRELUDE}{body}"));
-    let reg = registry();
-    let mut msgs = String::new();
-    let Some(program) = parse_and_check(&src, &reg, &mut msgs) else {
-        return Err(msgs);
-    };
-    aster::run::execute(study, &program, &reg, &src).map_err(|d| d.render(Some(&src)))
-}
-
-fn study(tag: &str) -> Study {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("post_moyenne_{tag}"));
-    std::fs::create_dir_all(&d).unwrap();
-    Study {
-        out_dir: d,
-        ..Study::default()
-    }
-}
+const TEXT: common::TextStudies = common::TextStudies {
+    prefix: "post_moyenne",
+    prelude: PRELUDE,
+    registry,
+};
 
 fn run(tag: &str, body: &str) -> Study {
-    let mut s = study(tag);
-    if let Err(e) = run_in(&mut s, body) {
-        panic!("study failed:\n{e}\n--- mess:\n{}", s.mess);
-    }
-    s
+    TEXT.run(tag, body)
 }
 
 fn run_err(body: &str) -> String {
-    let mut s = study("errors");
-    run_in(&mut s, body).expect_err("the study should fail")
+    TEXT.run_err(body)
 }
 
-fn table<'s>(s: &'s Study, name: &str) -> &'s Table {
-    match s.concepts.data(name) {
-        Some(ConceptData::Table(t)) => t,
-        _ => panic!("{name} is not a table"),
-    }
-}
+use common::table;
 
 const QUANTITIES: [&str; 6] = [
     "MOMENT_0", "MOMENT_1", "MINIMUM", "MAXIMUM", "MOYE_INT", "MOYE_EXT",

@@ -18,17 +18,13 @@
 
 #![allow(clippy::result_large_err)]
 
-use std::path::PathBuf;
-
 use aster::catalog::args::Args;
 use aster::catalog::schema::{command, Produces};
 use aster::commands::{self, CommandDef, ExecResult};
 use aster::concepts::{ConceptData, ConceptType as C};
-use aster::diag::Source;
 use aster::mesh::Mesh;
 use aster::post::table::Table;
 use aster::result::NodalField;
-use aster::run::driver::parse_and_check;
 use aster::study::Study;
 
 mod common;
@@ -149,44 +145,21 @@ fn registry() -> Vec<CommandDef> {
 const PRELUDE: &str = "DEBUT()\nMA = SYNTH_MAIL()\nROT = SYNTH_ROT()\nPLAN = SYNTH_PLAN()\n\
                        SIG = SYNTH_SIGM()\n";
 
-fn run_in(study: &mut Study, body: &str) -> Result<(), String> {
-    let src = Source::new("t.comm", format!("{PRELUDE}{body}"));
-    let reg = registry();
-    let mut msgs = String::new();
-    let Some(program) = parse_and_check(&src, &reg, &mut msgs) else {
-        return Err(msgs);
-    };
-    aster::run::execute(study, &program, &reg, &src).map_err(|d| d.render(Some(&src)))
-}
-
-fn study(tag: &str) -> Study {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("post_repere_{tag}"));
-    std::fs::create_dir_all(&d).unwrap();
-    Study {
-        out_dir: d,
-        ..Study::default()
-    }
-}
+const TEXT: common::TextStudies = common::TextStudies {
+    prefix: "post_repere",
+    prelude: PRELUDE,
+    registry,
+};
 
 fn run(tag: &str, body: &str) -> Study {
-    let mut s = study(tag);
-    if let Err(e) = run_in(&mut s, body) {
-        panic!("study failed:\n{e}\n--- mess:\n{}", s.mess);
-    }
-    s
+    TEXT.run(tag, body)
 }
 
 fn run_err(body: &str) -> String {
-    let mut s = study("errors");
-    run_in(&mut s, body).expect_err("the study should fail")
+    TEXT.run_err(body)
 }
 
-fn table<'s>(s: &'s Study, name: &str) -> &'s Table {
-    match s.concepts.data(name) {
-        Some(ConceptData::Table(t)) => t,
-        _ => panic!("{name} is not a table"),
-    }
-}
+use common::table;
 
 fn val(t: &Table, row: usize, cmp: &str) -> f64 {
     t.cell(row, cmp)

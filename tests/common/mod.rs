@@ -341,3 +341,65 @@ pub fn check_lines(resu: &str) -> Vec<String> {
         .map(String::from)
         .collect()
 }
+
+/// Studies run from command text with a test's own registry (aster's
+/// commands plus commands that synthesise a mesh, a result or a field),
+/// each in its own directory under the target's tmp: the POST_RELEVE_T
+/// tests build their exact fields this way.
+pub struct TextStudies {
+    /// The directories are `<prefix>_<tag>`.
+    pub prefix: &'static str,
+    /// Command text run before each body (DEBUT() and the synthesis).
+    pub prelude: &'static str,
+    pub registry: fn() -> Vec<aster::commands::CommandDef>,
+}
+
+impl TextStudies {
+    pub fn out_dir(&self, tag: &str) -> PathBuf {
+        let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{}_{tag}", self.prefix));
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    /// Runs the prelude and `body` in `study`: Err(the rendered error).
+    pub fn run_in(&self, study: &mut aster::study::Study, body: &str) -> Result<(), String> {
+        let src = aster::diag::Source::new("t.comm", format!("{}{body}", self.prelude));
+        let reg = (self.registry)();
+        let mut msgs = String::new();
+        let Some(program) = aster::run::driver::parse_and_check(&src, &reg, &mut msgs) else {
+            return Err(msgs);
+        };
+        aster::run::execute(study, &program, &reg, &src).map_err(|d| d.render(Some(&src)))
+    }
+
+    fn study(&self, tag: &str) -> aster::study::Study {
+        aster::study::Study {
+            out_dir: self.out_dir(tag),
+            ..aster::study::Study::default()
+        }
+    }
+
+    /// The study after the prelude and `body`, which must succeed.
+    pub fn run(&self, tag: &str, body: &str) -> aster::study::Study {
+        let mut s = self.study(tag);
+        if let Err(e) = self.run_in(&mut s, body) {
+            panic!("study failed:\n{e}\n--- mess:\n{}", s.mess);
+        }
+        s
+    }
+
+    /// The rendered error of a body that must fail.
+    pub fn run_err(&self, body: &str) -> String {
+        let mut s = self.study("errors");
+        self.run_in(&mut s, body)
+            .expect_err("the study should fail")
+    }
+}
+
+/// The table concept `name` of a study.
+pub fn table<'s>(s: &'s aster::study::Study, name: &str) -> &'s aster::post::table::Table {
+    match s.concepts.data(name) {
+        Some(aster::concepts::ConceptData::Table(t)) => t,
+        _ => panic!("{name} is not a table"),
+    }
+}
