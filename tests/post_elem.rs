@@ -130,3 +130,61 @@ fn post_elem_refusals_are_located() {
     assert!(term.contains("ENER_CIN needs RESULTAT"), "{term}");
     assert!(term.contains("cin.comm:4:"), "{term}");
 }
+
+/// INTEGRALE of SIEF_ELGA / VARI_ELGA: uniform SIZZ of a column in
+/// tension (INTE = sigma V, MOYE = sigma, a GROUP_MA subset, the union
+/// of two groups, TYPE_MAILLE), a linear SIZZ in HEXA20 (integral =
+/// (lambda + 2 mu) K x_G V) and AXIS per radian (VOL = R^2 L / 2), to
+/// 1e-10. POST_ELEM refused INTEGRALE until 2026-11-28.
+#[test]
+fn integrale_matches_closed_forms() {
+    let resu = study("post_elem_integrale");
+    assert!(resu.contains("UNION_GROUP_MA"), "{resu}");
+    assert!(resu.contains("MOYE_SIZZ"), "{resu}");
+}
+
+/// INTEGRALE's refusals name the keyword and the line: a nodal field
+/// (code_aster integrates it through ELNO, not built here), a component
+/// the field lacks, a field the result lacks, a TYPE_MAILLE that keeps
+/// no cell.
+#[test]
+fn integrale_refusals_are_located() {
+    let head = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+        MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(GROUP_MA='BLOC'))\n\
+        MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(GROUP_MA='BLOC', PHENOMENE='MECANIQUE', MODELISATION='3D'))\n\
+        AC = DEFI_MATERIAU(ELAS=_F(E=2.E5, NU=0.3))\n\
+        CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=AC))\n\
+        CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='BLOC', DX=0., DY=0., DZ=0.))\n\
+        LI = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1., NOMBRE=1))\n\
+        R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=CH), INCREMENT=_F(LIST_INST=LI))\n";
+    let cases = [
+        (
+            "INTEGRALE=_F(TOUT='OUI', NOM_CHAM='DEPL', NOM_CMP='DX')",
+            "not implemented yet: POST_ELEM/INTEGRALE/NOM_CHAM",
+        ),
+        (
+            "INTEGRALE=_F(TOUT='OUI', NOM_CHAM='SIEF_ELGA', NOM_CMP='SIRR')",
+            "SIEF_ELGA has no component SIRR",
+        ),
+        (
+            "INTEGRALE=_F(TOUT='OUI', NOM_CHAM='EPSI_ELGA', NOM_CMP='EPXX')",
+            "has no field EPSI_ELGA",
+        ),
+        (
+            "INTEGRALE=_F(GROUP_MA='BLOC', TYPE_MAILLE='2D', NOM_CHAM='SIEF_ELGA', NOM_CMP='SIXX')",
+            "no cell of dimension 2D",
+        ),
+    ];
+    for (k, (occ, expected)) in cases.iter().enumerate() {
+        let (code, term) = run_text(
+            &format!("integ{k}"),
+            &format!("{head}T = POST_ELEM(RESULTAT=R, {occ})\nFIN()\n"),
+        );
+        assert_eq!(code, 1, "{occ}\n{term}");
+        assert!(term.contains(expected), "{occ}\n{term}");
+        assert!(
+            term.contains(&format!("integ{k}.comm:10:")),
+            "{occ}\n{term}"
+        );
+    }
+}

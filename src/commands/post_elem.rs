@@ -1,6 +1,7 @@
 //! POST_ELEM: global quantities of the model or of parts of it, as a
 //! table: MASS_INER (mass, centre of gravity, inertia), ENER_CIN (kinetic
-//! energy of VITE) and ENER_ELAS (elastic strain energy of the stress).
+//! energy of VITE), ENER_ELAS (elastic strain energy of the stress),
+//! ENER_POT and INTEGRALE (integral and mean of ELGA field components).
 //!
 //! Why: users check the mass of their model, and follow energies over a
 //! dynamic study, with POST_ELEM and TEST_TABLE. The columns and rows are
@@ -35,7 +36,7 @@ use crate::result::EvolNoli;
 use crate::study::Study;
 
 /// The options of code_aster's catalogue this command declares; the
-/// first four run.
+/// first four and INTEGRALE run.
 const OPTIONS: &[&str] = &[
     "MASS_INER",
     "ENER_CIN",
@@ -100,14 +101,23 @@ pub fn def() -> CommandDef {
         fact(
             "INTEGRALE",
             part(vec![
-                text("NOM_CHAM").kw(),
-                text("NOM_CMP").many().kw(),
-                text("TYPE_MAILLE").kw(),
-                text("DEJA_INTEGRE").into(&["OUI", "NON"]).kw(),
+                text("NOM_CHAM")
+                    .doc("the field of RESULTAT: an ELGA field (SIEF_ELGA, VARI_ELGA, EPSI_ELGA...)")
+                    .kw(),
+                text("NOM_CMP").many().doc("its components: one INTE_ and one MOYE_ column each").kw(),
+                text("TYPE_MAILLE")
+                    .into(&["1D", "2D", "3D"])
+                    .doc("only the cells of this topological dimension")
+                    .kw(),
+                text("DEJA_INTEGRE")
+                    .into(&["OUI", "NON"])
+                    .doc("for ELEM fields, which are not built")
+                    .kw(),
             ]),
         )
+        .rules(vec![sel()])
         .many()
-        .doc("not implemented")
+        .doc("integral ∫ f dV (INTE_<cmp>), mean (MOYE_<cmp>) and measure VOL of an ELGA field at its points (peeint/peecal)")
         .kw(),
         fact(
             "MINMAX",
@@ -151,7 +161,7 @@ pub fn def() -> CommandDef {
             exclus(&["TOUT_ORDRE", "NUME_ORDRE", "LIST_ORDRE", "INST", "LIST_INST"]),
             exclus(&["CHAM_GD", "RESULTAT"]),
         ])
-        .doc("Global quantities as a table: MASS_INER (mass, centre of gravity, inertia), ENER_CIN (kinetic energy), ENER_POT (potential energy of DEPL), ENER_ELAS (elastic strain energy of the stress).");
+        .doc("Global quantities as a table: MASS_INER (mass, centre of gravity, inertia), ENER_CIN (kinetic energy), ENER_POT (potential energy of DEPL), ENER_ELAS (elastic strain energy of the stress), INTEGRALE (integral and mean of ELGA field components).");
     CommandDef { spec, exec }
 }
 
@@ -171,7 +181,10 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         .copied()
         .find(|o| args.has(o))
         .unwrap_or("MASS_INER");
-    if !matches!(option, "MASS_INER" | "ENER_CIN" | "ENER_ELAS" | "ENER_POT") {
+    if !matches!(
+        option,
+        "MASS_INER" | "ENER_CIN" | "ENER_ELAS" | "ENER_POT" | "INTEGRALE"
+    ) {
         return Err(args.not_implemented(option, ""));
     }
     if args.has("CHAM_GD") {
@@ -185,6 +198,7 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         "MASS_INER" => mass_iner(study, args, &ctx)?,
         "ENER_CIN" => ener_cin(study, args, &ctx)?,
         "ENER_POT" => ener_pot(study, args, &ctx)?,
+        "INTEGRALE" => integrale(study, args, &ctx)?,
         _ => ener_elas(study, args, &ctx)?,
     };
     table.title = if args.has("TITRE") {
@@ -752,6 +766,196 @@ fn ener_pot(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnost
         w.offsets.push(w.values.len());
         let per_cell = integrate(args, "ENER_POT", step, &w, &measures)?;
         energy_rows(&mut table, args, ctx, "ENER_POT", step, &per_cell, true)?;
+    }
+    Ok(table)
+}
+
+/// INTEGRALE (code_aster's `peeint` / `peecal`): for each occurrence,
+/// each selected step and each part (TOUT, then each group of GROUP_MA
+/// and their UNION_GROUP_MA when there are several, or each cell of
+/// MAILLE), the row NOM_CHAM, NUME_ORDRE, INST, VOL, the part's column
+/// (TOUT / GROUP_MA / MAILLE) and, per component of NOM_CMP, INTE_<cmp> =
+/// Σ f dV over the points of the field and MOYE_<cmp> = INTE / VOL, with
+/// VOL = Σ dV over those same points. dV is the measure of the point
+/// (weight × Jacobian on the initial geometry; × r under AXIS, so that
+/// the integral is per radian as code_aster's COOR_ELGA weight). Only
+/// ELGA fields at the SIEF_ELGA points are built: code_aster also
+/// integrates nodal fields (turned into ELNO) and ELEM fields, refused
+/// here with a message.
+fn integrale(study: &Study, args: &Args, ctx: &Context) -> Result<Table, Diagnostic> {
+    let (name, evol) = ctx.result.expect("INTEGRALE has a result");
+    let mut table = new_table(
+        args,
+        &[
+            ("NOM_CHAM", ColumnType::Text(16)),
+            ("NUME_ORDRE", ColumnType::Int),
+            ("INST", ColumnType::Real),
+            ("VOL", ColumnType::Real),
+        ],
+    )?;
+    let steps = select_steps(study, evol, args)?;
+    for occ in args.facts("INTEGRALE") {
+        let Some(field) = occ.text("NOM_CHAM") else {
+            return Err(occ.error(
+                "INTEGRALE",
+                "NOM_CHAM is needed with RESULTAT: the field to integrate",
+            ));
+        };
+        let cmps = occ.texts("NOM_CMP");
+        if cmps.is_empty() {
+            return Err(occ.error(
+                "INTEGRALE",
+                "NOM_CMP is needed: the components to integrate (NOM_VARI is not built)",
+            ));
+        }
+        if occ.has("DEJA_INTEGRE") {
+            return Err(occ.not_implemented(
+                "DEJA_INTEGRE",
+                "it is for ELEM fields, which are not built; give an ELGA field",
+            ));
+        }
+        let dim = match occ.text("TYPE_MAILLE") {
+            Some("1D") => Some(1),
+            Some("2D") => Some(2),
+            Some("3D") => Some(3),
+            _ => None,
+        };
+        let mut parts = parts(ctx, occ, true)?;
+        if let Some(d) = dim {
+            for (_, _, cells) in &mut parts {
+                cells.retain(|&c| ctx.mesh.cells[c].kind.dim() == d);
+            }
+            if parts.iter().all(|(_, _, cells)| cells.is_empty()) {
+                return Err(occ.error(
+                    "TYPE_MAILLE",
+                    format!(
+                        "no cell of dimension {} in the cells given",
+                        occ.text("TYPE_MAILLE").unwrap_or_default()
+                    ),
+                ));
+            }
+        }
+        let mut mask = vec![false; ctx.mesh.ncells()];
+        for (_, _, cells) in &parts {
+            for &c in cells {
+                mask[c] = true;
+            }
+        }
+        let measures = point_weights(args, ctx.mesh, ctx.model, "INTEGRALE", &mask)?;
+        for step in &steps {
+            let nume = step.nume_ordre;
+            let values = match step.gauss.get(field) {
+                Some(g) => g,
+                None if step.nodal.contains_key(field) || step.elno.contains_key(field) => {
+                    return Err(occ.not_implemented(
+                        "NOM_CHAM",
+                        &format!(
+                            "INTEGRALE of the field {field}, not at Gauss points: only ELGA fields (SIEF_ELGA, VARI_ELGA, EPSI_ELGA... of CALC_CHAMP) are integrated"
+                        ),
+                    ))
+                }
+                None => {
+                    return Err(occ.error(
+                        "NOM_CHAM",
+                        format!(
+                            "NUME_ORDRE {nume} of {name} has no field {field}{} (fields: {})",
+                            step.exclusion_note(field),
+                            step.gauss
+                                .keys()
+                                .chain(step.nodal.keys())
+                                .chain(step.elno.keys())
+                                .map(|s| s.as_str())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    ))
+                }
+            };
+            let idx: Vec<usize> = cmps
+                .iter()
+                .map(|c| {
+                    values
+                        .components
+                        .iter()
+                        .position(|k| k == c)
+                        .ok_or_else(|| {
+                            occ.error(
+                                "NOM_CMP",
+                                format!(
+                                    "{field} has no component {c} (components: {})",
+                                    values.components.join(", ")
+                                ),
+                            )
+                        })
+                })
+                .collect::<Result<_, _>>()?;
+            let nc = values.ncmp().max(1);
+            for (lieu, entite, cells) in &parts {
+                let (mut vol, mut inte) = (0.0, vec![0.0; idx.len()]);
+                let mut seen = false;
+                for &c in cells {
+                    let dv = &measures[c];
+                    let vals = values.cell(c);
+                    if dv.is_empty() || vals.is_empty() {
+                        continue; // no element, or no value of the field there
+                    }
+                    if vals.len() != dv.len() * nc {
+                        return Err(occ.error(
+                            "NOM_CHAM",
+                            format!(
+                                "NUME_ORDRE {nume}: cell {} has {} points of {field} where its SIEF_ELGA family has {}: only fields at those points are integrated",
+                                cell_name(c),
+                                vals.len() / nc,
+                                dv.len()
+                            ),
+                        ));
+                    }
+                    seen = true;
+                    for (p, w) in dv.iter().enumerate() {
+                        vol += w;
+                        for (k, &i) in idx.iter().enumerate() {
+                            inte[k] += vals[p * nc + i] * w;
+                        }
+                    }
+                }
+                if !seen {
+                    return Err(occ.error(
+                        "NOM_CHAM",
+                        format!(
+                            "NUME_ORDRE {nume}: {field} has no value on {lieu}: nothing to integrate"
+                        ),
+                    ));
+                }
+                let mut row: Vec<(&str, Cell)> = vec![
+                    ("NOM_CHAM", Cell::Text(field.to_string())),
+                    ("NUME_ORDRE", Cell::Int(nume as i64)),
+                    ("INST", Cell::Real(step.inst)),
+                    ("VOL", Cell::Real(vol)),
+                    // code_aster's row of TOUT reads TOUT in the column TOUT
+                    (
+                        entite,
+                        Cell::Text(if *entite == "TOUT" {
+                            "TOUT".into()
+                        } else {
+                            lieu.clone()
+                        }),
+                    ),
+                ];
+                let names: Vec<(String, String)> = cmps
+                    .iter()
+                    .map(|c| (format!("INTE_{c}"), format!("MOYE_{c}")))
+                    .collect();
+                for (k, (i, _)) in names.iter().enumerate() {
+                    row.push((i, Cell::Real(inte[k])));
+                }
+                for (k, (_, m)) in names.iter().enumerate() {
+                    row.push((m, Cell::Real(inte[k] / vol)));
+                }
+                table
+                    .add_row(&row)
+                    .map_err(|e| table_error(args, "INTEGRALE", e))?;
+            }
+        }
     }
     Ok(table)
 }
