@@ -180,21 +180,7 @@ fn hexa20_mid_edge_nodes_come_out_in_med_order() {
     let cell = &mesh.cells[0];
     assert_eq!(cell.kind, CellType::Hexa20);
     let x = |i: usize| mesh.coords[cell.nodes[i]];
-    let med_edges = [
-        (0, 1),
-        (1, 2),
-        (2, 3),
-        (3, 0),
-        (4, 5),
-        (5, 6),
-        (6, 7),
-        (7, 4),
-        (0, 4),
-        (1, 5),
-        (2, 6),
-        (3, 7),
-    ];
-    for (k, (a, b)) in med_edges.iter().enumerate() {
+    for (k, (a, b)) in CellType::Hexa20.mid_edges().iter().enumerate() {
         for i in 0..3 {
             assert_eq!(
                 x(8 + k)[i],

@@ -19,8 +19,7 @@
 use std::path::PathBuf;
 
 use aster::catalog::args::Args;
-use aster::catalog::schema::{command, concept, Produces};
-use aster::commands::{self, CommandDef, ExecResult};
+use aster::commands::{CommandDef, ExecResult};
 use aster::concepts::{ConceptData, ConceptType as C};
 use aster::diag::Source;
 use aster::mesh::{Cell, CellType, Mesh};
@@ -141,24 +140,11 @@ fn synth_champ(_s: &mut Study, _a: &Args, _r: Option<&str>) -> ExecResult {
 }
 
 fn registry() -> Vec<CommandDef> {
-    let mut r = commands::all();
-    r.push(CommandDef {
-        spec: command("SYNTH_MAIL", Produces::Concept(C::Maillage), vec![]),
-        exec: synth_mail,
-    });
-    r.push(CommandDef {
-        spec: command(
-            "SYNTH_RESU",
-            Produces::Concept(C::EvolNoli),
-            vec![concept("MAILLAGE", &[C::Maillage]).required().kw()],
-        ),
-        exec: synth_resu,
-    });
-    r.push(CommandDef {
-        spec: command("SYNTH_CHAMP", Produces::Concept(C::ChamNo), vec![]),
-        exec: synth_champ,
-    });
-    r
+    common::synth_registry(&[
+        ("SYNTH_MAIL", C::Maillage, synth_mail),
+        ("SYNTH_RESU", C::EvolNoli, synth_resu),
+        ("SYNTH_CHAMP", C::ChamNo, synth_champ),
+    ])
 }
 
 const PRELUDE: &str =

@@ -19,8 +19,7 @@
 #![allow(clippy::result_large_err)]
 
 use aster::catalog::args::Args;
-use aster::catalog::schema::{command, Produces};
-use aster::commands::{self, CommandDef, ExecResult};
+use aster::commands::{CommandDef, ExecResult};
 use aster::concepts::{ConceptData, ConceptType as C};
 use aster::mesh::Mesh;
 use aster::post::table::Table;
@@ -127,19 +126,12 @@ fn synth_sigm(_s: &mut Study, _a: &Args, _r: Option<&str>) -> ExecResult {
 }
 
 fn registry() -> Vec<CommandDef> {
-    let mut r = commands::all();
-    for (name, ty, exec) in [
-        ("SYNTH_MAIL", C::Maillage, synth_mail as commands::ExecFn),
+    common::synth_registry(&[
+        ("SYNTH_MAIL", C::Maillage, synth_mail),
         ("SYNTH_ROT", C::ChamNo, synth_rot),
         ("SYNTH_PLAN", C::ChamNo, synth_plan),
         ("SYNTH_SIGM", C::ChamNo, synth_sigm),
-    ] {
-        r.push(CommandDef {
-            spec: command(name, Produces::Concept(ty), vec![]),
-            exec,
-        });
-    }
-    r
+    ])
 }
 
 const PRELUDE: &str = "DEBUT()\nMA = SYNTH_MAIL()\nROT = SYNTH_ROT()\nPLAN = SYNTH_PLAN()\n\

@@ -3243,11 +3243,38 @@ fn a_zero_contact_thickness_changes_nothing() {
         thick
             .term
             .contains("not implemented yet: DEFI_CONTACT/ZONE/DIST_MAIT")
-            && thick.term.contains("a thickness function of INST"),
+            && thick.term.contains("a thickness function of INST")
+            && thick.term.contains("contact_dist_inst.comm:"),
         "{}",
         thick.term
     );
     assert!(!thick.term.contains("panicked"), "{}", thick.term);
+    // A thickness with FORMULATION='CONTINUE' stops likewise, at its line.
+    let cont = common::run_variant_edits(
+        &dir(),
+        "verif_dist_zero",
+        "contact_landing_continue",
+        "contact_dist_continue",
+        &[
+            (
+                "CONT = DEFI_CONTACT(",
+                "EP = DEFI_CONSTANTE(VALE=0.1)\nCONT = DEFI_CONTACT(",
+            ),
+            (
+                "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ'))",
+                "ZONE=_F(GROUP_MA_MAIT='RIGID', GROUP_MA_ESCL='SZZ', DIST_ESCL=EP))",
+            ),
+        ],
+    );
+    assert_eq!(cont.code, 1, "{}", cont.term);
+    assert!(
+        cont.term
+            .contains("not implemented yet: DEFI_CONTACT/ZONE/DIST_ESCL")
+            && cont.term.contains("with FORMULATION='CONTINUE'")
+            && cont.term.contains("contact_dist_continue.comm:"),
+        "{}",
+        cont.term
+    );
 }
 
 /// DIST_MAIT + DIST_ESCL (a DEFI_CONSTANTE and a function of X) are taken

@@ -403,3 +403,30 @@ pub fn table<'s>(s: &'s aster::study::Study, name: &str) -> &'s aster::post::tab
         _ => panic!("{name} is not a table"),
     }
 }
+
+/// aster's commands plus synthetic ones, each (name, the concept type it
+/// produces, its executor): no keyword, but MAILLAGE= (the mesh the
+/// synthetic result names) for those that produce an EVOL_NOLI.
+pub fn synth_registry(
+    synth: &[(
+        &'static str,
+        aster::concepts::ConceptType,
+        aster::commands::ExecFn,
+    )],
+) -> Vec<aster::commands::CommandDef> {
+    use aster::catalog::schema::{command, concept, Produces};
+    use aster::concepts::ConceptType as C;
+    let mut r = aster::commands::all();
+    for &(name, ty, exec) in synth {
+        let kws = if ty == C::EvolNoli {
+            vec![concept("MAILLAGE", &[C::Maillage]).required().kw()]
+        } else {
+            vec![]
+        };
+        r.push(aster::commands::CommandDef {
+            spec: command(name, Produces::Concept(ty), kws),
+            exec,
+        });
+    }
+    r
+}
