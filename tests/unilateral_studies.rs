@@ -151,6 +151,29 @@ fn bad_unilateral_definitions_are_located_errors() {
     expect_errors(&cases);
 }
 
+/// COEF_IMPO depends on the node (its X, Y, Z): when its evaluation fails
+/// at one node only, the error names that node and its coordinates
+/// (probe unilp, 2026-11-28: a DEFI_FONCTION of X whose domain misses the
+/// outer nodes said "FX(X=3.2) is outside the domain" without the node).
+/// The tilted floor of the study, FX of X on [0, 10], is cut to
+/// [0, 1.8]: the bottom node on the axis is inside, the outer one N2
+/// (X = 3.2, Y = 2.27) is not.
+#[test]
+fn coef_impo_failing_at_one_node_names_the_node() {
+    expect_errors(&[(
+        "impo_x_domain",
+        "FX = DEFI_FONCTION(NOM_PARA='X', VALE=(0., H, 10., H - 1.))",
+        "FX = DEFI_FONCTION(NOM_PARA='X', VALE=(0., H, 1.8, H - 0.18))",
+        &[
+            "DYNA_NON_LINE/CONTACT",
+            "ZONE 1, COEF_IMPO at node N2 (X = 3.2, Y = 2.27, Z = 0): FX(X=3.2)",
+            "outside the domain [0.0, 1.8]",
+            "PROL_DROITE='EXCLU'",
+            "impo_x_domain.comm:",
+        ],
+    )]);
+}
+
 /// A COEF_PENA that is not positive is refused by DEFI_CONTACT itself,
 /// before any computation uses the contact (probe of 2026-11-28: it was
 /// found only when DYNA_NON_LINE built its term, after the .mess had

@@ -145,8 +145,20 @@ impl UnilDef {
                         }
                     }
                 }
+                // COEF_IMPO depends on the node (X, Y, Z): a failure names
+                // it, as the failed evaluation may hold for that node only
+                // (a DEFI_FONCTION of Y whose domain misses the top nodes).
                 let c = eval_coef_impo(&z.coef_impo, t, l.coords)
-                    .map_err(|e| format!("ZONE {}, COEF_IMPO: {e}", l.zone + 1))?
+                    .map_err(|e| {
+                        format!(
+                            "ZONE {}, COEF_IMPO at node N{} (X = {}, Y = {}, Z = {}): {e}",
+                            l.zone + 1,
+                            l.node + 1,
+                            l.coords[0],
+                            l.coords[1],
+                            l.coords[2]
+                        )
+                    })?
                     - shift;
                 Ok(Row { entries, c })
             })
