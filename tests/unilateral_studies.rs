@@ -433,3 +433,93 @@ fn zone_nodes_outside_the_model_are_dropped_and_counted() {
         "{mess}"
     );
 }
+
+/// Runs tests/studies/<name>.comm and asserts every check OK (each study's
+/// header gives its hand references).
+fn run_ok(name: &str) {
+    let run = common::run_study(&format!("tests/studies/{name}.comm"), name);
+    common::assert_all_ok(&run, &format!("{name}.resu"));
+}
+
+/// STAT_NON_LINE in D_PLAN (probe unilp): a bar along n = (1, 1)/sqrt2
+/// (nu = 0, uniaxial) pushed against the inclined wall DX + DY <= C by
+/// GROUP_NO and by GROUP_MA of SEG2, with COEF_MULT (1, 1) and (2, 2):
+/// free, then on the wall with its force F - K h along n, then pulled off
+/// (free, REAC_NODA 0); penalised, per node (F/2 + a^2 E h)/(K/2 + a^2 E)
+/// with a^2 = 2 and 8, the COEF_MULT scaling of the penalty (1e-10).
+#[test]
+fn inclined_wall_in_plane_strain_statics() {
+    run_ok("unil_dplan_wall_stat");
+}
+
+/// The same in 3D with three components (probe unilp): a HEXA8 bar along
+/// (1, 1, 1)/sqrt3 against DX + DY + DZ <= sqrt3 h given by GROUP_MA of a
+/// QUAD4 face outside the model, NOM_CMP in two orders; active set and
+/// penalty (a^2 = 3) against the closed forms.
+#[test]
+fn three_component_wall_in_3d_statics() {
+    run_ok("unil_box_wall_3cmp");
+}
+
+/// A wall on DX whose COEF_IMPO is a FORMULE of (INST, Y) or a
+/// DEFI_FONCTION of Y in D_PLAN (probe unilp): every node of the face on
+/// its own wall position to 1e-12, the wall gives no DY, the supports
+/// balance it.
+#[test]
+fn wall_position_function_of_y_in_plane_strain() {
+    run_ok("unil_wall_of_y");
+}
+
+/// The floor under a QUAD8 block (GROUP_MA of SEG3: the mid-side nodes are
+/// linked) pressed by DDL_IMPO (probe unilp): the floor reactions are the
+/// consistent nodal forces of the uniform stress, 1/6, 2/3, 1/3 in D_PLAN
+/// and 0, 1/3, 1/3, 1, 1/3 per radian in AXIS (1e-9); under full HHT
+/// REAC_NODA is the force on the body, the static one.
+#[test]
+fn quadratic_floor_reactions_are_the_consistent_forces() {
+    run_ok("unil_quad8_press");
+}
+
+/// A node in two zones at right angles pressed into their corner, a node
+/// sliding along one wall, and a link on a component imposed by a ramped
+/// DDL_IMPO (moved to the right-hand side at its step-end value): exact
+/// displacements and reactions (probe unilp).
+#[test]
+fn corner_node_and_imposed_component() {
+    run_ok("unil_corner_node");
+}
+
+/// Implicit (Newmark) and explicit (DIFF_CENT) dynamics of a free bar with
+/// nu = 0 thrown obliquely onto an inclined wall, two zones on the same
+/// nodes (probe unilp): the tangential motion stays the free one at every
+/// node and instant (1e-12), the wall's REAC_NODA is along its normal, the
+/// wall is reached and never passed; thrown away, exactly free.
+#[test]
+fn oblique_impact_on_an_inclined_wall_keeps_the_tangential_motion() {
+    run_ok("unil_dplan_wall_dyn");
+}
+
+/// The work of a moving wall (PARA_CALC, probe unilp): pushing a held bar
+/// quasi-statically, TRAV_LIAI = -ENER_TOT = -K (W t)^2 / 2 (the
+/// trapezoidal rule is exact for a force linear in u), STAT_NON_LINE with
+/// both algorithms and DYNA_NON_LINE.
+#[test]
+fn work_of_a_moving_wall_is_the_stored_energy() {
+    run_ok("unil_wall_work");
+}
+
+/// VMIS_ISOT_LINE in C_PLAN against a wall (probe unilp): loaded onto the
+/// wall past yield, unloaded off it, reloaded in compression; the uniaxial
+/// closed form at every step (1e-8).
+#[test]
+fn plastic_bar_against_a_wall() {
+    run_ok("unil_plastic_wall");
+}
+
+/// DIFF_CENT with a wall moving with INST into a held bar (probe unilp):
+/// the top nodes ride on the wall at every archived instant (1e-12), the
+/// wall's force is along its normal.
+#[test]
+fn explicit_wall_moving_with_inst() {
+    run_ok("unil_explicit_moving_wall");
+}
