@@ -494,7 +494,8 @@ fn verification_dir() -> std::path::PathBuf {
 /// tests/verification/grot_gdep.comm: the closed forms above through
 /// STAT_NON_LINE (3D ELAS and VMIS_ISOT_LINE, D_PLAN ELAS, AXIS
 /// VMIS_ISOT_LINE stretched to λ = 1.5; a prestressed bar turned by 90°
-/// in 10 steps with AFFE_CHAR_MECA_F), 28 TEST_RESU/TEST_TABLE
+/// in 10 steps with AFFE_CHAR_MECA_F; ELAS from an ETAT_INIT DEPL, stressed
+/// as COMP_ELAS), 32 TEST_RESU/TEST_TABLE
 /// ANALYTIQUE at 1e-8 (SIEF_ELGA, VARI_ELGA, DEPL, EPSG_ELGA, EPSI_ELGA,
 /// REAC_NODA resultants).
 #[test]
@@ -505,7 +506,7 @@ fn study_matches_the_closed_forms() {
         .lines()
         .filter(|l| l.starts_with(" OK ") && l.contains("ANALYTIQUE"))
         .count();
-    assert_eq!(analytic, 28, "{resu}");
+    assert_eq!(analytic, 32, "{resu}");
     let mess = run.file("grot_gdep.mess");
     assert!(
         !mess.contains("not implemented yet: STAT_NON_LINE/COMPORTEMENT"),
