@@ -1,7 +1,7 @@
 //! The one element interface of the nonlinear mechanics engine: internal
 //! forces, tangent stiffness and new Gauss-point states for every cell,
 //! formulation (AXIS, 3D) and strain measure (PETIT, PETIT_REAC,
-//! SIMO_MIEHE), and the consistent mass.
+//! SIMO_MIEHE, GDEF_LOG, GROT_GDEP), and the consistent mass.
 //!
 //! # One code path for 2D axisymmetric and 3D
 //! Everything is written with 3×3 tensors. In AXIS the third index is the
@@ -32,6 +32,10 @@
 //! - SIMO_MIEHE: F = 1 + Grad_X u on the initial geometry; the law gives
 //!   Kirchhoff τ and ∂τ/∂F; f_α = ∫ τ : (G⁰_α F⁻¹) dV₀ = ∫ P : G⁰_α dV₀.
 //!   SIEF is Cauchy σ = τ/J. The tangent is not symmetric.
+//! - GROT_GDEP: F on the initial geometry, the small-strain law fed the
+//!   Green-Lagrange increment E(F) − E(F_n) and S_n = J_n F_n⁻¹ σ_n F_n⁻ᵀ;
+//!   f_α = ∫ (F S) : G⁰_α dV₀, tangent G⁰_β S + F D (Fᵀ G⁰_β); SIEF is
+//!   Cauchy σ = F S Fᵀ/J, as code_aster's nmgr3d / nmgrla store it.
 //!
 //! Failures are values: a non-positive Jacobian on the initial mesh is a
 //! mesh error ([`ElementFailure::BadGeometry`]); on the deformed
