@@ -1560,7 +1560,7 @@ pub(crate) fn start_comp_elas(
         })?;
     if n > 0 {
         notes.push(format!(
-            "RELATION='ELAS' with DEFORMATION='PETIT' and an initial state without stresses is of type COMP_ELAS (as code_aster): the stress is D eps of the total displacement, so the initial DEPL is stressed, sigma0 = D eps(u0) on {n} element(s)"
+            "RELATION='ELAS' with DEFORMATION='PETIT' or 'GROT_GDEP' and an initial state without stresses is of type COMP_ELAS (as code_aster): the stress is D eps of the total displacement (its Green-Lagrange strain under GROT_GDEP), so the initial DEPL is stressed, sigma0 = D eps(u0) on {n} element(s)"
         ));
     }
     Ok(())

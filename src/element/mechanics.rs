@@ -1,7 +1,7 @@
 //! The one element interface of the nonlinear mechanics engine: internal
 //! forces, tangent stiffness and new Gauss-point states for every cell,
 //! formulation (AXIS, 3D) and strain measure (PETIT, PETIT_REAC,
-//! SIMO_MIEHE), and the consistent mass.
+//! SIMO_MIEHE, GDEF_LOG, GROT_GDEP), and the consistent mass.
 //!
 //! # One code path for 2D axisymmetric and 3D
 //! Everything is written with 3×3 tensors. In AXIS the third index is the
@@ -32,6 +32,10 @@
 //! - SIMO_MIEHE: F = 1 + Grad_X u on the initial geometry; the law gives
 //!   Kirchhoff τ and ∂τ/∂F; f_α = ∫ τ : (G⁰_α F⁻¹) dV₀ = ∫ P : G⁰_α dV₀.
 //!   SIEF is Cauchy σ = τ/J. The tangent is not symmetric.
+//! - GROT_GDEP: F on the initial geometry, the small-strain law fed the
+//!   Green-Lagrange increment E(F) − E(F_n) and S_n = J_n F_n⁻¹ σ_n F_n⁻ᵀ;
+//!   f_α = ∫ (F S) : G⁰_α dV₀, tangent G⁰_β S + F D (Fᵀ G⁰_β); SIEF is
+//!   Cauchy σ = F S Fᵀ/J, as code_aster's nmgr3d / nmgrla store it.
 //!
 //! Failures are values: a non-positive Jacobian on the initial mesh is a
 //! mesh error ([`ElementFailure::BadGeometry`]); on the deformed
@@ -67,17 +71,19 @@ pub enum Kinematics {
     PetitReac,
     SimoMiehe,
     GdefLog,
+    /// Total Lagrangian with the Green-Lagrange strain, a small-strain
+    /// law fed ΔE and the second Piola-Kirchhoff stress S_n.
+    GrotGdep,
 }
 
 impl Kinematics {
-    /// `None` for GROT_GDEP, which is not implemented.
-    pub fn from_strain_measure(m: StrainMeasure) -> Option<Kinematics> {
+    pub fn from_strain_measure(m: StrainMeasure) -> Kinematics {
         match m {
-            StrainMeasure::Petit => Some(Kinematics::Petit),
-            StrainMeasure::PetitReac => Some(Kinematics::PetitReac),
-            StrainMeasure::SimoMiehe => Some(Kinematics::SimoMiehe),
-            StrainMeasure::GdefLog => Some(Kinematics::GdefLog),
-            StrainMeasure::GrotGdep => None,
+            StrainMeasure::Petit => Kinematics::Petit,
+            StrainMeasure::PetitReac => Kinematics::PetitReac,
+            StrainMeasure::SimoMiehe => Kinematics::SimoMiehe,
+            StrainMeasure::GdefLog => Kinematics::GdefLog,
+            StrainMeasure::GrotGdep => Kinematics::GrotGdep,
         }
     }
     pub fn strain_measure(self) -> StrainMeasure {
@@ -86,6 +92,7 @@ impl Kinematics {
             Kinematics::PetitReac => StrainMeasure::PetitReac,
             Kinematics::SimoMiehe => StrainMeasure::SimoMiehe,
             Kinematics::GdefLog => StrainMeasure::GdefLog,
+            Kinematics::GrotGdep => StrainMeasure::GrotGdep,
         }
     }
 }
@@ -842,6 +849,68 @@ fn evaluate(
                     },
                 )
             }
+            (Kinematics::GrotGdep, LawRef::Small(l)) => {
+                // code_aster's nmgr3d / nmgrla: F_n and F on the initial
+                // geometry, the law fed E_GL(F) − E_GL(F_n) and S_n, the
+                // PK2 pull-back of the stored Cauchy stress (pk2sig, −1);
+                // its S pushed forward to Cauchy for SIEF_ELGA (pk2sig, 1).
+                let (h_n, h) = geom.gradients(&u_n[..ndof], &u[..ndof], d);
+                let f_n = Matrix3::identity() + h_n;
+                let f = Matrix3::identity() + h;
+                let (j_n, j) = (f_n.determinant(), f.determinant());
+                if !(j_n > 0.0 && j > 0.0) {
+                    return Err(ElementFailure::Inverted {
+                        point: p,
+                        message: format!("det F = {j} (start of step {j_n})"),
+                    });
+                }
+                let fn_inv = f_n.try_inverse().ok_or_else(|| ElementFailure::Inverted {
+                    point: p,
+                    message: "singular deformation gradient at the start of the step".into(),
+                })?;
+                let s_n = j_n * fn_inv * stress_to_tensor(&st.stress) * fn_inv.transpose();
+                let law_span = crate::profile::span(crate::profile::Phase::LawIntegration);
+                let input = SmallStrainInput {
+                    stress: tensor_to_stress(&s_n),
+                    internal: st.internal.as_slice(),
+                    strain_increment: tensor_to_strain(
+                        &(green_lagrange(&f) - green_lagrange(&f_n)),
+                    ),
+                    dt,
+                    tangent,
+                };
+                let out = l
+                    .integrate(&input)
+                    .map_err(|failure| ElementFailure::Law { point: p, failure })?;
+                drop(law_span);
+                let s = stress_to_tensor(&out.stress);
+                if want_k {
+                    // δP = δF S + F (D : sym(Fᵀ δF)), δF = G⁰_β: the
+                    // geometric part and the material part F D Fᵀ.
+                    let dmat = out.tangent.ok_or_else(|| missing_tangent(law))?;
+                    for k in 0..ndof {
+                        let gk = g[k].matrix();
+                        let ds =
+                            stress_to_tensor(&(dmat * tensor_to_strain(&(f.transpose() * gk))));
+                        let mk = gk * s + f * ds;
+                        for r in 0..3 {
+                            for c in 0..3 {
+                                mt[3 * r + c][k] = mk[(r, c)];
+                            }
+                        }
+                    }
+                }
+                let cauchy = f * s * f.transpose() / j;
+                (
+                    // P = F S, the first Piola-Kirchhoff stress, conjugate
+                    // to the initial virtual gradients G⁰.
+                    f * s,
+                    PointState {
+                        stress: tensor_to_stress(&cauchy),
+                        internal: out.internal,
+                    },
+                )
+            }
             (
                 Kinematics::SimoMiehe | Kinematics::GdefLog,
                 LawRef::SimoMiehe(_) | LawRef::GdefLog(_),
@@ -1335,6 +1404,11 @@ pub fn point_measures(
 
 // ------------------------------------------------------------ internals
 
+/// The Green-Lagrange strain E = ½(FᵀF − 1).
+pub fn green_lagrange(f: &Matrix3<f64>) -> Matrix3<f64> {
+    0.5 * (f.transpose() * f - Matrix3::identity())
+}
+
 fn missing_tangent(law: LawRef) -> ElementFailure {
     ElementFailure::BadInput {
         message: format!("law {} returned no tangent", law.name()),
@@ -1343,7 +1417,7 @@ fn missing_tangent(law: LawRef) -> ElementFailure {
 
 fn check_law(kin: Kinematics, law: LawRef) -> Result<(), ElementFailure> {
     let ok = match (kin, law) {
-        (Kinematics::Petit | Kinematics::PetitReac, LawRef::Small(l)) => {
+        (Kinematics::Petit | Kinematics::PetitReac | Kinematics::GrotGdep, LawRef::Small(l)) => {
             l.metadata().accepts(kin.strain_measure())
         }
         (Kinematics::SimoMiehe, LawRef::SimoMiehe(_)) => true,

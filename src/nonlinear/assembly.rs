@@ -368,7 +368,10 @@ impl Assembler {
     /// explicit loops and the restarts), and the stored stress of step 0 is
     /// then the one its internal forces come from. The incremental laws
     /// (VMIS_*) and ELAS/PETIT_REAC are incremental in code_aster too: u0
-    /// stays stress-free for them. MECA_HEXS8 is left out: code_aster
+    /// stays stress-free for them. ELAS/GROT_GDEP is COMP_ELAS too
+    /// (S = D E_GL(u), code_aster's nmelnl): started at S0 = D E_GL(u0)
+    /// (stored as its Cauchy push-forward) the increments D ΔE_GL add up
+    /// to D E_GL(u0 + Σ Δu) likewise. MECA_HEXS8 is left out: code_aster
     /// refuses COMP_ELAS there (checked before, `behaviour::check_hexs8`).
     pub fn start_comp_elas(
         &mut self,
@@ -378,7 +381,7 @@ impl Assembler {
         let mut started = 0;
         for (e, buf) in self.elements.iter().zip(self.buffers.iter_mut()) {
             if !matches!(self.laws[e.law], CellLaw::Elas(_))
-                || e.kin != Kinematics::Petit
+                || !matches!(e.kin, Kinematics::Petit | Kinematics::GrotGdep)
                 || e.spec.is_hexs8()
             {
                 continue;

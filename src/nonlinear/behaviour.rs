@@ -310,16 +310,7 @@ fn kinematics_of(
             "RELATION='VMIS_CINE_LINE' does not accept DEFORMATION='SIMO_MIEHE' (allowed: PETIT, PETIT_REAC, GROT_GDEP, GDEF_LOG), as in code_aster: use GDEF_LOG for finite strains".into(),
         ));
     }
-    Kinematics::from_strain_measure(measure).ok_or_else(|| BehaviourError {
-        not_implemented: true,
-        ..err(
-            occ,
-            "DEFORMATION",
-            // The command (STAT_ or DYNA_NON_LINE) is put in front by the
-            // caller, which knows it.
-            format!("not implemented yet: COMPORTEMENT/DEFORMATION='{deformation}'"),
-        )
-    })
+    Ok(Kinematics::from_strain_measure(measure))
 }
 
 /// ALGO_INTE, ITER_INTE_MAXI and RESI_INTE_RELA checked against the law:
