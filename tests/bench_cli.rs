@@ -544,3 +544,53 @@ fn bench_measures_a_study_whose_checks_fail_and_says_so() {
     let resu = std::fs::read_to_string(Path::new(kept).join("landing_nook.resu")).unwrap();
     assert!(resu.contains("NOOK"), "{resu}");
 }
+
+/// The explicit contact (DEFI_CONTACT discrete, and LIAISON_UNIL) is
+/// timed in the "contact pairing + terms" row, as the implicit one: its
+/// pairing, penalty forces, kinematic correction and commit at every
+/// step. Before, the row said 0.000 s and 0 calls next to "contact
+/// pairings 75002" (probe explp, a block sliding on a slope), the
+/// contact's time counted in "other".
+#[test]
+fn bench_times_the_explicit_contact() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let study_dir = root.join("tests/verification");
+    for study in ["explicit_landing", "explicit_unil_landing"] {
+        let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("bench_cli_{study}"));
+        let _ = std::fs::remove_dir_all(&tmp);
+        std::fs::create_dir_all(&tmp).unwrap();
+        let json_path = tmp.join("bench.json");
+        let out = Command::new(env!("CARGO_BIN_EXE_aster"))
+            .arg("bench")
+            .arg(study_dir.join(format!("{study}.comm")))
+            .args(["--runs", "1", "--threads", "1", "--json"])
+            .arg(&json_path)
+            .env("TMPDIR", &tmp)
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{study}: {stdout}");
+        let text = std::fs::read_to_string(&json_path).unwrap();
+        let j = Parser::parse(&text).unwrap_or_else(|e| panic!("{e}:\n{text}"));
+        let steps = j.get("counters_per_run").get("steps").arr()[0].num();
+        assert!(steps > 1000.0, "{study}: {steps} steps\n{text}");
+        let contact = j.get("phases").get("contact");
+        let time = contact.get("per_run_s").arr()[0].num();
+        let calls = contact.get("calls_per_run").num();
+        assert!(time > 0.0, "{study}: contact not timed\n{text}");
+        // At least one call (the kinematic correction, or the penalty
+        // forces) per explicit step of each run.
+        assert!(
+            calls >= steps,
+            "{study}: {calls} calls for {steps} steps\n{text}"
+        );
+        // The phases stay disjoint: they fit in the wall time.
+        let t = |k: &str| j.get("phases").get(k).get("per_run_s").arr()[0].num();
+        let wall = j.get("wall_s").get("per_run").arr()[0].num();
+        let sum = t("element_assembly_inclusive") + t("factor_solve") + t("contact") + t("output");
+        assert!(
+            sum <= wall,
+            "{study}: phases {sum} s > wall {wall} s\n{text}"
+        );
+    }
+}

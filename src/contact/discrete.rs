@@ -319,6 +319,15 @@ impl LinkCalc {
 /// inverted cell, probe s7b D6). The gap is summed as the explicit loop
 /// always did, component by component, so its alarm is unchanged to the
 /// bit.
+///
+/// The rounding allowance counts the coordinates too: `gap_ref` is
+/// n·(Σ N_j X_j − X_s), a difference of coordinates, so a slave face
+/// that lies on its master carries a gap of the order of ε |X| (the
+/// projection point `proj` gives |X| to within the displacements). An
+/// allowance from the gap and the displacements alone is 0 at an initial
+/// state at rest, and every face not aligned with the axes was reported
+/// as penetrating (a block on a plane at 30 degrees: "6 slave node(s)
+/// ... deepest 2.0717e-16", probe explp, tests/explicit_slope.rs).
 pub fn penetrations(pairing: &Pairing, u: impl Fn(usize) -> [f64; 3]) -> (usize, f64) {
     let mut count = 0;
     let mut deepest: f64 = 0.0;
@@ -335,7 +344,11 @@ pub fn penetrations(pairing: &Pairing, u: impl Fn(usize) -> [f64; 3]) -> (usize,
         let g = l.gap_ref + moved;
         let scale = l.gap_ref.abs()
             + (0..3)
-                .map(|c| (l.normal[c] * um[c]).abs() + (l.normal[c] * us[c]).abs())
+                .map(|c| {
+                    (l.normal[c] * um[c]).abs()
+                        + (l.normal[c] * us[c]).abs()
+                        + 2.0 * (l.normal[c] * l.proj[c]).abs()
+                })
                 .sum::<f64>();
         if g < -roundoff_gap(scale) {
             count += 1;

@@ -815,6 +815,7 @@ impl ExplicitConstraint for ExplicitContact {
     }
 
     fn prepare(&mut self, numbering: &DofNumbering, u: &[f64], _t: f64) -> Result<(), String> {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.pair(numbering, u);
         Ok(())
     }
@@ -842,6 +843,7 @@ impl ExplicitConstraint for ExplicitContact {
         u: &[f64],
         _t: f64,
     ) -> Result<(), String> {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.penalty_forces(numbering, u_n, u);
         Ok(())
     }
@@ -857,6 +859,7 @@ impl ExplicitConstraint for ExplicitContact {
         c: f64,
         _t_next: f64,
     ) -> Result<(), String> {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.kinematic_correction(numbering, mass, m, dt, kappa, c);
         Ok(())
     }
@@ -866,6 +869,7 @@ impl ExplicitConstraint for ExplicitContact {
     }
 
     fn commit(&mut self, u: &[f64], dt: f64, w: f64) {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         ExplicitContact::commit(self, u, dt, w)
     }
 

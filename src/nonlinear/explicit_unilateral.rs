@@ -172,6 +172,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
     /// (for its violation check), the loop's preparation at the step end
     /// would only evaluate them for nothing.
     fn prepare(&mut self, numbering: &DofNumbering, _u: &[f64], t: f64) -> Result<(), String> {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         if self.kinematic() && self.rows_t.is_some() {
             return Ok(());
         }
@@ -238,6 +239,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
         u: &[f64],
         t: f64,
     ) -> Result<(), String> {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.rows_at(numbering, t)?;
         self.force.iter_mut().for_each(|x| *x = 0.0);
         let mut body = [0.0; 3];
@@ -273,6 +275,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
         c: f64,
         t_next: f64,
     ) -> Result<(), String> {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         self.force.iter_mut().for_each(|x| *x = 0.0);
         self.body_force = [0.0; 3];
         if dt <= 0.0 {
@@ -360,6 +363,7 @@ impl ExplicitConstraint for ExplicitUnilateral {
     }
 
     fn commit(&mut self, _u: &[f64], dt: f64, w: f64) {
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
         for k in 0..3 {
             self.impulse[k] += dt * ((1.0 - w) * self.body_force_prev[k] + w * self.body_force[k]);
         }
