@@ -382,6 +382,20 @@ fn uniaxial_plastic_compression() {
     run_study("hexs8_compression");
 }
 
+/// A traction-compression cycle on distorted HEXS8 cells numbered from 4
+/// corners (tests/studies/hexs8_cine_cycle.comm, mesh hexs8_cube2.mail):
+/// VMIS_ISOT_LINE, VMIS_CINE_LINE and VMIS_ISOT_TRAC against the 1D
+/// return-mapping closed forms, and the back stress XCINXX..XCINYZ of
+/// VMIS_CINE_LINE in global axes, (2/3) H ε_p (1, −½, −½, 0, 0, 0), in
+/// every cell. It was reported in each element's own frame (the frame the
+/// published variant integrates the law in): XCINXX and XCINYY swapped on
+/// the cells with ξ along y, shears up to 0.24 (36 NOOK before the fix).
+#[test]
+fn kinematic_back_stress_is_in_global_axes() {
+    let resu = run_study("hexs8_cine_cycle");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 53, "{resu}");
+}
+
 /// SUIVI_DDL, OBSERVATION and DELTA_GRANDEUR read a HEXS8 cell's one
 /// Gauss point, not the hourglass-stress rows stored after it
 /// (tests/studies/hexs8_observe.comm: the MAX, MIN and POINT=1 of SIZZ
