@@ -522,7 +522,8 @@ fn run_variant(tag: &str, text: &str, units: Vec<(i64, PathBuf)>) -> (i32, Strin
 /// the prisms out; SIMO_MIEHE and GDEF_LOG on HEXS8 (ELEMENTSSI_1);
 /// RELATION='ELAS' on HEXS8 with PETIT and a DEPL-only ETAT_INIT
 /// (ELEMENTSSI_3, the message saying which ETAT_INIT counts); a NOM_VARI
-/// the law does not have; 3D_SI on a 2D mesh (MODELE1_6).
+/// the law does not have; 3D_SI on a 2D mesh, on faces only and on
+/// TETRA4 (MODELE1_6, saying why).
 #[test]
 fn bad_input_is_located() {
     let mixed = std::fs::read_to_string(dir().join("hexs8_mixed.comm")).unwrap();
@@ -592,6 +593,38 @@ fn bad_input_is_located() {
     assert!(term.contains("AFFE_MODELE/AFFE"), "{term}");
     assert!(term.contains("MODELE1_6"), "{term}");
     assert!(term.contains("bad.comm:3:"), "{term}");
+    // 3D_SI on a group of QUAD4 faces only, the HEXA8 cells left out: the
+    // message said the HEXA8 cells were of no type 3D_SI has an element on
+    // while listing HEXA8 among them (probe hexp); it says the selection
+    // holds no volume cell.
+    let faces = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='ASTER')\nMO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(GROUP_MA='XMAX', PHENOMENE='MECANIQUE', MODELISATION='3D_SI'))\nFIN()\n";
+    let cube = vec![(20, dir().join("hexs8_cube2.mail"))];
+    let (code, term) = run_variant("faces", faces, cube);
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("bad.comm:3:"), "{term}");
+    assert!(
+        term.contains(
+            "the AFFE occurrences select no cell of dimension 3, only 4 QUAD4 (the mesh MA has 8 HEXA8)"
+        ),
+        "{term}"
+    );
+    assert!(!term.contains("are of no type"), "{term}");
+    // 3D_SI on TETRA4 cells (3D_SI has no element there): says so.
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("hexs8_tetra4.mail");
+    std::fs::write(
+        &tmp,
+        "COOR_3D\nN1 0 0 0\nN2 1 0 0\nN3 1 1 0\nN4 0 1 0\nN5 0 0 1\nN6 1 0 1\nN7 1 1 1\nN8 0 1 1\nFINSF\n\
+         TETRA4\nM1 N1 N2 N4 N5\nM2 N2 N3 N4 N7\nM3 N2 N5 N6 N7\nM4 N4 N5 N7 N8\nM5 N2 N4 N5 N7\nFINSF\nFIN\n",
+    )
+    .unwrap();
+    let tetra = faces.replace("GROUP_MA='XMAX'", "TOUT='OUI'");
+    let (code, term) = run_variant("tetra4", &tetra, vec![(20, tmp)]);
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("bad.comm:3:"), "{term}");
+    assert!(
+        term.contains("the AFFE occurrences select 5 TETRA4, and the modelisations define elements only on other types (3D_SI on TETRA10, HEXA8, HEXA20) (MODELE1_6)"),
+        "{term}"
+    );
 }
 
 /// tests/verification/contact_friction.comm in 3D_SI (tests/studies/
