@@ -396,6 +396,29 @@ fn kinematic_back_stress_is_in_global_axes() {
     assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 53, "{resu}");
 }
 
+/// One box element on pure hourglass patterns (tests/studies/
+/// hexs8_hourglass_modes.comm): the nodal forces of the bending pattern
+/// u_x = κxy and of the shear-type pattern u_x = q·h1 against the closed
+/// forms of the assumed-strain operator on a box, with the stored Q
+/// (FSTAB7, 19, 38, 51), in STAT_NON_LINE (ADS, Voigt D) and MECA_STATIQUE
+/// (te0392, ASQBI); a zero centre stress and ENER_ELAS.
+#[test]
+fn hourglass_patterns_give_the_closed_form_forces() {
+    let resu = run_study("hexs8_hourglass_modes");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 13, "{resu}");
+}
+
+/// A free box set moving in the twist hourglass pattern (tests/studies/
+/// hexs8_twist_mode.comm), an eigenvector of the stiffness and of both
+/// masses on a box: the discrete solutions of DIFF_CENT (lumped and
+/// consistent mass), NEWMARK, and NEWMARK with Rayleigh damping
+/// (AMOR_ALPHA), and ENER_CIN with the consistent mass.
+#[test]
+fn twist_hourglass_mode_vibrates_at_its_frequency() {
+    let resu = run_study("hexs8_twist_mode");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 8, "{resu}");
+}
+
 /// SUIVI_DDL, OBSERVATION and DELTA_GRANDEUR read a HEXS8 cell's one
 /// Gauss point, not the hourglass-stress rows stored after it
 /// (tests/studies/hexs8_observe.comm: the MAX, MIN and POINT=1 of SIZZ
