@@ -968,6 +968,92 @@ fn published_variant_is_frame_invariant() {
     }
 }
 
+/// VMIS_CINE_LINE's back stress (V1..V6, a tensor stored as a stress is)
+/// turns with the element as its stress does: a distorted HEXS8 and a
+/// copy turned by 0.7 rad about (1, 2, 3), two yielding steps (the second
+/// starts from the first's state, so the variables go into the element's
+/// frame and back), PETIT and PETIT_REAC: Q X Qᵀ of the first is the
+/// second's X. Before the fix the published variant stored X in the
+/// element's own frame, the same numbers for both copies.
+#[test]
+fn kinematic_back_stress_turns_with_the_element() {
+    let spec = hexs8();
+    let x = cell_nodes(0, 0, 0, &|g| {
+        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
+    });
+    let q = nalgebra::Rotation3::from_axis_angle(
+        &nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, 2.0, 3.0)),
+        0.7,
+    )
+    .into_inner();
+    let turn = |v: &[f64]| -> Vec<f64> {
+        v.chunks(3)
+            .flat_map(|c| {
+                let r = q * nalgebra::Vector3::new(c[0], c[1], c[2]);
+                [r[0], r[1], r[2]]
+            })
+            .collect()
+    };
+    let xs: Vec<f64> = x.iter().flatten().copied().collect();
+    let xq: Vec<[f64; 3]> = turn(&xs).chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let u1: Vec<f64> = (0..24)
+        .map(|k| 2e-3 * ((k * 7 % 11) as f64 - 5.0))
+        .collect();
+    let u2: Vec<f64> = (0..24)
+        .map(|k| u1[k] + 1e-3 * ((k * 5 % 7) as f64 - 3.0))
+        .collect();
+    let cine = {
+        let e = elas();
+        aster::law::vmis_cine_line::VmisCineLine::new(
+            e,
+            EcroLineParams::new(&e, 100.0, 1000.0).unwrap(),
+        )
+    };
+    let law = LawRef::Small(&cine);
+    let back = |st: &[PointState]| -> Matrix3<f64> {
+        let v = st[0].internal.as_slice();
+        aster::law::voigt::stress_to_tensor(&nalgebra::Vector6::from_column_slice(&v[0..6]))
+    };
+    for kin in [Kinematics::Petit, Kinematics::PetitReac] {
+        let step = |xx: &[[f64; 3]], un: &[f64], uu: &[f64], st: &[PointState]| {
+            internal_forces_with(
+                opts(Variant::Published),
+                &spec,
+                kin,
+                xx,
+                un,
+                uu,
+                st,
+                law,
+                1e-6,
+                TangentKind::Consistent,
+            )
+            .unwrap()
+        };
+        let z = vec![0.0; 24];
+        let st = initial_states(&spec, law);
+        let a1 = step(&x, &z, &u1, &st);
+        let b1 = step(&xq, &z, &turn(&u1), &st);
+        let a2 = step(&x, &u1, &u2, &a1.states);
+        let b2 = step(&xq, &turn(&u1), &turn(&u2), &b1.states);
+        for (a, b, n) in [(&a1, &b1, 1), (&a2, &b2, 2)] {
+            let (xa, xb) = (back(&a.states), back(&b.states));
+            assert!(xa.norm() > 1.0, "{kin:?} step {n}: no back stress {xa}");
+            assert!(
+                (q * xa * q.transpose() - xb).norm() < 1e-12 * xa.norm(),
+                "{kin:?} step {n}: back stress not turned: {xa} {xb}"
+            );
+            let sa = aster::law::voigt::stress_to_tensor(&a.states[0].stress);
+            let sb = aster::law::voigt::stress_to_tensor(&b.states[0].stress);
+            assert!((q * sa * q.transpose() - sb).norm() < 1e-12 * sa.norm());
+            // The hourglass rows carry the same variables as the centre.
+            for r in 1..a.states.len() {
+                assert_eq!(a.states[r].internal, a.states[0].internal);
+            }
+        }
+    }
+}
+
 /// code_aster's linear matrix RIGI_MECA (te0392, `hexs8::rigi_meca`, note
 /// §10.2) against closed forms on a box of half-sizes (1, 0.5, 0.25):
 /// the ASQBI bending energy ½ E/(1−ν²) κ² V b²/3 (the plane-strain

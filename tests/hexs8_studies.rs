@@ -382,6 +382,43 @@ fn uniaxial_plastic_compression() {
     run_study("hexs8_compression");
 }
 
+/// A traction-compression cycle on distorted HEXS8 cells numbered from 4
+/// corners (tests/studies/hexs8_cine_cycle.comm, mesh hexs8_cube2.mail):
+/// VMIS_ISOT_LINE, VMIS_CINE_LINE and VMIS_ISOT_TRAC against the 1D
+/// return-mapping closed forms, and the back stress XCINXX..XCINYZ of
+/// VMIS_CINE_LINE in global axes, (2/3) H ε_p (1, −½, −½, 0, 0, 0), in
+/// every cell. It was reported in each element's own frame (the frame the
+/// published variant integrates the law in): XCINXX and XCINYY swapped on
+/// the cells with ξ along y, shears up to 0.24 (36 NOOK before the fix).
+#[test]
+fn kinematic_back_stress_is_in_global_axes() {
+    let resu = run_study("hexs8_cine_cycle");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 53, "{resu}");
+}
+
+/// One box element on pure hourglass patterns (tests/studies/
+/// hexs8_hourglass_modes.comm): the nodal forces of the bending pattern
+/// u_x = κxy and of the shear-type pattern u_x = q·h1 against the closed
+/// forms of the assumed-strain operator on a box, with the stored Q
+/// (FSTAB7, 19, 38, 51), in STAT_NON_LINE (ADS, Voigt D) and MECA_STATIQUE
+/// (te0392, ASQBI); a zero centre stress and ENER_ELAS.
+#[test]
+fn hourglass_patterns_give_the_closed_form_forces() {
+    let resu = run_study("hexs8_hourglass_modes");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 13, "{resu}");
+}
+
+/// A free box set moving in the twist hourglass pattern (tests/studies/
+/// hexs8_twist_mode.comm), an eigenvector of the stiffness and of both
+/// masses on a box: the discrete solutions of DIFF_CENT (lumped and
+/// consistent mass), NEWMARK, and NEWMARK with Rayleigh damping
+/// (AMOR_ALPHA), and ENER_CIN with the consistent mass.
+#[test]
+fn twist_hourglass_mode_vibrates_at_its_frequency() {
+    let resu = run_study("hexs8_twist_mode");
+    assert_eq!(resu.matches("OK   ANALYTIQUE").count(), 8, "{resu}");
+}
+
 /// SUIVI_DDL, OBSERVATION and DELTA_GRANDEUR read a HEXS8 cell's one
 /// Gauss point, not the hourglass-stress rows stored after it
 /// (tests/studies/hexs8_observe.comm: the MAX, MIN and POINT=1 of SIZZ
@@ -508,7 +545,8 @@ fn run_variant(tag: &str, text: &str, units: Vec<(i64, PathBuf)>) -> (i32, Strin
 /// the prisms out; SIMO_MIEHE and GDEF_LOG on HEXS8 (ELEMENTSSI_1);
 /// RELATION='ELAS' on HEXS8 with PETIT and a DEPL-only ETAT_INIT
 /// (ELEMENTSSI_3, the message saying which ETAT_INIT counts); a NOM_VARI
-/// the law does not have; 3D_SI on a 2D mesh (MODELE1_6).
+/// the law does not have; 3D_SI on a 2D mesh, on faces only and on
+/// TETRA4 (MODELE1_6, saying why).
 #[test]
 fn bad_input_is_located() {
     let mixed = std::fs::read_to_string(dir().join("hexs8_mixed.comm")).unwrap();
@@ -578,6 +616,38 @@ fn bad_input_is_located() {
     assert!(term.contains("AFFE_MODELE/AFFE"), "{term}");
     assert!(term.contains("MODELE1_6"), "{term}");
     assert!(term.contains("bad.comm:3:"), "{term}");
+    // 3D_SI on a group of QUAD4 faces only, the HEXA8 cells left out: the
+    // message said the HEXA8 cells were of no type 3D_SI has an element on
+    // while listing HEXA8 among them (probe hexp); it says the selection
+    // holds no volume cell.
+    let faces = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='ASTER')\nMO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(GROUP_MA='XMAX', PHENOMENE='MECANIQUE', MODELISATION='3D_SI'))\nFIN()\n";
+    let cube = vec![(20, dir().join("hexs8_cube2.mail"))];
+    let (code, term) = run_variant("faces", faces, cube);
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("bad.comm:3:"), "{term}");
+    assert!(
+        term.contains(
+            "the AFFE occurrences select no cell of dimension 3, only 4 QUAD4 (the mesh MA has 8 HEXA8)"
+        ),
+        "{term}"
+    );
+    assert!(!term.contains("are of no type"), "{term}");
+    // 3D_SI on TETRA4 cells (3D_SI has no element there): says so.
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("hexs8_tetra4.mail");
+    std::fs::write(
+        &tmp,
+        "COOR_3D\nN1 0 0 0\nN2 1 0 0\nN3 1 1 0\nN4 0 1 0\nN5 0 0 1\nN6 1 0 1\nN7 1 1 1\nN8 0 1 1\nFINSF\n\
+         TETRA4\nM1 N1 N2 N4 N5\nM2 N2 N3 N4 N7\nM3 N2 N5 N6 N7\nM4 N4 N5 N7 N8\nM5 N2 N4 N5 N7\nFINSF\nFIN\n",
+    )
+    .unwrap();
+    let tetra = faces.replace("GROUP_MA='XMAX'", "TOUT='OUI'");
+    let (code, term) = run_variant("tetra4", &tetra, vec![(20, tmp)]);
+    assert_eq!(code, 1, "{term}");
+    assert!(term.contains("bad.comm:3:"), "{term}");
+    assert!(
+        term.contains("the AFFE occurrences select 5 TETRA4, and the modelisations define elements only on other types (3D_SI on TETRA10, HEXA8, HEXA20) (MODELE1_6)"),
+        "{term}"
+    );
 }
 
 /// tests/verification/contact_friction.comm in 3D_SI (tests/studies/

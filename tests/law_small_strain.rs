@@ -417,3 +417,46 @@ fn metadata_follows_code_aster_declarations() {
         Some(StrainMeasure::PetitReac)
     );
 }
+
+/// Each tensorial internal variable a law declares
+/// (`LawMetadata::tensor_variables`, what MECA_HEXS8 turns with the stress)
+/// names six components in the stress order xx, yy, zz, xy, xz, yz, and
+/// the variables so named are all declared (VMIS_CINE_LINE's back stress,
+/// the Kirchhoff T of GDEF_LOG, b̄ᵉ of SIMO_MIEHE).
+#[test]
+fn tensor_variables_are_declared_with_their_six_components() {
+    use aster::law::{elas, gdef_log, john_cook, simo_miehe, vmis_cine_line};
+    use aster::law::{vmis_isot_line, vmis_isot_puis, vmis_isot_trac};
+    let all = [
+        &elas::METADATA,
+        &vmis_isot_line::METADATA,
+        &vmis_isot_trac::METADATA,
+        &vmis_isot_puis::METADATA,
+        &vmis_cine_line::METADATA,
+        &john_cook::METADATA,
+        &gdef_log::ISOT_LINE_LOG,
+        &gdef_log::ISOT_TRAC_LOG,
+        &gdef_log::ISOT_PUIS_LOG,
+        &gdef_log::CINE_LINE_LOG,
+        &gdef_log::JOHN_COOK_LOG,
+        &simo_miehe::METADATA,
+        &simo_miehe::TRAC_METADATA,
+        &simo_miehe::PUIS_METADATA,
+    ];
+    let suffixes = ["XX", "YY", "ZZ", "XY", "XZ", "YZ"];
+    for m in all {
+        let names = m.internal_variables;
+        let mut covered = vec![false; names.len()];
+        for &k in m.tensor_variables {
+            for (i, s) in suffixes.iter().enumerate() {
+                assert!(names[k + i].ends_with(s), "{}: {:?} at {k}", m.name, names);
+                covered[k + i] = true;
+            }
+        }
+        for (i, n) in names.iter().enumerate() {
+            let tensor_like = n.len() > 2 && suffixes.contains(&&n[n.len() - 2..]);
+            assert_eq!(tensor_like, covered[i], "{}: {n} undeclared", m.name);
+        }
+    }
+    assert_eq!(vmis_cine_line::METADATA.tensor_variables, &[0]);
+}

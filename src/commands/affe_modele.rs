@@ -136,6 +136,8 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let mut given_by: Vec<Option<usize>> = vec![None; mesh.ncells()];
     let mut family: Option<(Formulation, usize, String)> = None;
     let mut alarms = Vec::new();
+    // The cells some occurrence selected, to say why nothing got an element.
+    let mut selected = vec![false; mesh.ncells()];
     let occs = args.facts("AFFE");
     for (k, occ) in occs.iter().enumerate() {
         let modelisation = occ.text("MODELISATION").unwrap_or_default();
@@ -162,6 +164,9 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             None => family = Some((form, k, modelisation.to_string())),
         }
         let cells = select_cells(&mesh, occ)?;
+        for &c in &cells {
+            selected[c] = true;
+        }
         let blocked: Vec<usize> = cells
             .iter()
             .copied()
@@ -217,10 +222,46 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
         return Err(args.error("AFFE", "no AFFE occurrence"));
     };
     let assigned = roles.iter().filter(|r| **r != CellRole::None).count();
+    // What the modelisations given define elements on, "3D_SI on TETRA10,
+    // HEXA8, HEXA20; ...".
+    let defined: Vec<String> = args
+        .facts("AFFE")
+        .iter()
+        .filter_map(|o| o.text("MODELISATION"))
+        .map(|m| {
+            let cells: Vec<&str> = crate::model::spec::element_cells(m)
+                .iter()
+                .map(|c| c.aster_name())
+                .collect();
+            format!("{m} on {}", cells.join(", "))
+        })
+        .collect();
+    // "5 TETRA4, 2 QUAD4" for the cells in `pick`.
+    let kinds_of = |pick: &dyn Fn(usize) -> bool| -> String {
+        let mut counts: Vec<(&str, usize)> = Vec::new();
+        for (c, cell) in mesh.cells.iter().enumerate() {
+            if !pick(c) {
+                continue;
+            }
+            let name = cell.kind.aster_name();
+            match counts.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, k)) => *k += 1,
+                None => counts.push((name, 1)),
+            }
+        }
+        let parts: Vec<String> = counts.iter().map(|(n, k)| format!("{k} {n}")).collect();
+        parts.join(", ")
+    };
     if assigned == 0 {
         return Err(args.error(
             "AFFE",
-            format!("no finite element could be assigned to any cell of the mesh {mesh_name} (MODELE1_6)"),
+            format!(
+                "no finite element could be assigned to any cell of the mesh {mesh_name}: the AFFE \
+                 occurrences select {}, and the modelisations define elements only on other \
+                 types ({}) (MODELE1_6)",
+                kinds_of(&|c| selected[c]),
+                defined.join("; ")
+            ),
         ));
     }
     if !roles.iter().any(|r| matches!(r, CellRole::Element(_))) {
@@ -233,23 +274,25 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
             .collect();
         present.sort_unstable();
         present.dedup();
+        let selected_of_dim = mesh
+            .cells
+            .iter()
+            .enumerate()
+            .any(|(c, cell)| selected[c] && cell.kind.dim() == dim);
         let why = if present.is_empty() {
             format!("no cell of the mesh {mesh_name} has dimension {dim}")
+        } else if !selected_of_dim {
+            // The mesh has such cells but the selection left them out
+            // (AFFE on a group of faces only).
+            format!(
+                "the AFFE occurrences select no cell of dimension {dim}, only {} (the mesh {mesh_name} \
+                 has {}): select the cells of dimension {dim} too, with TOUT='OUI' or their GROUP_MA",
+                kinds_of(&|c| selected[c]),
+                kinds_of(&|c| mesh.cells[c].kind.dim() == dim)
+            )
         } else {
             // The mesh has cells of the dimension, of types the
             // modelisations given define no element on.
-            let defined: Vec<String> = args
-                .facts("AFFE")
-                .iter()
-                .filter_map(|o| o.text("MODELISATION"))
-                .map(|m| {
-                    let cells: Vec<&str> = crate::model::spec::element_cells(m)
-                        .iter()
-                        .map(|c| c.aster_name())
-                        .collect();
-                    format!("{m} on {}", cells.join(", "))
-                })
-                .collect();
             format!(
                 "the cells of dimension {dim} of the mesh {mesh_name} ({}) are of no type the modelisation defines an element on ({})",
                 present.join(", "),

@@ -52,9 +52,13 @@
 //! the rotation of the polar decomposition of the centre Jacobian, as the
 //! paper does in its corotational frame: coordinates, increments and the
 //! centre stress are turned into it, the law is called there (every law
-//! this element takes is isotropic with scalar internal variables), Q is
-//! kept there (FSTAB are components in the element's frame), and the
-//! stress, forces and stiffness are turned back. Under PETIT_REAC the frame
+//! this element takes is isotropic), Q is kept there (FSTAB are
+//! components in the element's frame), and the stress, forces and
+//! stiffness are turned back. The law's tensorial internal variables
+//! (`LawMetadata::tensor_variables`: VMIS_CINE_LINE's back stress) go in
+//! and out with the stress, so that VARI_ELGA is in global axes as
+//! SIEF_ELGA is (they once stayed in the element's frame: XCINXX and
+//! XCINYY swapped on a cell with ξ along y). Under PETIT_REAC the frame
 //! follows the element, so Q turns with it, and the centre stress of the
 //! start of the step is taken in the frame of that start: a rigid
 //! rotation over a step rotates σ and Q (a corotational update, objective
@@ -75,7 +79,7 @@ use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
 use super::mechanics::{
     jacobian_3d, ElementFailure, ElementResponse, Kinematics, LawRef, PointState,
 };
-use crate::law::{Mat6, SmallStrainInput, TangentKind, Vec6};
+use crate::law::{InternalVars, Mat6, SmallStrainInput, TangentKind, Vec6};
 use crate::mesh::quadrature::{rule, Fpg};
 use crate::mesh::shape::{eval, reference_nodes, ShapeEval};
 use crate::mesh::CellType;
@@ -298,8 +302,16 @@ pub fn internal_forces_with(
         _ => frame,
     };
     let mut sigma_n = states_n[0].stress;
+    // The law's tensorial internal variables (VMIS_CINE_LINE's back
+    // stress) are stored in global axes, as the stress: they go into the
+    // frame with it and come back with it below. Without this they were
+    // stored in the element's frame and VARI_ELGA showed, on a cell
+    // numbered with ξ along y, XCINXX and XCINYY swapped.
+    let tensors = l.metadata().tensor_variables;
+    let mut internal_n = states_n[0].internal;
     if let Some(r) = &frame_n {
         sigma_n = rotate_stress(&r.transpose(), &sigma_n);
+        rotate_tensor_variables(&r.transpose(), tensors, &mut internal_n);
     }
     if let Some(r) = &frame {
         for a in 0..8 {
@@ -323,7 +335,6 @@ pub fn internal_forces_with(
     // The law, once, at the centre. RAPH_MECA is promoted to FULL_MECA:
     // the Q update needs a tangent.
     let deps = geom.b0 * nalgebra::SVector::<f64, 24>::from_column_slice(&du);
-    let st0 = &states_n[0];
     let law_tangent = if tangent == TangentKind::None {
         TangentKind::Consistent
     } else {
@@ -333,7 +344,7 @@ pub fn internal_forces_with(
         let _span = crate::profile::span(crate::profile::Phase::LawIntegration);
         l.integrate(&SmallStrainInput {
             stress: sigma_n,
-            internal: st0.internal.as_slice(),
+            internal: internal_n.as_slice(),
             strain_increment: deps,
             dt,
             tangent: law_tangent,
@@ -443,8 +454,10 @@ pub fn internal_forces_with(
     }
 
     let mut sigma = sigma;
+    let mut internal = out.internal;
     if let Some(r) = &frame {
         sigma = rotate_stress(r, &sigma);
+        rotate_tensor_variables(r, tensors, &mut internal);
         let mut rb = K24::zeros();
         for a in 0..8 {
             rb.fixed_view_mut::<3, 3>(3 * a, 3 * a).copy_from(r);
@@ -457,7 +470,7 @@ pub fn internal_forces_with(
     let mut states = Vec::with_capacity(STATE_ROWS);
     states.push(PointState {
         stress: sigma,
-        internal: out.internal,
+        internal,
     });
     for r in 0..12 {
         let mut s = Vec6::zeros();
@@ -466,7 +479,7 @@ pub fn internal_forces_with(
         }
         states.push(PointState {
             stress: s,
-            internal: out.internal,
+            internal,
         });
     }
     Ok(ElementResponse {
@@ -507,6 +520,18 @@ fn element_frame(x: &[[f64; 3]; 8]) -> Option<Matrix3<f64>> {
 fn rotate_stress(r: &Matrix3<f64>, s: &Vec6) -> Vec6 {
     let t = crate::law::voigt::stress_to_tensor(s);
     crate::law::voigt::tensor_to_stress(&(r * t * r.transpose()))
+}
+
+/// R X Rᵀ on each tensorial internal variable (six components from the
+/// given indices, stored as a stress is: `LawMetadata::tensor_variables`).
+fn rotate_tensor_variables(r: &Matrix3<f64>, starts: &[usize], v: &mut InternalVars) {
+    let v = v.as_mut_slice();
+    for &k in starts {
+        if k + 6 <= v.len() {
+            let t = rotate_stress(r, &Vec6::from_column_slice(&v[k..k + 6]));
+            v[k..k + 6].copy_from_slice(t.as_slice());
+        }
+    }
 }
 
 /// E^{αj}(e_l) for every mode α, gradient direction j and displacement

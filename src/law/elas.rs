@@ -19,6 +19,7 @@ pub static METADATA: LawMetadata = LawMetadata {
         StrainMeasure::PetitReac,
         StrainMeasure::GrotGdep,
     ],
+    tensor_variables: &[],
 };
 
 #[derive(Debug, Clone, Copy, PartialEq)]

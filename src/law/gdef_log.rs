@@ -55,6 +55,7 @@ pub static ISOT_LINE_LOG: LawMetadata = LawMetadata {
         "EPSPEQ", "INDIPLAS", "TXX", "TYY", "TZZ", "TXY", "TXZ", "TYZ",
     ],
     strain_measures: &[StrainMeasure::GdefLog],
+    tensor_variables: &[2],
 };
 
 /// VMIS_ISOT_TRAC + GDEF_LOG: as VMIS_ISOT_LINE.
@@ -64,6 +65,7 @@ pub static ISOT_TRAC_LOG: LawMetadata = LawMetadata {
         "EPSPEQ", "INDIPLAS", "TXX", "TYY", "TZZ", "TXY", "TXZ", "TYZ",
     ],
     strain_measures: &[StrainMeasure::GdefLog],
+    tensor_variables: &[2],
 };
 
 /// VMIS_ISOT_PUIS + GDEF_LOG: as VMIS_ISOT_LINE.
@@ -71,6 +73,7 @@ pub static ISOT_PUIS_LOG: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_PUIS",
     internal_variables: ISOT_LINE_LOG.internal_variables,
     strain_measures: &[StrainMeasure::GdefLog],
+    tensor_variables: &[2],
 };
 
 /// VMIS_CINE_LINE + GDEF_LOG: the back stress X (of the log-strain
@@ -82,6 +85,7 @@ pub static CINE_LINE_LOG: LawMetadata = LawMetadata {
         "TZZ", "TXY", "TXZ", "TYZ",
     ],
     strain_measures: &[StrainMeasure::GdefLog],
+    tensor_variables: &[0, 7],
 };
 
 /// VMIS_JOHN_COOK + GDEF_LOG: V1..V5 then the six extra variables.
@@ -92,6 +96,7 @@ pub static JOHN_COOK_LOG: LawMetadata = LawMetadata {
         "TYZ",
     ],
     strain_measures: &[StrainMeasure::GdefLog],
+    tensor_variables: &[5],
 };
 
 /// A finite-strain law as the total-Lagrangian element sees it: F_n and

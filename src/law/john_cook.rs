@@ -47,6 +47,7 @@ pub static METADATA: LawMetadata = LawMetadata {
         StrainMeasure::GrotGdep,
         StrainMeasure::GdefLog,
     ],
+    tensor_variables: &[],
 };
 
 /// The plastic strain below which the flow stress is frozen (`eccook`).

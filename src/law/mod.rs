@@ -103,6 +103,14 @@ pub struct LawMetadata {
     pub internal_variables: &'static [&'static str],
     /// Accepted `DEFORMATION` values.
     pub strain_measures: &'static [StrainMeasure],
+    /// The internal variables that are symmetric tensors stored as a
+    /// stress is (six components xx, yy, zz, xy, xz, yz, tensor shears),
+    /// by the index of their first component (VMIS_CINE_LINE's back stress
+    /// XCINXX..XCINYZ: `&[0]`). An element that integrates the law in a
+    /// frame of its own (MECA_HEXS8, `element::hexs8`) turns them into
+    /// that frame and back as it turns the stress, so that VARI_ELGA holds
+    /// them in global axes like SIEF_ELGA.
+    pub tensor_variables: &'static [usize],
 }
 
 impl LawMetadata {

@@ -54,6 +54,7 @@ pub static METADATA: LawMetadata = LawMetadata {
         "EPSPEQ", "INDIPLAS", "BE_XX", "BE_YY", "BE_ZZ", "BE_XY", "BE_XZ", "BE_YZ",
     ],
     strain_measures: &[StrainMeasure::SimoMiehe],
+    tensor_variables: &[2],
 };
 
 /// Start-of-step state and the deformation gradients of the step.
@@ -119,6 +120,7 @@ pub static TRAC_METADATA: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_TRAC",
     internal_variables: METADATA.internal_variables,
     strain_measures: &[StrainMeasure::SimoMiehe],
+    tensor_variables: &[2],
 };
 
 /// VMIS_ISOT_PUIS under SIMO_MIEHE (code_aster's catalogue lists
@@ -127,6 +129,7 @@ pub static PUIS_METADATA: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_PUIS",
     internal_variables: METADATA.internal_variables,
     strain_measures: &[StrainMeasure::SimoMiehe],
+    tensor_variables: &[2],
 };
 
 /// The isotropic hardenings other than the line, whose return goes

@@ -47,6 +47,7 @@ pub static METADATA: LawMetadata = LawMetadata {
         StrainMeasure::GrotGdep,
         StrainMeasure::GdefLog,
     ],
+    tensor_variables: &[0],
 };
 
 /// As VMIS_ISOT_LINE's rule for a zero increment on the surface.

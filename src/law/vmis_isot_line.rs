@@ -27,6 +27,7 @@ pub static METADATA: LawMetadata = LawMetadata {
         StrainMeasure::SimoMiehe,
         StrainMeasure::GdefLog,
     ],
+    tensor_variables: &[],
 };
 
 /// Relative distance to the yield surface under which a zero increment

@@ -33,6 +33,7 @@ pub static METADATA: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_PUIS",
     internal_variables: vmis_isot_line::METADATA.internal_variables,
     strain_measures: vmis_isot_line::METADATA.strain_measures,
+    tensor_variables: &[],
 };
 
 /// `ecpuis`'s p₀: below it R is the chord from (0, SY) to (p₀, R(p₀)).

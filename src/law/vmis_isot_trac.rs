@@ -24,6 +24,7 @@ pub static METADATA: LawMetadata = LawMetadata {
     name: "VMIS_ISOT_TRAC",
     internal_variables: vmis_isot_line::METADATA.internal_variables,
     strain_measures: vmis_isot_line::METADATA.strain_measures,
+    tensor_variables: &[],
 };
 
 /// What R(p) does past the last point of the curve: the function's
