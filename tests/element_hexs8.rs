@@ -215,6 +215,33 @@ fn wobble(g: [usize; 3], i: usize) -> f64 {
     (h * 12.9898).sin()
 }
 
+/// One cell stretched differently along x, y, z and wobbled: no edge
+/// parallel to another, no face flat.
+fn distorted_cell() -> Vec<[f64; 3]> {
+    cell_nodes(0, 0, 0, &|g| {
+        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
+    })
+}
+
+/// A rotation about no coordinate axis, for the frame-invariance tests.
+fn test_rotation() -> nalgebra::Matrix3<f64> {
+    nalgebra::Rotation3::from_axis_angle(
+        &nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, 2.0, 3.0)),
+        0.7,
+    )
+    .into_inner()
+}
+
+/// Every 3-vector of `v` (nodal coordinates or dofs) turned by `q`.
+fn turned(q: &nalgebra::Matrix3<f64>, v: &[f64]) -> Vec<f64> {
+    v.chunks(3)
+        .flat_map(|c| {
+            let r = q * nalgebra::Vector3::new(c[0], c[1], c[2]);
+            [r[0], r[1], r[2]]
+        })
+        .collect()
+}
+
 fn linear_field(x: [f64; 3]) -> [f64; 3] {
     let a = [
         [1.0e-3, 0.4e-3, -0.3e-3],
@@ -335,9 +362,7 @@ fn spectrum_of_one_element() {
     let box_el = cell_nodes(0, 0, 0, &|g| {
         [2.0 * g[0] as f64, 1.0 * g[1] as f64, 0.5 * g[2] as f64]
     });
-    let distorted = cell_nodes(0, 0, 0, &|g| {
-        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
-    });
+    let distorted = distorted_cell();
     let vm = incremental_elastic();
     let el = Elas::new(elas());
     for x in [&box_el, &distorted] {
@@ -883,22 +908,9 @@ fn cantilever_does_not_depend_on_cell_numbering() {
 #[test]
 fn published_variant_is_frame_invariant() {
     let spec = hexs8();
-    let x = cell_nodes(0, 0, 0, &|g| {
-        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
-    });
-    let q = nalgebra::Rotation3::from_axis_angle(
-        &nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, 2.0, 3.0)),
-        0.7,
-    )
-    .into_inner();
-    let turn = |v: &[f64]| -> Vec<f64> {
-        v.chunks(3)
-            .flat_map(|c| {
-                let r = q * nalgebra::Vector3::new(c[0], c[1], c[2]);
-                [r[0], r[1], r[2]]
-            })
-            .collect()
-    };
+    let x = distorted_cell();
+    let q = test_rotation();
+    let turn = |v: &[f64]| turned(&q, v);
     let xs: Vec<f64> = x.iter().flatten().copied().collect();
     let xq: Vec<[f64; 3]> = turn(&xs).chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
     let u: Vec<f64> = (0..24)
@@ -978,22 +990,9 @@ fn published_variant_is_frame_invariant() {
 #[test]
 fn kinematic_back_stress_turns_with_the_element() {
     let spec = hexs8();
-    let x = cell_nodes(0, 0, 0, &|g| {
-        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
-    });
-    let q = nalgebra::Rotation3::from_axis_angle(
-        &nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, 2.0, 3.0)),
-        0.7,
-    )
-    .into_inner();
-    let turn = |v: &[f64]| -> Vec<f64> {
-        v.chunks(3)
-            .flat_map(|c| {
-                let r = q * nalgebra::Vector3::new(c[0], c[1], c[2]);
-                [r[0], r[1], r[2]]
-            })
-            .collect()
-    };
+    let x = distorted_cell();
+    let q = test_rotation();
+    let turn = |v: &[f64]| turned(&q, v);
     let xs: Vec<f64> = x.iter().flatten().copied().collect();
     let xq: Vec<[f64; 3]> = turn(&xs).chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
     let u1: Vec<f64> = (0..24)
@@ -1118,9 +1117,7 @@ fn rigi_meca_closed_forms_and_spectrum() {
         assert!((sigma[0] - (lambda * tr + 2.0 * mu * e1)).abs() < 1e-9 * sigma[0].abs());
         assert!((sigma[3] - mu * gxy).abs() < 1e-9 * mu * gxy);
     }
-    let distorted = cell_nodes(0, 0, 0, &|g| {
-        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
-    });
+    let distorted = distorted_cell();
     for el in [&x, &distorted] {
         for variant in [Variant::Published, Variant::CodeAster] {
             let k = hexs8::rigi_meca(el, E, NU, variant).unwrap();
@@ -1140,9 +1137,7 @@ fn rigi_meca_closed_forms_and_spectrum() {
 #[test]
 fn rigi_meca_is_not_the_nonlinear_tangent() {
     let spec = hexs8();
-    let x = cell_nodes(0, 0, 0, &|g| {
-        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
-    });
+    let x = distorted_cell();
     let el = Elas::new(elas());
     let law = LawRef::Small(&el);
     let z = vec![0.0; 24];
@@ -1176,20 +1171,12 @@ fn rigi_meca_is_not_the_nonlinear_tangent() {
 /// written in x, y, z, note §14.1).
 #[test]
 fn rigi_meca_frame() {
-    let x = cell_nodes(0, 0, 0, &|g| {
-        std::array::from_fn(|i| g[i] as f64 * (1.0 + 0.3 * i as f64) + 0.25 * wobble(g, i))
-    });
-    let q = nalgebra::Rotation3::from_axis_angle(
-        &nalgebra::Unit::new_normalize(nalgebra::Vector3::new(1.0, 2.0, 3.0)),
-        0.7,
-    )
-    .into_inner();
-    let xq: Vec<[f64; 3]> = x
-        .iter()
-        .map(|p| {
-            let r = q * nalgebra::Vector3::from(*p);
-            [r[0], r[1], r[2]]
-        })
+    let x = distorted_cell();
+    let q = test_rotation();
+    let xs: Vec<f64> = x.iter().flatten().copied().collect();
+    let xq: Vec<[f64; 3]> = turned(&q, &xs)
+        .chunks(3)
+        .map(|c| [c[0], c[1], c[2]])
         .collect();
     let mut qb = DMatrix::zeros(24, 24);
     for a in 0..8 {
