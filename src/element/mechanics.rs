@@ -858,12 +858,7 @@ fn evaluate(
                 let f_n = Matrix3::identity() + h_n;
                 let f = Matrix3::identity() + h;
                 let (j_n, j) = (f_n.determinant(), f.determinant());
-                if !(j_n > 0.0 && j > 0.0) {
-                    return Err(ElementFailure::Inverted {
-                        point: p,
-                        message: format!("det F = {j} (start of step {j_n})"),
-                    });
-                }
+                check_jacobians(p, j_n, j)?;
                 let fn_inv = f_n.try_inverse().ok_or_else(|| ElementFailure::Inverted {
                     point: p,
                     message: "singular deformation gradient at the start of the step".into(),
@@ -937,12 +932,7 @@ fn evaluate(
                     }
                 };
                 let j = f.determinant();
-                if !(j_n > 0.0 && j > 0.0) {
-                    return Err(ElementFailure::Inverted {
-                        point: p,
-                        message: format!("det F = {j} (start of step {j_n})"),
-                    });
-                }
+                check_jacobians(p, j_n, j)?;
                 let f_inv = f.try_inverse().ok_or_else(|| ElementFailure::Inverted {
                     point: p,
                     message: "singular deformation gradient".into(),
@@ -1122,12 +1112,7 @@ fn simo_miehe_explicit(
         } else {
             f.determinant()
         };
-        if !(j_n > 0.0 && j > 0.0) {
-            return Err(ElementFailure::Inverted {
-                point: p,
-                message: format!("det F = {j} (start of step {j_n})"),
-            });
-        }
+        check_jacobians(p, j_n, j)?;
         if geom.axis {
             // The (r, z) block and θθ only (`Axi`): the same nonzero
             // values at a fraction of the 3 × 3 arithmetic (to the bit but
@@ -1407,6 +1392,19 @@ pub fn point_measures(
 /// The Green-Lagrange strain E = ½(FᵀF − 1).
 pub fn green_lagrange(f: &Matrix3<f64>) -> Matrix3<f64> {
     0.5 * (f.transpose() * f - Matrix3::identity())
+}
+
+/// A step that inverts a Gauss point (det F ≤ 0 at its start or end, or
+/// NaN) is a failure of the element the step cutting can act on.
+fn check_jacobians(p: usize, j_n: f64, j: f64) -> Result<(), ElementFailure> {
+    if j_n > 0.0 && j > 0.0 {
+        Ok(())
+    } else {
+        Err(ElementFailure::Inverted {
+            point: p,
+            message: format!("det F = {j} (start of step {j_n})"),
+        })
+    }
 }
 
 fn missing_tangent(law: LawRef) -> ElementFailure {
