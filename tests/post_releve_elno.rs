@@ -358,3 +358,93 @@ fn elno_refusals_are_located() {
         );
     }
 }
+
+/// VARI_ELNO with plasticity in one cell only: two QUAD4 stacked in y in
+/// C_PLAN, M1 = [0, 1]² (SY = 2) under M2 = [0, 1] x [1, 2] (SY = 1000),
+/// both E = 1000, NU = 0, ET = 100 (VMIS_ISOT_LINE), held DX = 0 at
+/// x = 0 (and DY at N1 only) and pulled DX = 0.01 at x = 1. Both cells
+/// take the strain EPXX = 0.01 (in parallel), uniaxially (sigma_yy = 0
+/// free, sigma_zz = 0 plane stress; the different lateral strains,
+/// -p/2 in M1 and 0 in M2, are compatible across the interface y = 1).
+/// M2 stays elastic: SIXX = 10, V1 = V2 = 0. M1 yields: with H = E ET /
+/// (E - ET) = 1000/9, sigma/E + (sigma - 2)/H = 0.01 gives sigma = 2.8
+/// and p = V1 = 0.0072, V2 = 1 (radial return exact for linear
+/// hardening in one step). The interface nodes N3, N4 give one row per
+/// cell with those values, and the means (0.0036 for V1) by default.
+#[test]
+fn vari_elno_plastic_in_one_cell() {
+    let mut m = Mesh {
+        name: "PARALLELE".into(),
+        dim: 2,
+        coords: vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, 2.0, 0.0],
+        ],
+        ..Mesh::default()
+    };
+    common::add_cell(&mut m, "MAT1", CellType::Quad4, vec![0, 1, 3, 2]);
+    common::add_cell(&mut m, "MAT2", CellType::Quad4, vec![2, 3, 5, 4]);
+    m.node_groups.insert("GAUCHE".into(), vec![0, 2, 4]);
+    m.node_groups.insert("DROITE".into(), vec![1, 3, 5]);
+    m.node_groups.insert("COIN".into(), vec![0]);
+    m.node_groups.insert("INTER".into(), vec![2, 3]);
+    let (p, sig1, sig2) = (0.0072, 2.8, 10.0);
+    let mut post = String::from(
+        "T = POST_RELEVE_T(ACTION=(\n\
+         _F(INTITULE='V', RESULTAT=RES, NOM_CHAM='VARI_ELNO', INST=1., GROUP_NO='INTER', \
+            NOM_CMP=('V1', 'V2'), MOYE_NOEUD='NON', OPERATION='EXTRACTION'),\n\
+         _F(INTITULE='S', RESULTAT=RES, NOM_CHAM='SIEF_ELNO', INST=1., GROUP_NO='INTER', \
+            NOM_CMP='SIXX', MOYE_NOEUD='NON', OPERATION='EXTRACTION'),\n\
+         _F(INTITULE='V_MOY', RESULTAT=RES, NOM_CHAM='VARI_ELNO', INST=1., NOEUD=('N4', 'N3'), \
+            TOUT_CMP='OUI', OPERATION='EXTRACTION'),\n\
+         ))\n\
+         IMPR_TABLE(TABLE=T, FORMAT_R='E24.16')\n",
+    );
+    for no in ["N3", "N4"] {
+        post += &check("T", "V", no, Some("M1"), "V1", p);
+        post += &check("T", "V", no, Some("M1"), "V2", 1.0);
+        post += &check("T", "S", no, Some("M1"), "SIXX", sig1);
+        post += &check("T", "S", no, Some("M2"), "SIXX", sig2);
+        post += &check("T", "V_MOY", no, None, "V1", p / 2.0);
+    }
+    let comm = format!(
+        "DEBUT()\n\
+         MA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='C_PLAN'))\n\
+         MAT1 = DEFI_MATERIAU(ELAS=_F(E=1000., NU=0.), ECRO_LINE=_F(D_SIGM_EPSI=100., SY=2.))\n\
+         MAT2 = DEFI_MATERIAU(ELAS=_F(E=1000., NU=0.), ECRO_LINE=_F(D_SIGM_EPSI=100., SY=1000.))\n\
+         CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=(_F(GROUP_MA='MAT1', MATER=MAT1), _F(GROUP_MA='MAT2', MATER=MAT2)))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=(_F(GROUP_NO='GAUCHE', DX=0.), _F(GROUP_NO='COIN', DY=0.), \
+         _F(GROUP_NO='DROITE', DX=0.01)))\n\
+         LI = DEFI_LIST_REEL(DEBUT=0., INTERVALLE=_F(JUSQU_A=1., NOMBRE=1))\n\
+         RES = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=CH), \
+         COMPORTEMENT=_F(RELATION='VMIS_ISOT_LINE', TOUT='OUI'), INCREMENT=_F(LIST_INST=LI), \
+         CONVERGENCE=_F(RESI_GLOB_RELA=1.E-10, ITER_GLOB_MAXI=20))\n\
+         RES = CALC_CHAMP(reuse=RES, RESULTAT=RES, CONTRAINTE='SIEF_ELNO', VARI_INTERNE='VARI_ELNO')\n\
+         {post}\n\
+         FIN()\n"
+    );
+    let resu = run("elno_vari", &m, &comm);
+    assert_eq!(analytic_oks(&resu), 10, "{resu}");
+    let rows = common::printed_table(&resu, "T");
+    let per_cell = pairs(&[("N3", "M1"), ("N3", "M2"), ("N4", "M1"), ("N4", "M2")]);
+    assert_eq!(places(&rows, "V"), per_cell);
+    // the elastic cell: no plastic strain at the shared nodes
+    for r in rows
+        .iter()
+        .filter(|r| r["INTITULE"] == "V" && r["MAILLE"] == "M2")
+    {
+        assert!(
+            num(r, "V1").abs() < 1e-12 && num(r, "V2").abs() < 1e-12,
+            "{r:?}"
+        );
+    }
+    // NOEUD in the order given, TOUT_CMP: every internal variable
+    assert_eq!(places(&rows, "V_MOY"), pairs(&[("N4", "-"), ("N3", "-")]));
+    let h = header(&resu, "T");
+    assert!(h.iter().any(|c| c == "V2"), "{h:?}");
+}
