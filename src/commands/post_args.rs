@@ -503,6 +503,29 @@ pub fn step_gauss<'r>(
     })
 }
 
+/// Field by element at nodes `nom_cham` of a step (CALC_CHAMP's
+/// SIEF_ELNO, EPSI_ELNO, VARI_ELNO...), as [`step_nodal`].
+pub fn step_elno<'r>(
+    step: &'r Step,
+    nom_cham: &str,
+    args: &Args,
+    key: &str,
+    result_name: &str,
+) -> Result<&'r GaussField, Diagnostic> {
+    step.elno.get(nom_cham).ok_or_else(|| {
+        args.error(
+            key,
+            format!(
+                "result {result_name} has no field {nom_cham} at NUME_ORDRE {} (INST {}): compute it with CALC_CHAMP{}{}",
+                step.nume_ordre,
+                crate::post::test_report::py_repr(step.inst),
+                step.exclusion_note(nom_cham),
+                fields_held(step)
+            ),
+        )
+    })
+}
+
 fn fields_held(step: &Step) -> String {
     let names: Vec<&str> = step
         .nodal

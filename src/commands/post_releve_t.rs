@@ -95,7 +95,7 @@ pub fn def() -> CommandDef {
                     real("DIRECTION").many().kw(),
                     real("VECT_Y").many().kw(),
                     oui_non("MOYE_NOEUD", "OUI")
-                        .doc("average element-node fields at nodes")
+                        .doc("a field by element at nodes (*_ELNO) in EXTRACTION: 'OUI' one row per node, the mean over the cells holding it; 'NON' one row per (node, cell), with the column MAILLE")
                         .kw(),
                     text("FORMAT_C")
                         .into(&["MODULE", "REEL", "IMAG"])
@@ -137,14 +137,14 @@ pub fn def() -> CommandDef {
             titre(),
         ],
     )
-    .doc("Extracts values of fields into a table (columns INTITULE, RESU, NOM_CHAM, NUME_ORDRE, INST, NOEUD, COOR_*, components), or their mean along a line of nodes (MOYENNE: six QUANTITE rows).");
+    .doc("Extracts values of fields into a table (columns INTITULE, RESU, NOM_CHAM, NUME_ORDRE, INST, NOEUD, MAILLE for a *_ELNO field with MOYE_NOEUD='NON', COOR_*, components), or their mean along a line of nodes (MOYENNE: six QUANTITE rows).");
     CommandDef { spec, exec }
 }
 
 /// The leading columns of an extraction table, in code_aster's order
 /// (`rvtec0`): label, concept, field, access parameters, node, coordinates.
 /// Component columns follow, in order of first appearance.
-const LEADING: [(&str, ColumnType); 13] = [
+const LEADING: [(&str, ColumnType); 14] = [
     ("INTITULE", ColumnType::Text(16)),
     ("RESU", ColumnType::Text(8)),
     ("CHAM_GD", ColumnType::Text(8)),
@@ -154,6 +154,9 @@ const LEADING: [(&str, ColumnType); 13] = [
     // EXTREMA (code_aster's `rvmima`): which extremum, then where.
     ("EXTREMA", ColumnType::Text(8)),
     ("NOEUD", ColumnType::Text(8)),
+    // A field by element at nodes with MOYE_NOEUD='NON' (code_aster's
+    // `rvtec0`): the cell of the row, right after its node.
+    ("MAILLE", ColumnType::Text(8)),
     ("CMP", ColumnType::Text(8)),
     ("VALE", ColumnType::Real),
     ("COOR_X", ColumnType::Real),
@@ -180,7 +183,7 @@ const UNSUPPORTED: [&str; 9] = [
 fn unsupported_why(k: &str) -> &'static str {
     match k {
         "TOUT" | "GROUP_MA" | "MAILLE" => {
-            "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION or MOYENNE is not built (code_aster restricts fields by element to those cells): the nodes are those of GROUP_NO/NOEUD, give them alone"
+            "GROUP_MA, MAILLE or TOUT next to GROUP_NO/NOEUD in EXTRACTION or MOYENNE of a nodal field is not built (code_aster reads them for fields by element only, *_ELNO, where aster restricts the cells to them): the nodes are those of GROUP_NO/NOEUD, give them alone"
         }
         "INVARIANT" => {
             "INVARIANT='OUI' (the invariants VMIS, TRESCA, TRACE, DETER of a tensor field) is not built; CALC_CHAMP CRITERES='SIEQ_NOEU' gives VMIS, TRESCA and TRSIG (the trace) at the nodes, to extract with NOM_CMP"
@@ -373,10 +376,14 @@ fn extract(
             ));
         }
     }
+    // A field by element at nodes takes GROUP_MA/MAILLE (and TOUT) next
+    // to GROUP_NO/NOEUD: they restrict the cells whose values are read
+    // (code_aster's `rvouex`).
+    let elno = occ.has("RESULTAT") && occ.text("NOM_CHAM").is_some_and(|n| n.ends_with("_ELNO"));
     for k in UNSUPPORTED {
         // EXTREMA and MOYENNE_ARITH select nodes by cells too.
         let selection = matches!(k, "TOUT" | "GROUP_MA" | "MAILLE");
-        if occ.has(k) && (!selection || op.on_nodes()) {
+        if occ.has(k) && (!selection || (op.on_nodes() && !elno)) {
             return Err(occ.not_implemented(k, unsupported_why(k)));
         }
     }
@@ -391,14 +398,8 @@ fn extract(
                 "extraction of Gauss-point fields (project them to the nodes first)",
             ));
         }
-        if nom_cham.ends_with("_ELNO") {
-            return Err(occ.not_implemented(
-                "NOM_CHAM",
-                &format!(
-                    "extraction of the field by element at nodes {nom_cham}; the nodal field {}_NOEU of CALC_CHAMP averages it at the nodes",
-                    nom_cham.trim_end_matches("_ELNO")
-                ),
-            ));
+        if elno {
+            return elno_extraction(study, occ, op, &frame, rname, res, mesh, &intitule, rows);
         }
         let nodes = selected_nodes(mesh, occ, op)?;
         for step in select_steps(study, res, occ)? {
@@ -446,6 +447,190 @@ fn extract(
             }
         };
         field_rows(occ, op, mesh, field, fname, &nodes, lead, rows, alarms)?;
+    }
+    Ok(())
+}
+
+/// OPERATION='EXTRACTION' of a field by element at nodes (SIEF_ELNO,
+/// SIGM_ELNO, SIEQ_ELNO, EPSI_ELNO, VARI_ELNO...), as code_aster's
+/// `rvouex`, `rveche`/`rvechn`, `rvaffe` and `rvtec0`/`rvtecn` build it:
+/// the cells read at a node of GROUP_NO/NOEUD are those of the mesh that
+/// contain it and hold values of the field, in increasing cell number
+/// (`cncinv`, `tremno`), restricted to GROUP_MA/MAILLE when given; a node
+/// on no such cell is an error (code_aster's POSTRELE_40).
+/// MOYE_NOEUD='OUI' (the default) gives one row per node, each component
+/// the arithmetic mean of the values those cells give there (`rvaffe`,
+/// absent values left out), in the columns of a nodal extraction;
+/// MOYE_NOEUD='NON' one row per (node, cell), node by node, with the
+/// column MAILLE after NOEUD (`rvtec0`).
+#[allow(clippy::too_many_arguments)]
+fn elno_extraction(
+    study: &Study,
+    occ: &Args,
+    op: Operation,
+    frame: &Frame,
+    rname: &str,
+    res: &crate::result::EvolNoli,
+    mesh: &Mesh,
+    intitule: &str,
+    rows: &mut Vec<Row>,
+) -> Result<(), Diagnostic> {
+    let nom_cham = occ.text("NOM_CHAM").unwrap_or_default();
+    let noeu = format!("{}_NOEU", nom_cham.trim_end_matches("_ELNO"));
+    if op != Operation::Extraction {
+        let what = match op {
+            Operation::Extrema => format!(
+                "EXTREMA of the field by element at nodes {nom_cham} (code_aster's `rvmima`/`prexel`, columns MAILLE, NOEUD, CMP, VALE) is not built; EXTREMA of the nodal field {noeu} (CALC_CHAMP) gives the extrema of its means at the nodes, TEST_RESU TYPE_TEST='MAX'/'MIN' those of {nom_cham} itself"
+            ),
+            Operation::MeanArith => format!(
+                "MOYENNE_ARITH of the field by element at nodes {nom_cham} is not built; MOYENNE_ARITH of the nodal field {noeu} (CALC_CHAMP) averages its means at the nodes"
+            ),
+            _ => format!(
+                "MOYENNE along a path of the field by element at nodes {nom_cham} is not built; MOYENNE of the nodal field {noeu} (CALC_CHAMP) gives it from the means at the nodes"
+            ),
+        };
+        return Err(occ.not_implemented("OPERATION", &what));
+    }
+    if occ.has("RESULTANTE") {
+        return Err(occ.not_implemented(
+            "RESULTANTE",
+            &format!("RESULTANTE of the field by element at nodes {nom_cham} is not built; it sums the components of a nodal field (REAC_NODA, FORC_NODA, or {noeu})"),
+        ));
+    }
+    if !matches!(frame, Frame::Global) {
+        return Err(occ.not_implemented(
+            "REPERE",
+            &format!("REPERE other than 'GLOBAL' on the field by element at nodes {nom_cham} is not built (the frames turn DX, DY, DZ of a displacement-type nodal field only)"),
+        ));
+    }
+    let nodes = nodes_of(mesh, occ)?;
+    let keep: Option<Vec<bool>> = if occ.has("GROUP_MA") || occ.has("MAILLE") {
+        let mut keep = vec![false; mesh.ncells()];
+        for c in super::model_args::select_cells(mesh, occ)? {
+            keep[c] = true;
+        }
+        Some(keep)
+    } else {
+        None
+    };
+    // The cells at each selected node, increasing, with the node's place
+    // in the cell.
+    let mut place = vec![usize::MAX; mesh.nnodes()];
+    for (k, &n) in nodes.iter().enumerate() {
+        place[n] = k;
+    }
+    let mut cells_at: Vec<Vec<(usize, usize)>> = vec![Vec::new(); nodes.len()];
+    for (c, cell) in mesh.cells.iter().enumerate() {
+        if keep.as_ref().is_some_and(|k| !k[c]) {
+            continue;
+        }
+        for (a, &n) in cell.nodes.iter().enumerate() {
+            if place[n] != usize::MAX {
+                cells_at[place[n]].push((c, a));
+            }
+        }
+    }
+    let per_cell = occ.text("MOYE_NOEUD") == Some("NON");
+    let coords = ["COOR_X", "COOR_Y", "COOR_Z"];
+    let ndim = if mesh.dim == 3 { 3 } else { 2 };
+    for step in select_steps(study, res, occ)? {
+        let field = super::post_args::step_elno(step, nom_cham, occ, "NOM_CHAM", rname)?;
+        let cmps: Vec<(String, usize)> = if occ.has("TOUT_CMP") {
+            field
+                .components
+                .iter()
+                .enumerate()
+                .map(|(i, c)| (c.clone(), i))
+                .collect()
+        } else {
+            occ.texts("NOM_CMP")
+                .into_iter()
+                .map(|c| {
+                    super::post_args::component_index(
+                        &field.components,
+                        c,
+                        occ,
+                        "NOM_CMP",
+                        nom_cham,
+                    )
+                    .map(|i| (c.to_string(), i))
+                })
+                .collect::<Result<_, _>>()?
+        };
+        let ncmp = field.ncmp();
+        let lead = vec![
+            ("INTITULE".to_string(), Cell::Text(intitule.to_string())),
+            ("RESU".to_string(), Cell::Text(rname.to_string())),
+            ("NOM_CHAM".to_string(), Cell::Text(nom_cham.to_string())),
+            ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre as i64)),
+            ("INST".to_string(), Cell::Real(step.inst)),
+        ];
+        for (k, &n) in nodes.iter().enumerate() {
+            let active: Vec<(usize, usize)> = cells_at[k]
+                .iter()
+                .copied()
+                .filter(|&(c, _)| field.npg(c) == mesh.cells[c].nodes.len())
+                .collect();
+            if active.is_empty() {
+                let key = if occ.has("NOEUD") {
+                    "NOEUD"
+                } else {
+                    "GROUP_NO"
+                };
+                return Err(occ.error(
+                    key,
+                    format!(
+                        "node {} is on no cell{} where {nom_cham} has values at NUME_ORDRE {} (code_aster's POSTRELE_40): leave it out of GROUP_NO/NOEUD{}",
+                        node_name(n),
+                        if keep.is_some() { " of GROUP_MA/MAILLE" } else { "" },
+                        step.nume_ordre,
+                        if keep.is_some() { ", or give GROUP_MA/MAILLE cells that contain it" } else { "" }
+                    ),
+                ));
+            }
+            let head = |row: &mut Row| {
+                for (d, name) in coords.iter().take(ndim).enumerate() {
+                    row.push((name.to_string(), Cell::Real(mesh.coords[n][d])));
+                }
+            };
+            if per_cell {
+                for &(c, a) in &active {
+                    let mut row = lead.clone();
+                    row.push(("NOEUD".to_string(), Cell::Text(node_name(n))));
+                    row.push((
+                        "MAILLE".to_string(),
+                        Cell::Text(super::post_args::cell_name(c)),
+                    ));
+                    head(&mut row);
+                    let vals = field.cell(c);
+                    for (name, i) in &cmps {
+                        let v = vals[a * ncmp + i];
+                        if !v.is_nan() {
+                            row.push((name.clone(), Cell::Real(v)));
+                        }
+                    }
+                    rows.push(row);
+                }
+            } else {
+                let mut row = lead.clone();
+                row.push(("NOEUD".to_string(), Cell::Text(node_name(n))));
+                head(&mut row);
+                for (name, i) in &cmps {
+                    let values: Vec<f64> = active
+                        .iter()
+                        .map(|&(c, a)| field.cell(c)[a * ncmp + i])
+                        .filter(|v| !v.is_nan())
+                        .collect();
+                    if !values.is_empty() {
+                        row.push((
+                            name.clone(),
+                            Cell::Real(values.iter().sum::<f64>() / values.len() as f64),
+                        ));
+                    }
+                }
+                rows.push(row);
+            }
+        }
     }
     Ok(())
 }
