@@ -535,14 +535,6 @@ fn bad_stresses_at_nodes_are_located_errors() {
             ),
             "node N3 is not a node of cell",
         ),
-        (
-            "releve_elno",
-            (
-                "RESULTAT=RES_F, NOM_CHAM='SIEF_NOEU',",
-                "RESULTAT=RES_F, NOM_CHAM='SIEF_ELNO',",
-            ),
-            "not implemented yet: POST_RELEVE_T/ACTION/NOM_CHAM",
-        ),
     ];
     let export = format!("F mmed {} D 20\n", dir().join("patch.mmed").display());
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_stress_nodes");
