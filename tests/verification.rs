@@ -492,9 +492,9 @@ fn affe_char_meca_f_distributed_load_errors() {
     expect_located_errors(&comm, &cases, &tmp, &export, "verif_char_f_distributed");
 }
 
-/// ENERGIE ETOT_* and DEFORMATION EPME_ELGA (not built), an ELNO field tested without CALC_CHAMP,
-/// an ELNO node outside the cell and POST_RELEVE_T on an ELNO field are
-/// located errors.
+/// ENERGIE ETOT_* and DEFORMATION EPME_ELGA (not built), an ELNO field tested without CALC_CHAMP
+/// and an ELNO node outside the cell are located errors (POST_RELEVE_T on
+/// an ELNO field is built since: tests/post_releve_elno.rs).
 #[test]
 fn bad_stresses_at_nodes_are_located_errors() {
     let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("stress_nodes_bad");
