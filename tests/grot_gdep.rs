@@ -562,6 +562,25 @@ fn newton_converges_where_the_load_passes_through_zero() {
     assert_eq!(analytic, 6, "{resu}");
 }
 
+/// tests/studies/grot_gdep_laws.comm: every law that accepts GROT_GDEP
+/// (ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_CINE_LINE, VMIS_ISOT_PUIS,
+/// VMIS_JOHN_COOK) on the bar stretched to λ = 1.1 then pushed to
+/// λ = 0.9 through the reverse yield, against each law's 1D closed form in
+/// (E_xx, S) (isotropic reverse yield at −S₁, kinematic at S₁ − 2 SY):
+/// SIXX, the lateral DY and the force at both ends and p (X_xx for
+/// CINE_LINE) at the end, 40 ANALYTIQUE checks at 1e-6 (measured within
+/// 1e-8, JOHN_COOK's local solver).
+#[test]
+fn every_law_follows_its_1d_law_in_green_lagrange_strain_through_reverse_yield() {
+    let run = common::run_study("tests/studies/grot_gdep_laws.comm", "grot_gdep_laws");
+    let resu = common::assert_all_ok(&run, "grot_gdep_laws.resu");
+    let analytic = resu
+        .lines()
+        .filter(|l| l.starts_with(" OK ") && l.contains("ANALYTIQUE"))
+        .count();
+    assert_eq!(analytic, 40, "{resu}");
+}
+
 fn verification_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification")
 }
