@@ -581,6 +581,22 @@ fn every_law_follows_its_1d_law_in_green_lagrange_strain_through_reverse_yield()
     assert_eq!(analytic, 40, "{resu}");
 }
 
+/// tests/studies/grot_gdep_cells.comm: the cells the other GROT_GDEP
+/// studies do not use, TETRA4 and PENTA6 (3D), TRIA6 (D_PLAN), TRIA3
+/// (AXIS), stretched to λ = 1.3 against St Venant-Kirchhoff's uniaxial
+/// stress and plane-strain closed forms (Cauchy stress, lateral
+/// displacement, REAC_NODA resultant): 17 ANALYTIQUE checks at 1e-8.
+#[test]
+fn tetra_penta_and_triangles_match_st_venant_kirchhoff() {
+    let run = common::run_study("tests/studies/grot_gdep_cells.comm", "grot_gdep_cells");
+    let resu = common::assert_all_ok(&run, "grot_gdep_cells.resu");
+    let analytic = resu
+        .lines()
+        .filter(|l| l.starts_with(" OK ") && l.contains("ANALYTIQUE"))
+        .count();
+    assert_eq!(analytic, 17, "{resu}");
+}
+
 fn verification_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification")
 }
