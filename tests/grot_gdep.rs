@@ -488,6 +488,115 @@ fn plastic_uniaxial_stretch_is_the_bilinear_law_in_green_lagrange_strain() {
     assert!((sxx - 6615.811965811966).abs() < 1e-9);
 }
 
+/// The Green-Lagrange strain keeps the relative precision of the
+/// displacement gradient H: at |H| = 1e-13 the GROT_GDEP stress of a
+/// virgin ELAS element is the PETIT one, D sym(H), to O(|H|) (the
+/// quadratic term HᵀH and the push-forward F S Fᵀ/J), 1e-12 relative
+/// here. Until 2026-11-28 the element formed E = ½(FᵀF − 1), whose
+/// round-off is absolute (~1e-16 whatever H): the strain of this H was
+/// 2.7e-4 off in relative terms and the test failed (code_aster's matG2E
+/// writes ½(H + Hᵀ + HᵀH), as aster now does; the study below is where it
+/// showed).
+#[test]
+fn green_lagrange_strain_keeps_its_relative_precision_at_tiny_gradients() {
+    let elas = Elas::new(elas_params());
+    let law = LawRef::Small(&elas);
+    let h3 = Matrix3::new(3.0, -1.0, 0.5, 2.0, -2.0, 1.5, -0.5, 1.0, 1.0) * 1e-13;
+    let h2 = Matrix3::new(3.0, -1.0, 0.0, 2.0, -2.0, 0.0, 0.0, 0.0, 0.0) * 1e-13;
+    for (m, cell, h) in [
+        ("3D", CellType::Hexa8, h3),
+        ("3D", CellType::Tetra10, h3),
+        ("D_PLAN", CellType::Quad4, h2),
+        ("AXIS", CellType::Quad8, h2),
+    ] {
+        let s = spec(m, cell);
+        let d = s.formulation.dofs_per_node();
+        let x = distorted_cell(cell);
+        let u = motion(&x, &(Matrix3::identity() + h), d);
+        let zero = vec![0.0; s.ndofs()];
+        let states = initial_states(&s, law);
+        let grot = run(&s, &x, &zero, &u, &states, law, TangentKind::None);
+        let petit = internal_forces(
+            &s,
+            Kinematics::Petit,
+            &x,
+            &zero,
+            &u,
+            &states,
+            law,
+            1e-6,
+            TangentKind::None,
+        )
+        .unwrap();
+        for (p, (g, l)) in grot.states.iter().zip(&petit.states).enumerate() {
+            let (g, l) = (stress_to_tensor(&g.stress), stress_to_tensor(&l.stress));
+            let rel = (g - l).norm() / l.norm();
+            assert!(
+                l.norm() > 1e-9 && rel < 1e-12,
+                "{m} {cell:?} point {}: GROT_GDEP {g} against PETIT {l}: {rel:e}",
+                p + 1
+            );
+        }
+    }
+}
+
+/// tests/studies/grot_gdep_zero_load.comm: a bar stretched to λ = 1.05,
+/// then pushed to λ = 0.95 through a step where the imposed DX is 3.6e-16
+/// (the accumulated time list's t = 1.4999999999999982): every step
+/// converges at RESI_GLOB_RELA 1e-10 (the zero-load step on the swap to
+/// RESI_GLOB_MAXI, as PETIT), and the St Venant-Kirchhoff closed forms
+/// hold at both ends (6 ANALYTIQUE checks at 1e-8). Before the
+/// Green-Lagrange strain was written from H, Newton stalled at that step
+/// (RESI_GLOB_RELA 0.5 to 0.95 for 30 iterations) and the run stopped.
+#[test]
+fn newton_converges_where_the_load_passes_through_zero() {
+    let run = common::run_study(
+        "tests/studies/grot_gdep_zero_load.comm",
+        "grot_gdep_zero_load",
+    );
+    let resu = common::assert_all_ok(&run, "grot_gdep_zero_load.resu");
+    let analytic = resu
+        .lines()
+        .filter(|l| l.starts_with(" OK ") && l.contains("ANALYTIQUE"))
+        .count();
+    assert_eq!(analytic, 6, "{resu}");
+}
+
+/// tests/studies/grot_gdep_laws.comm: every law that accepts GROT_GDEP
+/// (ELAS, VMIS_ISOT_LINE, VMIS_ISOT_TRAC, VMIS_CINE_LINE, VMIS_ISOT_PUIS,
+/// VMIS_JOHN_COOK) on the bar stretched to λ = 1.1 then pushed to
+/// λ = 0.9 through the reverse yield, against each law's 1D closed form in
+/// (E_xx, S) (isotropic reverse yield at −S₁, kinematic at S₁ − 2 SY):
+/// SIXX, the lateral DY and the force at both ends and p (X_xx for
+/// CINE_LINE) at the end, 40 ANALYTIQUE checks at 1e-6 (measured within
+/// 1e-8, JOHN_COOK's local solver).
+#[test]
+fn every_law_follows_its_1d_law_in_green_lagrange_strain_through_reverse_yield() {
+    let run = common::run_study("tests/studies/grot_gdep_laws.comm", "grot_gdep_laws");
+    let resu = common::assert_all_ok(&run, "grot_gdep_laws.resu");
+    let analytic = resu
+        .lines()
+        .filter(|l| l.starts_with(" OK ") && l.contains("ANALYTIQUE"))
+        .count();
+    assert_eq!(analytic, 40, "{resu}");
+}
+
+/// tests/studies/grot_gdep_cells.comm: the cells the other GROT_GDEP
+/// studies do not use, TETRA4 and PENTA6 (3D), TRIA6 (D_PLAN), TRIA3
+/// (AXIS), stretched to λ = 1.3 against St Venant-Kirchhoff's uniaxial
+/// stress and plane-strain closed forms (Cauchy stress, lateral
+/// displacement, REAC_NODA resultant): 17 ANALYTIQUE checks at 1e-8.
+#[test]
+fn tetra_penta_and_triangles_match_st_venant_kirchhoff() {
+    let run = common::run_study("tests/studies/grot_gdep_cells.comm", "grot_gdep_cells");
+    let resu = common::assert_all_ok(&run, "grot_gdep_cells.resu");
+    let analytic = resu
+        .lines()
+        .filter(|l| l.starts_with(" OK ") && l.contains("ANALYTIQUE"))
+        .count();
+    assert_eq!(analytic, 17, "{resu}");
+}
+
 fn verification_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/verification")
 }
