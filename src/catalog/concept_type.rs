@@ -30,6 +30,9 @@ pub enum ConceptType {
     /// yet; MECA_STATIQUE declares the keyword to refuse it clearly.
     CaraElem,
     Table,
+    /// A field by element (CREA_CHAMP TYPE_CHAM='ELGA_*'): SIGM and VARI
+    /// of ETAT_INIT take it.
+    ChamElem,
 }
 
 impl ConceptType {
@@ -53,6 +56,7 @@ impl ConceptType {
         ConceptType::CaraElem,
         ConceptType::Table,
         ConceptType::Listis,
+        ConceptType::ChamElem,
     ];
 
     /// The place of a type in [`ConceptType::ALL`]. The match has no
@@ -77,6 +81,7 @@ impl ConceptType {
             ConceptType::CaraElem => 14,
             ConceptType::Table => 15,
             ConceptType::Listis => 16,
+            ConceptType::ChamElem => 17,
         }
     }
 
@@ -99,6 +104,7 @@ impl ConceptType {
             ConceptType::CaraElem => "cara_elem",
             ConceptType::Table => "table_sdaster",
             ConceptType::Listis => "listis_sdaster",
+            ConceptType::ChamElem => "cham_elem",
         }
     }
 }
