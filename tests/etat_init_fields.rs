@@ -53,7 +53,8 @@ fn prestressed_and_hardened_bar_3d() {
 }
 
 /// D_PLAN bar (QUAD4) prestressed by SIXX = S0 only: held, SIXX stays S0;
-/// released, DX = -(1 - NU^2) S0 L / E (-9.1e-4) and SIZZ = -NU S0 (-30).
+/// released, DX = -(1 - NU^2) S0 L / E (-9.1e-4) and SIZZ = -NU S0 (-30);
+/// the same from a CART_SIEF_R on the mesh.
 #[test]
 fn prestressed_bar_plane_strain() {
     run_ok("sigm_dplan");
@@ -126,7 +127,7 @@ fn wrong_fields_are_located_errors() {
             (
                 "sixz_on_dplan",
                 &[("NOM_CMP='SIXX', VALE=S0", "NOM_CMP='SIXZ', VALE=S0")],
-                &["CREA_CHAMP", "NOM_CMP", "SIXZ", "SIXX, SIYY, SIZZ, SIXY", "sixz_on_dplan.comm:26"],
+                &["CREA_CHAMP", "NOM_CMP", "SIXZ", "SIXX, SIYY, SIZZ, SIXY", "sixz_on_dplan.comm:29"],
             ),
             (
                 "other_model",
@@ -140,6 +141,16 @@ fn wrong_fields_are_located_errors() {
                 "on_mesh",
                 &[("OPERATION='AFFE', MODELE=MO,", "OPERATION='AFFE', MAILLAGE=MA,")],
                 &["CREA_CHAMP", "give MODELE"],
+            ),
+            (
+                "cart_sixz_on_dplan",
+                &[("CART_SIEF_R', OPERATION='AFFE', MAILLAGE=MA,\n                  AFFE=_F(TOUT='OUI', NOM_CMP='SIXX'", "CART_SIEF_R', OPERATION='AFFE', MAILLAGE=MA,\n                  AFFE=_F(TOUT='OUI', NOM_CMP='SIXZ'")],
+                &["STAT_NON_LINE", "SIGM", "cell M1", "no stress component SIXZ"],
+            ),
+            (
+                "cart_extr",
+                &[("\nFIN()", "\nX = CREA_CHAMP(TYPE_CHAM='CART_SIEF_R', OPERATION='EXTR', RESULTAT=RH, NOM_CHAM='SIEF_ELGA', INST=1.)\nFIN()")],
+                &["CREA_CHAMP", "OPERATION", "ELGA_SIEF_R"],
             ),
             (
                 "on_nodes",

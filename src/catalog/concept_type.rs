@@ -33,6 +33,9 @@ pub enum ConceptType {
     /// A field by element (CREA_CHAMP TYPE_CHAM='ELGA_*'): SIGM and VARI
     /// of ETAT_INIT take it.
     ChamElem,
+    /// A field constant by cell (CREA_CHAMP TYPE_CHAM='CART_*'): SIGM of
+    /// ETAT_INIT takes it, converted to the Gauss points.
+    Carte,
 }
 
 impl ConceptType {
@@ -57,6 +60,7 @@ impl ConceptType {
         ConceptType::Table,
         ConceptType::Listis,
         ConceptType::ChamElem,
+        ConceptType::Carte,
     ];
 
     /// The place of a type in [`ConceptType::ALL`]. The match has no
@@ -82,6 +86,7 @@ impl ConceptType {
             ConceptType::Table => 15,
             ConceptType::Listis => 16,
             ConceptType::ChamElem => 17,
+            ConceptType::Carte => 18,
         }
     }
 
@@ -105,6 +110,7 @@ impl ConceptType {
             ConceptType::Table => "table_sdaster",
             ConceptType::Listis => "listis_sdaster",
             ConceptType::ChamElem => "cham_elem",
+            ConceptType::Carte => "carte_sdaster",
         }
     }
 }

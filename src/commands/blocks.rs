@@ -618,8 +618,8 @@ fn etat_init_with(motion: bool) -> Keyword {
         concept("DEPL", &[C::ChamNo])
             .doc("initial displacement field")
             .kw(),
-        concept("SIGM", &[C::ChamElem])
-            .doc("initial stresses at the Gauss points (CREA_CHAMP ELGA_SIEF_R, AFFE or EXTR of a SIEF_ELGA); a component not given is 0; with EVOL_NOLI, replaces its stresses")
+        concept("SIGM", &[C::ChamElem, C::Carte])
+            .doc("initial stresses at the Gauss points (CREA_CHAMP ELGA_SIEF_R, AFFE or EXTR of a SIEF_ELGA; or CART_SIEF_R, a value per cell given to each of its points); a component not given is 0; with EVOL_NOLI, replaces its stresses")
             .kw(),
         concept("VARI", &[C::ChamElem])
             .doc("initial internal variables at the Gauss points (CREA_CHAMP ELGA_VARI_R); the count of each element's law is checked; with EVOL_NOLI, replaces its variables")

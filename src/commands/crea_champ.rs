@@ -31,12 +31,16 @@ pub fn def() -> CommandDef {
     extr.extend(critere_precision(1e-6));
     let spec = command(
         "CREA_CHAMP",
-        Produces::ByText("TYPE_CHAM", &[("ELGA_", C::ChamElem)], C::ChamNo),
+        Produces::ByText(
+            "TYPE_CHAM",
+            &[("ELGA_", C::ChamElem), ("CART_", C::Carte)],
+            C::ChamNo,
+        ),
         vec![
             text("TYPE_CHAM")
                 .required()
                 .into(TYPE_CHAM)
-                .doc("location and quantity of the field: AFFE builds NOEU_DEPL_R, and on a MODELE the fields at Gauss points ELGA_SIEF_R (SIXX...) and ELGA_VARI_R (V1, V2...) that ETAT_INIT SIGM and VARI take; EXTR copies a nodal field of a result (NOEU_*) or its SIEF_ELGA / VARI_ELGA (ELGA_SIEF_R / ELGA_VARI_R); ELGA_EPSI_R and the ELNO_* fields are not built yet")
+                .doc("location and quantity of the field: AFFE builds NOEU_DEPL_R, and on a MODELE the fields at Gauss points ELGA_SIEF_R (SIXX...) and ELGA_VARI_R (V1, V2...) that ETAT_INIT SIGM and VARI take, and CART_SIEF_R (a value per cell, on a MAILLAGE or a MODELE) for SIGM; EXTR copies a nodal field of a result (NOEU_*) or its SIEF_ELGA / VARI_ELGA (ELGA_SIEF_R / ELGA_VARI_R); ELGA_EPSI_R and the ELNO_* fields are not built yet")
                 .kw(),
             text("OPERATION")
                 .required()
@@ -116,6 +120,7 @@ const TYPE_CHAM: &[&str] = &[
     "ELNO_SIEF_R",
     "ELNO_VARI_R",
     "ELNO_EPSI_R",
+    "CART_SIEF_R",
 ];
 
 /// The TYPE_CHAM of a result's nodal field (code_aster's quantities:
@@ -137,9 +142,18 @@ pub fn nodal_type_cham(nom_cham: &str) -> Option<&'static str> {
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let type_cham = args.text("TYPE_CHAM").unwrap_or_default();
+    if type_cham == "CART_SIEF_R" {
+        return match args.text("OPERATION") {
+            Some("AFFE") => affe_elga(study, args, ElemQuantity::Sief, true, result),
+            _ => Err(args.error(
+                "OPERATION",
+                "a CART_SIEF_R field is built by OPERATION='AFFE' (a result stores its stresses at the Gauss points: EXTR them as TYPE_CHAM='ELGA_SIEF_R')",
+            )),
+        };
+    }
     if let Some(q) = elga_quantity(type_cham) {
         return match args.text("OPERATION") {
-            Some("AFFE") => affe_elga(study, args, q, result),
+            Some("AFFE") => affe_elga(study, args, q, false, result),
             _ => extr_elga(study, args, q, result),
         };
     }
@@ -196,18 +210,44 @@ pub fn vari_index(c: &str) -> Option<usize> {
 /// The points are those of the element's SIEF_ELGA (its RIGI family,
 /// HEXS8's one centre point), so the field matches the state of a
 /// STAT_NON_LINE / DYNA_NON_LINE on this model point for point.
-fn affe_elga(study: &mut Study, args: &Args, q: ElemQuantity, result: Option<&str>) -> ExecResult {
-    let tc = q.type_cham();
-    if !args.has("MODELE") {
+///
+/// `cart`: TYPE_CHAM='CART_SIEF_R', one value per cell (one point), on a
+/// MAILLAGE (every cell, the six stress components) or a MODELE (its
+/// elements, their components).
+fn affe_elga(
+    study: &mut Study,
+    args: &Args,
+    q: ElemQuantity,
+    cart: bool,
+    result: Option<&str>,
+) -> ExecResult {
+    let tc = if cart { "CART_SIEF_R" } else { q.type_cham() };
+    if !args.has("MODELE") && !cart {
         return Err(args.error(
             "MAILLAGE",
             format!("a field at Gauss points ({tc}) is built on the elements of a model: give MODELE instead of MAILLAGE"),
         ));
     }
-    let (name, m) = model_of(study, args, "MODELE")?;
-    let (name, m) = (name.to_string(), m.clone());
-    let mesh = mesh_of_model(study, args, "MODELE", &m)?;
-    let allowed = model_sief_components(&m);
+    let (name, m) = if args.has("MODELE") {
+        let (name, m) = model_of(study, args, "MODELE")?;
+        (name.to_string(), Some(m.clone()))
+    } else {
+        (String::new(), None)
+    };
+    let (mesh, mesh_name) = match &m {
+        Some(m) => (mesh_of_model(study, args, "MODELE", m)?, m.mesh.clone()),
+        None => (
+            mesh_of(study, args, "MAILLAGE")?,
+            args.concept("MAILLAGE").unwrap_or_default().to_string(),
+        ),
+    };
+    let allowed = match &m {
+        Some(m) => model_sief_components(m),
+        None => ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+    };
     let occs = args.facts("AFFE");
     let mut nvar = 0usize;
     for occ in occs {
@@ -279,10 +319,19 @@ fn affe_elga(study: &mut Study, args: &Args, q: ElemQuantity, result: Option<&st
     let ncmp = components.len();
     let ncells = mesh.ncells();
     let mut npg = vec![0usize; ncells];
-    for (c, spec) in m.element_cells() {
-        if c < ncells {
-            npg[c] = crate::element::output_points(spec);
+    match &m {
+        Some(m) => {
+            for (c, spec) in m.element_cells() {
+                if c < ncells {
+                    npg[c] = if cart {
+                        1
+                    } else {
+                        crate::element::output_points(spec)
+                    };
+                }
+            }
         }
+        None => npg.iter_mut().for_each(|n| *n = 1),
     }
     let mut offsets = Vec::with_capacity(ncells + 1);
     let mut total = 0;
@@ -319,7 +368,7 @@ fn affe_elga(study: &mut Study, args: &Args, q: ElemQuantity, result: Option<&st
             }
         }
         lines.push(format!(
-            "      AFFE {}: {touched} elements, {}",
+            "      AFFE {}: {touched} cells, {}",
             k + 1,
             occ.texts("NOM_CMP")
                 .iter()
@@ -332,8 +381,9 @@ fn affe_elga(study: &mut Study, args: &Args, q: ElemQuantity, result: Option<&st
     let absent = field.values.iter().filter(|v| v.is_nan()).count();
     let nelem = npg.iter().filter(|&&n| n > 0).count();
     study.log(format!(
-        "    field {} ({tc}) on model {name}: components {}, {nelem} elements, {} points, {absent} absent (point, component) values (read as 0 by ETAT_INIT)",
+        "    field {} ({tc}) on {}: components {}, {nelem} cells, {} points, {absent} absent (point, component) values (read as 0 by ETAT_INIT)",
         result.unwrap_or("(unnamed)"),
+        if name.is_empty() { format!("mesh {mesh_name}") } else { format!("model {name}") },
         field.components.join(" "),
         npg.iter().sum::<usize>()
     ));
@@ -341,9 +391,10 @@ fn affe_elga(study: &mut Study, args: &Args, q: ElemQuantity, result: Option<&st
         study.log(l);
     }
     Ok(Some(ConceptData::ElemField(Box::new(ChamElem {
-        mesh: m.mesh.clone(),
+        mesh: mesh_name,
         model: name,
         quantity: q,
+        by_cell: cart,
         field,
     }))))
 }
@@ -408,6 +459,7 @@ fn extr_elga(study: &mut Study, args: &Args, q: ElemQuantity, result: Option<&st
         mesh: res.mesh.clone(),
         model: res.model.clone(),
         quantity: q,
+        by_cell: false,
         field,
     };
     study.log(line);

@@ -1689,6 +1689,13 @@ pub(crate) fn etat_init(
     }
     let sigm = elem_field(study, o, "SIGM", ElemQuantity::Sief, model, mesh)?;
     let vari = elem_field(study, o, "VARI", ElemQuantity::Vari, model, mesh)?;
+    // A CART (one value per cell) goes to every Gauss point of its cell,
+    // as code_aster converts it (nmetcv: chpchd, message ETATINIT_51).
+    let sigm_points = sigm
+        .filter(|f| f.by_cell)
+        .map(|f| cart_to_points(asm, &f.field));
+    let sigm = sigm_points.as_ref().or(sigm.map(|f| &f.field));
+    let vari = vari.map(|f| &f.field);
     if sigm.is_some() || vari.is_some() {
         // Read after EVOL_NOLI's fields, which they replace (code_aster's
         // nmdoet: nmetl1 from the result, then nmetl2 field by field).
@@ -1705,9 +1712,36 @@ pub(crate) fn etat_init(
     Ok(init)
 }
 
+/// A CART's values (one point per cell) repeated at each Gauss point of
+/// the cell's element (the family of SIEF_ELGA); cells without an element
+/// get no point.
+fn cart_to_points(asm: &Assembler, cart: &crate::result::GaussField) -> crate::result::GaussField {
+    let ncells = cart.offsets.len().saturating_sub(1);
+    let mut npg = vec![0usize; ncells];
+    for e in &asm.elements {
+        if e.cell < ncells && cart.npg(e.cell) == 1 {
+            npg[e.cell] = crate::element::output_points(&e.spec);
+        }
+    }
+    let mut out = crate::result::GaussField {
+        components: cart.components.clone(),
+        offsets: Vec::with_capacity(ncells + 1),
+        values: Vec::new(),
+    };
+    for (c, &n) in npg.iter().enumerate() {
+        out.offsets.push(out.values.len());
+        for _ in 0..n {
+            out.values.extend_from_slice(cart.cell(c));
+        }
+    }
+    out.offsets.push(out.values.len());
+    out
+}
+
 /// The field by element of ETAT_INIT's `key` (SIGM or VARI), checked: a
 /// field of the quantity the keyword reads, built on the model of the
-/// computation (its points are that model's elements').
+/// computation (its points are that model's elements'); a CART
+/// (`by_cell`) may be on the mesh alone.
 fn elem_field<'s>(
     study: &'s Study,
     o: &Args,
@@ -1715,7 +1749,7 @@ fn elem_field<'s>(
     q: ElemQuantity,
     model: &str,
     mesh: &str,
-) -> Result<Option<&'s crate::result::GaussField>, Diagnostic> {
+) -> Result<Option<&'s crate::concepts::ChamElem>, Diagnostic> {
     let Some(name) = o.concept(key) else {
         return Ok(None);
     };
@@ -1733,16 +1767,20 @@ fn elem_field<'s>(
             ),
         ));
     }
-    if f.mesh != mesh || f.model != model {
+    if f.mesh != mesh || (f.model != model && !(f.by_cell && f.model.is_empty())) {
         return Err(o.error(
             key,
             format!(
-                "the field {name} was built on the model {} (mesh {}), not on the model {model} (mesh {mesh}) of this computation: its Gauss points are those of other elements; build it with CREA_CHAMP on MODELE={model}",
-                f.model, f.mesh
+                "the field {name} was built on {}, not on the model {model} (mesh {mesh}) of this computation: its Gauss points are those of other elements; build it with CREA_CHAMP on MODELE={model}",
+                if f.model.is_empty() {
+                    format!("the mesh {}", f.mesh)
+                } else {
+                    format!("the model {} (mesh {})", f.model, f.mesh)
+                }
             ),
         ));
     }
-    Ok(Some(&f.field))
+    Ok(Some(f))
 }
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {

@@ -87,6 +87,10 @@ pub struct ChamElem {
     pub mesh: String,
     pub model: String,
     pub quantity: ElemQuantity,
+    /// A CART (TYPE_CHAM='CART_SIEF_R'): one point per cell, on a mesh
+    /// (`model` empty) or a model; ETAT_INIT gives its values to every
+    /// Gauss point of the cell (code_aster's nmetcv, ETATINIT_51).
+    pub by_cell: bool,
     pub field: crate::result::GaussField,
 }
 

@@ -289,8 +289,24 @@ pub fn apply_initial_fields(
         }
         if let Some(f) = sigm {
             let mut map: Vec<(usize, usize, usize)> = Vec::new(); // (field cmp, row, stress index)
+            let plane = e.spec.formulation != Formulation::Solid3d;
             for (k, name) in f.components.iter().enumerate() {
                 if let Some(i) = STRESS.iter().position(|s| s == name) {
+                    // A CART on the mesh carries SIXZ, SIYZ: a plane
+                    // element has none, so they must be 0 there.
+                    if plane && i >= 4 {
+                        if (0..npg).any(|p| read(f, c, p, k) != 0.0) {
+                            return Err((
+                                "SIGM",
+                                format!(
+                                    "cell M{}: the element {} (plane or axisymmetric) has no stress component {name}, which the field gives there",
+                                    c + 1,
+                                    e.spec.name
+                                ),
+                            ));
+                        }
+                        continue;
+                    }
                     map.push((k, 0, i));
                 } else if let Some(j) = name
                     .strip_prefix("FSTAB")
