@@ -71,12 +71,36 @@ fn prelude(specs: &[&CommandSpec]) -> Prelude {
     let mut text = String::from("DEBUT()\n");
     let mut names = BTreeMap::new();
     for s in specs {
-        if let Produces::Concept(t) = s.produces {
+        // (type, the call's keywords): a ByText command (CREA_CHAMP) makes
+        // each of its types with a value of its key that selects it.
+        let mut made: Vec<(ConceptType, String)> = Vec::new();
+        match s.produces {
+            Produces::Concept(t) => made.push((t, String::new())),
+            Produces::ByText(key, table, default) => {
+                made.push((default, String::new()));
+                for (prefix, t) in table {
+                    let value = s.keywords.iter().find_map(|k| match k {
+                        Keyword::Simple(x) if x.name == key => x.into.as_ref().and_then(|v| {
+                            v.iter().find_map(|l| match l {
+                                Lit::Text(t) if t.starts_with(prefix) => Some(t.to_string()),
+                                _ => None,
+                            })
+                        }),
+                        _ => None,
+                    });
+                    if let Some(v) = value {
+                        made.push((*t, format!("{key}='{v}'")));
+                    }
+                }
+            }
+            _ => {}
+        }
+        for (t, kws) in made {
             if !names.contains_key(&type_key(t)) {
                 let name = format!("C_{}", names.len());
                 // The producing call may miss keywords: the checker still
                 // binds the name to its type, which is all a case needs.
-                text.push_str(&format!("{name} = {}()\n", s.name));
+                text.push_str(&format!("{name} = {}({kws})\n", s.name));
                 names.insert(type_key(t), name);
             }
         }
@@ -320,7 +344,7 @@ fn render(pre: &Prelude, spec: &CommandSpec, frames: &[Frame]) -> String {
             None => {
                 let mut text = pre.text.clone();
                 let target = match spec.produces {
-                    Produces::Concept(_) | Produces::SameAs(..) => "RES = ",
+                    Produces::Concept(_) | Produces::SameAs(..) | Produces::ByText(..) => "RES = ",
                     Produces::Nothing => "",
                 };
                 // Marks the level line for errors located at the command.

@@ -410,7 +410,7 @@ fn check_command(c: &CommandSpec, errs: &mut Vec<String>) {
     };
     if let Some(k) = key {
         let ty = match &c.produces {
-            Produces::Concept(ty) | Produces::SameAs(_, ty) => ty,
+            Produces::Concept(ty) | Produces::SameAs(_, ty) | Produces::ByText(_, _, ty) => ty,
             Produces::Nothing => {
                 errs.push(format!("{}: reuse on a procedure", c.name));
                 return;

@@ -243,12 +243,13 @@ fn crea_champ_extr_bad_input_is_located() {
             "CREA_CHAMP/TYPE_CHAM",
             &["SIEF_NOEU is a field of type NOEU_SIEF_R, not NOEU_DEPL_R"],
         ),
-        // A field by element.
+        // A field at element nodes (ELGA_SIEF_R / ELGA_VARI_R are built
+        // since ETAT_INIT SIGM / VARI: tests/etat_init_fields.rs).
         (
-            "extr_elga",
-            "X = CREA_CHAMP(TYPE_CHAM='ELGA_SIEF_R', OPERATION='EXTR', RESULTAT=R, NOM_CHAM='SIEF_ELGA', NUME_ORDRE=1)\n",
+            "extr_elno",
+            "X = CREA_CHAMP(TYPE_CHAM='ELNO_SIEF_R', OPERATION='EXTR', RESULTAT=R, NOM_CHAM='SIEF_ELNO', NUME_ORDRE=1)\n",
             "CREA_CHAMP/TYPE_CHAM",
-            &["not implemented yet", "fields by element (ELGA_*, ELNO_*)", "NOEU_DEPL_R, NOEU_SIEF_R"],
+            &["not implemented yet", "fields at element nodes (ELNO_*)", "NOEU_DEPL_R, NOEU_SIEF_R", "ELGA_SIEF_R and ELGA_VARI_R"],
         ),
         // A field the result does not hold at that step.
         (

@@ -1062,6 +1062,16 @@ impl Checker<'_> {
                     })
                     .unwrap_or(*default),
             ),
+            Produces::ByText(key, table, default) => Some(
+                top.text(key)
+                    .and_then(|v| {
+                        table
+                            .iter()
+                            .find(|(prefix, _)| v.starts_with(prefix))
+                            .map(|(_, t)| *t)
+                    })
+                    .unwrap_or(*default),
+            ),
         };
         match (target, produces) {
             (Some(t), None) => self.errors.push(

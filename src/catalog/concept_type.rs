@@ -30,6 +30,12 @@ pub enum ConceptType {
     /// yet; MECA_STATIQUE declares the keyword to refuse it clearly.
     CaraElem,
     Table,
+    /// A field by element (CREA_CHAMP TYPE_CHAM='ELGA_*'): SIGM and VARI
+    /// of ETAT_INIT take it.
+    ChamElem,
+    /// A field constant by cell (CREA_CHAMP TYPE_CHAM='CART_*'): SIGM of
+    /// ETAT_INIT takes it, converted to the Gauss points.
+    Carte,
 }
 
 impl ConceptType {
@@ -53,6 +59,8 @@ impl ConceptType {
         ConceptType::CaraElem,
         ConceptType::Table,
         ConceptType::Listis,
+        ConceptType::ChamElem,
+        ConceptType::Carte,
     ];
 
     /// The place of a type in [`ConceptType::ALL`]. The match has no
@@ -77,6 +85,8 @@ impl ConceptType {
             ConceptType::CaraElem => 14,
             ConceptType::Table => 15,
             ConceptType::Listis => 16,
+            ConceptType::ChamElem => 17,
+            ConceptType::Carte => 18,
         }
     }
 
@@ -99,6 +109,8 @@ impl ConceptType {
             ConceptType::CaraElem => "cara_elem",
             ConceptType::Table => "table_sdaster",
             ConceptType::Listis => "listis_sdaster",
+            ConceptType::ChamElem => "cham_elem",
+            ConceptType::Carte => "carte_sdaster",
         }
     }
 }

@@ -43,6 +43,15 @@ fn command_section(out: &mut String, c: &CommandSpec) {
         Produces::Nothing => "nothing (procedure)".to_string(),
         Produces::Concept(t) => format!("`{}`", t.aster_name()),
         Produces::SameAs(k, _) => format!("the type of the concept given in `{k}`"),
+        Produces::ByText(k, table, default) => format!(
+            "{}, else `{}`",
+            table
+                .iter()
+                .map(|(p, t)| format!("`{}` when `{k}` starts with {p}", t.aster_name()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            default.aster_name()
+        ),
     };
     let _ = writeln!(out, "- Produces: {produces}");
     let reuse = match &c.reentrant {

@@ -175,6 +175,15 @@ pub enum Produces {
     /// level (code_aster's sd_prod returning the type of RESULTAT), or the
     /// first type when that keyword holds no concept of a listed type.
     SameAs(&'static str, ConceptType),
+    /// The type chosen by the value of a text keyword of the top level:
+    /// the first (prefix, type) whose prefix starts the value, else the
+    /// default (code_aster's CREA_CHAMP: TYPE_CHAM='ELGA_SIEF_R' makes a
+    /// cham_elem, 'NOEU_DEPL_R' a cham_no_sdaster).
+    ByText(
+        &'static str,
+        &'static [(&'static str, ConceptType)],
+        ConceptType,
+    ),
 }
 
 /// The declaration of one command.

@@ -614,9 +614,17 @@ pub fn c_etat_init_stat() -> Keyword {
 }
 
 fn etat_init_with(motion: bool) -> Keyword {
-    let mut kws = vec![concept("DEPL", &[C::ChamNo])
-        .doc("initial displacement field")
-        .kw()];
+    let mut kws = vec![
+        concept("DEPL", &[C::ChamNo])
+            .doc("initial displacement field")
+            .kw(),
+        concept("SIGM", &[C::ChamElem, C::Carte])
+            .doc("initial stresses at the Gauss points (CREA_CHAMP ELGA_SIEF_R, AFFE or EXTR of a SIEF_ELGA; or CART_SIEF_R, a value per cell given to each of its points); a component not given is 0; with EVOL_NOLI, replaces its stresses")
+            .kw(),
+        concept("VARI", &[C::ChamElem])
+            .doc("initial internal variables at the Gauss points (CREA_CHAMP ELGA_VARI_R); the count of each element's law is checked; with EVOL_NOLI, replaces its variables")
+            .kw(),
+    ];
     if motion {
         kws.push(
             concept("VITE", &[C::ChamNo])
@@ -650,9 +658,9 @@ fn etat_init_with(motion: bool) -> Keyword {
     ]);
     kws.extend(critere_precision(1e-6));
     let one_of: &[&'static str] = if motion {
-        &["EVOL_NOLI", "ACCE", "VITE", "DEPL"]
+        &["EVOL_NOLI", "ACCE", "VITE", "DEPL", "SIGM", "VARI"]
     } else {
-        &["EVOL_NOLI", "DEPL"]
+        &["EVOL_NOLI", "DEPL", "SIGM", "VARI"]
     };
     fact("ETAT_INIT", kws)
         .rules(vec![au_moins_un(one_of), exclus(&["NUME_ORDRE", "INST"])])

@@ -3,17 +3,17 @@
 
 use super::blocks::*;
 use super::mesh_args::mesh_of;
-use super::model_args::{mesh_of_model, model_of, select_nodes};
-use super::post_args::{inst_access, is_gauss_name, result_of, step_nodal};
+use super::model_args::{mesh_of_model, model_of, select_cells, select_nodes};
+use super::post_args::{inst_access, is_gauss_name, result_of, step_gauss, step_nodal};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
-use crate::concepts::ConceptData;
 use crate::concepts::ConceptType as C;
+use crate::concepts::{ChamElem, ConceptData, ElemQuantity};
 use crate::diag::{closest, Diagnostic};
 use crate::model::{Dof, Model};
 use crate::result::Access;
-use crate::result::NodalField;
+use crate::result::{GaussField, NodalField};
 use crate::study::Study;
 
 pub fn def() -> CommandDef {
@@ -31,12 +31,16 @@ pub fn def() -> CommandDef {
     extr.extend(critere_precision(1e-6));
     let spec = command(
         "CREA_CHAMP",
-        Produces::Concept(C::ChamNo),
+        Produces::ByText(
+            "TYPE_CHAM",
+            &[("ELGA_", C::ChamElem), ("CART_", C::Carte)],
+            C::ChamNo,
+        ),
         vec![
             text("TYPE_CHAM")
                 .required()
                 .into(TYPE_CHAM)
-                .doc("location and quantity of the field: AFFE builds NOEU_DEPL_R; EXTR copies a nodal field of a result (NOEU_*); the fields by element (ELGA_*, ELNO_*) are not built yet")
+                .doc("location and quantity of the field: AFFE builds NOEU_DEPL_R, and on a MODELE the fields at Gauss points ELGA_SIEF_R (SIXX...) and ELGA_VARI_R (V1, V2...) that ETAT_INIT SIGM and VARI take, and CART_SIEF_R (a value per cell, on a MAILLAGE or a MODELE) for SIGM; EXTR copies a nodal field of a result (NOEU_*) or its SIEF_ELGA / VARI_ELGA (ELGA_SIEF_R / ELGA_VARI_R); ELGA_EPSI_R and the ELNO_* fields are not built yet")
                 .kw(),
             text("OPERATION")
                 .required()
@@ -87,7 +91,7 @@ pub fn def() -> CommandDef {
             titre(),
         ],
     )
-    .doc("Creates a nodal field (cham_no): assigned values (AFFE), e.g. an initial velocity for ETAT_INIT, or a copy of a result's nodal field at one instant (EXTR), e.g. for TEST_RESU CHAM_NO.");
+    .doc("Creates a nodal field (cham_no) or a field at Gauss points (cham_elem, TYPE_CHAM='ELGA_SIEF_R' / 'ELGA_VARI_R'): assigned values (AFFE), e.g. an initial velocity or an initial stress for ETAT_INIT, or a copy of a result's field at one instant (EXTR), e.g. for TEST_RESU CHAM_NO or to start another computation from its SIEF_ELGA.");
     CommandDef { spec, exec }
 }
 
@@ -116,6 +120,7 @@ const TYPE_CHAM: &[&str] = &[
     "ELNO_SIEF_R",
     "ELNO_VARI_R",
     "ELNO_EPSI_R",
+    "CART_SIEF_R",
 ];
 
 /// The TYPE_CHAM of a result's nodal field (code_aster's quantities:
@@ -137,20 +142,328 @@ pub fn nodal_type_cham(nom_cham: &str) -> Option<&'static str> {
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     let type_cham = args.text("TYPE_CHAM").unwrap_or_default();
+    if type_cham == "CART_SIEF_R" {
+        return match args.text("OPERATION") {
+            Some("AFFE") => affe_elga(study, args, ElemQuantity::Sief, true, result),
+            _ => Err(args.error(
+                "OPERATION",
+                "a CART_SIEF_R field is built by OPERATION='AFFE' (a result stores its stresses at the Gauss points: EXTR them as TYPE_CHAM='ELGA_SIEF_R')",
+            )),
+        };
+    }
+    if let Some(q) = elga_quantity(type_cham) {
+        return match args.text("OPERATION") {
+            Some("AFFE") => affe_elga(study, args, q, false, result),
+            _ => extr_elga(study, args, q, result),
+        };
+    }
     if !type_cham.starts_with("NOEU_") {
         return Err(args.not_implemented(
             "TYPE_CHAM",
-            "fields by element (ELGA_*, ELNO_*); CREA_CHAMP builds nodal fields: AFFE of NOEU_DEPL_R, EXTR of NOEU_DEPL_R, NOEU_SIEF_R, NOEU_EPSI_R, NOEU_VAR2_R, NOEU_INFC_R, NOEU_ENER_R",
+            "ELGA_EPSI_R and the fields at element nodes (ELNO_*); CREA_CHAMP builds nodal fields (AFFE of NOEU_DEPL_R, EXTR of NOEU_DEPL_R, NOEU_SIEF_R, NOEU_EPSI_R, NOEU_VAR2_R, NOEU_INFC_R, NOEU_ENER_R) and the Gauss-point fields ELGA_SIEF_R and ELGA_VARI_R (AFFE on a MODELE, EXTR of SIEF_ELGA / VARI_ELGA)",
         ));
     }
     match args.text("OPERATION") {
         Some("AFFE") if type_cham != "NOEU_DEPL_R" => Err(args.not_implemented(
             "TYPE_CHAM",
-            "OPERATION='AFFE' of a field other than NOEU_DEPL_R",
+            "OPERATION='AFFE' of a nodal field other than NOEU_DEPL_R",
         )),
         Some("AFFE") => affe(study, args, result),
         _ => extr(study, args, type_cham, result),
     }
+}
+
+/// The quantity of a TYPE_CHAM at Gauss points that CREA_CHAMP builds.
+fn elga_quantity(type_cham: &str) -> Option<ElemQuantity> {
+    match type_cham {
+        "ELGA_SIEF_R" => Some(ElemQuantity::Sief),
+        "ELGA_VARI_R" => Some(ElemQuantity::Vari),
+        _ => None,
+    }
+}
+
+/// The stress components of the elements of a model, in SIEF_ELGA order:
+/// (SIXX, SIYY, SIZZ, SIXY) in AXIS and D_PLAN, with SIXZ, SIYZ in 3D.
+pub fn model_sief_components(model: &Model) -> Vec<String> {
+    let plane = model
+        .element_cells()
+        .next()
+        .is_some_and(|(_, s)| s.formulation != crate::model::spec::Formulation::Solid3d);
+    let all = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
+    all[..if plane { 4 } else { 6 }]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+}
+
+/// The index k of an internal variable's component name "Vk" (1-based).
+pub fn vari_index(c: &str) -> Option<usize> {
+    c.strip_prefix('V')
+        .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()) && !d.starts_with('0'))
+        .and_then(|d| d.parse().ok())
+}
+
+/// OPERATION='AFFE' of ELGA_SIEF_R / ELGA_VARI_R on a MODELE (code_aster's
+/// cham_elem of CREA_CHAMP): every point of each selected element gets
+/// the values, occurrences in order, later ones overwriting earlier ones;
+/// a value never assigned stays absent (NaN), which ETAT_INIT reads as 0.
+/// The points are those of the element's SIEF_ELGA (its RIGI family,
+/// HEXS8's one centre point), so the field matches the state of a
+/// STAT_NON_LINE / DYNA_NON_LINE on this model point for point.
+///
+/// `cart`: TYPE_CHAM='CART_SIEF_R', one value per cell (one point), on a
+/// MAILLAGE (every cell, the six stress components) or a MODELE (its
+/// elements, their components).
+fn affe_elga(
+    study: &mut Study,
+    args: &Args,
+    q: ElemQuantity,
+    cart: bool,
+    result: Option<&str>,
+) -> ExecResult {
+    let tc = if cart { "CART_SIEF_R" } else { q.type_cham() };
+    if !args.has("MODELE") && !cart {
+        return Err(args.error(
+            "MAILLAGE",
+            format!("a field at Gauss points ({tc}) is built on the elements of a model: give MODELE instead of MAILLAGE"),
+        ));
+    }
+    let (name, m) = if args.has("MODELE") {
+        let (name, m) = model_of(study, args, "MODELE")?;
+        (name.to_string(), Some(m.clone()))
+    } else {
+        (String::new(), None)
+    };
+    let (mesh, mesh_name) = match &m {
+        Some(m) => (mesh_of_model(study, args, "MODELE", m)?, m.mesh.clone()),
+        None => (
+            mesh_of(study, args, "MAILLAGE")?,
+            args.concept("MAILLAGE").unwrap_or_default().to_string(),
+        ),
+    };
+    let allowed = match &m {
+        Some(m) => model_sief_components(m),
+        None => ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
+    };
+    let occs = args.facts("AFFE");
+    let mut nvar = 0usize;
+    for occ in occs {
+        if let Some(k) = ["GROUP_NO", "NOEUD"].into_iter().find(|k| occ.has(k)) {
+            return Err(occ.error(
+                k,
+                format!("a field at Gauss points ({tc}) is assigned on cells: use TOUT, GROUP_MA or MAILLE"),
+            ));
+        }
+        if !occ.has("VALE") {
+            let key = if occ.has("VALE_F") {
+                "VALE_F"
+            } else {
+                "VALE_I"
+            };
+            return Err(occ.error(
+                key,
+                format!("a field of type {tc} takes real values: use VALE"),
+            ));
+        }
+        let cmps = occ.texts("NOM_CMP");
+        let vale = occ.reals("VALE");
+        if cmps.len() != vale.len() {
+            return Err(occ.error(
+                "VALE",
+                format!(
+                    "NOM_CMP gives {} component(s) and VALE {} value(s): they must have the same length",
+                    cmps.len(),
+                    vale.len()
+                ),
+            ));
+        }
+        for (i, c) in cmps.iter().enumerate() {
+            if cmps[..i].contains(c) {
+                return Err(occ.error(
+                    "NOM_CMP",
+                    format!("the component {c} is given twice in NOM_CMP"),
+                ));
+            }
+            match q {
+                ElemQuantity::Sief if !allowed.iter().any(|a| a == c) => {
+                    let all = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
+                    let why = if all.contains(c) {
+                        format!("the elements of the model {name} (a plane or axisymmetric model) have no stress component {c}")
+                    } else {
+                        format!("{c} is not a stress component of the elements of the model {name}")
+                    };
+                    let mut d = occ.error("NOM_CMP", format!("{why}: their components are {}", allowed.join(", ")));
+                    d.suggestion = closest(c, &allowed.iter().map(String::as_str).collect::<Vec<_>>());
+                    return Err(d);
+                }
+                ElemQuantity::Vari => match vari_index(c) {
+                    Some(k) => nvar = nvar.max(k),
+                    None => {
+                        return Err(occ.error(
+                            "NOM_CMP",
+                            format!("{c} is not a component of the quantity VARI_R, whose components are V1, V2, ... (the internal variables in the order of the law)"),
+                        ))
+                    }
+                },
+                _ => {}
+            }
+        }
+    }
+    let components: Vec<String> = match q {
+        ElemQuantity::Sief => allowed,
+        ElemQuantity::Vari => (1..=nvar).map(|k| format!("V{k}")).collect(),
+    };
+    let ncmp = components.len();
+    let ncells = mesh.ncells();
+    let mut npg = vec![0usize; ncells];
+    match &m {
+        Some(m) => {
+            for (c, spec) in m.element_cells() {
+                if c < ncells {
+                    npg[c] = if cart {
+                        1
+                    } else {
+                        crate::element::output_points(spec)
+                    };
+                }
+            }
+        }
+        None => npg.iter_mut().for_each(|n| *n = 1),
+    }
+    let mut offsets = Vec::with_capacity(ncells + 1);
+    let mut total = 0;
+    for &n in &npg {
+        offsets.push(total);
+        total += n * ncmp;
+    }
+    offsets.push(total);
+    let mut field = GaussField {
+        components,
+        offsets,
+        values: vec![f64::NAN; total],
+    };
+    let mut lines = Vec::new();
+    for (k, occ) in occs.iter().enumerate() {
+        let cells = select_cells(mesh, occ)?;
+        let idx: Vec<usize> = occ
+            .texts("NOM_CMP")
+            .iter()
+            .map(|c| field.components.iter().position(|x| x == c).unwrap_or(0))
+            .collect();
+        let vale = occ.reals("VALE");
+        let mut touched = 0;
+        for &c in &cells {
+            if npg[c] == 0 {
+                continue;
+            }
+            touched += 1;
+            let base = field.offsets[c];
+            for p in 0..npg[c] {
+                for (&i, &v) in idx.iter().zip(&vale) {
+                    field.values[base + p * ncmp + i] = v;
+                }
+            }
+        }
+        lines.push(format!(
+            "      AFFE {}: {touched} cells, {}",
+            k + 1,
+            occ.texts("NOM_CMP")
+                .iter()
+                .zip(&vale)
+                .map(|(c, v)| format!("{c}={v}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        ));
+    }
+    let absent = field.values.iter().filter(|v| v.is_nan()).count();
+    let nelem = npg.iter().filter(|&&n| n > 0).count();
+    study.log(format!(
+        "    field {} ({tc}) on {}: components {}, {nelem} cells, {} points, {absent} absent (point, component) values (read as 0 by ETAT_INIT)",
+        result.unwrap_or("(unnamed)"),
+        if name.is_empty() { format!("mesh {mesh_name}") } else { format!("model {name}") },
+        field.components.join(" "),
+        npg.iter().sum::<usize>()
+    ));
+    for l in lines {
+        study.log(l);
+    }
+    Ok(Some(ConceptData::ElemField(Box::new(ChamElem {
+        mesh: mesh_name,
+        model: name,
+        quantity: q,
+        by_cell: cart,
+        field,
+    }))))
+}
+
+/// OPERATION='EXTR' of a result's SIEF_ELGA (ELGA_SIEF_R) or VARI_ELGA
+/// (ELGA_VARI_R) at one step: a copy, on the result's model, that
+/// ETAT_INIT SIGM / VARI read back point for point.
+fn extr_elga(study: &mut Study, args: &Args, q: ElemQuantity, result: Option<&str>) -> ExecResult {
+    let tc = q.type_cham();
+    let (rname, res) = result_of(study, args, "RESULTAT")?;
+    let nom_cham = args.text("NOM_CHAM").unwrap_or_default();
+    let expected = match nom_cham {
+        "SIEF_ELGA" => ElemQuantity::Sief,
+        "VARI_ELGA" => ElemQuantity::Vari,
+        _ => {
+            return Err(args.error(
+                "NOM_CHAM",
+                format!(
+                    "EXTR of a field of type {tc} copies {}; {nom_cham} is not one",
+                    match q {
+                        ElemQuantity::Sief => "SIEF_ELGA",
+                        ElemQuantity::Vari => "VARI_ELGA",
+                    }
+                ),
+            ))
+        }
+    };
+    if expected != q {
+        return Err(args.error(
+            "TYPE_CHAM",
+            format!(
+                "{nom_cham} is a field of type {}, not {tc}: give TYPE_CHAM='{}'",
+                expected.type_cham(),
+                expected.type_cham()
+            ),
+        ));
+    }
+    let (step, key) = match args.int("NUME_ORDRE") {
+        Some(n) => {
+            let n = usize::try_from(n)
+                .map_err(|_| args.error("NUME_ORDRE", format!("NUME_ORDRE {n} is negative")))?;
+            (res.find(Access::NumeOrdre(n)), "NUME_ORDRE")
+        }
+        None => {
+            let t = args
+                .real("INST")
+                .ok_or_else(|| args.error("INST", "NUME_ORDRE or INST is needed"))?;
+            (res.find(inst_access(args, t, 1e-6)), "INST")
+        }
+    };
+    let step = step.map_err(|e| args.error(key, format!("result {rname}: {e}")))?;
+    let field = step_gauss(step, nom_cham, args, "NOM_CHAM", rname)?.clone();
+    let line = format!(
+        "    field {} ({tc}) = {nom_cham} of {rname} at NUME_ORDRE {} (INST {:e}) on model {}: components {}",
+        result.unwrap_or("(unnamed)"),
+        step.nume_ordre,
+        step.inst,
+        res.model,
+        field.components.join(" "),
+    );
+    let data = ChamElem {
+        mesh: res.mesh.clone(),
+        model: res.model.clone(),
+        quantity: q,
+        by_cell: false,
+        field,
+    };
+    study.log(line);
+    Ok(Some(ConceptData::ElemField(Box::new(data))))
 }
 
 /// OPERATION='EXTR' from RESULTAT: a copy of the nodal field NOM_CHAM of

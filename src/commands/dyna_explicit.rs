@@ -182,7 +182,7 @@ pub(crate) fn exec(
     let archive = archive_of(study, args)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
     let observations = observations_of(study, &md.mesh, &md.model, args, true)?;
-    let init = etat_init(study, args, &asm, &dof_names, &md.model.mesh)?;
+    let init = etat_init(study, args, &asm, &dof_names, &model_name, &md.model.mesh)?;
     let (list, instants) = time_range(study, args, init.t0)?;
     let auto = super::dyna_non_line::growth_of(&list);
     if list.on_error() != &Action::Arret || list.rules.len() > 1 {

@@ -8,7 +8,7 @@ use super::post_args::{cell_name, node_name};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
-use crate::concepts::{Concept, ConceptData, ConceptType as C};
+use crate::concepts::{Concept, ConceptData, ConceptType as C, ElemQuantity};
 use crate::diag::{closest, Diagnostic};
 use crate::law::TangentKind;
 use crate::mesh::Mesh;
@@ -1571,6 +1571,7 @@ pub(crate) fn etat_init(
     args: &Args,
     asm: &Assembler,
     dofs: &[String],
+    model: &str,
     mesh: &str,
 ) -> Result<Init, Diagnostic> {
     let mut init = Init {
@@ -1686,10 +1687,100 @@ pub(crate) fn etat_init(
             }
         }
     }
+    let sigm = elem_field(study, o, "SIGM", ElemQuantity::Sief, model, mesh)?;
+    let vari = elem_field(study, o, "VARI", ElemQuantity::Vari, model, mesh)?;
+    // A CART (one value per cell) goes to every Gauss point of its cell,
+    // as code_aster converts it (nmetcv: chpchd, message ETATINIT_51).
+    let sigm_points = sigm
+        .filter(|f| f.by_cell)
+        .map(|f| cart_to_points(asm, &f.field));
+    let sigm = sigm_points.as_ref().or(sigm.map(|f| &f.field));
+    let vari = vari.map(|f| &f.field);
+    if sigm.is_some() || vari.is_some() {
+        // Read after EVOL_NOLI's fields, which they replace (code_aster's
+        // nmdoet: nmetl1 from the result, then nmetl2 field by field).
+        let mut pts = init.points.take().unwrap_or_else(|| asm.initial_states());
+        fields::apply_initial_fields(asm, &mut pts, sigm, vari).map_err(|(k, m)| o.error(k, m))?;
+        init.points = Some(pts);
+        // An initial stress makes RELATION='ELAS' incremental
+        // (comp_meca_incr: l_etat_init), as EVOL_NOLI does.
+        init.stressed |= sigm.is_some();
+    }
     if init.t0.is_none() {
         init.t0 = o.real("INST_ETAT_INIT");
     }
     Ok(init)
+}
+
+/// A CART's values (one point per cell) repeated at each Gauss point of
+/// the cell's element (the family of SIEF_ELGA); cells without an element
+/// get no point.
+fn cart_to_points(asm: &Assembler, cart: &crate::result::GaussField) -> crate::result::GaussField {
+    let ncells = cart.offsets.len().saturating_sub(1);
+    let mut npg = vec![0usize; ncells];
+    for e in &asm.elements {
+        if e.cell < ncells && cart.npg(e.cell) == 1 {
+            npg[e.cell] = crate::element::output_points(&e.spec);
+        }
+    }
+    let mut out = crate::result::GaussField {
+        components: cart.components.clone(),
+        offsets: Vec::with_capacity(ncells + 1),
+        values: Vec::new(),
+    };
+    for (c, &n) in npg.iter().enumerate() {
+        out.offsets.push(out.values.len());
+        for _ in 0..n {
+            out.values.extend_from_slice(cart.cell(c));
+        }
+    }
+    out.offsets.push(out.values.len());
+    out
+}
+
+/// The field by element of ETAT_INIT's `key` (SIGM or VARI), checked: a
+/// field of the quantity the keyword reads, built on the model of the
+/// computation (its points are that model's elements'); a CART
+/// (`by_cell`) may be on the mesh alone.
+fn elem_field<'s>(
+    study: &'s Study,
+    o: &Args,
+    key: &str,
+    q: ElemQuantity,
+    model: &str,
+    mesh: &str,
+) -> Result<Option<&'s crate::concepts::ChamElem>, Diagnostic> {
+    let Some(name) = o.concept(key) else {
+        return Ok(None);
+    };
+    let Some(ConceptData::ElemField(f)) = study.concepts.data(name) else {
+        return Err(o.error(key, format!("the field {name} holds no data")));
+    };
+    if f.quantity != q {
+        return Err(o.error(
+            key,
+            format!(
+                "the field {name} is of type {}; {key} takes a field of type {} (CREA_CHAMP TYPE_CHAM='{}')",
+                f.quantity.type_cham(),
+                q.type_cham(),
+                q.type_cham()
+            ),
+        ));
+    }
+    if f.mesh != mesh || (f.model != model && !(f.by_cell && f.model.is_empty())) {
+        return Err(o.error(
+            key,
+            format!(
+                "the field {name} was built on {}, not on the model {model} (mesh {mesh}) of this computation: its Gauss points are those of other elements; build it with CREA_CHAMP on MODELE={model}",
+                if f.model.is_empty() {
+                    format!("the mesh {}", f.mesh)
+                } else {
+                    format!("the model {} (mesh {})", f.model, f.mesh)
+                }
+            ),
+        ));
+    }
+    Ok(Some(f))
 }
 
 fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
@@ -1997,7 +2088,7 @@ pub(crate) fn run(
     let suivi = suivi_of(&md.mesh, &md.model, args, inertia)?;
     let observations = observations_of(study, &md.mesh, &md.model, args, inertia)?;
     let dof_names: Vec<String> = md.model.dofs.iter().map(|d| d.name().to_string()).collect();
-    let mut init = etat_init(study, args, &asm, &dof_names, &md.model.mesh)?;
+    let mut init = etat_init(study, args, &asm, &dof_names, &model_name, &md.model.mesh)?;
     if !inertia {
         // A dynamic result continued statically: its motion is dropped.
         init.v = None;

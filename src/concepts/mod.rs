@@ -34,6 +34,9 @@ pub enum ConceptData {
     TimeList(Box<crate::time::list::TimeList>),
     /// A nodal field (CREA_CHAMP).
     Field(Box<ChamNo>),
+    /// A field by element at Gauss points (CREA_CHAMP ELGA_SIEF_R,
+    /// ELGA_VARI_R).
+    ElemField(Box<ChamElem>),
     /// A transient result (DYNA_NON_LINE).
     Result(Box<crate::result::EvolNoli>),
     /// A tabulated or constant function (RECU_FONCTION, DEFI_CONSTANTE).
@@ -54,6 +57,41 @@ pub struct ChamNo {
     /// The mesh concept (that of the model for CREA_CHAMP MODELE=).
     pub mesh: String,
     pub field: crate::result::NodalField,
+}
+
+/// The quantity of a field by element: stresses (SIEF_R, components
+/// SIXX...) or internal variables (VARI_R, components V1, V2...).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElemQuantity {
+    Sief,
+    Vari,
+}
+
+impl ElemQuantity {
+    /// code_aster's TYPE_CHAM of the field.
+    pub fn type_cham(self) -> &'static str {
+        match self {
+            ElemQuantity::Sief => "ELGA_SIEF_R",
+            ElemQuantity::Vari => "ELGA_VARI_R",
+        }
+    }
+}
+
+/// A field by element at Gauss points (cham_elem, CREA_CHAMP): values
+/// per cell and point of the model's elements (the family of SIEF_ELGA:
+/// [`crate::element::output_points`]); a value never assigned is NaN
+/// and reads as 0 in ETAT_INIT. The model is kept because the points are
+/// those of its elements: ETAT_INIT refuses a field of another model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChamElem {
+    pub mesh: String,
+    pub model: String,
+    pub quantity: ElemQuantity,
+    /// A CART (TYPE_CHAM='CART_SIEF_R'): one point per cell, on a mesh
+    /// (`model` empty) or a model; ETAT_INIT gives its values to every
+    /// Gauss point of the cell (code_aster's nmetcv, ETATINIT_51).
+    pub by_cell: bool,
+    pub field: crate::result::GaussField,
 }
 
 #[derive(Debug, Clone)]

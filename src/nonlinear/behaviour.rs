@@ -519,9 +519,8 @@ pub fn check_hexs8(
                     "cell M{}: the element MECA_HEXS8 (3D_SI on HEXA8) refuses RELATION='ELAS' with \
                      DEFORMATION='{deformation}' (ELEMENTSSI_3): a law written in the reference \
                      configuration cannot drive its incremental hourglass stresses; use \
-                     DEFORMATION='PETIT_REAC', an initial state (ETAT_INIT with EVOL_NOLI; \
-                     DEPL or VITE alone do not count; code_aster's SIGM is not implemented in \
-                     aster), or an incremental law such as VMIS_ISOT_LINE with a large SY{}",
+                     DEFORMATION='PETIT_REAC', an initial state (ETAT_INIT with EVOL_NOLI \
+                     or SIGM; DEPL or VITE alone do not count), or an incremental law such as VMIS_ISOT_LINE with a large SY{}",
                     cell + 1,
                     if occ.is_none() {
                         " (this cell is not covered by COMPORTEMENT and got ELAS/PETIT by default)"

@@ -227,3 +227,167 @@ pub fn states_from_gauss(
     }
     Ok(out)
 }
+
+/// Overwrites the Gauss-point states `points` with the fields of
+/// ETAT_INIT SIGM (stresses) and VARI (internal variables), as code_aster
+/// reads them field by field after EVOL_NOLI's (nmdoet: nmetl1 then
+/// nmetl2), so a field given replaces the result's. The fields are those
+/// of CREA_CHAMP on the model (one row of values per point of the
+/// element's SIEF_ELGA family); a component not given, or a value never
+/// assigned (NaN), is 0. A HEXS8 element takes SIXX...SIYZ at its centre
+/// point and its hourglass stresses from FSTAB1..FSTAB72 (0 when absent).
+/// The error names the keyword and the cell (code_aster names, M7).
+pub fn apply_initial_fields(
+    asm: &Assembler,
+    points: &mut [PointState],
+    sigm: Option<&GaussField>,
+    vari: Option<&GaussField>,
+) -> Result<(), (&'static str, String)> {
+    const STRESS: [&str; 6] = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
+    let ncells = asm.cell_state_offsets.len() - 1;
+    for (key, f) in [("SIGM", sigm), ("VARI", vari)] {
+        if let Some(f) = f {
+            if f.offsets.len() != ncells + 1 {
+                return Err((
+                    key,
+                    format!(
+                        "the field has {} cells, the mesh of the model {ncells}: it was built on another mesh",
+                        f.offsets.len().saturating_sub(1)
+                    ),
+                ));
+            }
+        }
+    }
+    let read = |f: &GaussField, c: usize, p: usize, k: usize| {
+        let v = f.cell(c)[p * f.ncmp() + k];
+        if v.is_nan() {
+            0.0
+        } else {
+            v
+        }
+    };
+    for e in &asm.elements {
+        let c = e.cell;
+        let npg = crate::element::output_points(&e.spec);
+        let hex = e.spec.is_hexs8();
+        let rows = asm.cell_state_offsets[c + 1] - asm.cell_state_offsets[c];
+        let base = e.state_offset;
+        for (key, f) in [("SIGM", sigm), ("VARI", vari)] {
+            if let Some(f) = f {
+                if f.npg(c) != npg {
+                    return Err((
+                        key,
+                        format!(
+                            "cell M{}: the field has {} Gauss point(s) there, the element {} has {npg}: build the field by CREA_CHAMP on the model of the computation (AFFE with MODELE, or EXTR of a result of this model)",
+                            c + 1,
+                            f.npg(c),
+                            e.spec.name
+                        ),
+                    ));
+                }
+            }
+        }
+        if let Some(f) = sigm {
+            let mut map: Vec<(usize, usize, usize)> = Vec::new(); // (field cmp, row, stress index)
+            let plane = e.spec.formulation != Formulation::Solid3d;
+            for (k, name) in f.components.iter().enumerate() {
+                if let Some(i) = STRESS.iter().position(|s| s == name) {
+                    // A CART on the mesh carries SIXZ, SIYZ: a plane
+                    // element has none, so they must be 0 there.
+                    if plane && i >= 4 {
+                        if (0..npg).any(|p| read(f, c, p, k) != 0.0) {
+                            return Err((
+                                "SIGM",
+                                format!(
+                                    "cell M{}: the element {} (plane or axisymmetric) has no stress component {name}, which the field gives there",
+                                    c + 1,
+                                    e.spec.name
+                                ),
+                            ));
+                        }
+                        continue;
+                    }
+                    map.push((k, 0, i));
+                } else if let Some(j) = name
+                    .strip_prefix("FSTAB")
+                    .and_then(|d| d.parse::<usize>().ok())
+                    .filter(|j| (1..=hexs8::NQ).contains(j))
+                {
+                    if hex {
+                        map.push((k, 1 + (j - 1) / 6, (j - 1) % 6));
+                    }
+                } else {
+                    return Err((
+                        "SIGM",
+                        format!("the component {name} is not a stress component (SIXX, SIYY, SIZZ, SIXY, SIXZ, SIYZ)"),
+                    ));
+                }
+            }
+            for p in 0..npg {
+                let shown = if hex { 0..rows } else { p..p + 1 };
+                for r in shown {
+                    points[base + r].stress = Default::default();
+                }
+                for &(k, row, i) in &map {
+                    let r = if hex { row } else { p };
+                    points[base + r].stress[i] = read(f, c, p, k);
+                }
+            }
+        }
+        if let Some(f) = vari {
+            let nvar = points[base].internal.as_slice().len();
+            let given: Vec<Option<usize>> = f
+                .components
+                .iter()
+                .map(|n| crate::commands::crea_champ::vari_index(n))
+                .collect();
+            if let Some(k) = given.iter().position(Option::is_none) {
+                return Err((
+                    "VARI",
+                    format!(
+                        "the component {} is not an internal variable (V1, V2, ...)",
+                        f.components[k]
+                    ),
+                ));
+            }
+            let nfield = given.iter().flatten().copied().max().unwrap_or(0);
+            // Components beyond the law's count are accepted when they hold
+            // nothing there (0 or absent): a VARI_ELGA of a model mixing laws
+            // is padded so to its largest count.
+            let extra = (0..npg).any(|p| {
+                given
+                    .iter()
+                    .enumerate()
+                    .any(|(k, &j)| j.is_some_and(|j| j > nvar) && read(f, c, p, k) != 0.0)
+            });
+            if nfield < nvar || extra {
+                return Err((
+                    "VARI",
+                    format!(
+                        "cell M{}: the field gives {nfield} internal variable(s), the law of the element {} has {nvar}: give V1 to V{nvar} (code_aster refuses a VARI field whose count differs from the law's)",
+                        c + 1,
+                        e.spec.name
+                    ),
+                ));
+            }
+            for p in 0..npg {
+                let mut v = vec![0.0; nvar];
+                for (k, j) in given.iter().enumerate() {
+                    if let Some(j) = j.filter(|&j| j <= nvar) {
+                        v[j - 1] = read(f, c, p, k);
+                    }
+                }
+                let iv = InternalVars::from_slice(&v)
+                    .ok_or_else(|| ("VARI", format!("cell M{}: bad internal variables", c + 1)))?;
+                if hex {
+                    for r in 0..rows {
+                        points[base + r].internal = iv;
+                    }
+                } else {
+                    points[base + p].internal = iv;
+                }
+            }
+        }
+    }
+    Ok(())
+}
