@@ -196,13 +196,6 @@ pub fn model_sief_components(model: &Model) -> Vec<String> {
         .collect()
 }
 
-/// The index k of an internal variable's component name "Vk" (1-based).
-pub fn vari_index(c: &str) -> Option<usize> {
-    c.strip_prefix('V')
-        .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()) && !d.starts_with('0'))
-        .and_then(|d| d.parse().ok())
-}
-
 /// OPERATION='AFFE' of ELGA_SIEF_R / ELGA_VARI_R on a MODELE (code_aster's
 /// cham_elem of CREA_CHAMP): every point of each selected element gets
 /// the values, occurrences in order, later ones overwriting earlier ones;
@@ -299,7 +292,7 @@ fn affe_elga(
                     d.suggestion = closest(c, &allowed.iter().map(String::as_str).collect::<Vec<_>>());
                     return Err(d);
                 }
-                ElemQuantity::Vari => match vari_index(c) {
+                ElemQuantity::Vari => match crate::result::vari_index(c) {
                     Some(k) => nvar = nvar.max(k),
                     None => {
                         return Err(occ.error(

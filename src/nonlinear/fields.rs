@@ -339,7 +339,7 @@ pub fn apply_initial_fields(
             let given: Vec<Option<usize>> = f
                 .components
                 .iter()
-                .map(|n| crate::commands::crea_champ::vari_index(n))
+                .map(|n| crate::result::vari_index(n))
                 .collect();
             if let Some(k) = given.iter().position(Option::is_none) {
                 return Err((

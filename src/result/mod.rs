@@ -70,6 +70,14 @@ impl NodalField {
     }
 }
 
+/// The index k of an internal variable's component name "Vk" (1-based),
+/// as CREA_CHAMP names them and ETAT_INIT VARI reads them.
+pub fn vari_index(c: &str) -> Option<usize> {
+    c.strip_prefix('V')
+        .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()) && !d.starts_with('0'))
+        .and_then(|d| d.parse().ok())
+}
+
 /// A field at Gauss points: for each cell, `npg[cell]` points of `ncmp`
 /// components (cells outside the model have 0 points).
 #[derive(Debug, Clone, PartialEq, Default)]
