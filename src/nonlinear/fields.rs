@@ -2,7 +2,7 @@
 //! the result's fields (DEPL, VITE, ACCE, SIEF_ELGA, VARI_ELGA).
 
 use super::assembly::Assembler;
-use crate::element::{hexs8, PointState};
+use crate::element::{hexs8, Kinematics, PointState};
 use crate::law::InternalVars;
 use crate::model::spec::Formulation;
 use crate::result::{GaussField, NodalField};
@@ -288,6 +288,26 @@ pub fn apply_initial_fields(
             }
         }
         if let Some(f) = sigm {
+            // SIMO_MIEHE and GDEF_LOG start a step from their internal
+            // variables (b̄e, and the logarithmic stress T in V3..V8), not
+            // from SIEF: a stress written there alone would vanish at the
+            // first step without a word (probe sigmp: a released D_PLAN
+            // bar kept DX = 0). Without VARI (which holds that state, as
+            // an EXTR of both fields of such a result gives it) it is
+            // refused until it is converted into the law's state.
+            if matches!(e.kin, Kinematics::SimoMiehe | Kinematics::GdefLog)
+                && vari.is_none()
+                && (0..npg).any(|p| (0..f.ncmp()).any(|k| read(f, c, p, k) != 0.0))
+            {
+                return Err((
+                    "SIGM",
+                    format!(
+                        "not implemented yet: cell M{} has DEFORMATION='{}', whose law starts each step from its internal variables, not from the stress: an initial stress given by SIGM would be lost; use DEFORMATION='PETIT', 'PETIT_REAC' or 'GROT_GDEP', or give the law's state with VARI too (GDEF_LOG: the logarithmic stress T in V3..V8; an EXTR of SIEF_ELGA and VARI_ELGA of such a result gives both)",
+                        c + 1,
+                        e.kin.strain_measure().aster_name()
+                    ),
+                ));
+            }
             let mut map: Vec<(usize, usize, usize)> = Vec::new(); // (field cmp, row, stress index)
             let plane = e.spec.formulation != Formulation::Solid3d;
             for (k, name) in f.components.iter().enumerate() {
