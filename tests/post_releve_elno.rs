@@ -216,6 +216,16 @@ fn elno_rows_per_cell_and_means_2d() {
         post += &check("T", "EPS_M2", no, None, "EPXX", EPS2);
     }
     post += &check("T", "BORD", "N3", Some("M3"), "SIXX", SIG);
+    // GROUP_NO and NOEUD together: code_aster's rvgnoe takes NOEUD's nodes
+    // first, then each group's, a node kept at its first place (probe
+    // elnop: GROUP_NO's came first), for nodal fields and ELNO alike.
+    post += "T2 = POST_RELEVE_T(ACTION=(\n\
+        _F(INTITULE='ORDRE', RESULTAT=RES, NOM_CHAM='SIEF_ELNO', INST=1., GROUP_NO='INTER', \
+           NOEUD=('N6', 'N2'), NOM_CMP='SIXX', MOYE_NOEUD='NON', OPERATION='EXTRACTION'),\n\
+        _F(INTITULE='ORDRE_DEPL', RESULTAT=RES, NOM_CHAM='DEPL', INST=1., GROUP_NO='INTER', \
+           NOEUD=('N6', 'N2'), NOM_CMP='DX', OPERATION='EXTRACTION'),\n\
+        ))\n\
+        IMPR_TABLE(TABLE=T2)\n";
     let resu = run("elno_2d", &mesh_2d(), &study(2, &post));
     // 2 nodes x (2 cells x 2 + 2) + 1 checks against the hand values,
     // every one OK (assert_all_ok)
@@ -251,6 +261,22 @@ fn elno_rows_per_cell_and_means_2d() {
     assert_eq!(places(&rows, "BORD"), pairs(&[("N3", "M3"), ("N6", "M3")]));
     // MOYE_NOEUD='OUI': one row per node (MAILLE empty, printed '-').
     assert_eq!(places(&rows, "EPS_MOY"), pairs(&[("N2", "-"), ("N5", "-")]));
+    let rows2 = common::printed_table(&resu, "T2");
+    assert_eq!(
+        places(&rows2, "ORDRE"),
+        pairs(&[
+            ("N6", "M3"),
+            ("N2", "M2"),
+            ("N2", "M3"),
+            ("N5", "M2"),
+            ("N5", "M3")
+        ])
+    );
+    let depl: Vec<String> = places(&rows2, "ORDRE_DEPL")
+        .into_iter()
+        .map(|p| p.0)
+        .collect();
+    assert_eq!(depl, ["N6", "N2", "N5"]);
     for r in rows.iter().filter(|r| r["INTITULE"] == "EPS") {
         assert!(num(r, "EPYY").abs() < 1e-12, "NU = 0: EPYY = 0, {r:?}");
         assert_eq!(num(r, "COOR_X"), 1.0);

@@ -503,7 +503,7 @@ fn elno_extraction(
             &format!("REPERE other than 'GLOBAL' on the field by element at nodes {nom_cham} is not built (the frames turn DX, DY, DZ of a displacement-type nodal field only)"),
         ));
     }
-    let nodes = nodes_of(mesh, occ)?;
+    let nodes = ordered_nodes(mesh, occ)?;
     let keep: Option<Vec<bool>> = if occ.has("GROUP_MA") || occ.has("MAILLE") {
         let mut keep = vec![false; mesh.ncells()];
         for c in super::model_args::select_cells(mesh, occ)? {
@@ -866,15 +866,16 @@ fn field_rows(
 }
 
 /// The nodes of the occurrence. EXTRACTION needs GROUP_NO/NOEUD (the
-/// catalogue's rule); MOYENNE too, in the order of its path (see
-/// [`path_nodes`]); EXTREMA and MOYENNE_ARITH also take the nodes of
+/// catalogue's rule), MOYENNE too, both in code_aster's order (see
+/// [`ordered_nodes`]); EXTREMA and MOYENNE_ARITH also take the nodes of
 /// GROUP_MA/MAILLE cells and default to every node of the mesh, as
 /// code_aster's `prexno`/`prmono` do.
 fn selected_nodes(mesh: &Mesh, occ: &Args, op: Operation) -> Result<Vec<usize>, Diagnostic> {
     let mut nodes = nodes_of(mesh, occ)?;
     match op {
-        Operation::Extraction => return Ok(nodes),
-        Operation::Mean | Operation::ExtractionMean => return path_nodes(mesh, occ),
+        Operation::Extraction | Operation::Mean | Operation::ExtractionMean => {
+            return ordered_nodes(mesh, occ)
+        }
         Operation::Extrema | Operation::MeanArith => {}
     }
     let cells = if occ.has("GROUP_MA") || occ.has("MAILLE") {
@@ -1109,11 +1110,13 @@ fn node_rows(
     Ok(())
 }
 
-/// The nodes of a MOYENNE path in code_aster's order (`rvgnoe`): the
+/// The nodes of GROUP_NO / NOEUD in code_aster's order (`rvgnoe`): the
 /// nodes of NOEUD as listed, then those of each GROUP_NO in turn, in the
-/// group's own order; a node met again is kept at its first place. The
-/// order is the path: MOYENNE integrates along the polyline through them.
-fn path_nodes(mesh: &Mesh, occ: &Args) -> Result<Vec<usize>, Diagnostic> {
+/// group's own order; a node met again is kept at its first place. It is
+/// the row order of an EXTRACTION (probe elnop: GROUP_NO's nodes came
+/// first) and the path of a MOYENNE, which integrates along the polyline
+/// through them.
+fn ordered_nodes(mesh: &Mesh, occ: &Args) -> Result<Vec<usize>, Diagnostic> {
     // The unknown group or node names are reported as everywhere else.
     nodes_of(mesh, occ)?;
     let mut out = Vec::new();
@@ -1227,7 +1230,7 @@ impl PathMean {
 }
 
 /// MOYENNE (code_aster's `rvpstm`/`rvtamo`): along the path of the nodes
-/// (see [`path_nodes`]) without those where none of the components is
+/// (see [`ordered_nodes`]) without those where none of the components is
 /// defined (`rvouex`/`utmach`), six rows QUANTITE = MOMENT_0, MOMENT_1,
 /// MINIMUM, MAXIMUM, MOYE_INT, MOYE_EXT with a column per component. A
 /// node where some components are absent cuts the segments it ends for
