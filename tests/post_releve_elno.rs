@@ -361,6 +361,16 @@ fn elno_refusals_are_located() {
             "GROUP_NO",
             "node N3 is on no cell of GROUP_MA/MAILLE where SIEF_ELNO has values",
         ),
+        // N3 comes from GROUP_NO although NOEUD is given too: the error
+        // names GROUP_NO (it named NOEUD whenever NOEUD was present,
+        // probe elnop).
+        (
+            "elno_outside_group",
+            "T = POST_RELEVE_T(ACTION=_F(INTITULE='X', RESULTAT=RES, NOM_CHAM='SIEF_ELNO', \
+             NOEUD='N2', GROUP_NO='DROITE', GROUP_MA='MAT1', NOM_CMP='SIXX', OPERATION='EXTRACTION'))",
+            "POST_RELEVE_T/ACTION/GROUP_NO",
+            "node N3 is on no cell of GROUP_MA/MAILLE where SIEF_ELNO has values",
+        ),
         (
             "elno_absent",
             "T = POST_RELEVE_T(ACTION=_F(INTITULE='X', RESULTAT=RES, NOM_CHAM='SIGM_ELNO', \

@@ -572,11 +572,10 @@ fn elno_extraction(
                 .filter(|&(c, _)| field.npg(c) == mesh.cells[c].nodes.len())
                 .collect();
             if active.is_empty() {
-                let key = if occ.has("NOEUD") {
-                    "NOEUD"
-                } else {
-                    "GROUP_NO"
-                };
+                // The keyword that brought the node (NOEUD comes first,
+                // `ordered_nodes`): a GROUP_NO member is not NOEUD's fault.
+                let by_name = occ.texts("NOEUD").iter().any(|t| *t == node_name(n));
+                let key = if by_name { "NOEUD" } else { "GROUP_NO" };
                 return Err(occ.error(
                     key,
                     format!(
