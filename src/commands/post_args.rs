@@ -69,22 +69,36 @@ fn no_data(args: &Args, key: &str, name: &str, what: &str) -> Diagnostic {
     )
 }
 
+/// The concept named under `key` with its data viewed as `T` by `view`,
+/// and its name: one lookup for every kind of concept the post-processing
+/// commands read, so that their messages are the same. `expected` ends the
+/// message of a missing concept, `holds` that of a concept of another kind.
+fn concept_as<'s, T: ?Sized>(
+    study: &'s Study,
+    args: &Args,
+    key: &str,
+    (expected, holds): (&str, &str),
+    view: impl Fn(&'s ConceptData) -> Option<&'s T>,
+) -> Result<(&'s str, &'s T), Diagnostic> {
+    let name = args.concept(key).ok_or_else(|| args.error(key, expected))?;
+    study
+        .concepts
+        .get(name)
+        .and_then(|c| view(&c.data).map(|d| (c.name.as_str(), d)))
+        .ok_or_else(|| no_data(args, key, name, holds))
+}
+
 /// The transient result named under `key`, with its name.
 pub fn result_of<'s>(
     study: &'s Study,
     args: &Args,
     key: &str,
 ) -> Result<(&'s str, &'s EvolNoli), Diagnostic> {
-    let name = args
-        .concept(key)
-        .ok_or_else(|| args.error(key, "a result concept is expected"))?;
-    match study.concepts.get(name) {
-        Some(c) => match &c.data {
-            ConceptData::Result(r) => Ok((c.name.as_str(), r)),
-            _ => Err(no_data(args, key, name, "result data")),
-        },
-        None => Err(no_data(args, key, name, "result data")),
-    }
+    let what = ("a result concept is expected", "result data");
+    concept_as(study, args, key, what, |d| match d {
+        ConceptData::Result(r) => Some(&**r),
+        _ => None,
+    })
 }
 
 /// The nodal field (cham_no) named under `key`, with its name.
@@ -93,16 +107,11 @@ pub fn cham_no_of<'s>(
     args: &Args,
     key: &str,
 ) -> Result<(&'s str, &'s NodalField), Diagnostic> {
-    let name = args
-        .concept(key)
-        .ok_or_else(|| args.error(key, "a field concept is expected"))?;
-    match study.concepts.get(name) {
-        Some(c) => match &c.data {
-            ConceptData::Field(f) => Ok((c.name.as_str(), &f.field)),
-            _ => Err(no_data(args, key, name, "nodal field")),
-        },
-        None => Err(no_data(args, key, name, "nodal field")),
-    }
+    let what = ("a field concept is expected", "nodal field");
+    concept_as(study, args, key, what, |d| match d {
+        ConceptData::Field(f) => Some(&f.field),
+        _ => None,
+    })
 }
 
 /// The table named under `key`, with its name.
@@ -111,16 +120,11 @@ pub fn table_of<'s>(
     args: &Args,
     key: &str,
 ) -> Result<(&'s str, &'s Table), Diagnostic> {
-    let name = args
-        .concept(key)
-        .ok_or_else(|| args.error(key, "a table concept is expected"))?;
-    match study.concepts.get(name) {
-        Some(c) => match &c.data {
-            ConceptData::Table(t) => Ok((c.name.as_str(), t)),
-            _ => Err(no_data(args, key, name, "table")),
-        },
-        None => Err(no_data(args, key, name, "table")),
-    }
+    let what = ("a table concept is expected", "table");
+    concept_as(study, args, key, what, |d| match d {
+        ConceptData::Table(t) => Some(&**t),
+        _ => None,
+    })
 }
 
 /// The function named under `key`, with its name.
@@ -143,13 +147,14 @@ pub fn function_named<'s>(
     key: &str,
     name: &str,
 ) -> Result<(&'s str, &'s Function), Diagnostic> {
-    match study.concepts.get(name) {
-        Some(c) => match &c.data {
-            ConceptData::Function(f) => Ok((c.name.as_str(), f)),
-            _ => Err(no_data(args, key, name, "function")),
-        },
-        None => Err(no_data(args, key, name, "function")),
-    }
+    study
+        .concepts
+        .get(name)
+        .and_then(|c| match &c.data {
+            ConceptData::Function(f) => Some((c.name.as_str(), &**f)),
+            _ => None,
+        })
+        .ok_or_else(|| no_data(args, key, name, "function"))
 }
 
 /// The mesh concept called `name`.
