@@ -201,3 +201,108 @@ fn orie_peau_orients_as_the_keyword_of_its_dimension() {
     assert!(out.contains("orie_peau_mix.comm:4"), "{out}");
     assert!(out.contains("PENTA15"), "{out}");
 }
+
+/// DEFI_GROUP's geometric and by-name selections on the 3D quarter bar
+/// (radius 3.2, bottom face at z = 2.27, the block a HEXA8 far from the
+/// bar's axis): ENV_SPHERE picks a node by its coordinates (the A1 of the
+/// MED file), ENV_CYLINDRE the bar's lateral surface (every bar node at
+/// radius 3.2, whichever way the axis is given), NOEUD and MAILLE take
+/// names, TYPE_MAILLE keeps one dimension or one type, INTERSEC and DIFFE
+/// combine cell groups, and an empty result is not created (SOUSTRUC_38).
+#[test]
+fn envelopes_names_and_cell_types_select_what_code_aster_selects() {
+    let mesh_file = root().join("med/sdnv103a.mmed");
+    let text = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+        MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, CREA_GROUP_NO=(\n\
+          _F(OPTION='ENV_SPHERE', NOM='PA1', POINT=(0., 0., 2.27), RAYON=1.e-3, PRECISION=1.e-3),\n\
+          _F(OPTION='ENV_SPHERE', NOM='RING', GROUP_NO_CENTRE='A1', RAYON=3.2, PRECISION=1.e-6),\n\
+          _F(OPTION='ENV_CYLINDRE', NOM='LAT', POINT=(0., 0., 0.), VECT_NORMALE=(0., 0., 2.),\n\
+             RAYON=3.2, PRECISION=1.e-6),\n\
+          _F(OPTION='ENV_CYLINDRE', NOM='LAT2', POINT=(0., 0., 5.), ANGL_NAUT=(30., -90.),\n\
+             RAYON=3.2, PRECISION=1.e-6),\n\
+          _F(NOEUD=('N5', 'N1', 'N5'), NOM='TWO'),),\n\
+        CREA_GROUP_MA=(\n\
+          _F(TOUT='OUI', TYPE_MAILLE='3D', NOM='SOLID'),\n\
+          _F(GROUP_MA='VOL', TYPE_MAILLE='PENTA15', NOM='PRISMS'),\n\
+          _F(MAILLE=('M3', 'M1'), NOM='M13'),\n\
+          _F(INTERSEC=('VOL', 'SXX'), NOM='NONE'),\n\
+          _F(DIFFE=('SOLID', 'VOL'), NOM='BLOCK'),\n\
+          _F(UNION=('SZZ', 'SXX'), TYPE_MAILLE='TRIA6', NOM='AXIS_T6'),))\nFIN()\n";
+    let study = run_in_process(text, &mesh_file);
+    let m = mesh(&study, "MAIL");
+    assert_eq!(m.node_groups["PA1"], m.node_groups["A1"]);
+    let ring = &m.node_groups["RING"];
+    assert!(ring.contains(&m.node_groups["B1"][0]), "B1 is 3.2 from A1");
+    assert!(!ring.contains(&m.node_groups["A1"][0]));
+    let bar: Vec<usize> = m.nodes_of_cells(&m.cell_groups["VOL"]);
+    let radius = |n: usize| m.coords[n][0].hypot(m.coords[n][1]);
+    let mut lateral: Vec<usize> = bar
+        .iter()
+        .copied()
+        .filter(|&n| radius(n) > 3.2 - 1e-6)
+        .collect();
+    lateral.sort_unstable();
+    assert!(lateral.len() > 100, "{} lateral nodes", lateral.len());
+    for g in ["LAT", "LAT2"] {
+        let mut got = m.node_groups[g].clone();
+        got.sort_unstable();
+        assert_eq!(got, lateral, "{g}");
+    }
+    assert_eq!(m.node_groups["TWO"], vec![4, 0]);
+    let count = |kinds: &[&str]| {
+        m.cells
+            .iter()
+            .filter(|c| kinds.contains(&c.kind.aster_name()))
+            .count()
+    };
+    assert_eq!(
+        m.cell_groups["SOLID"].len(),
+        count(&["HEXA8", "HEXA20", "PENTA15"])
+    );
+    assert_eq!(m.cell_groups["PRISMS"].len(), 120);
+    assert_eq!(m.cell_groups["M13"], vec![0, 2]);
+    assert!(
+        !m.cell_groups.contains_key("NONE"),
+        "a volume is never a face"
+    );
+    assert_eq!(m.cell_groups["BLOCK"], m.cell_groups["VOL_RIG"]);
+    // The impact face's six triangles are the cells around the axis.
+    let t6 = &m.cell_groups["AXIS_T6"];
+    assert_eq!(t6.len(), count(&["TRIA6"]));
+    assert!(t6.iter().all(|c| m.cell_groups["SZZ"].contains(c)));
+}
+
+/// The limits of ENV_SPHERE / ENV_CYLINDRE as code_aster states them,
+/// each at its keyword and line: RAYON and PRECISION > 0, the cylinder on
+/// a 3D mesh only.
+#[test]
+fn envelope_limits_are_located_errors() {
+    let cases = [
+        (
+            "sdnv103a",
+            "_F(OPTION='ENV_SPHERE', NOM='P', POINT=(0., 0., 0.), RAYON=0., PRECISION=1.e-3)",
+            "CREA_GROUP_NO/RAYON",
+        ),
+        (
+            "sdnv103a",
+            "_F(OPTION='ENV_SPHERE', NOM='P', POINT=(0., 0.), RAYON=1., PRECISION=1.e-3)",
+            "CREA_GROUP_NO/POINT",
+        ),
+        (
+            "sdnv103b",
+            "_F(OPTION='ENV_CYLINDRE', NOM='P', POINT=(0., 0.), VECT_NORMALE=(0., 1., 0.), RAYON=1., PRECISION=1.e-3)",
+            "3D mesh",
+        ),
+    ];
+    for (i, (file, occ, expected)) in cases.iter().enumerate() {
+        let text = format!(
+            "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+             MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL,\n    CREA_GROUP_NO={occ})\nFIN()\n"
+        );
+        let name = format!("envelope_limit_{i}");
+        let (code, out, _) = run(&name, &text, &root().join(format!("med/{file}.mmed")));
+        assert_eq!(code, 1, "{out}");
+        assert!(out.contains(expected), "{expected}: {out}");
+        assert!(out.contains(&format!("{name}.comm:4:")), "{out}");
+    }
+}

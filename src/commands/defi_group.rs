@@ -2,6 +2,7 @@
 
 use super::blocks::*;
 use super::mesh_args::{check_groups, log_report, mesh_error, mesh_of, GroupKind};
+use super::post_args::{cell_by_name, node_by_name};
 use super::{CommandDef, ExecResult};
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
@@ -82,34 +83,50 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
 
 fn run_crea_group_ma(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(), Diagnostic> {
     let name = occ.text("NOM").unwrap_or_default().to_string();
-    if occ.text("TYPE_MAILLE").is_some_and(|t| t != "TOUT") {
-        return Err(occ.not_implemented("TYPE_MAILLE", "only TYPE_MAILLE='TOUT'"));
-    }
-    if occ.has("UNION") {
+    let type_maille = occ.text("TYPE_MAILLE").unwrap_or("TOUT");
+    if occ.has("UNION") && type_maille == "TOUT" {
         check_groups(mesh, occ, "UNION", GroupKind::Cells)?;
         let r = ops::crea_group_ma_union(mesh, &occ.texts("UNION"), &name)
             .map_err(|e| mesh_error(occ, "UNION", e))?;
         log_report(study, "DEFI_GROUP", &r);
         return Ok(());
     }
-    let cells: Vec<usize> = if occ.has("TOUT") {
+    let mut cells: Vec<usize> = if occ.has("TOUT") {
         (0..mesh.ncells()).collect()
     } else if occ.has("GROUP_MA") {
         check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
         let g = occ.text("GROUP_MA").unwrap_or_default();
         mesh.cell_groups[g].clone()
+    } else if occ.has("MAILLE") {
+        let mut seen = vec![false; mesh.ncells()];
+        for m in occ.texts("MAILLE") {
+            seen[cell_by_name(mesh, occ, "MAILLE", m)?] = true;
+        }
+        (0..mesh.ncells()).filter(|&c| seen[c]).collect()
     } else {
-        let key = ["MAILLE", "INTERSEC", "DIFFE"]
-            .into_iter()
-            .find(|k| occ.has(k))
-            .unwrap_or("");
-        return Err(occ.not_implemented(key, "CREA_GROUP_MA supports TOUT, GROUP_MA and UNION"));
+        let (key, op) = [
+            ("UNION", GroupSetOp::Union),
+            ("INTERSEC", GroupSetOp::Intersec),
+            ("DIFFE", GroupSetOp::Diffe),
+        ]
+        .into_iter()
+        .find(|(k, _)| occ.has(k))
+        .unwrap_or(("DIFFE", GroupSetOp::Diffe));
+        check_groups(mesh, occ, key, GroupKind::Cells)?;
+        ops::cell_group_set(mesh, op, &occ.texts(key)).map_err(|e| mesh_error(occ, key, e))?
     };
     if mesh.cell_groups.contains_key(&name) {
         return Err(occ.error(
             "NOM",
             format!("the cell group {name} already exists (SOUSTRUC_37)"),
         ));
+    }
+    ops::cell_type_filter(mesh, &mut cells, type_maille);
+    if cells.is_empty() {
+        study.log(format!(
+            "<A> <DEFI_GROUP> <SOUSTRUC_38> the cell group {name} would be empty: it is not created"
+        ));
+        return Ok(());
     }
     mesh.cell_groups.insert(name, cells);
     Ok(())
@@ -120,7 +137,15 @@ fn run_crea_group_no(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(
     match occ.text("OPTION") {
         None => {}
         Some("PLAN") => return plan(study, mesh, occ, &nom),
-        Some(_) => return Err(occ.not_implemented("OPTION", "only OPTION='PLAN'")),
+        Some(option @ ("ENV_SPHERE" | "ENV_CYLINDRE")) => {
+            return envelope(study, mesh, occ, &nom, option)
+        }
+        Some(_) => {
+            return Err(occ.not_implemented(
+                "OPTION",
+                "OPTION='PLAN', 'ENV_SPHERE' and 'ENV_CYLINDRE' are built",
+            ))
+        }
     }
     let report = if occ.has("TOUT_GROUP_MA") {
         ops::crea_group_no_tout_group_ma(mesh)
@@ -155,15 +180,21 @@ fn run_crea_group_no(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(
         ops::crea_group_no_set(mesh, GroupSetOp::Union, &occ.texts("GROUP_NO")[..1], &nom)
             .map_err(|e| mesh_error(occ, "NOM", e))?
     } else {
-        return Err(occ.not_implemented("NOEUD", "nodes by name"));
+        let nodes = occ
+            .texts("NOEUD")
+            .iter()
+            .map(|n| node_by_name(mesh, occ, "NOEUD", n))
+            .collect::<Result<Vec<_>, _>>()?;
+        ops::crea_group_no_nodes(mesh, &nodes, &nom).map_err(|e| mesh_error(occ, "NOM", e))?
     };
     log_report(study, "DEFI_GROUP", &report);
     Ok(())
 }
 
-/// OPTION='PLAN': nodes within PRECISION of a plane (a line in 2D).
-fn plan(study: &mut Study, mesh: &mut Mesh, occ: &Args, nom: &str) -> Result<(), Diagnostic> {
-    let point = if occ.has("POINT") {
+/// The centre of PLAN, ENV_SPHERE and ENV_CYLINDRE: POINT, or the first
+/// node of GROUP_NO_CENTRE in the mesh's dimension.
+fn centre(mesh: &Mesh, occ: &Args) -> Result<Vec<f64>, Diagnostic> {
+    Ok(if occ.has("POINT") {
         occ.reals("POINT")
     } else if occ.has("GROUP_NO_CENTRE") {
         check_groups(mesh, occ, "GROUP_NO_CENTRE", GroupKind::Nodes)?;
@@ -175,7 +206,47 @@ fn plan(study: &mut Study, mesh: &mut Mesh, occ: &Args, nom: &str) -> Result<(),
         mesh.coords[n][..d].to_vec()
     } else {
         return Err(occ.not_implemented("NOEUD_CENTRE", "use POINT or GROUP_NO_CENTRE"));
+    })
+}
+
+/// OPTION='ENV_SPHERE' / 'ENV_CYLINDRE': the nodes at RAYON from the
+/// centre (the axis) within PRECISION ([`ops::Envelope`]).
+fn envelope(
+    study: &mut Study,
+    mesh: &mut Mesh,
+    occ: &Args,
+    nom: &str,
+    option: &str,
+) -> Result<(), Diagnostic> {
+    let point = centre(mesh, occ)?;
+    let vect = occ.reals("VECT_NORMALE");
+    let angl = occ.reals("ANGL_NAUT");
+    let shape = if option == "ENV_SPHERE" {
+        ops::Envelope::Sphere
+    } else if occ.has("VECT_NORMALE") {
+        ops::Envelope::Cylinder(PlaneNormal::Vect(&vect))
+    } else {
+        ops::Envelope::Cylinder(PlaneNormal::AnglNaut(&angl))
     };
+    let radius = occ.real("RAYON").unwrap_or(0.0);
+    let prec = occ.real("PRECISION").unwrap_or(0.0);
+    let key = |e: &ops::MeshError| match e.id {
+        "MODELISA3_83" => "RAYON",
+        "MODELISA3_91" => "PRECISION",
+        "MODELISA3_86" => "VECT_NORMALE",
+        "MODELISA3_87" => "ANGL_NAUT",
+        "ASTER_RS_PLAN_DIM" if occ.has("POINT") => "POINT",
+        _ => "OPTION",
+    };
+    let r = ops::crea_group_no_envelope(mesh, nom, &point, shape, radius, prec)
+        .map_err(|e| mesh_error(occ, key(&e), e))?;
+    log_report(study, "DEFI_GROUP", &r);
+    Ok(())
+}
+
+/// OPTION='PLAN': nodes within PRECISION of a plane (a line in 2D).
+fn plan(study: &mut Study, mesh: &mut Mesh, occ: &Args, nom: &str) -> Result<(), Diagnostic> {
+    let point = centre(mesh, occ)?;
     let vect = occ.reals("VECT_NORMALE");
     let angl = occ.reals("ANGL_NAUT");
     let normal = if occ.has("VECT_NORMALE") {
@@ -270,7 +341,7 @@ fn crea_group_no() -> Keyword {
         vec![
             text("OPTION")
                 .into(&["ENV_SPHERE", "ENV_CYLINDRE", "PLAN", "SEGM_DROI_ORDO", "NOEUD_ORDO"])
-                .doc("geometric selection; absent: from groups")
+                .doc("geometric selection (PLAN, ENV_SPHERE, ENV_CYLINDRE built; SEGM_DROI_ORDO, NOEUD_ORDO not yet); absent: from groups")
                 .kw(),
             block(
                 "b_option",

@@ -418,6 +418,193 @@ pub fn crea_group_no_plan(
     Ok(report)
 }
 
+/// Envelope of `OPTION='ENV_SPHERE'` or `'ENV_CYLINDRE'` (code_aster's
+/// `cgnoes`, `cgnoec`): the nodes whose distance to the centre (to the axis)
+/// is RAYON within PRECISION, `|d - RAYON| <= PRECISION`. The envelope is a
+/// shell, not a ball: a node at the centre is selected only when RAYON is
+/// within PRECISION of 0, which code_aster's RAYON > 0 allows for a small
+/// RAYON (how a point is picked by its coordinates).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Envelope<'a> {
+    Sphere,
+    /// The cylinder's axis through the centre: `VECT_NORMALE` (3
+    /// components) or `ANGL_NAUT` (2 angles in degrees).
+    Cylinder(PlaneNormal<'a>),
+}
+
+/// `CREA_GROUP_NO=_F(OPTION='ENV_SPHERE'|'ENV_CYLINDRE', NOM, POINT, RAYON,
+/// PRECISION, ...)`, see [`Envelope`]. As code_aster: RAYON and PRECISION
+/// must be > 0 (MODELISA3_83/91, 75/89); the cylinder needs a 3D mesh
+/// (MODELISA3_84); the centre has as many components as the mesh has
+/// dimensions (2 when every z is equal, code_aster's Z_CST).
+pub fn crea_group_no_envelope(
+    mesh: &mut Mesh,
+    name: &str,
+    centre: &[f64],
+    envelope: Envelope<'_>,
+    radius: f64,
+    precision: f64,
+) -> Result<Report, MeshError> {
+    check_new_name(mesh, name)?;
+    // NaN is not finite: it fails too.
+    if !radius.is_finite() || radius <= 0.0 {
+        return Err(MeshError::new(
+            "MODELISA3_83",
+            format!("RAYON must be > 0 (got {radius})"),
+        ));
+    }
+    if !precision.is_finite() || precision <= 0.0 {
+        return Err(MeshError::new(
+            "MODELISA3_91",
+            format!("PRECISION must be > 0 (got {precision})"),
+        ));
+    }
+    let dim = if is_z_constant(mesh) { 2 } else { 3 };
+    if matches!(envelope, Envelope::Cylinder(_)) && dim != 3 {
+        return Err(MeshError::new(
+            "MODELISA3_84",
+            "OPTION='ENV_CYLINDRE' needs a 3D mesh (every node of this one has the same z)",
+        ));
+    }
+    if centre.len() != dim {
+        return Err(MeshError::new(
+            "ASTER_RS_PLAN_DIM",
+            format!(
+                "the centre must have {dim} components for this {dim}D mesh (got {})",
+                centre.len()
+            ),
+        ));
+    }
+    let x0 = [centre[0], centre[1], if dim == 3 { centre[2] } else { 0.0 }];
+    let axis = match envelope {
+        Envelope::Sphere => None,
+        Envelope::Cylinder(normal) => {
+            let a = match normal {
+                PlaneNormal::Vect(v) if v.len() == 3 => [v[0], v[1], v[2]],
+                PlaneNormal::Vect(v) => {
+                    return Err(MeshError::new(
+                        "MODELISA3_86",
+                        format!("VECT_NORMALE must have 3 components (got {})", v.len()),
+                    ))
+                }
+                PlaneNormal::AnglNaut(a) if a.len() == 2 => {
+                    let (al, be) = (a[0].to_radians(), a[1].to_radians());
+                    [al.cos() * be.cos(), al.sin() * be.cos(), -be.sin()]
+                }
+                PlaneNormal::AnglNaut(a) => {
+                    return Err(MeshError::new(
+                        "MODELISA3_87",
+                        format!("ANGL_NAUT must have 2 angles (got {})", a.len()),
+                    ))
+                }
+            };
+            let norm = super::vec3::norm(a);
+            if !norm.is_finite() || norm <= 0.0 {
+                return Err(MeshError::new(
+                    "MODELISA3_79",
+                    "the axis vector of the cylinder is zero",
+                ));
+            }
+            Some([a[0] / norm, a[1] / norm, a[2] / norm])
+        }
+    };
+    let nodes: Vec<usize> = mesh
+        .coords
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| {
+            let r = [
+                p[0] - x0[0],
+                p[1] - x0[1],
+                if dim == 3 { p[2] - x0[2] } else { 0.0 },
+            ];
+            let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+            let d = match axis {
+                None => r2.sqrt(),
+                // Distance to the axis: the part of r across it.
+                Some(a) => {
+                    let along = r[0] * a[0] + r[1] * a[1] + r[2] * a[2];
+                    (r2 - along * along).max(0.0).sqrt()
+                }
+            };
+            (d - radius).abs() <= precision
+        })
+        .map(|(i, _)| i)
+        .collect();
+    let mut report = Report::default();
+    add_nonempty(mesh, &mut report, name, nodes);
+    Ok(report)
+}
+
+/// `CREA_GROUP_NO=_F(NOEUD=nodes, NOM=name)`: the nodes in the order
+/// written, each once.
+pub fn crea_group_no_nodes(
+    mesh: &mut Mesh,
+    nodes: &[usize],
+    name: &str,
+) -> Result<Report, MeshError> {
+    check_new_name(mesh, name)?;
+    let mut seen = vec![false; mesh.nnodes()];
+    let nodes: Vec<usize> = nodes
+        .iter()
+        .copied()
+        .filter(|&n| !std::mem::replace(&mut seen[n], true))
+        .collect();
+    let mut report = Report::default();
+    add_nonempty(mesh, &mut report, name, nodes);
+    Ok(report)
+}
+
+/// Which cells `TYPE_MAILLE` keeps in `CREA_GROUP_MA`: `TOUT`, a
+/// dimension (`1D`, `2D`, `3D`) or one cell type (`HEXA8`...).
+pub fn cell_type_filter(mesh: &Mesh, cells: &mut Vec<usize>, type_maille: &str) {
+    let keep = |k: CellType| match type_maille {
+        "TOUT" => true,
+        "1D" => k.dim() == 1,
+        "2D" => k.dim() == 2,
+        "3D" => k.dim() == 3,
+        other => k.aster_name() == other,
+    };
+    cells.retain(|&c| keep(mesh.cells[c].kind));
+}
+
+/// `CREA_GROUP_MA=_F(INTERSEC|DIFFE=groups)`: the cells of the first group
+/// found in every other (INTERSEC) or in none of the others (DIFFE),
+/// sorted as every cell group.
+pub fn cell_group_set<S: AsRef<str>>(
+    mesh: &Mesh,
+    op: GroupSetOp,
+    groups: &[S],
+) -> Result<Vec<usize>, MeshError> {
+    let Some(first) = groups.first() else {
+        return Err(MeshError::new(
+            "ASTER_RS_EMPTY_LIST",
+            "the list of cell groups is empty",
+        ));
+    };
+    let mut current = cell_group(mesh, first.as_ref())?.clone();
+    for g in &groups[1..] {
+        let mut in_other = vec![false; mesh.ncells()];
+        for &c in cell_group(mesh, g.as_ref())? {
+            in_other[c] = true;
+        }
+        match op {
+            GroupSetOp::Union => {
+                for (c, &inside) in in_other.iter().enumerate() {
+                    if inside && !current.contains(&c) {
+                        current.push(c);
+                    }
+                }
+            }
+            GroupSetOp::Intersec => current.retain(|&c| in_other[c]),
+            GroupSetOp::Diffe => current.retain(|&c| !in_other[c]),
+        }
+    }
+    current.sort_unstable();
+    current.dedup();
+    Ok(current)
+}
+
 /// `CREA_GROUP_MA=_F(UNION=groups, NOM=name)`: the first group's cells,
 /// then the new cells of each next group, kept sorted as every cell group.
 /// An existing name or an empty result follow the node-group rules.
