@@ -306,3 +306,38 @@ fn envelope_limits_are_located_errors() {
         assert!(out.contains(&format!("{name}.comm:4:")), "{out}");
     }
 }
+
+/// SEGM_DROI_ORDO orders, it does not select: the impact face of B's
+/// axisymmetric mesh (the nodes of its SEG3 cells, from CREA_GROUP_NO)
+/// comes out from A1 on the axis to B1 at the edge, radius strictly
+/// increasing; a node off the segment (the bar's top) stops DEFI_GROUP
+/// at the keyword with the node's name, as code_aster's assertion does.
+#[test]
+fn segm_droi_ordo_orders_the_impact_face_from_axis_to_edge() {
+    let head = "DEBUT()\nMAIL = LIRE_MAILLAGE(FORMAT='MED')\n\
+        MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, CREA_GROUP_NO=(\n\
+          _F(GROUP_MA='SZZ', NOM='FACE'),\n";
+    let text = format!(
+        "{head}  _F(OPTION='SEGM_DROI_ORDO', NOM='ORDO', GROUP_NO='FACE', GROUP_NO_ORIG='A1',\n\
+             GROUP_NO_EXTR='B1', PRECISION=1.e-6, CRITERE='ABSOLU'),))\nFIN()\n"
+    );
+    let m = mesh(
+        &run_in_process(&text, &root().join("med/sdnv103b.mmed")),
+        "MAIL",
+    );
+    let ordo = &m.node_groups["ORDO"];
+    assert_eq!(ordo.len(), m.node_groups["FACE"].len());
+    assert_eq!(ordo.len(), 11, "5 SEG3: 11 nodes");
+    assert_eq!(ordo[0], m.node_groups["A1"][0]);
+    assert_eq!(*ordo.last().unwrap(), m.node_groups["B1"][0]);
+    assert!(ordo.windows(2).all(|w| m.coords[w[0]][0] < m.coords[w[1]][0]));
+
+    let bad = format!(
+        "{head}  _F(OPTION='SEGM_DROI_ORDO', NOM='ORDO', GROUP_NO=('FACE', 'A2'), GROUP_NO_ORIG='A1',\n\
+             GROUP_NO_EXTR='B1', PRECISION=1.e-6, CRITERE='RELATIF'),))\nFIN()\n"
+    );
+    let (code, out, _) = run("segm_droi_ordo_off", &bad, &root().join("med/sdnv103b.mmed"));
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("SOUSTRUC_22") && out.contains("from the line"), "{out}");
+    assert!(out.contains("segm_droi_ordo_off.comm:5:"), "{out}");
+}

@@ -140,10 +140,11 @@ fn run_crea_group_no(study: &mut Study, mesh: &mut Mesh, occ: &Args) -> Result<(
         Some(option @ ("ENV_SPHERE" | "ENV_CYLINDRE")) => {
             return envelope(study, mesh, occ, &nom, option)
         }
+        Some("SEGM_DROI_ORDO") => return segm_droi_ordo(study, mesh, occ, &nom),
         Some(_) => {
             return Err(occ.not_implemented(
                 "OPTION",
-                "OPTION='PLAN', 'ENV_SPHERE' and 'ENV_CYLINDRE' are built",
+                "OPTION='PLAN', 'ENV_SPHERE', 'ENV_CYLINDRE' and 'SEGM_DROI_ORDO' are built",
             ))
         }
     }
@@ -240,6 +241,54 @@ fn envelope(
     };
     let r = ops::crea_group_no_envelope(mesh, nom, &point, shape, radius, prec)
         .map_err(|e| mesh_error(occ, key(&e), e))?;
+    log_report(study, "DEFI_GROUP", &r);
+    Ok(())
+}
+
+/// OPTION='SEGM_DROI_ORDO': the nodes of GROUP_NO / NOEUD ordered along
+/// the segment from GROUP_NO_ORIG to GROUP_NO_EXTR (each the first node of
+/// its group, as code_aster's `utreno`).
+fn segm_droi_ordo(
+    study: &mut Study,
+    mesh: &mut Mesh,
+    occ: &Args,
+    nom: &str,
+) -> Result<(), Diagnostic> {
+    let mut nodes = Vec::new();
+    if occ.has("GROUP_NO") {
+        check_groups(mesh, occ, "GROUP_NO", GroupKind::Nodes)?;
+        for g in occ.texts("GROUP_NO") {
+            nodes.extend_from_slice(&mesh.node_groups[g]);
+        }
+    }
+    for n in occ.texts("NOEUD") {
+        nodes.push(node_by_name(mesh, occ, "NOEUD", n)?);
+    }
+    let mut end = |key: &str| -> Result<usize, Diagnostic> {
+        if !occ.has(key) {
+            let hidden = key.replace("GROUP_NO", "NOEUD");
+            return Err(occ.not_implemented(&hidden, &format!("use {key}")));
+        }
+        check_groups(mesh, occ, key, GroupKind::Nodes)?;
+        let g = occ.text(key).unwrap_or_default();
+        match mesh.node_groups[g].as_slice() {
+            [] => Err(occ.error(key, format!("the node group {g} is empty"))),
+            [one] => Ok(*one),
+            [first, ..] => {
+                study.log(format!(
+                    "<A> <DEFI_GROUP> {key}: the node group {g} holds {} nodes; its first, N{}, is taken",
+                    mesh.node_groups[g].len(),
+                    first + 1
+                ));
+                Ok(*first)
+            }
+        }
+    };
+    let ends = (end("GROUP_NO_ORIG")?, end("GROUP_NO_EXTR")?);
+    let prec = occ.real("PRECISION").unwrap_or(0.0);
+    let relative = occ.text("CRITERE") == Some("RELATIF");
+    let r = ops::crea_group_no_segm_droi_ordo(mesh, nom, &nodes, ends, prec, relative)
+        .map_err(|e| mesh_error(occ, "OPTION", e))?;
     log_report(study, "DEFI_GROUP", &r);
     Ok(())
 }
@@ -341,7 +390,7 @@ fn crea_group_no() -> Keyword {
         vec![
             text("OPTION")
                 .into(&["ENV_SPHERE", "ENV_CYLINDRE", "PLAN", "SEGM_DROI_ORDO", "NOEUD_ORDO"])
-                .doc("geometric selection (PLAN, ENV_SPHERE, ENV_CYLINDRE built; SEGM_DROI_ORDO, NOEUD_ORDO not yet); absent: from groups")
+                .doc("geometric selection (PLAN, ENV_SPHERE, ENV_CYLINDRE, SEGM_DROI_ORDO built; NOEUD_ORDO not yet); absent: from groups")
                 .kw(),
             block(
                 "b_option",

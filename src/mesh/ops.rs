@@ -536,6 +536,95 @@ pub fn crea_group_no_envelope(
     Ok(report)
 }
 
+/// `CREA_GROUP_NO=_F(OPTION='SEGM_DROI_ORDO', NOM, GROUP_NO|NOEUD,
+/// GROUP_NO_ORIG, GROUP_NO_EXTR, PRECISION, CRITERE)` (code_aster's
+/// `cgnoso`/`oreino`): the nodes given, ordered by their projection on the
+/// segment from `orig` to `extr`. Nothing is selected: every node must lie
+/// on the segment, within PRECISION of its line (ABSOLU: the distance;
+/// RELATIF: the distance over the segment's length) and between its ends,
+/// and no two may project to the same point; code_aster stops on any of
+/// these (its alarms SOUSTRUC_22, 86 and 23, then the assertion on their
+/// count), and so does this, naming the first offending node.
+pub fn crea_group_no_segm_droi_ordo(
+    mesh: &mut Mesh,
+    name: &str,
+    nodes: &[usize],
+    (orig, extr): (usize, usize),
+    precision: f64,
+    relative: bool,
+) -> Result<Report, MeshError> {
+    check_new_name(mesh, name)?;
+    if nodes.is_empty() {
+        return Err(MeshError::new("MODELISA3_99", "there is no node to order"));
+    }
+    let a = mesh.coords[orig];
+    let b = mesh.coords[extr];
+    let ab = sub(b, a);
+    let ab2 = dot(ab, ab);
+    if ab2 == 0.0 {
+        return Err(MeshError::new(
+            "SOUSTRUC_20",
+            format!(
+                "the origin N{} and the end N{} of the segment are at the same point",
+                orig + 1,
+                extr + 1
+            ),
+        ));
+    }
+    let mut seen = vec![false; mesh.nnodes()];
+    let mut keyed: Vec<(f64, usize)> = Vec::with_capacity(nodes.len());
+    for &n in nodes {
+        if std::mem::replace(&mut seen[n], true) {
+            continue;
+        }
+        let am = sub(mesh.coords[n], a);
+        let c = dot(am, ab) / ab2;
+        let off = sub(am, [c * ab[0], c * ab[1], c * ab[2]]);
+        let dist = dot(off, off).sqrt();
+        let measured = if relative { dist / ab2.sqrt() } else { dist };
+        if measured > precision || measured.is_nan() {
+            return Err(MeshError::new(
+                "SOUSTRUC_22",
+                format!(
+                    "node N{} is {dist:e} from the line of the segment, more than PRECISION = {precision:e} ({})",
+                    n + 1,
+                    if relative { "RELATIF: over the segment's length" } else { "ABSOLU" }
+                ),
+            ));
+        }
+        if (c < 0.0 || dot(am, am) > ab2) && (dot(am, am) - ab2) / ab2 > f64::EPSILON {
+            return Err(MeshError::new(
+                "SOUSTRUC_86",
+                format!(
+                    "node N{} projects outside the segment (abscissa {c:e} of its length)",
+                    n + 1
+                ),
+            ));
+        }
+        keyed.push((c, n));
+    }
+    // Stable, as code_aster's bubble sort.
+    keyed.sort_by(|x, y| x.0.total_cmp(&y.0));
+    if let Some(w) = keyed.windows(2).find(|w| w[0].0 == w[1].0) {
+        return Err(MeshError::new(
+            "SOUSTRUC_23",
+            format!(
+                "nodes N{} and N{} have the same projection on the segment",
+                w[0].1 + 1,
+                w[1].1 + 1
+            ),
+        ));
+    }
+    let mut report = Report::default();
+    add_nonempty(
+        mesh,
+        &mut report,
+        name,
+        keyed.into_iter().map(|(_, n)| n).collect(),
+    );
+    Ok(report)
+}
+
 /// `CREA_GROUP_NO=_F(NOEUD=nodes, NOM=name)`: the nodes in the order
 /// written, each once.
 pub fn crea_group_no_nodes(
