@@ -330,14 +330,23 @@ fn segm_droi_ordo_orders_the_impact_face_from_axis_to_edge() {
     assert_eq!(ordo.len(), 11, "5 SEG3: 11 nodes");
     assert_eq!(ordo[0], m.node_groups["A1"][0]);
     assert_eq!(*ordo.last().unwrap(), m.node_groups["B1"][0]);
-    assert!(ordo.windows(2).all(|w| m.coords[w[0]][0] < m.coords[w[1]][0]));
+    assert!(ordo
+        .windows(2)
+        .all(|w| m.coords[w[0]][0] < m.coords[w[1]][0]));
 
     let bad = format!(
         "{head}  _F(OPTION='SEGM_DROI_ORDO', NOM='ORDO', GROUP_NO=('FACE', 'A2'), GROUP_NO_ORIG='A1',\n\
              GROUP_NO_EXTR='B1', PRECISION=1.e-6, CRITERE='RELATIF'),))\nFIN()\n"
     );
-    let (code, out, _) = run("segm_droi_ordo_off", &bad, &root().join("med/sdnv103b.mmed"));
+    let (code, out, _) = run(
+        "segm_droi_ordo_off",
+        &bad,
+        &root().join("med/sdnv103b.mmed"),
+    );
     assert_eq!(code, 1, "{out}");
-    assert!(out.contains("SOUSTRUC_22") && out.contains("from the line"), "{out}");
+    assert!(
+        out.contains("SOUSTRUC_22") && out.contains("from the line"),
+        "{out}"
+    );
     assert!(out.contains("segm_droi_ordo_off.comm:5:"), "{out}");
 }

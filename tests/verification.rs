@@ -3280,3 +3280,41 @@ fn contact_thickness_is_taken_off_the_gap() {
         assert!(mess.contains(line), "{line} not in\n{mess}");
     }
 }
+
+/// MAILLE and NOEUD (cells and nodes by name, code_aster's older way) in
+/// COMPORTEMENT and OBSERVATION select what the groups select: the
+/// observation study with BAS, ZMAX and TOUT='OUI' written as the names of
+/// their cells and nodes passes the same closed-form checks.
+#[test]
+fn cells_and_nodes_by_name_in_comportement_and_observation() {
+    let quadratic = aster::medio::read_mesh(&dir().join("../studies/hexs8_beam1.mmed"), None)
+        .expect("observation's mesh");
+    // The study makes it linear first: the names are those of that mesh.
+    let mesh = aster::mesh::ops::quad_line(&quadratic, None).expect("QUAD_LINE");
+    let names = |prefix: char, ids: &[usize]| {
+        let quoted: Vec<String> = ids.iter().map(|i| format!("'{prefix}{}'", i + 1)).collect();
+        format!("({})", quoted.join(", "))
+    };
+    let bas = names('M', &mesh.cell_groups["BAS"]);
+    let zmax_cells = &mesh.cell_groups["ZMAX"];
+    let zmax = names('N', &mesh.nodes_of_cells(zmax_cells));
+    let volume: Vec<usize> = (0..mesh.ncells())
+        .filter(|&c| mesh.cells[c].kind.dim() == 3)
+        .collect();
+    let all = names('M', &volume);
+    let comportement = format!("DEFORMATION='PETIT', MAILLE={all}),");
+    let obs_cells = format!("NOM_CMP='SIZZ', MAILLE={bas},");
+    let obs_nodes = format!("NOM_CMP='DZ', NOEUD={zmax},");
+    let run = common::run_variant_edits(
+        &dir(),
+        "by_name_observation",
+        "observation",
+        "by_name",
+        &[
+            ("DEFORMATION='PETIT', TOUT='OUI'),", comportement.as_str()),
+            ("NOM_CMP='SIZZ', GROUP_MA='BAS',", obs_cells.as_str()),
+            ("NOM_CMP='DZ', GROUP_NO='ZMAX',", obs_nodes.as_str()),
+        ],
+    );
+    common::assert_all_ok(&run, "by_name.resu");
+}

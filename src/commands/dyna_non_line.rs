@@ -657,20 +657,23 @@ pub(crate) fn loads_of(
         .collect()
 }
 
-/// The cells of a location (TOUT / GROUP_MA; MAILLE is not supported).
+/// The cells of a location: GROUP_MA's then MAILLE's (by name), or None
+/// for TOUT / nothing given.
 fn location_cells(mesh: &Mesh, occ: &Args) -> Result<Option<Vec<usize>>, Diagnostic> {
-    if occ.given("MAILLE") {
-        return Err(occ.not_implemented("MAILLE", "use GROUP_MA"));
+    if !occ.has("GROUP_MA") && !occ.has("MAILLE") {
+        return Ok(None);
     }
+    let mut cells = Vec::new();
     if occ.has("GROUP_MA") {
         check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
-        let mut cells = Vec::new();
         for g in occ.texts("GROUP_MA") {
             cells.extend(mesh.cell_groups[g].iter().copied());
         }
-        return Ok(Some(cells));
     }
-    Ok(None)
+    for m in occ.texts("MAILLE") {
+        cells.push(super::post_args::cell_by_name(mesh, occ, "MAILLE", m)?);
+    }
+    Ok(Some(cells))
 }
 
 /// The COMPORTEMENT occurrences resolved to cells.
@@ -1114,27 +1117,23 @@ fn monitored(
         "VARI_ELGA" => SuiviField::VariElga,
         other => return Err(o.not_implemented("NOM_CHAM", &format!("NOM_CHAM='{other}'"))),
     };
-    if o.given("NOEUD") || o.given("MAILLE") {
-        return Err(o.not_implemented("NOEUD", "use GROUP_NO / GROUP_MA"));
-    }
     let nodal = matches!(
         field,
         SuiviField::Depl | SuiviField::Vite | SuiviField::Acce | SuiviField::ForcNoda
     );
     let entities: Vec<usize> = if nodal {
-        if o.has("GROUP_NO") {
+        if o.has("GROUP_NO") || o.has("NOEUD") {
             check_groups(mesh, o, "GROUP_NO", GroupKind::Nodes)?;
-            o.texts("GROUP_NO")
+            let mut nodes: Vec<usize> = o
+                .texts("GROUP_NO")
                 .iter()
                 .flat_map(|g| mesh.node_groups[*g].iter().copied())
-                .collect()
-        } else if o.has("GROUP_MA") {
-            check_groups(mesh, o, "GROUP_MA", GroupKind::Cells)?;
-            let cells: Vec<usize> = o
-                .texts("GROUP_MA")
-                .iter()
-                .flat_map(|g| mesh.cell_groups[*g].iter().copied())
                 .collect();
+            for n in o.texts("NOEUD") {
+                nodes.push(super::post_args::node_by_name(mesh, o, "NOEUD", n)?);
+            }
+            nodes
+        } else if let Some(cells) = location_cells(mesh, o)? {
             mesh.nodes_of_cells(&cells)
         } else {
             let cells: Vec<usize> = model.element_cells().map(|(c, _)| c).collect();
