@@ -508,11 +508,27 @@ fn impr_resu_med_round_trip() {
          IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(CHAM_GD=CH))\n",
     );
     assert!(e.contains("not implemented yet: IMPR_RESU/UNITE"), "{e}");
-    let e = run_err("IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=RESU, GROUP_NO='A'))\n");
+    // Part of a mesh: the fields are written whole, with an alarm (MED
+    // profiles are not built); the group must still exist.
+    let part = dir.join("part.med");
+    let _ = std::fs::remove_file(&part);
+    s.units.map.insert(82, part.clone());
+    run_in(
+        &mut s,
+        "IMPR_RESU(FORMAT='MED', UNITE=82, RESU=_F(RESULTAT=RESU, NOM_CHAM='DEPL',
+                                                   GROUP_NO='A', NUME_ORDRE=(1, 3)))\n",
+    )
+    .unwrap();
+    let whole = aster::medio::read_nodal_fields(&part, None).unwrap();
+    assert_eq!(whole.len(), 1);
+    assert_eq!(whole[0].steps, depl.steps, "the whole field, as without GROUP_NO");
     assert!(
-        e.contains("not implemented yet: IMPR_RESU/RESU/GROUP_NO"),
-        "{e}"
+        s.mess.contains("GROUP_NO=A: the fields are written on the whole mesh"),
+        "{}",
+        s.mess
     );
+    let e = run_err("IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=RESU, GROUP_NO='NOPE'))\n");
+    assert!(e.contains("IMPR_RESU/RESU/GROUP_NO") && e.contains("NOPE"), "{e}");
 }
 
 #[test]

@@ -140,16 +140,13 @@ fn exec(study: &mut Study, args: &Args, _result: Option<&str>) -> ExecResult {
 
 /// Keywords of a RESU occurrence the MED writer does not honour yet; they
 /// are refused so that a file is never silently different from the request.
-const MED_UNSUPPORTED: [&str; 8] = [
-    "GROUP_NO",
-    "NOEUD",
-    "GROUP_MA",
-    "MAILLE",
-    "VALE_MAX",
-    "VALE_MIN",
-    "BORNE_SUP",
-    "BORNE_INF",
-];
+/// Restrictions to part of the mesh: MED would store them with profiles,
+/// which the writer does not build. The whole fields are written instead,
+/// with an alarm: a superset of what was asked, every number right, where
+/// refusing would stop the study at its output after the run.
+const MED_WHOLE_MESH: [&str; 4] = ["GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE"];
+
+const MED_UNSUPPORTED: [&str; 4] = ["VALE_MAX", "VALE_MIN", "BORNE_SUP", "BORNE_INF"];
 
 /// What one IMPR_RESU puts in its MED file.
 #[derive(Default)]
@@ -185,6 +182,13 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
                 return Err(occ.not_implemented(k, "MED output of part of a mesh"));
             }
         }
+        for k in MED_WHOLE_MESH.into_iter().filter(|k| occ.has(k)) {
+            limits.push(format!(
+                "{k}={}: the fields are written on the whole mesh (MED profiles, which \
+                 would store part of a mesh, are not built)",
+                occ.texts(k).join(", ")
+            ));
+        }
         if occ.has("NOM_RESU_MED") {
             return Err(occ.not_implemented("NOM_RESU_MED", ""));
         }
@@ -202,6 +206,7 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
                 )
             })?;
             set_mesh(&mut out, occ, "RESULTAT", &res.mesh, mesh)?;
+            check_restriction(mesh, occ)?;
             let steps = select_steps(study, res, occ)?;
             result_fields(occ, rname, &steps, mesh, &mut out, &mut notes, &mut limits)?;
         } else if occ.has("CHAM_GD") {
@@ -214,6 +219,7 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
                 .map(|c| c.name.clone())
                 .unwrap_or_else(|| "MAILLAGE".to_string());
             set_mesh(&mut out, occ, "CHAM_GD", &mname, mesh)?;
+            check_restriction(mesh, occ)?;
             let name = occ
                 .texts("NOM_CHAM_MED")
                 .first()
@@ -272,6 +278,22 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
             .collect::<Vec<_>>()
             .join(", ")
     ));
+    Ok(())
+}
+
+/// The groups and names of a whole-mesh restriction (MED_WHOLE_MESH) must
+/// still exist in the mesh written: a misspelt group is an error, as in
+/// code_aster, even though the fields are written whole.
+fn check_restriction(mesh: &Mesh, occ: &Args) -> Result<(), Diagnostic> {
+    use super::mesh_args::{check_groups, GroupKind};
+    check_groups(mesh, occ, "GROUP_MA", GroupKind::Cells)?;
+    check_groups(mesh, occ, "GROUP_NO", GroupKind::Nodes)?;
+    for m in occ.texts("MAILLE") {
+        super::post_args::cell_by_name(mesh, occ, "MAILLE", m)?;
+    }
+    for n in occ.texts("NOEUD") {
+        super::post_args::node_by_name(mesh, occ, "NOEUD", n)?;
+    }
     Ok(())
 }
 
