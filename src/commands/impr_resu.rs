@@ -157,10 +157,7 @@ struct MedContent {
     cells: Vec<ElemField>,
 }
 
-/// The marker logged after a MED write. code_aster adds the fields of a
-/// later IMPR_RESU on the same unit to the file; aster does not yet, so a
-/// second write to the same unit is refused rather than silently replacing
-/// the first.
+/// The marker logged after a MED write.
 fn med_marker(unit: i64, path: &std::path::Path) -> String {
     format!(
         "    IMPR_RESU: MED file of unit {unit} written: {}",
@@ -244,15 +241,34 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
         ));
     };
     let marker = med_marker(unit, &path);
-    if study.mess.lines().any(|l| l == marker) {
-        return Err(args.not_implemented(
-            "UNITE",
-            &format!(
-                "adding fields to the MED file of unit {unit} written by an earlier IMPR_RESU; \
-                 give all the fields to one IMPR_RESU (several RESU occurrences) or use another UNITE"
-            ),
-        ));
-    }
+    let (nodal, cells) = match study.med_files.get(&unit) {
+        // A later IMPR_RESU on the unit: its fields join the file's.
+        Some(prev) if prev.mesh.coords == mesh.coords && prev.mesh.cells == mesh.cells => {
+            let nodal = merge_fields(prev.nodal.clone(), &out.nodal);
+            let cells = merge_fields(prev.cells.clone(), &out.cells);
+            let added = out.nodal.len() + out.cells.len();
+            study.log(format!(
+                "    IMPR_RESU: {added} field(s) added to the MED file of unit {unit} (written by an earlier IMPR_RESU)"
+            ));
+            (nodal, cells)
+        }
+        Some(prev) => {
+            return Err(args.not_implemented(
+                "UNITE",
+                &format!(
+                    "a second mesh ({}) in the MED file of unit {unit}, which holds mesh {}: \
+                     write it with another UNITE",
+                    mesh.name, prev.mesh.name
+                ),
+            ))
+        }
+        None => (out.nodal, out.cells),
+    };
+    let out = MedContent {
+        mesh: None,
+        nodal,
+        cells,
+    };
     medio::write_result_fields(&path, &mesh, &out.nodal, &out.cells)
         .map_err(|e| args.error("UNITE", e.to_string()))?;
     for n in notes {
@@ -278,7 +294,57 @@ fn med(study: &mut Study, args: &Args) -> Result<(), Diagnostic> {
             .collect::<Vec<_>>()
             .join(", ")
     ));
+    let written = crate::study::MedWritten {
+        mesh,
+        nodal: out.nodal,
+        cells: out.cells,
+    };
+    study.med_files.insert(unit, written);
     Ok(())
+}
+
+/// A MED field as the merge of two writes sees it.
+trait Stepped: Clone {
+    fn name(&self) -> &str;
+    fn steps_mut(&mut self) -> &mut Vec<FieldStep>;
+}
+
+impl Stepped for MedNodal {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn steps_mut(&mut self) -> &mut Vec<FieldStep> {
+        &mut self.steps
+    }
+}
+
+impl Stepped for ElemField {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn steps_mut(&mut self) -> &mut Vec<FieldStep> {
+        &mut self.steps
+    }
+}
+
+/// The fields of a file with `new` added: a new name is appended, the
+/// steps of a name already there join its steps (a step of the same
+/// NUME_ORDRE replaced), in NUME_ORDRE order.
+fn merge_fields<F: Stepped>(mut fields: Vec<F>, new: &[F]) -> Vec<F> {
+    for f in new {
+        match fields.iter_mut().find(|g| g.name() == f.name()) {
+            Some(g) => {
+                let steps = g.steps_mut();
+                for st in f.clone().steps_mut().drain(..) {
+                    steps.retain(|s| s.numdt != st.numdt);
+                    steps.push(st);
+                }
+                steps.sort_by_key(|s| s.numdt);
+            }
+            None => fields.push(f.clone()),
+        }
+    }
+    fields
 }
 
 /// The groups and names of a whole-mesh restriction (MED_WHOLE_MESH) must

@@ -46,6 +46,18 @@ pub struct Study {
     /// The first alarm logged under `alarm_exception`, which the runner
     /// turns into the error of the command that raised it.
     pub raised_alarm: Option<String>,
+    /// What each IMPR_RESU(FORMAT='MED') wrote, per logical unit: a later
+    /// IMPR_RESU on the same unit adds its fields to these and writes the
+    /// file again, as code_aster adds them to the open file.
+    pub med_files: BTreeMap<i64, MedWritten>,
+}
+
+/// The content of a MED file written by IMPR_RESU.
+#[derive(Debug, Clone)]
+pub struct MedWritten {
+    pub mesh: crate::mesh::Mesh,
+    pub nodal: Vec<crate::medio::NodalField>,
+    pub cells: Vec<crate::medio::ElemField>,
 }
 
 impl Study {
