@@ -343,9 +343,9 @@ fn elno_refusals_are_located() {
         (
             "elno_extrema",
             "T = POST_RELEVE_T(ACTION=_F(INTITULE='X', RESULTAT=RES, NOM_CHAM='SIEF_ELNO', \
-             OPERATION='EXTREMA'))",
-            "not implemented yet: POST_RELEVE_T/ACTION",
-            "EXTREMA of the field by element at nodes SIEF_ELNO",
+             GROUP_NO='INTER', OPERATION='EXTREMA'))",
+            "POST_RELEVE_T/ACTION/GROUP_NO",
+            "EXTREMA of the field by element at nodes SIEF_ELNO reads cells",
         ),
         (
             "elno_resultante",
@@ -483,4 +483,104 @@ fn vari_elno_plastic_in_one_cell() {
     assert_eq!(places(&rows, "V_MOY"), pairs(&[("N4", "-"), ("N3", "-")]));
     let h = header(&resu, "T");
     assert!(h.iter().any(|c| c == "V2"), "{h:?}");
+}
+
+/// OPERATION='EXTREMA' of a field by element at nodes (code_aster's
+/// `prexel`): over the cells and each cell's nodes. EPXX is 0.005 at every
+/// node of M2 (E1) and 0.0025 at every node of M3 (E2), to round-off: MAX
+/// and MAXI_ABS at a node of M2, MIN and MINI_ABS at a node of M3 (which
+/// node, the last bits decide); restricted to MAT2, all four are M3's
+/// 0.0025. SIXX = 5 everywhere. The table has code_aster's columns, the
+/// cell before the node.
+#[test]
+fn elno_extrema_follow_cells_then_their_nodes() {
+    let post = "T = POST_RELEVE_T(ACTION=(\n\
+        _F(INTITULE='EPS', RESULTAT=RES, NOM_CHAM='EPSI_ELNO', INST=1., TOUT='OUI', \
+           NOM_CMP='EPXX', OPERATION='EXTREMA'),\n\
+        _F(INTITULE='EPS2', RESULTAT=RES, NOM_CHAM='EPSI_ELNO', INST=1., GROUP_MA='MAT2', \
+           NOM_CMP='EPXX', OPERATION='EXTREMA'),\n\
+        _F(INTITULE='SIG', RESULTAT=RES, NOM_CHAM='SIEF_ELNO', INST=1., \
+           NOM_CMP=('SIXX',), OPERATION='EXTREMA'),))\n\
+        IMPR_TABLE(TABLE=T, FORMAT_R='E24.16')\n\
+        TEST_TABLE(TABLE=T, NOM_PARA='VALE', FILTRE=(_F(NOM_PARA='INTITULE', VALE_K='EPS'), \
+           _F(NOM_PARA='EXTREMA', VALE_K='MAX')), VALE_CALC=0.005, REFERENCE='ANALYTIQUE', \
+           VALE_REFE=0.005, PRECISION=1.E-9)\n\
+        TEST_TABLE(TABLE=T, NOM_PARA='VALE', FILTRE=(_F(NOM_PARA='INTITULE', VALE_K='EPS'), \
+           _F(NOM_PARA='EXTREMA', VALE_K='MIN')), VALE_CALC=0.0025, REFERENCE='ANALYTIQUE', \
+           VALE_REFE=0.0025, PRECISION=1.E-9)\n";
+    let resu = run("elno_extrema_ok", &mesh_2d(), &study(2, post));
+    assert_eq!(analytic_oks(&resu), 2);
+    assert_eq!(
+        header(&resu, "T"),
+        [
+            "INTITULE",
+            "RESU",
+            "NOM_CHAM",
+            "NUME_ORDRE",
+            "INST",
+            "EXTREMA",
+            "MAILLE",
+            "NOEUD",
+            "CMP",
+            "VALE"
+        ]
+    );
+    let rows = common::printed_table(&resu, "T");
+    let at = |it: &str| -> Vec<(String, String, String, f64)> {
+        rows.iter()
+            .filter(|r| r["INTITULE"] == it)
+            .map(|r| {
+                (
+                    r["EXTREMA"].clone(),
+                    r["MAILLE"].clone(),
+                    r["NOEUD"].clone(),
+                    num(r, "VALE"),
+                )
+            })
+            .collect()
+    };
+    let expect = |v: &[(&str, &str, &str, f64)]| -> Vec<(String, String, String, f64)> {
+        v.iter()
+            .map(|(a, b, c, d)| (a.to_string(), b.to_string(), c.to_string(), *d))
+            .collect()
+    };
+    // The node: one of the cell's (M2: N1 N2 N5 N4, M3: N2 N3 N6 N5).
+    let cell_nodes = |m: &str| match m {
+        "M2" => ["N1", "N2", "N5", "N4"],
+        _ => ["N2", "N3", "N6", "N5"],
+    };
+    let close = |got: Vec<(String, String, String, f64)>,
+                 want: Vec<(String, String, String, f64)>| {
+        assert_eq!(got.len(), want.len());
+        for (g, w) in got.iter().zip(&want) {
+            assert_eq!((&g.0, &g.1), (&w.0, &w.1), "{got:?}");
+            assert!(cell_nodes(&g.1).contains(&g.2.as_str()), "{got:?}");
+            assert!((g.3 - w.3).abs() <= 1e-12 * w.3.abs(), "{got:?}");
+        }
+    };
+    close(
+        at("EPS"),
+        expect(&[
+            ("MAX", "M2", "N1", EPS1),
+            ("MIN", "M3", "N2", EPS2),
+            ("MAXI_ABS", "M2", "N1", EPS1),
+            ("MINI_ABS", "M3", "N2", EPS2),
+        ]),
+    );
+    close(
+        at("EPS2"),
+        expect(&[
+            ("MAX", "M3", "N2", EPS2),
+            ("MIN", "M3", "N2", EPS2),
+            ("MAXI_ABS", "M3", "N2", EPS2),
+            ("MINI_ABS", "M3", "N2", EPS2),
+        ]),
+    );
+    let sig = at("SIG");
+    assert_eq!(sig.len(), 4);
+    assert!(
+        sig.iter().all(|r| cell_nodes(&r.1).contains(&r.2.as_str())),
+        "{sig:?}"
+    );
+    assert!(sig.iter().all(|r| (r.3 - SIG).abs() < 1e-9), "{sig:?}");
 }

@@ -155,7 +155,8 @@ const LEADING: [(&str, ColumnType); 14] = [
     ("EXTREMA", ColumnType::Text(8)),
     ("NOEUD", ColumnType::Text(8)),
     // A field by element at nodes with MOYE_NOEUD='NON' (code_aster's
-    // `rvtec0`): the cell of the row, right after its node.
+    // `rvtec0`): the cell of the row, right after its node (before it in
+    // EXTREMA of such a field, where the table is built).
     ("MAILLE", ColumnType::Text(8)),
     ("CMP", ColumnType::Text(8)),
     ("VALE", ColumnType::Real),
@@ -227,7 +228,25 @@ fn exec(study: &mut Study, args: &Args, result: Option<&str>) -> ExecResult {
     } else {
         concept_title(result.unwrap_or(""), "table_sdaster")
     };
-    for (name, ty) in LEADING {
+    // EXTREMA of a field by element at nodes puts the cell before the node
+    // (`rvmima`), an extraction with MOYE_NOEUD='NON' after it (`rvtec0`):
+    // the first row holding both decides, as the first row written fixes
+    // code_aster's columns.
+    let mut leading = LEADING;
+    let first_of = |r: &Row, a: &str, b: &str| {
+        let pa = r.iter().position(|(n, _)| n == a)?;
+        let pb = r.iter().position(|(n, _)| n == b)?;
+        Some(pa < pb)
+    };
+    if rows.iter().find_map(|r| first_of(r, "MAILLE", "NOEUD")) == Some(true) {
+        let node = leading.iter().position(|(n, _)| *n == "NOEUD").unwrap_or(0);
+        let cell = leading
+            .iter()
+            .position(|(n, _)| *n == "MAILLE")
+            .unwrap_or(0);
+        leading.swap(node, cell);
+    }
+    for (name, ty) in leading {
         if rows.iter().any(|r| r.iter().any(|(n, _)| n == name)) {
             table
                 .add_column(name, ty)
@@ -477,11 +496,11 @@ fn elno_extraction(
 ) -> Result<(), Diagnostic> {
     let nom_cham = occ.text("NOM_CHAM").unwrap_or_default();
     let noeu = format!("{}_NOEU", nom_cham.trim_end_matches("_ELNO"));
+    if op == Operation::Extrema {
+        return elno_extrema(study, occ, rname, res, mesh, intitule, rows);
+    }
     if op != Operation::Extraction {
         let what = match op {
-            Operation::Extrema => format!(
-                "EXTREMA of the field by element at nodes {nom_cham} (code_aster's `rvmima`/`prexel`, columns MAILLE, NOEUD, CMP, VALE) is not built; EXTREMA of the nodal field {noeu} (CALC_CHAMP) gives the extrema of its means at the nodes, TEST_RESU TYPE_TEST='MAX'/'MIN' those of {nom_cham} itself"
-            ),
             Operation::MeanArith => format!(
                 "MOYENNE_ARITH of the field by element at nodes {nom_cham} is not built; MOYENNE_ARITH of the nodal field {noeu} (CALC_CHAMP) averages its means at the nodes"
             ),
@@ -629,6 +648,131 @@ fn elno_extraction(
                 }
                 rows.push(row);
             }
+        }
+    }
+    Ok(())
+}
+
+/// OPERATION='EXTREMA' of a field by element at nodes, as code_aster's
+/// `rvmima`/`prexel`: per step, the largest and smallest value and the
+/// largest and smallest absolute value over the components (NOM_CMP's, in
+/// their order, else the field's), the cells (GROUP_MA/MAILLE, else every
+/// cell with values) and each cell's nodes, the first met winning a tie;
+/// four rows MAX, MIN, MAXI_ABS, MINI_ABS with the cell, the node and the
+/// component. It reads cells, not nodes: GROUP_NO/NOEUD is an error
+/// (POSTRELE_66), and so is a selection with no value (POSTRELE_19).
+fn elno_extrema(
+    study: &Study,
+    occ: &Args,
+    rname: &str,
+    res: &crate::result::EvolNoli,
+    mesh: &Mesh,
+    intitule: &str,
+    rows: &mut Vec<Row>,
+) -> Result<(), Diagnostic> {
+    let nom_cham = occ.text("NOM_CHAM").unwrap_or_default();
+    if let Some(k) = ["GROUP_NO", "NOEUD"].into_iter().find(|k| occ.has(k)) {
+        return Err(occ.error(
+            k,
+            format!("EXTREMA of the field by element at nodes {nom_cham} reads cells: give GROUP_MA, MAILLE or TOUT, not {k} (code_aster's POSTRELE_66)"),
+        ));
+    }
+    let cells: Vec<usize> = if occ.has("GROUP_MA") || occ.has("MAILLE") {
+        super::model_args::select_cells(mesh, occ)?
+    } else {
+        (0..mesh.ncells()).collect()
+    };
+    struct Best {
+        value: f64,
+        cell: usize,
+        node: usize,
+        cmp: usize,
+    }
+    for step in select_steps(study, res, occ)? {
+        let field = super::post_args::step_elno(step, nom_cham, occ, "NOM_CHAM", rname)?;
+        let cmps: Vec<(String, usize)> = if occ.has("NOM_CMP") {
+            occ.texts("NOM_CMP")
+                .into_iter()
+                .map(|c| {
+                    super::post_args::component_index(
+                        &field.components,
+                        c,
+                        occ,
+                        "NOM_CMP",
+                        nom_cham,
+                    )
+                    .map(|i| (c.to_string(), i))
+                })
+                .collect::<Result<_, _>>()?
+        } else {
+            field
+                .components
+                .iter()
+                .enumerate()
+                .map(|(i, c)| (c.clone(), i))
+                .collect()
+        };
+        let ncmp = field.ncmp();
+        // MAX, MIN, MAXI_ABS, MINI_ABS: the quantity compared and whether a
+        // larger one wins; strict, so the first met keeps a tie.
+        let rules: [(bool, bool); 4] = [(false, true), (false, false), (true, true), (true, false)];
+        let mut best: [Option<Best>; 4] = [None, None, None, None];
+        for (k, (_, i)) in cmps.iter().enumerate() {
+            for &c in &cells {
+                let nodes = &mesh.cells[c].nodes;
+                if field.npg(c) != nodes.len() {
+                    continue;
+                }
+                let vals = field.cell(c);
+                for (a, &n) in nodes.iter().enumerate() {
+                    let v = vals[a * ncmp + i];
+                    if v.is_nan() {
+                        continue;
+                    }
+                    for (slot, &(abs, larger)) in best.iter_mut().zip(&rules) {
+                        let x = if abs { v.abs() } else { v };
+                        let better = match slot {
+                            None => true,
+                            Some(b) => (larger && x > b.value) || (!larger && x < b.value),
+                        };
+                        if better {
+                            *slot = Some(Best {
+                                value: x,
+                                cell: c,
+                                node: n,
+                                cmp: k,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        for (name, slot) in ["MAX", "MIN", "MAXI_ABS", "MINI_ABS"].iter().zip(best) {
+            let Some(b) = slot else {
+                return Err(occ.error(
+                    "NOM_CHAM",
+                    format!(
+                        "EXTREMA of {nom_cham} at NUME_ORDRE {}: no value on the {} selected cell(s) (code_aster's POSTRELE_19)",
+                        step.nume_ordre,
+                        cells.len()
+                    ),
+                ));
+            };
+            rows.push(vec![
+                ("INTITULE".to_string(), Cell::Text(intitule.to_string())),
+                ("RESU".to_string(), Cell::Text(rname.to_string())),
+                ("NOM_CHAM".to_string(), Cell::Text(nom_cham.to_string())),
+                ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre as i64)),
+                ("INST".to_string(), Cell::Real(step.inst)),
+                ("EXTREMA".to_string(), Cell::Text(name.to_string())),
+                (
+                    "MAILLE".to_string(),
+                    Cell::Text(super::post_args::cell_name(b.cell)),
+                ),
+                ("NOEUD".to_string(), Cell::Text(node_name(b.node))),
+                ("CMP".to_string(), Cell::Text(cmps[b.cmp].0.clone())),
+                ("VALE".to_string(), Cell::Real(b.value)),
+            ]);
         }
     }
     Ok(())
