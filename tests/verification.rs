@@ -1029,6 +1029,23 @@ fn plane_strain_explicit_wave_speed() {
     run_study("dplan_wave_explicit");
 }
 
+/// A column preloaded by gravity (STAT_NON_LINE) and continued in explicit
+/// under the same gravity stays at rest (probe15): the runaway test of the
+/// explicit loop measures the created energy against the internal energy
+/// of the initial state too, where it measured it against the round-off
+/// TRAV_EXT of a model at rest and stopped the run as unstable.
+#[test]
+fn explicit_continuation_of_a_preloaded_state_stays_at_rest() {
+    run_study("explicit_preload_rest");
+    let mess = std::fs::read_to_string(
+        Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join("verif_explicit_preload_rest")
+            .join("explicit_preload_rest.mess"),
+    )
+    .unwrap();
+    assert!(!mess.contains("unstable"), "{mess}");
+}
+
 /// A foundation cell whose every node is held is left out of the explicit
 /// critical step (probe s8x: it set 3.95e-7 s where the moving block
 /// allows 1.97e-6 s, so STOP_CFL refused a list of 1e-6 s): the list runs,
