@@ -1033,7 +1033,9 @@ fn plane_strain_explicit_wave_speed() {
 /// under the same gravity stays at rest (probe15): the runaway test of the
 /// explicit loop measures the created energy against the internal energy
 /// of the initial state too, where it measured it against the round-off
-/// TRAV_EXT of a model at rest and stopped the run as unstable.
+/// TRAV_EXT of a model at rest and stopped the run as unstable. The same
+/// column in HEXA20 starts out of balance (the explicit run's lumped
+/// gravity against the preload's consistent one), which the .mess says.
 #[test]
 fn explicit_continuation_of_a_preloaded_state_stays_at_rest() {
     run_study("explicit_preload_rest");
@@ -1044,6 +1046,14 @@ fn explicit_continuation_of_a_preloaded_state_stays_at_rest() {
     )
     .unwrap();
     assert!(!mess.contains("unstable"), "{mess}");
+    // The HEXA20 column, balanced under the consistent gravity, gets the
+    // alarm on the lumped one; the HEXA8 column (both loads equal) not.
+    let alarm = "PESANTEUR is applied as the lumped mass times g";
+    assert_eq!(mess.matches(alarm).count(), 1, "{mess}");
+    assert!(
+        mess.find(alarm) > mess.find("DYNQ = DYNA_NON_LINE"),
+        "{mess}"
+    );
 }
 
 /// A foundation cell whose every node is held is left out of the explicit
