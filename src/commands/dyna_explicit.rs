@@ -80,7 +80,7 @@ pub(crate) fn exec(
             ));
         }
     }
-    if args.has("CONVERGENCE") || args.has("NEWTON") || args.given("RECH_LINEAIRE") {
+    if args.given("CONVERGENCE") || args.given("NEWTON") || args.given("RECH_LINEAIRE") {
         notes.push("CONVERGENCE, NEWTON and RECH_LINEAIRE have no effect with an explicit scheme: every step is converged by definition (as code_aster)".into());
     }
     if scheme.stability_factor().is_none() {
