@@ -1029,6 +1029,22 @@ fn plane_strain_explicit_wave_speed() {
     run_study("dplan_wave_explicit");
 }
 
+/// Quadratic cells (PENTA15, TETRA10, QUAD8 AXIS, TRIA6 D_PLAN) falling
+/// from rest under PESANTEUR with the lumped mass, DIFF_CENT and TCHAMWA:
+/// the kinetic energy, the work of gravity and the displacement of the
+/// rigid fall with the body's mass, no stress (probe15).
+#[test]
+fn explicit_free_fall_of_quadratic_cells() {
+    run_study("explicit_free_fall_quadratic");
+}
+
+/// TCHAMWA's energy loss on a one-dof oscillator against its spectral
+/// radius, DIFF_CENT's bounded balance error and amplitude (probe15).
+#[test]
+fn explicit_tchamwa_dissipation_is_its_spectral_radius() {
+    run_study("explicit_tchamwa_dissipation");
+}
+
 /// A column preloaded by gravity (STAT_NON_LINE) and continued in explicit
 /// under the same gravity stays at rest (probe15): the runaway test of the
 /// explicit loop measures the created energy against the internal energy
