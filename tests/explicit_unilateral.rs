@@ -284,3 +284,21 @@ fn line_search_is_accepted_without_effect_in_explicit() {
         "{mess}"
     );
 }
+
+/// Without CONVERGENCE, NEWTON or RECH_LINEAIRE in the command file the
+/// note is not given (probe15: it was given in every explicit run, the
+/// catalogue's defaults filling CONVERGENCE and NEWTON).
+#[test]
+fn no_note_on_convergence_keywords_the_file_does_not_write() {
+    let run = run_variant(
+        "plain",
+        "SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT'",
+        "SCHEMA_TEMPS=_F(SCHEMA='DIFF_CENT'",
+    );
+    assert_eq!(run.code, 0, "{}", run.term);
+    let mess = run.file("plain.mess");
+    assert!(
+        !mess.contains("have no effect with an explicit scheme"),
+        "{mess}"
+    );
+}

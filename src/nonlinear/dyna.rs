@@ -7,7 +7,7 @@ use std::collections::{HashMap, HashSet};
 use std::time::Instant;
 
 use super::contact::DiscreteContact;
-use super::energy::EnergyBalance;
+use super::energy::{EnergyBalance, GIVEN_MEANING};
 use super::fields;
 use super::newton::{ContactTerm, Engine, IterationRecord, State, StepFailure, StepReport};
 use super::observation::Observer;
@@ -1185,7 +1185,7 @@ fn contact_energy_alarm(energy: &EnergyBalance, t: f64, gamma: f64) -> Option<St
         "a scheme without numerical dissipation (NEWMARK BETA = 1/4, GAMMA = 1/2) creates energy when the contact stops a node from within a step, and the kinetic energy keeps it once the bodies separate; HHT (ALPHA < 0) or NEWMARK with GAMMA > 1/2 dissipates it".to_string()
     };
     Some(format!(
-        "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of the kinetic energy at the start and |TRAV_EXT|) and the model holds {surplus:.4e} more than it was given ({:.2} %: ENER_CIN + ENER_TOT + TRAV_AMOR - TRAV_EXT): {why}; this alarm is given once",
+        "  alarm: at t = {t:e} the contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = {GIVEN_MEANING}) and the model holds {surplus:.4e} more than it was given ({:.2} %: ENER_CIN + ENER_TOT + TRAV_AMOR - TRAV_EXT): {why}; this alarm is given once",
         -energy.contact,
         energy.contact,
         -100.0 * energy.contact / given,

@@ -44,7 +44,7 @@ use super::assembly::{Assembler, CellFailure, PARALLEL_MIN_ELEMENTS};
 use super::damping::Rayleigh;
 use super::dofs::{DofNumbering, NONE};
 use super::dyna::{archive, store_observations, Growth, RunSummary, Stopped, TimeLoop};
-use super::energy::EnergyBalance;
+use super::energy::{EnergyBalance, GIVEN_MEANING};
 use super::newton::Engine;
 use super::observation::{Observer, TABLE_NAME as OBSERVATION_TABLE};
 use super::team::{with_team, Parts, Team};
@@ -905,7 +905,7 @@ pub fn contact_energy_alarm(energy: &EnergyBalance, t: f64, dt: f64, w2c: f64) -
     let w = w2c.sqrt();
     let wdt = w * dt;
     Some(format!(
-        "  alarm: at t = {t:e} the penalised contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = the larger of the kinetic energy at the start and |TRAV_EXT|): energy created by the penalty switched on and off at the step instants (w_pen dt = {wdt:.3}; ENER_CIN is that much too high once the bodies separate, and DISS_SCH does not show it). Take a step of at most {:.4e} s (w_pen dt <= {PENALTY_WDT_MAX}) or lower E_N (or COEF_PENA) by a factor {:.3}; this alarm is given once",
+        "  alarm: at t = {t:e} the penalised contact has returned {:.4e} more energy than it absorbed (TRAV_LIAI = {:.4e}, {:.2} % of the energy given to the model, {given:.4e} = {GIVEN_MEANING}): energy created by the penalty switched on and off at the step instants (w_pen dt = {wdt:.3}; ENER_CIN is that much too high once the bodies separate, and DISS_SCH does not show it). Take a step of at most {:.4e} s (w_pen dt <= {PENALTY_WDT_MAX}) or lower E_N (or COEF_PENA) by a factor {:.3}; this alarm is given once",
         -energy.contact,
         energy.contact,
         -100.0 * energy.contact / given,
@@ -925,11 +925,11 @@ const RUNAWAY: f64 = 100.0;
 /// anything overflowed. The balance error DISS_SCH of a stable explicit
 /// run is a small fraction of the energy given (the trapezoid of the
 /// works against the scheme's own rule, TCHAMWA's dissipation); energy
-/// created beyond a hundred times the larger of the kinetic energy at the
-/// start and |TRAV_EXT| is a runaway (this call's values: a continuation
-/// is judged on its own). Not checked when the model was given no
-/// energy (a release from a prestressed state with neither velocity nor
-/// load: its stored energy is not in the balance).
+/// created beyond a hundred times the energy given (the largest of the
+/// kinetic energy at the start, |TRAV_EXT| and the internal energy of the
+/// initial state, [`EnergyBalance::given`]) is a runaway (this call's
+/// values: a continuation is judged on its own). Not checked when the
+/// model holds and is given no energy at all (u₀ = v₀ = 0 and no load).
 fn runaway(energy: &EnergyBalance) -> Option<String> {
     if let Some(bad) = energy.not_finite() {
         return Some(format!(
@@ -941,7 +941,7 @@ fn runaway(energy: &EnergyBalance) -> Option<String> {
     let given = energy.given();
     (given > 0.0 && created > RUNAWAY * given).then(|| {
         format!(
-            "the explicit scheme is unstable: it has created {created:.4e} of energy (DISS_SCH = {:.4e}, kinetic energy {:.4e}), more than {RUNAWAY} times the energy given to the model ({given:.4e}, the larger of the kinetic energy at the start and |TRAV_EXT|); the step is above the stable one (STOP_CFL='NON' lets such a step run) or a cell has degenerated",
+            "the explicit scheme is unstable: it has created {created:.4e} of energy (DISS_SCH = {:.4e}, kinetic energy {:.4e}), more than {RUNAWAY} times the energy given to the model ({given:.4e}, {GIVEN_MEANING}); the step is above the stable one (STOP_CFL='NON' lets such a step run) or a cell has degenerated",
             v[6], energy.kinetic
         )
     })
