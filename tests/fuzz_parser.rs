@@ -303,7 +303,8 @@ fn real() -> impl Strategy<Value = f64> {
 fn target() -> impl Strategy<Value = Target> {
     prop_oneof![
         3 => ident().prop_map(Target::Name),
-        1 => prop::collection::vec(ident(), 2..4).prop_map(Target::Tuple),
+        1 => prop::collection::vec(ident(), 2..4)
+            .prop_map(|v| Target::Tuple(v.into_iter().map(Target::Name).collect())),
     ]
 }
 
@@ -826,8 +827,18 @@ impl Printer<'_> {
         match t {
             Target::Name(n) => self.out.push_str(&n.name),
             Target::Tuple(v) => {
-                let names: Vec<&str> = v.iter().map(|n| n.name.as_str()).collect();
-                self.out.push_str(&names.join(", "));
+                for (k, item) in v.iter().enumerate() {
+                    if k > 0 {
+                        self.out.push_str(", ");
+                    }
+                    if matches!(item, Target::Tuple(_)) {
+                        self.out.push('(');
+                        self.target(item);
+                        self.out.push(')');
+                    } else {
+                        self.target(item);
+                    }
+                }
                 if v.len() == 1 {
                     self.out.push(',');
                 }
@@ -846,7 +857,9 @@ impl Printer<'_> {
                 self.expr(value, false);
             }
             StmtKind::Unpack { targets, value } => {
-                self.target(&Target::Tuple(targets.clone()));
+                self.target(&Target::Tuple(
+                    targets.iter().cloned().map(Target::Name).collect(),
+                ));
                 self.out.push_str(" = ");
                 self.expr(value, false);
             }
@@ -1028,7 +1041,7 @@ fn strip_ident(i: &mut Ident) {
 fn strip_target(t: &mut Target) {
     match t {
         Target::Name(n) => strip_ident(n),
-        Target::Tuple(v) => v.iter_mut().for_each(strip_ident),
+        Target::Tuple(v) => v.iter_mut().for_each(strip_target),
     }
 }
 

@@ -95,9 +95,8 @@ fn contract(src: &Source, stmts: &[Stmt], defined: &mut Vec<String>) {
             );
         }
     };
-    let bind = |t: &Target, defined: &mut Vec<String>| match t {
-        Target::Name(n) => defined.push(n.name.clone()),
-        Target::Tuple(v) => defined.extend(v.iter().map(|n| n.name.clone())),
+    let bind = |t: &Target, defined: &mut Vec<String>| {
+        defined.extend(t.names().into_iter().map(|n| n.name.clone()))
     };
     for stmt in stmts {
         match &stmt.kind {
@@ -175,9 +174,12 @@ fn names(e: &Expr, out: &mut Vec<(String, Span)>) {
             }
             let bound: Vec<String> = generators
                 .iter()
-                .flat_map(|g| match &g.target {
-                    Target::Name(n) => vec![n.name.clone()],
-                    Target::Tuple(v) => v.iter().map(|n| n.name.clone()).collect(),
+                .flat_map(|g| {
+                    g.target
+                        .names()
+                        .into_iter()
+                        .map(|n| n.name.clone())
+                        .collect::<Vec<_>>()
                 })
                 .collect();
             out.extend(inner.into_iter().filter(|(n, _)| !bound.contains(n)));
@@ -349,12 +351,16 @@ fn target(t: &Target) -> String {
         Target::Name(n) => n.name.clone(),
         // A one-name tuple shows its comma (`for f, in L`), as Python
         // writes the target that unpacks one-item sequences.
-        Target::Tuple(v) if v.len() == 1 => format!("{},", v[0].name),
-        Target::Tuple(v) => v
-            .iter()
-            .map(|n| n.name.as_str())
-            .collect::<Vec<_>>()
-            .join(", "),
+        Target::Tuple(v) if v.len() == 1 => format!("{},", target_item(&v[0])),
+        Target::Tuple(v) => v.iter().map(target_item).collect::<Vec<_>>().join(", "),
+    }
+}
+
+/// An item of a tuple target: a nested tuple in parentheses.
+fn target_item(t: &Target) -> String {
+    match t {
+        Target::Name(n) => n.name.clone(),
+        Target::Tuple(_) => format!("({})", target(t)),
     }
 }
 

@@ -118,14 +118,16 @@ L = DEFI_LIST_REEL(VALE=sorted_list) if 0 else DEFI_LIST_REEL(VALE=(1., 2.))
     );
     let text = &text[..text.rfind("L = DEFI_LIST_REEL(VALE=sorted").unwrap()];
     assert_eq!(lists(text), vec![vec![1.2, 3.4], vec![0.0, 2.0]]);
-    // enumerate and zip, in the for that uses them (targets are flat
-    // names: `for i, (a, b) in ...` is a syntax error).
+    // enumerate and zip, in the for that uses them, with a nested target
+    // (`for i, (a, b) in ...`, a syntax error until probe13).
     let text = "\
 for i, (a, b) in enumerate(zip((1., 2.), (10., 20.))):
     L = DEFI_LIST_REEL(VALE=(i, a, b))
 ";
-    let e = check(&format!("DEBUT()\n{text}\nFIN()\n")).unwrap_err();
-    assert!(e[0].message.starts_with("syntax error"), "{}", e[0].message);
+    assert_eq!(
+        lists(text),
+        vec![vec![0.0, 1.0, 10.0], vec![1.0, 2.0, 20.0]]
+    );
     let text = "\
 for i, ab in enumerate(zip((1., 2.), (10., 20.))):
     a, b = ab

@@ -150,6 +150,37 @@ fn unilateral_tetra_bar_stops_on_the_floor() {
     run_study("unil_tetra_drop");
 }
 
+/// LIAISON_UNIL in STAT_NON_LINE with VMIS_ISOT_LINE (probe13): a column
+/// (HEXA8, TETRA4) driven by its top onto a stop at a gap, pressed past
+/// yield, pulled off it (stress-free, shorter by the plastic strain) and
+/// pressed again: the stop's reaction (POST_RELEVE_T RESULTANTE of
+/// REAC_NODA), the bottom DZ, the lateral DX, SIZZ and the cumulated
+/// plastic strain against the uniaxial bilinear law by hand, 1e-6.
+#[test]
+fn unilateral_stop_under_a_plastic_column() {
+    run_study("unil_plastic_stop");
+}
+
+/// LIAISON_UNIL under a body force (probe13): a column hanging from its
+/// top under PESANTEUR ramped by FONC_MULT, its bottom above a stop, both
+/// algorithms (penalty 1e12), HEXA8 and TETRA4: open, the top carries
+/// the weight; closed, the stop carries EA (d - h) / L; at a zero gap the
+/// fixed-fixed half weight.
+#[test]
+fn unilateral_stop_under_a_hanging_column() {
+    run_study("unil_hanging_stop");
+}
+
+/// LIAISON_UNIL with HHT (probe13): a rigid QUAD4 stopped inside a step,
+/// NEWMARK, HHT (ALPHA = -0.3) with MODI_EQUI 'OUI' and 'NON': the
+/// velocity of the stopped nodes is the scheme's rule
+/// gamma/(beta dt) du + (1 - gamma/beta) v, the released motion the free
+/// prediction, and REAC_NODA (the force on the body) m a in every scheme.
+#[test]
+fn unilateral_drop_with_hht() {
+    run_study("unil_hht_drop");
+}
+
 /// A node name the mesh does not have, in a LIAISON_UNIL zone, is an
 /// error located on its keyword and line that gives the valid names.
 #[test]

@@ -20,7 +20,7 @@
 
 use std::collections::HashSet;
 
-use crate::lang::ast::{Expr, ExprKind, Ident, Program, Stmt, StmtKind, Target};
+use crate::lang::ast::{Expr, ExprKind, Ident, Program, Stmt, StmtKind};
 
 /// The program with every hoistable inner command call moved into a
 /// statement of its own. `is_command` says which called names are commands.
@@ -279,12 +279,7 @@ fn bound_names(stmts: &[Stmt], out: &mut HashSet<String>) {
                 out.extend(targets.iter().map(|t| t.name.clone()));
             }
             StmtKind::For { target, body, .. } => {
-                match target {
-                    Target::Name(i) => {
-                        out.insert(i.name.clone());
-                    }
-                    Target::Tuple(ids) => out.extend(ids.iter().map(|t| t.name.clone())),
-                }
+                out.extend(target.names().into_iter().map(|t| t.name.clone()));
                 bound_names(body, out);
             }
             StmtKind::If { branches, orelse } => {

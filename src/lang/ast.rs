@@ -30,8 +30,19 @@ pub struct Stmt {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Target {
     Name(Ident),
-    /// `a, b` (also `a,`): the item is unpacked.
-    Tuple(Vec<Ident>),
+    /// `a, b` (also `a,`): the item is unpacked; a loop's items may
+    /// themselves be tuples (`for a, (b, c) in ...`).
+    Tuple(Vec<Target>),
+}
+
+impl Target {
+    /// The names the target binds, in order (nested tuples flattened).
+    pub fn names(&self) -> Vec<&Ident> {
+        match self {
+            Target::Name(n) => vec![n],
+            Target::Tuple(v) => v.iter().flat_map(|t| t.names()).collect(),
+        }
+    }
 }
 
 /// One `import` item: `math`, `numpy as np`, `code_aster.Commands`.

@@ -443,26 +443,52 @@ fn lower_targets(pair: Pair<'_, Rule>) -> Result<Target, Diagnostic> {
     Ok(if names.len() == 1 && !comma {
         Target::Name(names.pop().expect("one name"))
     } else {
-        Target::Tuple(names)
+        Target::Tuple(names.into_iter().map(Target::Name).collect())
     })
 }
 
 /// A `for` or comprehension target: Python reads `(a, b)` as `a, b` and
 /// `(a)` as `a`, while a bracketed list `[a]` always unpacks (a one-name
-/// list target takes a one-item sequence apart).
+/// list target takes a one-item sequence apart); items nest
+/// (`for a, (b, c) in ...`).
 fn lower_loop_targets(pair: Pair<'_, Rule>) -> Result<Target, Diagnostic> {
-    let mut bracket = false;
-    let mut names = None;
+    let items = pair
+        .into_inner()
+        .next()
+        .expect("loop_targets holds loop_items");
+    lower_loop_items(items)
+}
+
+fn lower_loop_items(pair: Pair<'_, Rule>) -> Result<Target, Diagnostic> {
+    let mut items = Vec::new();
+    let mut comma = false;
     for p in pair.into_inner() {
         match p.as_rule() {
-            Rule::targets => names = Some(lower_targets(p)?),
+            Rule::loop_item => items.push(lower_loop_item(p)?),
+            _ => comma = true,
+        }
+    }
+    Ok(if items.len() == 1 && !comma {
+        items.pop().expect("one item")
+    } else {
+        Target::Tuple(items)
+    })
+}
+
+fn lower_loop_item(pair: Pair<'_, Rule>) -> Result<Target, Diagnostic> {
+    let mut bracket = false;
+    let mut inner = None;
+    for p in pair.into_inner() {
+        match p.as_rule() {
+            Rule::ident => return Ok(Target::Name(lower_ident(p)?)),
             Rule::lbrack => bracket = true,
+            Rule::loop_items => inner = Some(lower_loop_items(p)?),
             _ => {}
         }
     }
-    let names = names.expect("loop_targets holds targets");
-    Ok(match names {
-        Target::Name(n) if bracket => Target::Tuple(vec![n]),
+    let inner = inner.expect("a bracketed loop item holds loop_items");
+    Ok(match inner {
+        Target::Name(n) if bracket => Target::Tuple(vec![Target::Name(n)]),
         t => t,
     })
 }
@@ -478,7 +504,16 @@ fn lower_stmt(pair: Pair<'_, Rule>) -> Result<Stmt, Diagnostic> {
             let value = lower_expr_list(it.next().expect("assign value"))?.expr;
             match target {
                 Target::Name(target) => StmtKind::Assign { target, value },
-                Target::Tuple(targets) => StmtKind::Unpack { targets, value },
+                Target::Tuple(targets) => StmtKind::Unpack {
+                    targets: targets
+                        .into_iter()
+                        .map(|t| match t {
+                            Target::Name(n) => n,
+                            Target::Tuple(_) => unreachable!("assignment targets are names"),
+                        })
+                        .collect(),
+                    value,
+                },
             }
         }
         Rule::augassign => {
@@ -1513,7 +1548,12 @@ fn expectations(positives: &[Rule]) -> Vec<&'static str> {
                 continue;
             }
             Rule::arg | Rule::kwarg => "an argument (KEYWORD=value or a value)",
-            Rule::targets | Rule::loop_targets | Rule::name_as | Rule::import_list => "a name",
+            Rule::targets
+            | Rule::loop_targets
+            | Rule::loop_items
+            | Rule::loop_item
+            | Rule::name_as
+            | Rule::import_list => "a name",
             Rule::module | Rule::import_item => "a module name",
             Rule::ident => "a name",
             Rule::program
@@ -1875,7 +1915,7 @@ mod tests {
         match t {
             Target::Name(n) => n.name.clone(),
             Target::Tuple(v) => {
-                let n: Vec<&str> = v.iter().map(|i| i.name.as_str()).collect();
+                let n: Vec<String> = v.iter().map(tx).collect();
                 format!("({})", n.join(","))
             }
         }

@@ -221,6 +221,12 @@ pub struct IterationRecord {
     /// whole): a denominator at round-off of it means the supports carry
     /// the whole load, and RESI_GLOB_RELA cannot fall.
     pub denominator_scale: f64,
+    /// The forces the step's displacement strains the model by, of order
+    /// max |iteration matrix| × max |u − u_n|: a denominator and a
+    /// [`Self::denominator_scale`] both at round-off of it mean that no
+    /// load, reaction or contact force acts (a rigid motion imposed by
+    /// DDL_IMPO before a stop is reached), and RESI_GLOB_RELA cannot fall.
+    pub motion_scale: f64,
     /// RESI_GLOB_RELA replaced by RESI_GLOB_MAXI for this step.
     pub swapped: bool,
     /// The matrix was reassembled for the correction that follows.
@@ -317,6 +323,16 @@ impl std::fmt::Display for StepFailure {
                         f,
                         "; RESI_GLOB_RELA's denominator, max |reactions + contact forces - F_ext| = {:.3e}, is round-off of the forces it balances (up to {:.3e}): the supports or the stops carry the whole load, so RESI_GLOB_RELA stays at round-off over round-off; judge the step by RESI_GLOB_MAXI (here {:.3e}) with CONVERGENCE=_F(RESI_GLOB_MAXI=...) (code_aster's rule: RESI_GLOB_RELA gives way to RESI_GLOB_MAXI by itself only after a first converged step)",
                         r.denominator, r.denominator_scale, r.resi_maxi
+                    )?;
+                } else if let Some(r) = history.last().filter(|r| {
+                    !r.swapped
+                        && r.denominator < CANCELLED * r.motion_scale
+                        && r.denominator_scale < CANCELLED * r.motion_scale
+                }) {
+                    write!(
+                        f,
+                        "; RESI_GLOB_RELA's denominator, max |reactions + contact forces - F_ext| = {:.3e}, is round-off: no load, no reaction and no contact force act in this step (the largest is {:.3e}, against forces of order {:.3e} that the step's displacement would strain the model by), as when DDL_IMPO moves the model rigidly before it reaches a stop, so RESI_GLOB_RELA stays at round-off over round-off; judge the step by RESI_GLOB_MAXI (here {:.3e}) with CONVERGENCE=_F(RESI_GLOB_MAXI=...) (code_aster's rule: RESI_GLOB_RELA gives way to RESI_GLOB_MAXI by itself only after a first converged step)",
+                        r.denominator, r.denominator_scale, r.motion_scale, r.resi_maxi
                     )?;
                 }
                 Ok(())
@@ -913,6 +929,19 @@ impl Engine {
             }
             scale = scale.max(denom);
         }
+        // Only the failure message reads it (no value of it decides).
+        let stiffness = self
+            .matrix
+            .values
+            .iter()
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let moved = self
+            .trial
+            .motion
+            .u
+            .iter()
+            .zip(&self.committed.motion.u)
+            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
         let swapped = swap_allowed
             && self.conv.resi_glob_rela.is_some()
             && self.min_denominator.is_some_and(|m| denom <= 1e-6 * m);
@@ -922,6 +951,7 @@ impl Engine {
             resi_maxi: maxi,
             denominator: denom,
             denominator_scale: scale,
+            motion_scale: stiffness * moved,
             swapped,
             matrix_updated: updated,
         }
@@ -981,6 +1011,7 @@ mod tests {
                 resi_maxi: 2.0,
                 denominator: 1.0,
                 denominator_scale: 1.0,
+                motion_scale: 1.0,
                 swapped: false,
                 matrix_updated: true,
             })
@@ -1014,6 +1045,46 @@ mod tests {
         assert!(
             short.contains("[4] 2.000e-1") && !short.contains("omitted"),
             "{short}"
+        );
+    }
+
+    /// A step that moves the model rigidly (DDL_IMPO before a stop is
+    /// reached, probe13): loads, reactions and contact forces all at
+    /// round-off, so the "supports carry the load" test (denominator
+    /// against them) cannot see it; against the forces the motion would
+    /// strain the model by, it can, and the message says what to do.
+    #[test]
+    fn a_step_without_any_force_points_to_resi_glob_maxi() {
+        let mut h = history(3);
+        for r in &mut h {
+            r.denominator = 2.0e-11;
+            r.denominator_scale = 2.2e-11;
+            r.motion_scale = 5.0e4;
+            r.resi_maxi = 2.9e-11;
+        }
+        let m = StepFailure::NotConverged { history: h.clone() }.to_string();
+        assert!(
+            m.contains("no load, no reaction and no contact force act in this step")
+                && m.contains("CONVERGENCE=_F(RESI_GLOB_MAXI=...)"),
+            "{m}"
+        );
+        // A step that strains the model has forces of the motion's order:
+        // no hint.
+        for r in &mut h {
+            r.denominator = 1.0e4;
+            r.denominator_scale = 1.0e4;
+        }
+        let m = StepFailure::NotConverged { history: h.clone() }.to_string();
+        assert!(!m.contains("round-off"), "{m}");
+        // The supports carrying the load keep their own message.
+        for r in &mut h {
+            r.denominator = 1.0e-13;
+            r.denominator_scale = 2.0e-3;
+        }
+        let m = StepFailure::NotConverged { history: h }.to_string();
+        assert!(
+            m.contains("the supports or the stops carry the whole load"),
+            "{m}"
         );
     }
 }

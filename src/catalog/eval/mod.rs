@@ -718,13 +718,13 @@ impl Env {
 pub fn unpack_target(target: &Target, item: SpVal) -> Result<Vec<(String, PyVal)>, Diagnostic> {
     match target {
         Target::Name(n) => Ok(vec![(n.name.clone(), item.v)]),
-        Target::Tuple(names) => {
-            let vals = unpack(item, names.len())?;
-            Ok(names
-                .iter()
-                .map(|n| n.name.clone())
-                .zip(vals.into_iter().map(|x| x.v))
-                .collect())
+        Target::Tuple(targets) => {
+            let vals = unpack(item, targets.len())?;
+            let mut out = Vec::new();
+            for (t, v) in targets.iter().zip(vals) {
+                out.extend(unpack_target(t, v)?);
+            }
+            Ok(out)
         }
     }
 }
