@@ -29,6 +29,17 @@ fn num(row: &std::collections::HashMap<String, String>, col: &str) -> f64 {
     row[col].parse().unwrap()
 }
 
+/// A MECA_HEXS8 block pressed on a held slab, then dragged by a DDL_IMPO
+/// under a FONC_MULT in STAT_NON_LINE, discrete penalised contact with
+/// Coulomb friction: the drag's reaction is COULOMB times the pressure's
+/// resultant. The prediction of a step whose imposed values move lacked
+/// the penalised contact's stiffness, and the block, held by the contact
+/// alone, made it singular (probe11).
+#[test]
+fn stat_drag_hexs8() {
+    run_study("stat_drag_hexs8");
+}
+
 #[test]
 fn free_flight() {
     run_study("free_flight");
