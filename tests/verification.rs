@@ -47,6 +47,14 @@ fn mail_quadratic_3d() {
     run_study("mail_quadratic_3d");
 }
 
+/// RELATION='ELAS' on MECA_HEXS8 from an initial stress built by
+/// CREA_CHAMP with PROL_ZERO='OUI' (refused as an unknown keyword before
+/// probe11): the uniaxial answer.
+#[test]
+fn hexs8_elas_sigm() {
+    run_study("hexs8_elas_sigm");
+}
+
 #[test]
 fn free_flight() {
     run_study("free_flight");
