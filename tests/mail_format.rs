@@ -78,11 +78,6 @@ fn broken_files_name_the_line() {
             6,
             "names the node N3",
         ),
-        (
-            "COOR_3D\n N1 0 0 0\nFINSF\nPENTA15\nFINSF\nFIN\n",
-            4,
-            "not implemented yet: PENTA15",
-        ),
         ("COOR_1D\n N1 0\nFINSF\nFIN\n", 1, "not implemented yet: COOR_1D"),
         ("COOR_2D\n N1 0 1E+400\nFINSF\nFIN\n", 2, "not a finite number"),
         (
@@ -192,6 +187,89 @@ fn hexa20_mid_edge_nodes_come_out_in_med_order() {
     }
     let dets = jacobian_dets(&mesh, cell).unwrap();
     assert!(dets.iter().all(|&d| d > 0.0), "{dets:?}");
+}
+
+/// A PENTA15 and a TETRA10 listed as code_aster does (corners as the
+/// linear cells, then the mid-edge nodes in the order of code_aster's
+/// reference cells, elrfno.F90 P15 and T10: the PENTA15's base edges
+/// 1-2, 2-3, 3-1, vertical edges 1-4, 2-5, 3-6, top edges 4-5, 5-6, 6-4;
+/// the TETRA10's 1-2, 2-3, 3-1, 1-4, 2-4, 3-4) come out in MED order:
+/// every mid-edge node at the middle of its MED edge, every Jacobian
+/// positive. They were refused as "not implemented yet" (probe11).
+#[test]
+fn penta15_and_tetra10_mid_edge_nodes_come_out_in_med_order() {
+    type Case = (CellType, &'static [[f64; 3]], &'static [(usize, usize)]);
+    let cases: [Case; 2] = [
+        (
+            CellType::Penta15,
+            &[
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 2.0],
+                [1.0, 0.0, 2.0],
+                [0.0, 1.0, 2.0],
+            ],
+            &[
+                (0, 1),
+                (1, 2),
+                (2, 0),
+                (0, 3),
+                (1, 4),
+                (2, 5),
+                (3, 4),
+                (4, 5),
+                (5, 3),
+            ],
+        ),
+        (
+            CellType::Tetra10,
+            &[
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+            ],
+            &[(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)],
+        ),
+    ];
+    for (kind, corners, mail_edges) in cases {
+        let mut text = String::from("COOR_3D\n");
+        for (k, c) in corners.iter().enumerate() {
+            text += &format!(" C{k} {} {} {}\n", c[0], c[1], c[2]);
+        }
+        for (k, (a, b)) in mail_edges.iter().enumerate() {
+            let m: Vec<f64> = (0..3)
+                .map(|i| (corners[*a][i] + corners[*b][i]) / 2.0)
+                .collect();
+            text += &format!(" E{k} {} {} {}\n", m[0], m[1], m[2]);
+        }
+        text += &format!("FINSF\n{}\n M1", kind.aster_name());
+        for k in 0..corners.len() {
+            text += &format!(" C{k}");
+        }
+        for k in 0..mail_edges.len() {
+            text += &format!(" E{k}");
+        }
+        text += "\nFINSF\nFIN\n";
+        let (mesh, _) = parse(&text, "Q").unwrap();
+        let cell = &mesh.cells[0];
+        assert_eq!(cell.kind, kind);
+        let x = |i: usize| mesh.coords[cell.nodes[i]];
+        let nv = corners.len();
+        for (k, (a, b)) in kind.mid_edges().iter().enumerate() {
+            for i in 0..3 {
+                assert_eq!(
+                    x(nv + k)[i],
+                    (x(*a)[i] + x(*b)[i]) / 2.0,
+                    "{kind:?} MED node {}",
+                    nv + k
+                );
+            }
+        }
+        let dets = jacobian_dets(&mesh, cell).unwrap();
+        assert!(dets.iter().all(|&d| d > 0.0), "{kind:?} {dets:?}");
+    }
 }
 
 /// A node named N<k> that is not the k-th of the file: the alarm says

@@ -29,6 +29,32 @@ fn num(row: &std::collections::HashMap<String, String>, col: &str) -> f64 {
     row[col].parse().unwrap()
 }
 
+/// A MECA_HEXS8 block pressed on a held slab, then dragged by a DDL_IMPO
+/// under a FONC_MULT in STAT_NON_LINE, discrete penalised contact with
+/// Coulomb friction: the drag's reaction is COULOMB times the pressure's
+/// resultant. The prediction of a step whose imposed values move lacked
+/// the penalised contact's stiffness, and the block, held by the contact
+/// alone, made it singular (probe11).
+#[test]
+fn stat_drag_hexs8() {
+    run_study("stat_drag_hexs8");
+}
+
+/// PENTA15 and TETRA10 read from code_aster's .mail format (refused as
+/// "not implemented yet" before probe11): homogeneous states exact.
+#[test]
+fn mail_quadratic_3d() {
+    run_study("mail_quadratic_3d");
+}
+
+/// RELATION='ELAS' on MECA_HEXS8 from an initial stress built by
+/// CREA_CHAMP with PROL_ZERO='OUI' (refused as an unknown keyword before
+/// probe11): the uniaxial answer.
+#[test]
+fn hexs8_elas_sigm() {
+    run_study("hexs8_elas_sigm");
+}
+
 #[test]
 fn free_flight() {
     run_study("free_flight");

@@ -84,6 +84,24 @@ pub fn def() -> CommandDef {
             )
             .rules(vec![un_parmi(&["MAILLAGE", "MODELE"])])
             .kw(),
+            block(
+                "b_prol_zero",
+                is_in(
+                    "TYPE_CHAM",
+                    &[
+                        "ELGA_SIEF_R",
+                        "ELGA_VARI_R",
+                        "ELGA_EPSI_R",
+                        "ELNO_SIEF_R",
+                        "ELNO_VARI_R",
+                        "ELNO_EPSI_R",
+                    ],
+                ),
+                vec![oui_non("PROL_ZERO", "NON")
+                    .doc("'OUI': the components of the field that no AFFE occurrence assigns are 0 on every element of the MODELE (code_aster's cham_elem prolonged by zero); 'NON' leaves them absent, which ETAT_INIT reads as 0 too (as it reads MECA_HEXS8's FSTAB hourglass stresses, which the field does not carry)")
+                    .kw()],
+            )
+            .kw(),
             block("b_extr", eq("OPERATION", "EXTR"), extr)
                 .rules(vec![un_parmi(&["NUME_ORDRE", "INST"])])
                 .kw(),
@@ -370,6 +388,11 @@ fn affe_elga(
                 .collect::<Vec<_>>()
                 .join(" ")
         ));
+    }
+    if args.text("PROL_ZERO") == Some("OUI") {
+        for v in field.values.iter_mut().filter(|v| v.is_nan()) {
+            *v = 0.0;
+        }
     }
     let absent = field.values.iter().filter(|v| v.is_nan()).count();
     let nelem = npg.iter().filter(|&&n| n > 0).count();

@@ -10,6 +10,20 @@
 //! In AXIS the integral is weighted by r without 2π (per radian), like the
 //! mass and the internal forces.
 //!
+//! The 3D elements take their **RIGI** family instead, as code_aster's
+//! te0015 (PESANTEUR) and te0016/te0017 (FORCE_INTERNE) do. It is the
+//! mass's on MECA_HEXA8, HEXA20, PENTA6, PENTA15 and TETRA4 (one point is
+//! exact for ∫ N_a of a TETRA4), and TETRA10's FPG5 is exact on straight
+//! edges; the under-integrated elements differ from M·b off
+//! parallelepipeds: MECA_HEXS8 puts ρ b J₀ on each node (one point at the
+//! centre, J₀ its Jacobian: hexs8 note §10.3), MECA_HEXS20 and
+//! MECA_TETRS10 integrate on FPG8 and FPG4. On a distorted HEXS8 cell a
+//! free body under gravity then deforms a little, as in code_aster
+//! (probe11: a 3 x 3 x 3 HEXS8 cube, interior nodes moved by up to 15 % of
+//! a cell, clamped at its base under its weight: the mass family put the
+//! top face's DZ up to 8.0e-3 and the base reactions up to 4.7e-3 off
+//! code_aster's rule; the total weight differs by Σ 8 J₀ − V, 6e-6 of it).
+//!
 //! With the lumped mass of an explicit run (MASS_DIAG='OUI') PESANTEUR is
 //! instead the lumped mass times b, f_a = m_a b (m_a the HRZ mass of
 //! [`super::mechanics::hrz_lumped`]): the lumped counterpart of M·(b at
@@ -74,12 +88,21 @@ pub fn element_body_force_with(
             ),
         });
     }
-    let q = rule(spec.cell, spec.mass).ok_or_else(|| ElementFailure::BadInput {
+    // code_aster's 3D volume loads (te0015 PESANTEUR, te0016/te0017
+    // FORCE_INTERNE) integrate on the element's RIGI family: the mass's
+    // on every 3D element but the under-integrated ones, where RIGI is
+    // exact on parallelepipeds only (MECA_HEXS8: one point, ρ b J₀ at
+    // each node; MECA_HEXS20 and MECA_TETRS10: FPG8, FPG4).
+    let family = match spec.formulation {
+        Formulation::Solid3d => spec.rigi,
+        _ => spec.mass,
+    };
+    let q = rule(spec.cell, family).ok_or_else(|| ElementFailure::BadInput {
         message: format!(
             "{}: {} has no Gauss family {}",
             spec.name,
             spec.cell.aster_name(),
-            spec.mass.name()
+            family.name()
         ),
     })?;
     let mut out = vec![0.0; nn * d];
@@ -356,6 +379,50 @@ mod tests {
         let volume = 2.0 + h / 2.0;
         let spec = element_spec("3D", CellType::Hexa8).unwrap();
         check(spec, &x, 2.5e-9, [0.0, 1e4, -3e4], volume);
+    }
+
+    /// MECA_HEXS8 (3D_SI on HEXA8) integrates PESANTEUR on its one RIGI
+    /// point, as code_aster's te0015: ρ b J₀ on every node, J₀ the
+    /// Jacobian at the centre. On the non-affine cell of
+    /// `distorted_hexa8_total_gravity_is_mass_times_g` (the vertex
+    /// (2, 1, 1) raised by h), det J = (1/4)(1 + h X Y / 2) per unit
+    /// reference volume, so J₀ = (1 + h/4)/4 at the centre (X = 1,
+    /// Y = 1/2): every node gets the same force, where M·b gives the
+    /// raised corner more.
+    #[test]
+    fn hexs8_gravity_is_rho_b_j0_on_every_node() {
+        let mut x = [
+            [0., 0., 0.],
+            [0., 1., 0.],
+            [2., 1., 0.],
+            [2., 0., 0.],
+            [0., 0., 1.],
+            [0., 1., 1.],
+            [2., 1., 1.],
+            [2., 0., 1.],
+        ];
+        let h = 0.6;
+        x[6][2] += h;
+        let j0 = (1.0 + h / 4.0) / 4.0;
+        let rho = 2.5e-9;
+        let b = [0.0, 1e4, -3e4];
+        let spec = element_spec("3D_SI", CellType::Hexa8).unwrap();
+        let f = element_body_force(&spec, &x, rho, b).unwrap();
+        for a in 0..8 {
+            for i in 0..3 {
+                let want = rho * b[i] * j0;
+                assert!(
+                    (f[a * 3 + i] - want).abs() <= 1e-14 * rho * 3e4,
+                    "{a} {i}: {}",
+                    f[a * 3 + i]
+                );
+            }
+        }
+        // The full HEXA8 (3D) on the same cell is M·b: the raised corner
+        // gets more than the opposite corner (0, 0, 0), node 0 (DZ: index 2).
+        let full =
+            element_body_force(&element_spec("3D", CellType::Hexa8).unwrap(), &x, rho, b).unwrap();
+        assert!(full[6 * 3 + 2].abs() > 1.01 * full[2].abs(), "{full:?}");
     }
 
     /// An AXIS QUAD8 ring of section [1, 3] × [0, 2] with a skewed top

@@ -20,10 +20,10 @@
 //!
 //! Node order: code_aster's numbering of a cell is MED's for 1D and 2D
 //! cells and VTK's for the linear 3D ones (docs/mesh.md "Cell node order"),
-//! so TETRA4, PENTA6 and HEXA8 are permuted into MED order. For the
-//! quadratic 3D cells (TETRA10, PENTA15, HEXA20) the correspondence of the
-//! mid-edge nodes is not established here: they are refused as not
-//! implemented rather than read in a possibly wrong order.
+//! so TETRA4, PENTA6 and HEXA8 are permuted into MED order, and so are the
+//! mid-edge nodes of the quadratic 3D cells (TETRA10, PENTA15, HEXA20),
+//! which code_aster lists edge by edge in the order of its reference cells
+//! (`elrfno.F90`: T10, P15, H20).
 
 use std::collections::HashMap;
 
@@ -57,18 +57,27 @@ fn err(line: usize, message: impl Into<String>) -> MailError {
 /// vertical edges, then of the top (MED: base, top, vertical): found by
 /// the probe h_mail of 2026-11-28 on the geometry of all 14 HEXA20 cells
 /// of code_aster's test meshes at hand (sslv07a, hsnv120a, hplv101b),
-/// whose sslv07a converted so reproduced 12 of code_aster's values. No
-/// PENTA15 or TETRA10 file was found to establish theirs.
-fn to_med(t: CellType) -> Option<&'static [usize]> {
+/// whose sslv07a converted so reproduced 12 of code_aster's values.
+/// PENTA15 and TETRA10 (probe11, 2026-11-28): code_aster's reference cells
+/// (`elrfno.F90`, P15 and T10) put the mid-edge nodes of the PENTA15 on the
+/// base edges 1-2, 2-3, 3-1, then the vertical ones 1-4, 2-5, 3-6, then the
+/// top 4-5, 5-6, 6-4 (MED: base, top, vertical), and those of the TETRA10
+/// on 1-2, 2-3, 3-1, 1-4, 2-4, 3-4 (MED's list, on MED's own corners):
+/// with the corners turned as the linear cells', each MED mid node is the
+/// code_aster node of the same edge. These are the inverses of
+/// `mesh::ops::med_to_aster`, checked by a test below and, on meshes of
+/// both kinds, by tests/verification/mail_quadratic_3d.comm.
+fn to_med(t: CellType) -> &'static [usize] {
     match t {
-        CellType::Tetra4 => Some(&[0, 2, 1, 3]),
-        CellType::Penta6 => Some(&[0, 2, 1, 3, 5, 4]),
-        CellType::Hexa8 => Some(&[0, 3, 2, 1, 4, 7, 6, 5]),
-        CellType::Hexa20 => Some(&[
+        CellType::Tetra4 => &[0, 2, 1, 3],
+        CellType::Penta6 => &[0, 2, 1, 3, 5, 4],
+        CellType::Hexa8 => &[0, 3, 2, 1, 4, 7, 6, 5],
+        CellType::Hexa20 => &[
             0, 3, 2, 1, 4, 7, 6, 5, 11, 10, 9, 8, 19, 18, 17, 16, 12, 15, 14, 13,
-        ]),
-        CellType::Tetra10 | CellType::Penta15 => None,
-        _ => Some(&[]),
+        ],
+        CellType::Tetra10 => &[0, 2, 1, 3, 6, 5, 4, 7, 9, 8],
+        CellType::Penta15 => &[0, 2, 1, 3, 5, 4, 8, 7, 6, 14, 13, 12, 9, 11, 10],
+        _ => &[],
     }
 }
 
@@ -259,12 +268,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, Vec<String>), MailError> {
                         )
                     });
                 };
-                let Some(perm) = to_med(t) else {
-                    return Err(err(
-                        line,
-                        format!("not implemented yet: {other} cells in FORMAT='ASTER' (the order of their mid-edge nodes against MED's is not established); convert the mesh to MED"),
-                    ));
-                };
+                let perm = to_med(t);
                 if t.dim() == 3 && dim == Some(2) {
                     return Err(err(
                         line,

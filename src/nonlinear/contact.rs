@@ -398,6 +398,61 @@ impl ContactTerm for DiscreteContact {
     fn imposed_increment(&mut self, it: ImposedIncrement) -> Result<(), String> {
         if let Some(c) = self.continuous.as_ref() {
             c.imposed_increment(it.numbering, it.u_start, it.du, it.matrix, it.rhs);
+            return Ok(());
+        }
+        // The active set adds no stiffness: nothing to add.
+        if self.active.is_some() {
+            return Ok(());
+        }
+        // Penalised contact: its tangent at the step's start (the links
+        // in contact there, sticking: the slip origin is that state) joins
+        // the prediction's matrix, and the change of its forces under the
+        // imposed increment its right-hand side. Without it a body that
+        // only the contact holds (a block pressed on a support, then
+        // dragged by a DDL_IMPO under a FONC_MULT) made the prediction of
+        // STAT_NON_LINE singular at the first step whose imposed values
+        // move, though every iteration's matrix has the contact (probe11
+        // p5: "the matrix is singular ... translation DZ of the part").
+        let _contact = crate::profile::span(crate::profile::Phase::Contact);
+        let Some(pairing) = self.pairing.as_ref() else {
+            return Ok(());
+        };
+        let nb = it.numbering;
+        let u0 = per_node(self.ndpn, it.u_start);
+        let moved: Vec<f64> = it.u_start.iter().zip(it.du).map(|(a, b)| a + b).collect();
+        let u1 = per_node(self.ndpn, &moved);
+        let dof = |n: usize, c: usize| {
+            let e = nb.eq[n * nb.ndpn + c];
+            (c < nb.ndpn && e != NONE).then_some(e)
+        };
+        let eval = |u: &[[f64; 3]]| {
+            evaluate_armed(
+                &self.def,
+                pairing,
+                &IterationInput {
+                    u,
+                    u_start: &u0,
+                    resi_glob_rela: f64::INFINITY,
+                    symmetrise: true,
+                },
+                Some(&self.armed),
+                dof,
+            )
+            .0
+        };
+        let at_start = eval(&u0);
+        let at_moved = eval(&u1);
+        for &(a, b, v) in &at_start.tangent {
+            let p = it.matrix.pattern.position(a, b).ok_or_else(|| {
+                format!("the matrix pattern lacks the contact coupling ({a}, {b})")
+            })?;
+            it.matrix.values[p] += v;
+        }
+        for &(e, v) in &at_moved.residual {
+            it.rhs[e] -= v;
+        }
+        for &(e, v) in &at_start.residual {
+            it.rhs[e] += v;
         }
         Ok(())
     }

@@ -178,8 +178,9 @@ pub trait ContactTerm {
     /// tangent at the step's start to the matrix, whose order then counts
     /// them, and the opposite of its residual's change under the imposed
     /// increment to the right-hand side (free equations, then its own).
-    /// The default adds nothing: the discrete terms, with no unknowns of
-    /// their own, are not part of that solve.
+    /// The default adds nothing (LIAISON_UNIL, as code_aster's
+    /// prediction); the penalised discrete contact adds its tangent at the
+    /// step's start and the change of its forces (no unknowns of its own).
     fn imposed_increment(&mut self, _c: ImposedIncrement) -> Result<(), String> {
         Ok(())
     }
