@@ -653,6 +653,50 @@ fn elno_extraction(
     Ok(())
 }
 
+/// The four extrema of OPERATION='EXTREMA' (code_aster's `prexno` on
+/// nodes, `prexel` on cells): MAX, MIN, MAXI_ABS, MINI_ABS of the values
+/// offered in order, with where each was met. The comparisons are strict,
+/// so the first value met keeps a tie.
+struct Extrema<W> {
+    best: [Option<(f64, W)>; 4],
+}
+
+impl<W: Copy> Extrema<W> {
+    const NAMES: [&'static str; 4] = ["MAX", "MIN", "MAXI_ABS", "MINI_ABS"];
+    /// Per extremum: the absolute value is compared, a larger one wins.
+    const RULES: [(bool, bool); 4] = [(false, true), (false, false), (true, true), (true, false)];
+
+    fn new() -> Self {
+        Extrema { best: [None; 4] }
+    }
+
+    /// Offers `v` met at `at`; a NaN (an absent value) is not a candidate.
+    fn offer(&mut self, v: f64, at: W) {
+        if v.is_nan() {
+            return;
+        }
+        for (slot, &(abs, larger)) in self.best.iter_mut().zip(&Self::RULES) {
+            let x = if abs { v.abs() } else { v };
+            let better = match slot {
+                None => true,
+                Some((b, _)) => (larger && x > *b) || (!larger && x < *b),
+            };
+            if better {
+                *slot = Some((x, at));
+            }
+        }
+    }
+
+    /// The four (name, value, where), or None when no value was offered.
+    fn found(self) -> Option<Vec<(&'static str, f64, W)>> {
+        Self::NAMES
+            .iter()
+            .zip(self.best)
+            .map(|(name, b)| b.map(|(v, at)| (*name, v, at)))
+            .collect()
+    }
+}
+
 /// OPERATION='EXTREMA' of a field by element at nodes, as code_aster's
 /// `rvmima`/`prexel`: per step, the largest and smallest value and the
 /// largest and smallest absolute value over the components (NOM_CMP's, in
@@ -682,12 +726,7 @@ fn elno_extrema(
     } else {
         (0..mesh.ncells()).collect()
     };
-    struct Best {
-        value: f64,
-        cell: usize,
-        node: usize,
-        cmp: usize,
-    }
+
     for step in select_steps(study, res, occ)? {
         let field = super::post_args::step_elno(step, nom_cham, occ, "NOM_CHAM", rname)?;
         let cmps: Vec<(String, usize)> = if occ.has("NOM_CMP") {
@@ -713,10 +752,7 @@ fn elno_extrema(
                 .collect()
         };
         let ncmp = field.ncmp();
-        // MAX, MIN, MAXI_ABS, MINI_ABS: the quantity compared and whether a
-        // larger one wins; strict, so the first met keeps a tie.
-        let rules: [(bool, bool); 4] = [(false, true), (false, false), (true, true), (true, false)];
-        let mut best: [Option<Best>; 4] = [None, None, None, None];
+        let mut extrema = Extrema::new();
         for (k, (_, i)) in cmps.iter().enumerate() {
             for &c in &cells {
                 let nodes = &mesh.cells[c].nodes;
@@ -725,39 +761,21 @@ fn elno_extrema(
                 }
                 let vals = field.cell(c);
                 for (a, &n) in nodes.iter().enumerate() {
-                    let v = vals[a * ncmp + i];
-                    if v.is_nan() {
-                        continue;
-                    }
-                    for (slot, &(abs, larger)) in best.iter_mut().zip(&rules) {
-                        let x = if abs { v.abs() } else { v };
-                        let better = match slot {
-                            None => true,
-                            Some(b) => (larger && x > b.value) || (!larger && x < b.value),
-                        };
-                        if better {
-                            *slot = Some(Best {
-                                value: x,
-                                cell: c,
-                                node: n,
-                                cmp: k,
-                            });
-                        }
-                    }
+                    extrema.offer(vals[a * ncmp + i], (c, n, k));
                 }
             }
         }
-        for (name, slot) in ["MAX", "MIN", "MAXI_ABS", "MINI_ABS"].iter().zip(best) {
-            let Some(b) = slot else {
-                return Err(occ.error(
-                    "NOM_CHAM",
-                    format!(
-                        "EXTREMA of {nom_cham} at NUME_ORDRE {}: no value on the {} selected cell(s) (code_aster's POSTRELE_19)",
-                        step.nume_ordre,
-                        cells.len()
-                    ),
-                ));
-            };
+        let Some(found) = extrema.found() else {
+            return Err(occ.error(
+                "NOM_CHAM",
+                format!(
+                    "EXTREMA of {nom_cham} at NUME_ORDRE {}: no value on the {} selected cell(s) (code_aster's POSTRELE_19)",
+                    step.nume_ordre,
+                    cells.len()
+                ),
+            ));
+        };
+        for (name, value, (cell, node, cmp)) in found {
             rows.push(vec![
                 ("INTITULE".to_string(), Cell::Text(intitule.to_string())),
                 ("RESU".to_string(), Cell::Text(rname.to_string())),
@@ -767,11 +785,11 @@ fn elno_extrema(
                 ("EXTREMA".to_string(), Cell::Text(name.to_string())),
                 (
                     "MAILLE".to_string(),
-                    Cell::Text(super::post_args::cell_name(b.cell)),
+                    Cell::Text(super::post_args::cell_name(cell)),
                 ),
-                ("NOEUD".to_string(), Cell::Text(node_name(b.node))),
-                ("CMP".to_string(), Cell::Text(cmps[b.cmp].0.clone())),
-                ("VALE".to_string(), Cell::Real(b.value)),
+                ("NOEUD".to_string(), Cell::Text(node_name(node))),
+                ("CMP".to_string(), Cell::Text(cmps[cmp].0.clone())),
+                ("VALE".to_string(), Cell::Real(value)),
             ]);
         }
     }
@@ -1085,57 +1103,32 @@ fn extrema_rows(
     lead: Row,
     rows: &mut Vec<Row>,
 ) -> Result<(), Diagnostic> {
-    struct Best {
-        value: f64,
-        node: usize,
-        cmp: usize,
-    }
     let cmps = components_of(occ, field, field_name)?;
-    let mut best: [Option<Best>; 4] = [None, None, None, None];
-    // MAX, MIN, MAXI_ABS, MINI_ABS: the quantity compared and whether a
-    // larger one wins.
-    let rules: [(bool, bool); 4] = [(false, true), (false, false), (true, true), (true, false)];
+    let mut extrema = Extrema::new();
     for (k, (_, i)) in cmps.iter().enumerate() {
         for &n in nodes {
-            let v = field.values[n * field.ncmp() + i];
-            if v.is_nan() {
-                continue;
-            }
-            for (slot, &(abs, larger)) in best.iter_mut().zip(&rules) {
-                let x = if abs { v.abs() } else { v };
-                let better = match slot {
-                    None => true,
-                    Some(b) => (larger && x > b.value) || (!larger && x < b.value),
-                };
-                if better {
-                    *slot = Some(Best {
-                        value: x,
-                        node: n,
-                        cmp: k,
-                    });
-                }
-            }
+            extrema.offer(field.values[n * field.ncmp() + i], (n, k));
         }
     }
-    for (name, slot) in ["MAX", "MIN", "MAXI_ABS", "MINI_ABS"].iter().zip(best) {
-        let Some(b) = slot else {
-            return Err(occ.error(
-                "NOM_CMP",
-                format!(
-                    "EXTREMA of {field_name}: no value of {} at the {} selected node(s)",
-                    cmps.iter()
-                        .map(|(c, _)| c.as_str())
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                    nodes.len()
-                ),
-            ));
-        };
+    let Some(found) = extrema.found() else {
+        return Err(occ.error(
+            "NOM_CMP",
+            format!(
+                "EXTREMA of {field_name}: no value of {} at the {} selected node(s)",
+                cmps.iter()
+                    .map(|(c, _)| c.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                nodes.len()
+            ),
+        ));
+    };
+    for (name, value, (node, cmp)) in found {
         let mut row = lead.clone();
         row.push(("EXTREMA".to_string(), Cell::Text(name.to_string())));
-        row.push(("NOEUD".to_string(), Cell::Text(node_name(b.node))));
-        row.push(("CMP".to_string(), Cell::Text(cmps[b.cmp].0.clone())));
-        row.push(("VALE".to_string(), Cell::Real(b.value)));
+        row.push(("NOEUD".to_string(), Cell::Text(node_name(node))));
+        row.push(("CMP".to_string(), Cell::Text(cmps[cmp].0.clone())));
+        row.push(("VALE".to_string(), Cell::Real(value)));
         rows.push(row);
     }
     Ok(())
