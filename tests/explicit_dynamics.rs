@@ -678,10 +678,12 @@ fn a_step_that_does_not_advance_the_time_stops_the_run() {
 /// A DDL_IMPO under a FONC_MULT (a displacement ramp) in DIFF_CENT
 /// (tests/verification/explicit_imposed_ramp.comm): the driven top of a 1D
 /// rod follows the ramp with VITE = -V0 (it showed 0 before), the force on
-/// it is the wave's rho c V0 A, and DISS_SCH is the velocity jump's 1/2
-/// m_top V0^2 (every check in the file); here also: VITE of every driven
-/// node at every archived instant after the start, and the balance stays
-/// where the jump put it.
+/// it is the wave's rho c V0 A, TRAV_EXT its power rho c A V0^2 times t
+/// and DISS_SCH 0 (every check in the file); here also: VITE of every
+/// driven node at every archived instant after the start, and the balance
+/// closes at every instant within 1e-3 of the velocity jump's 1/2 m_top
+/// V0^2 (which DISS_SCH held before probe15b: the trapezoid counted the
+/// jump's impulse twice).
 #[test]
 fn imposed_displacement_ramp_drives_the_rod() {
     let run = common::run_study(
@@ -697,7 +699,7 @@ fn imposed_displacement_ramp_drives_the_rod() {
             continue;
         }
         let diss: f64 = r["DISS_SCH"].parse().unwrap();
-        assert!((diss - jump).abs() <= 2e-3 * jump, "{r:?}");
+        assert!(diss.abs() <= 1e-3 * jump, "{r:?}");
         rows += 1;
     }
     assert_eq!(rows, 10, "{resu}");

@@ -3418,3 +3418,40 @@ fn cells_and_nodes_by_name_in_comportement_and_observation() {
     );
     common::assert_all_ok(&run, "by_name.resu");
 }
+
+/// The supports' work of a bar pulled by a DDL_IMPO (and AFFE_CHAR_CINE)
+/// ramp in explicit dynamics is the energy the bar holds: TRAV_EXT,
+/// ENER_CIN and ENER_TOT against the DIFF_CENT recurrence of the chain
+/// (1e-6, 1e-8), DISS_SCH within 5e-7 (lumped) and 5e-6 (consistent mass)
+/// of 0; NEWMARK against its recurrence (1e-8). The trapezoid on the
+/// driven node's backward-difference acceleration counted the impulse
+/// that starts it twice: DISS_SCH was +½ m U'² = 1.875e-2, 3.4 % of
+/// TRAV_EXT (probe15b).
+#[test]
+fn explicit_driven_energy() {
+    run_study("explicit_driven_energy");
+}
+
+/// PARA_CALC of implicit schemes on a one-dof bar against the schemes'
+/// recurrences (probe15b): NEWMARK under a force ramp (TRAV_EXT, ENER_TOT,
+/// ENER_CIN to 1e-8, DISS_SCH 0), HHT -0.1 OUI, NEWMARK 0.3025/0.6, HHT
+/// with its defaults and HHT -0.3 MODI_EQUI='NON' (DISS_SCH to 1e-6..1e-7).
+#[test]
+fn energy_schemes_sdof() {
+    run_study("energy_schemes_sdof");
+}
+
+/// TRAV_LIAI of LIAISON_UNIL, penalised and 'CONTRAINTE', in STAT_NON_LINE
+/// (closed forms, 1e-8) and DIFF_CENT (the recurrence, 1e-6) (probe15b).
+#[test]
+fn energy_unil_sdof() {
+    run_study("energy_unil_sdof");
+}
+
+/// ENER_ELAS / TRAV_PLAS of a yielding bar in DIFF_CENT and of its
+/// continuation into a new result, against the recurrence and the closed
+/// form of the plastic work (probe15b).
+#[test]
+fn energy_plastic_explicit() {
+    run_study("energy_plastic_explicit");
+}
