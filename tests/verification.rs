@@ -3455,3 +3455,45 @@ fn energy_unil_sdof() {
 fn energy_plastic_explicit() {
     run_study("energy_plastic_explicit");
 }
+
+/// CALC_CHAMP FORC_NODA / REAC_NODA at a step whose VARI_ELGA
+/// ARCHIVAGE/CHAM_EXCLU left out: the forces of the stored stresses, as
+/// code_aster's ccfnrn (SIEF_ELGA and DEPL only), against the uniaxial
+/// elastoplastic reaction (probe11b).
+#[test]
+fn reac_noda_cham_exclu() {
+    run_study("reac_noda_cham_exclu");
+}
+
+/// The same with SIMO_MIEHE (on HEXA8, no 3D_SI), whose forces need its internal variables: a
+/// located error at CALC_CHAMP, not a panic and not forces of a virgin state.
+#[test]
+fn reac_noda_cham_exclu_finite_strain_is_a_located_error() {
+    let run = common::run_variant_edits(
+        &dir(),
+        "verif_reac_noda_cham_exclu_simo",
+        "reac_noda_cham_exclu",
+        "reac_noda_cham_exclu_simo",
+        &[
+            (
+                ",\n                       _F(GROUP_MA='VOL', PHENOMENE='MECANIQUE', MODELISATION='3D_SI')",
+                "",
+            ),
+            (
+                "RELATION='VMIS_ISOT_LINE', DEFORMATION='PETIT', GROUP_MA='VOL'",
+                "RELATION='VMIS_ISOT_LINE', DEFORMATION='SIMO_MIEHE', GROUP_MA='VOL'",
+            ),
+        ],
+    );
+    assert_eq!(run.code, 1, "{}", run.term);
+    assert!(
+        run.term
+            .contains("CALC_CHAMP/RESULTAT: NUME_ORDRE 0 of RESU has no VARI_ELGA field")
+            && run
+                .term
+                .contains("not implemented yet: internal forces of a finite-strain law")
+            && !run.term.contains("panicked"),
+        "{}",
+        run.term
+    );
+}

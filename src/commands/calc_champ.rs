@@ -435,6 +435,10 @@ fn forces_of_run(
     } else {
         None
     };
+    // The laws read at their stored state, for steps without VARI_ELGA
+    // (None when a finite-strain law is among them).
+    let stored_laws: Option<Vec<nonlinear::CellLaw>> =
+        asm.laws.iter().map(|l| l.stored_stress()).collect();
     for step in evol.steps.iter_mut() {
         if !orders.contains(&step.nume_ordre) {
             continue;
@@ -457,17 +461,37 @@ fn forces_of_run(
         if let Some(ks) = &linear {
             nonlinear::linear::linear_forces(&asm, ks, &u, &mut fint);
         } else {
-            let points = fields::states_from_gauss(
+            // Without VARI_ELGA (left out by ARCHIVAGE/CHAM_EXCLU) the
+            // forces come from the stored stresses alone, as code_aster's
+            // ccfnrn builds them (SIEF_ELGA, DEPL): the small-strain laws
+            // are read at their stored state. The finite-strain laws need
+            // their internal variables (SIMO_MIEHE's elastic left
+            // Cauchy-Green tensor, GDEF_LOG's stresses): an error.
+            let vari = step.gauss.get("VARI_ELGA");
+            let stored = match vari {
+                Some(_) => None,
+                None => Some(stored_laws.clone().ok_or_else(|| {
+                    args.error(
+                        "RESULTAT",
+                        format!(
+                            "NUME_ORDRE {nume} of {name} has no VARI_ELGA field{}; \
+                             not implemented yet: internal forces of a finite-strain \
+                             law (SIMO_MIEHE, GDEF_LOG) without its internal variables",
+                            crate::result::exclusion_note(&excluded, "VARI_ELGA")
+                        ),
+                    )
+                })?),
+            };
+            let points = fields::states_from_fields(
                 &asm,
                 step.gauss
                     .get("SIEF_ELGA")
                     .ok_or_else(|| missing("SIEF_ELGA"))?,
-                step.gauss
-                    .get("VARI_ELGA")
-                    .ok_or_else(|| missing("VARI_ELGA"))?,
+                vari,
             )
             .map_err(|m| args.error("RESULTAT", m))?;
-            asm.compute(
+            let saved = stored.map(|laws| std::mem::replace(&mut asm.laws, laws));
+            let computed = asm.compute(
                 &u,
                 &u,
                 &points,
@@ -477,8 +501,11 @@ fn forces_of_run(
                 TangentKind::None,
                 &mut fint,
                 None,
-            )
-            .map_err(|f| {
+            );
+            if let Some(laws) = saved {
+                asm.laws = laws;
+            }
+            computed.map_err(|f| {
                 args.error(
                     "RESULTAT",
                     format!(

@@ -24,7 +24,10 @@ use crate::law::vmis_cine_line::VmisCineLine;
 use crate::law::vmis_isot_line::VmisIsotLine;
 use crate::law::vmis_isot_puis::{PowerHardening, VmisIsotPuis};
 use crate::law::vmis_isot_trac::{TractionCurve, VmisIsotTrac};
-use crate::law::{EcroLineParams, ElasParams, StrainMeasure};
+use crate::law::{
+    EcroLineParams, ElasParams, FailureKind, IntegrationFailure, InternalVars, LawMetadata, Regime,
+    SmallStrainBehaviour, SmallStrainInput, SmallStrainOutput, StrainMeasure, TangentKind,
+};
 use crate::model::{CellRole, Material, MaterialField, Model};
 
 /// A law instance, built once per (material, relation, kinematics); a
@@ -44,9 +47,102 @@ pub enum CellLaw {
     IsotPuisLog(IsotPuisLog),
     CineLineLog(CineLineLog),
     JohnCookLog(JohnCookLog),
+    /// A small-strain law read at its stored state ([`StoredStress`]).
+    Stored(StoredStress),
+}
+
+/// A small-strain law evaluated at a stored state: it returns σ_n and the
+/// internal variables it is given, whatever the strain increment, so that
+/// an element's internal forces are those of the stored stresses (Bᵀσ,
+/// and for HEXS8 the stored hourglass stresses FSTAB). CALC_CHAMP's
+/// FORC_NODA / REAC_NODA use it for a step whose VARI_ELGA was not
+/// archived (ARCHIVAGE/CHAM_EXCLU): code_aster's `ccfnrn` builds the nodal
+/// forces from SIEF_ELGA, STRX_ELGA and DEPL only, never from VARI_ELGA.
+/// With VARI_ELGA at hand the law itself is evaluated at zero increment,
+/// which returns the same stresses. Forces only: a nonzero strain
+/// increment is an error.
+#[derive(Clone)]
+pub struct StoredStress {
+    law: std::sync::Arc<dyn SmallStrainBehaviour>,
+}
+
+impl std::fmt::Debug for StoredStress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "StoredStress({})", self.law.metadata().name)
+    }
+}
+
+impl SmallStrainBehaviour for StoredStress {
+    fn metadata(&self) -> &'static LawMetadata {
+        self.law.metadata()
+    }
+    fn initial_internal(&self) -> InternalVars {
+        self.law.initial_internal()
+    }
+    fn elastic_params(&self) -> Option<ElasParams> {
+        self.law.elastic_params()
+    }
+    fn integrate(&self, input: &SmallStrainInput) -> Result<SmallStrainOutput, IntegrationFailure> {
+        let refuse = |message: String| IntegrationFailure {
+            kind: FailureKind::InvalidInput,
+            dt_factor: 1.0,
+            message,
+        };
+        if input.strain_increment.iter().any(|d| *d != 0.0) {
+            return Err(refuse(format!(
+                "{} read at its stored state takes no strain increment",
+                self.law.metadata().name
+            )));
+        }
+        let internal = InternalVars::from_slice(input.internal)
+            .ok_or_else(|| refuse("too many internal variables".into()))?;
+        // HEXS8 asks for a tangent even for its forces (its hourglass
+        // stresses move by the tangent times their strain increment, zero
+        // here): Hooke's, from the law's elastic constants.
+        let tangent = match input.tangent {
+            TangentKind::None => None,
+            _ => Some(
+                *Elas::new(self.law.elastic_params().ok_or_else(|| {
+                    refuse(format!(
+                        "{} has no elastic constants",
+                        self.law.metadata().name
+                    ))
+                })?)
+                .stiffness(),
+            ),
+        };
+        Ok(SmallStrainOutput {
+            stress: input.stress,
+            internal,
+            tangent,
+            regime: Regime::Elastic,
+        })
+    }
 }
 
 impl CellLaw {
+    /// The law read at its stored state ([`StoredStress`]), for the
+    /// small-strain laws; `None` for the finite-strain ones (SIMO_MIEHE,
+    /// GDEF_LOG), whose internal forces need their internal variables.
+    pub fn stored_stress(&self) -> Option<CellLaw> {
+        let law: std::sync::Arc<dyn SmallStrainBehaviour> = match self {
+            CellLaw::Elas(l) => std::sync::Arc::new(*l),
+            CellLaw::VmisIsotLine(l) => std::sync::Arc::new(*l),
+            CellLaw::VmisIsotTrac(l) => std::sync::Arc::new(l.clone()),
+            CellLaw::VmisIsotPuis(l) => std::sync::Arc::new(*l),
+            CellLaw::VmisCineLine(l) => std::sync::Arc::new(*l),
+            CellLaw::JohnCook(l) => std::sync::Arc::new(*l),
+            CellLaw::Stored(l) => return Some(CellLaw::Stored(l.clone())),
+            CellLaw::SimoMiehe(_)
+            | CellLaw::IsotLineLog(_)
+            | CellLaw::IsotTracLog(_)
+            | CellLaw::IsotPuisLog(_)
+            | CellLaw::CineLineLog(_)
+            | CellLaw::JohnCookLog(_) => return None,
+        };
+        Some(CellLaw::Stored(StoredStress { law }))
+    }
+
     pub fn law_ref(&self) -> LawRef<'_> {
         match self {
             CellLaw::Elas(l) => LawRef::Small(l),
@@ -61,6 +157,7 @@ impl CellLaw {
             CellLaw::IsotPuisLog(l) => LawRef::GdefLog(l),
             CellLaw::CineLineLog(l) => LawRef::GdefLog(l),
             CellLaw::JohnCookLog(l) => LawRef::GdefLog(l),
+            CellLaw::Stored(l) => LawRef::Small(l),
         }
     }
     /// Number of internal variables (the length of VARI_ELGA for the cell).

@@ -179,21 +179,36 @@ pub fn states_from_gauss(
     sief: &GaussField,
     vari: &GaussField,
 ) -> Result<Vec<PointState>, String> {
+    states_from_fields(asm, sief, Some(vari))
+}
+
+/// [`states_from_gauss`] with VARI_ELGA optional: without it the internal
+/// variables are those of a virgin point (for forces evaluated with the
+/// laws read at their stored state, `behaviour::StoredStress`).
+pub fn states_from_fields(
+    asm: &Assembler,
+    sief: &GaussField,
+    vari: Option<&GaussField>,
+) -> Result<Vec<PointState>, String> {
     let mut out = asm.initial_states();
     let ns = sief.ncmp();
-    let nv = vari.ncmp();
+    let nv = vari.map_or(0, |v| v.ncmp());
     let ncells = asm.cell_state_offsets.len() - 1;
-    if sief.offsets.len() != ncells + 1 || vari.offsets.len() != ncells + 1 {
+    if sief.offsets.len() != ncells + 1 || vari.is_some_and(|v| v.offsets.len() != ncells + 1) {
         return Err("SIEF_ELGA/VARI_ELGA of the initial state are on another mesh".into());
     }
     let fstab = sief.components.iter().position(|c| c == "FSTAB1");
     let nstress = fstab.unwrap_or(ns);
     for e in &asm.elements {
-        let nvar = out[e.state_offset].internal.as_slice().len();
+        let nvar = if vari.is_some() {
+            out[e.state_offset].internal.as_slice().len()
+        } else {
+            0
+        };
         let npg = crate::element::output_points(&e.spec);
         let hex = e.spec.is_hexs8();
         if sief.npg(e.cell) != npg
-            || vari.npg(e.cell) != npg
+            || vari.is_some_and(|v| v.npg(e.cell) != npg)
             || nv < nvar
             || nstress > 6
             || (hex && (fstab != Some(6) || ns != 6 + hexs8::NQ))
@@ -207,14 +222,17 @@ pub fn states_from_gauss(
                 if hex { ", 78 stress components" } else { "" }
             ));
         }
-        let (s, v) = (sief.cell(e.cell), vari.cell(e.cell));
+        let s = sief.cell(e.cell);
         for p in 0..npg {
             let st = &mut out[e.state_offset + p];
             for k in 0..nstress {
                 st.stress[k] = s[p * ns + k];
             }
-            st.internal = InternalVars::from_slice(&v[p * nv..p * nv + nvar])
-                .ok_or_else(|| format!("cell M{}: bad internal variables", e.cell + 1))?;
+            if let Some(vari) = vari {
+                let v = vari.cell(e.cell);
+                st.internal = InternalVars::from_slice(&v[p * nv..p * nv + nvar])
+                    .ok_or_else(|| format!("cell M{}: bad internal variables", e.cell + 1))?;
+            }
         }
         if hex {
             let internal = out[e.state_offset].internal;
