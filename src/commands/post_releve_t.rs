@@ -554,28 +554,7 @@ fn elno_extraction(
     let ndim = if mesh.dim == 3 { 3 } else { 2 };
     for step in select_steps(study, res, occ)? {
         let field = super::post_args::step_elno(step, nom_cham, occ, "NOM_CHAM", rname)?;
-        let cmps: Vec<(String, usize)> = if occ.has("TOUT_CMP") {
-            field
-                .components
-                .iter()
-                .enumerate()
-                .map(|(i, c)| (c.clone(), i))
-                .collect()
-        } else {
-            occ.texts("NOM_CMP")
-                .into_iter()
-                .map(|c| {
-                    super::post_args::component_index(
-                        &field.components,
-                        c,
-                        occ,
-                        "NOM_CMP",
-                        nom_cham,
-                    )
-                    .map(|i| (c.to_string(), i))
-                })
-                .collect::<Result<_, _>>()?
-        };
+        let cmps = components_of(occ, &field.components, nom_cham)?;
         let ncmp = field.ncmp();
         let lead = vec![
             ("INTITULE".to_string(), Cell::Text(intitule.to_string())),
@@ -729,28 +708,7 @@ fn elno_extrema(
 
     for step in select_steps(study, res, occ)? {
         let field = super::post_args::step_elno(step, nom_cham, occ, "NOM_CHAM", rname)?;
-        let cmps: Vec<(String, usize)> = if occ.has("NOM_CMP") {
-            occ.texts("NOM_CMP")
-                .into_iter()
-                .map(|c| {
-                    super::post_args::component_index(
-                        &field.components,
-                        c,
-                        occ,
-                        "NOM_CMP",
-                        nom_cham,
-                    )
-                    .map(|i| (c.to_string(), i))
-                })
-                .collect::<Result<_, _>>()?
-        } else {
-            field
-                .components
-                .iter()
-                .enumerate()
-                .map(|(i, c)| (c.clone(), i))
-                .collect()
-        };
+        let cmps = components_of(occ, &field.components, nom_cham)?;
         let ncmp = field.ncmp();
         let mut extrema = Extrema::new();
         for (k, (_, i)) in cmps.iter().enumerate() {
@@ -1068,12 +1026,11 @@ fn selected_nodes(mesh: &Mesh, occ: &Args, op: Operation) -> Result<Vec<usize>, 
 /// or every component of the field.
 fn components_of(
     occ: &Args,
-    field: &NodalField,
+    components: &[String],
     field_name: &str,
 ) -> Result<Vec<(String, usize)>, Diagnostic> {
     if !occ.has("NOM_CMP") {
-        return Ok(field
-            .components
+        return Ok(components
             .iter()
             .enumerate()
             .map(|(i, c)| (c.clone(), i))
@@ -1082,7 +1039,7 @@ fn components_of(
     occ.texts("NOM_CMP")
         .into_iter()
         .map(|c| {
-            super::post_args::component_index(&field.components, c, occ, "NOM_CMP", field_name)
+            super::post_args::component_index(components, c, occ, "NOM_CMP", field_name)
                 .map(|i| (c.to_string(), i))
         })
         .collect()
@@ -1103,7 +1060,7 @@ fn extrema_rows(
     lead: Row,
     rows: &mut Vec<Row>,
 ) -> Result<(), Diagnostic> {
-    let cmps = components_of(occ, field, field_name)?;
+    let cmps = components_of(occ, &field.components, field_name)?;
     let mut extrema = Extrema::new();
     for (k, (_, i)) in cmps.iter().enumerate() {
         for &n in nodes {
@@ -1145,7 +1102,7 @@ fn mean_rows(
     lead: Row,
     rows: &mut Vec<Row>,
 ) -> Result<(), Diagnostic> {
-    for (c, i) in components_of(occ, field, field_name)? {
+    for (c, i) in components_of(occ, &field.components, field_name)? {
         let values: Vec<f64> = nodes
             .iter()
             .map(|&n| field.values[n * field.ncmp() + i])
@@ -1211,22 +1168,7 @@ fn node_rows(
     lead: &Row,
     rows: &mut Vec<Row>,
 ) -> Result<(), Diagnostic> {
-    let cmps: Vec<(String, usize)> = if occ.has("TOUT_CMP") {
-        field
-            .components
-            .iter()
-            .enumerate()
-            .map(|(i, c)| (c.clone(), i))
-            .collect()
-    } else {
-        occ.texts("NOM_CMP")
-            .into_iter()
-            .map(|c| {
-                super::post_args::component_index(&field.components, c, occ, "NOM_CMP", field_name)
-                    .map(|i| (c.to_string(), i))
-            })
-            .collect::<Result<_, _>>()?
-    };
+    let cmps = components_of(occ, &field.components, field_name)?;
     let coords = ["COOR_X", "COOR_Y", "COOR_Z"];
     let ndim = if mesh.dim == 3 { 3 } else { 2 };
     for &n in nodes {
@@ -1281,7 +1223,7 @@ fn path_components(
     field: &NodalField,
     field_name: &str,
 ) -> Result<Vec<(String, usize)>, Diagnostic> {
-    let cmps = components_of(occ, field, field_name)?;
+    let cmps = components_of(occ, &field.components, field_name)?;
     if cmps.len() > 6 {
         let key = if occ.has("NOM_CMP") {
             "NOM_CMP"
